@@ -1,0 +1,73 @@
+"""NoDL toolkit: the ROS 2 Node Definition Language (v2) in Python.
+
+The public API (importable without ROS)::
+
+    from nodl_schema import load_nodl, dump_nodl, ValidationError
+
+    node = load_nodl(pathlib.Path('driver.nodl.yaml'))
+
+Names are imported lazily so that the command line starts fast.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+__version__ = '0.1.0'
+
+_EXPORTS = {
+    'load_nodl': 'nodl_schema.loading',
+    'load_parameter': 'nodl_schema.loading',
+    'load_interface': 'nodl_schema.loading',
+    'load_node': 'nodl_schema.loading',
+    'validate_parameter': 'nodl_schema.loading',
+    'validate_interface': 'nodl_schema.loading',
+    'validate_node': 'nodl_schema.loading',
+    'dump_nodl': 'nodl_schema.loading',
+    'check_source': 'nodl_schema.loading',
+    'model_from_data': 'nodl_schema.loading',
+    'Report': 'nodl_schema.loading',
+    'Document': 'nodl_schema.loading',
+    'Interface': 'nodl_schema.model',
+    'Node': 'nodl_schema.model',
+    'ParameterDefinition': 'nodl_schema.model',
+    'Base': 'nodl_schema.model',
+    'QoSProfile': 'nodl_schema.model',
+    'TopicEndpoint': 'nodl_schema.model',
+    'ServiceEndpoint': 'nodl_schema.model',
+    'ActionEndpoint': 'nodl_schema.model',
+    'ValidationError': 'nodl_schema.diagnostics',
+    'Diagnostic': 'nodl_schema.diagnostics',
+    'Severity': 'nodl_schema.diagnostics',
+    'Kind': 'nodl_schema.validation.kinds',
+    'detect_kind': 'nodl_schema.validation.kinds',
+    'load_schema': 'nodl_schema.schemas',
+    'bundled_schema': 'nodl_schema.schemas',
+}
+
+__all__ = sorted(_EXPORTS)
+
+if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
+    from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
+    from nodl_schema.loading import (
+        Document, Report, check_source, dump_nodl, load_interface, load_node, load_nodl,
+        load_parameter, model_from_data, validate_interface, validate_node, validate_parameter)
+    from nodl_schema.model import (
+        ActionEndpoint, Base, Interface, Node, ParameterDefinition, QoSProfile, ServiceEndpoint,
+        TopicEndpoint)
+    from nodl_schema.schemas import bundled_schema, load_schema
+    from nodl_schema.validation.kinds import Kind, detect_kind
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(list(globals()) + __all__)

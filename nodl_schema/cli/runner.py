@@ -1,0 +1,54 @@
+"""Building the verb parser and running a verb, for ``nodl`` and ``ros2 nodl``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any
+
+from nodl_schema.cli.verb import EXIT_INTERNAL, EXIT_USAGE, help_text
+
+__all__ = ['VERB_GROUP', 'add_verbs', 'run_verb', 'REPORT_URL']
+
+VERB_GROUP = 'nodl.verbs'
+REPORT_URL = 'https://github.com/ros-tooling/nodl/issues'
+
+
+def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb') -> dict[str, Any]:
+    """Add one sub-command per verb plugin; a broken plugin is reported and skipped."""
+    from nodl_schema.plugins import load_plugins
+
+    verbs: dict[str, Any] = {}
+    subparsers = parser.add_subparsers(title='verbs', metavar='VERB', dest=dest)
+    for name, factory in sorted(load_plugins(VERB_GROUP).items()):
+        try:
+            verb = factory()
+            text = help_text(verb)
+            sub = subparsers.add_parser(name, help=text, description=text)
+            verb.add_arguments(sub)
+        except Exception as exc:  # noqa: BLE001 - a broken plugin must not break the tool
+            print(f"warning: skipped verb '{name}': {type(exc).__name__}: {exc}", file=sys.stderr)
+            continue
+        sub.set_defaults(**{dest: verb})
+        verbs[name] = verb
+    return verbs
+
+
+def run_verb(parser: argparse.ArgumentParser, args: argparse.Namespace, dest: str = '_verb') -> int:
+    """Run the verb chosen in ``args``; internal errors become one line, not a traceback."""
+    verb = getattr(args, dest, None)
+    if verb is None:
+        parser.print_help()
+        return EXIT_USAGE
+    try:
+        return int(verb.main(args))
+    except KeyboardInterrupt:
+        print('interrupted', file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 0
+    except Exception as exc:  # noqa: BLE001 - the last line of defence
+        name = type(verb).__name__
+        print(f'nodl: internal error in {name}: {type(exc).__name__}: {exc} '
+              f'(this is a bug; please report it at {REPORT_URL})', file=sys.stderr)
+        return EXIT_INTERNAL

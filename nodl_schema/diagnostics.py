@@ -1,0 +1,137 @@
+"""Diagnostics: what every check yields, and the one exception the API raises.
+
+Checks never raise for a problem in a user's document.  They yield
+:class:`Diagnostic` objects that say what is wrong, where (file, line,
+column and document path) and how bad it is.  The outer API collects them
+all and raises :class:`ValidationError` once, carrying every one.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, replace
+from typing import Iterable, Sequence, Union
+
+__all__ = [
+    'Severity',
+    'Diagnostic',
+    'ValidationError',
+    'DocPath',
+    'format_path',
+]
+
+#: A location inside a document: mapping keys and sequence indices.
+DocPath = tuple[Union[str, int], ...]
+
+
+class Severity(str, enum.Enum):
+    """How bad a diagnostic is. Only errors make a document invalid."""
+
+    ERROR = 'error'
+    WARNING = 'warning'
+    INFO = 'info'
+
+    def __str__(self) -> str:
+        return self.value
+
+
+_PLAIN_KEY_CHARS = frozenset('abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_<>:')
+
+
+def format_path(path: DocPath) -> str:
+    """Render a document path: ``main.parameters.gain.default_value``.
+
+    Sequence indices are written ``[0]``; keys that are not plain words
+    (for example a parameter called ``pid.kp``) are quoted: ``["pid.kp"]``.
+    """
+    out: list[str] = []
+    for part in path:
+        if isinstance(part, int):
+            out.append(f'[{part}]')
+        elif part and set(part) <= _PLAIN_KEY_CHARS:
+            out.append(f'.{part}' if out else part)
+        else:
+            quoted = part.replace('\\', '\\\\').replace('"', '\\"')
+            out.append(f'["{quoted}"]')
+    return ''.join(out)
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    """One problem (or remark) found in a document.
+
+    ``line`` and ``column`` are 1-based; 0 means the position is unknown
+    (for example for a document given as a plain dict).
+    """
+
+    severity: Severity
+    message: str
+    path: DocPath = ()
+    file: str = '<string>'
+    line: int = 0
+    column: int = 0
+    #: Where the diagnostic points: the mapping ``key`` or its ``value``.
+    anchor: str = 'value'
+
+    @property
+    def path_text(self) -> str:
+        """The document path as text (``main.publishers[0].type``)."""
+        return format_path(self.path)
+
+    def at(self, file: str, line: int, column: int) -> 'Diagnostic':
+        """Return a copy placed at ``file:line:column``."""
+        return replace(self, file=file, line=line, column=column)
+
+    def __str__(self) -> str:
+        where = self.file
+        if self.line:
+            where += f':{self.line}:{self.column}'
+        text = f'{where}: {self.severity}: {self.message}'
+        if self.path:
+            text += f' [{self.path_text}]'
+        return text
+
+    def to_dict(self) -> dict[str, object]:
+        """The diagnostic as a JSON-ready mapping."""
+        return {
+            'file': self.file,
+            'line': self.line,
+            'column': self.column,
+            'path': self.path_text,
+            'severity': self.severity.value,
+            'message': self.message,
+        }
+
+
+def error(message: str, path: DocPath = (), anchor: str = 'value') -> Diagnostic:
+    """Shorthand used by the checks: an error at ``path``."""
+    return Diagnostic(Severity.ERROR, message, path, anchor=anchor)
+
+
+def warning(message: str, path: DocPath = (), anchor: str = 'value') -> Diagnostic:
+    """Shorthand used by the checks: a warning at ``path``."""
+    return Diagnostic(Severity.WARNING, message, path, anchor=anchor)
+
+
+def info(message: str, path: DocPath = (), anchor: str = 'value') -> Diagnostic:
+    """Shorthand used by the checks: an informational remark at ``path``."""
+    return Diagnostic(Severity.INFO, message, path, anchor=anchor)
+
+
+def has_errors(diagnostics: Iterable[Diagnostic]) -> bool:
+    """True if any diagnostic is an error."""
+    return any(d.severity is Severity.ERROR for d in diagnostics)
+
+
+class ValidationError(ValueError):
+    """An invalid NoDL document. Carries every diagnostic found, not just the first."""
+
+    def __init__(self, diagnostics: Sequence[Diagnostic]):
+        self.diagnostics: list[Diagnostic] = list(diagnostics)
+        errors = [d for d in self.diagnostics if d.severity is Severity.ERROR] or self.diagnostics
+        super().__init__('\n'.join(str(d) for d in errors))
+
+    @property
+    def errors(self) -> list[Diagnostic]:
+        """Only the diagnostics of severity error."""
+        return [d for d in self.diagnostics if d.severity is Severity.ERROR]

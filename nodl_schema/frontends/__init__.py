@@ -1,0 +1,1 @@
+"""Frontends: from text in some syntax to plain data (and positions)."""

@@ -1,0 +1,185 @@
+"""The public load/validate/dump API.
+
+``load_nodl`` detects the kind of a document; ``load_parameter``,
+``load_interface`` and ``load_node`` enforce one.  All of them accept YAML
+or JSON as text, bytes, a file object or a :class:`pathlib.Path`, and raise
+:class:`~nodl_schema.diagnostics.ValidationError` once, with every
+diagnostic, for an invalid document.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from typing import Any, Union
+
+import yaml
+
+from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
+from nodl_schema.frontends.source import Source, read_source
+from nodl_schema.frontends.yaml_json import ParsedDocument, parse_document
+from nodl_schema.model import Interface, Node, ParameterDefinition
+from nodl_schema.validation import Kind, detect_kind, validate_data
+
+__all__ = [
+    'Document', 'Report', 'check_source', 'load_nodl', 'load_parameter', 'load_interface',
+    'load_node', 'validate_parameter', 'validate_interface', 'validate_node', 'dump_nodl',
+    'model_from_data',
+]
+
+#: Any loaded NoDL document.
+Document = Union[Interface, Node, ParameterDefinition]
+
+_MODELS = {Kind.PARAMETER: ParameterDefinition, Kind.INTERFACE: Interface, Kind.NODE: Node}
+_WHY = {
+    Kind.PARAMETER: 'it has no nodl_version',
+    Kind.INTERFACE: 'it has nodl_version and no base, main or mixins',
+    Kind.NODE: 'it has base, main or mixins',
+}
+
+
+@dataclass
+class Report:
+    """The outcome of checking one document: its kind, data and diagnostics."""
+
+    file: str
+    kind: Kind | None
+    data: Any
+    _raw: list[Diagnostic] = field(default_factory=list)
+    _parsed: ParsedDocument | None = None
+    _placed: list[Diagnostic] | None = None
+
+    @property
+    def diagnostics(self) -> list[Diagnostic]:
+        """Every diagnostic, placed at ``file:line:column`` and in source order."""
+        if self._placed is None:
+            parsed = self._parsed
+            placed = [parsed.place(d) if parsed is not None else d.at(self.file, d.line, d.column)
+                      for d in self._raw]
+            placed.sort(key=lambda d: (d.line, d.column))
+            self._placed = placed
+        return self._placed
+
+    @property
+    def errors(self) -> list[Diagnostic]:
+        """Diagnostics of severity error."""
+        return [d for d in self.diagnostics if d.severity is Severity.ERROR]
+
+    @property
+    def warnings(self) -> list[Diagnostic]:
+        """Diagnostics of severity warning."""
+        return [d for d in self.diagnostics if d.severity is Severity.WARNING]
+
+    def has_errors(self, strict: bool = False) -> bool:
+        """True if the document is invalid (with ``strict``, warnings count too)."""
+        failing = (Severity.ERROR, Severity.WARNING) if strict else (Severity.ERROR,)
+        return any(d.severity in failing for d in self._raw)
+
+    def model(self) -> Document:
+        """The typed document (only for a report without errors)."""
+        if self.kind is None or self.has_errors():
+            raise ValidationError(self.diagnostics)
+        return _MODELS[self.kind].from_dict(self.data)
+
+
+def check_source(source: Source, *, kind: Kind | str | None = None,
+                 file: str | None = None) -> Report:
+    """Read, parse and validate one document; never raises for bad content.
+
+    ``kind`` enforces a kind of document (default: detect it).  ``file``
+    names the document in diagnostics (default: the path, or ``<string>``).
+    I/O errors such as a missing file propagate as :class:`OSError`.
+    """
+    wanted = Kind(kind) if kind is not None else None
+    text, problem = read_source(source, file)
+    if text is None:
+        assert problem is not None
+        return Report(problem.file, None, None, [problem])
+    parsed = parse_document(text)
+    if parsed.diagnostics:
+        return Report(text.file, None, parsed.data, list(parsed.diagnostics), parsed)
+    detected = detect_kind(parsed.data)
+    if wanted is not None and wanted is not detected:
+        mismatch = Diagnostic(
+            Severity.ERROR, f'expected a {wanted} definition, but this is a {detected} '
+            f'definition ({_WHY[detected]})', (), text.file, 1, 1)
+        return Report(text.file, wanted, parsed.data, [mismatch], parsed)
+    return Report(text.file, detected, parsed.data, validate_data(parsed.data, detected), parsed)
+
+
+def _load(source: Source, kind: Kind | None, strict: bool, file: str | None) -> Document:
+    report = check_source(source, kind=kind, file=file)
+    if report.has_errors(strict):
+        raise ValidationError(report.diagnostics)
+    return report.model()
+
+
+def load_nodl(source: Source, *, strict: bool = False, file: str | None = None) -> Document:
+    """Load any NoDL document, detecting whether it is a parameter, interface or node definition.
+
+    With ``strict``, warnings make the document invalid too.
+    """
+    return _load(source, None, strict, file)
+
+
+def load_parameter(source: Source, *, strict: bool = False,
+                   file: str | None = None) -> ParameterDefinition:
+    """Load a parameter definition (any other kind is an error)."""
+    return _load(source, Kind.PARAMETER, strict, file)  # type: ignore[return-value]
+
+
+def load_interface(source: Source, *, strict: bool = False, file: str | None = None) -> Interface:
+    """Load an interface definition (any other kind is an error)."""
+    return _load(source, Kind.INTERFACE, strict, file)  # type: ignore[return-value]
+
+
+def load_node(source: Source, *, strict: bool = False, file: str | None = None) -> Node:
+    """Load a node definition (any other kind is an error)."""
+    return _load(source, Kind.NODE, strict, file)  # type: ignore[return-value]
+
+
+def _validate(data: Any, kind: Kind) -> list[Diagnostic]:
+    if not isinstance(data, dict):
+        raise ValidationError([Diagnostic(
+            Severity.ERROR, f'a {kind} definition is a mapping, not {type(data).__name__}',
+            (), '<dict>')])
+    diagnostics = [d.at('<dict>', 0, 0) for d in validate_data(data, kind)]
+    if any(d.severity is Severity.ERROR for d in diagnostics):
+        raise ValidationError(diagnostics)
+    return diagnostics
+
+
+def validate_parameter(data: dict[str, Any]) -> list[Diagnostic]:
+    """Validate a plain dict as a parameter definition; returns the warnings."""
+    return _validate(data, Kind.PARAMETER)
+
+
+def validate_interface(data: dict[str, Any]) -> list[Diagnostic]:
+    """Validate a plain dict as an interface definition; returns the warnings."""
+    return _validate(data, Kind.INTERFACE)
+
+
+def validate_node(data: dict[str, Any]) -> list[Diagnostic]:
+    """Validate a plain dict as a node definition; returns the warnings."""
+    return _validate(data, Kind.NODE)
+
+
+def model_from_data(data: dict[str, Any]) -> Document:
+    """Validate a plain dict of any kind and return its typed model."""
+    kind = detect_kind(data)
+    _validate(data, kind)
+    return _MODELS[kind].from_dict(data)
+
+
+_Dumper = getattr(yaml, 'CSafeDumper', yaml.SafeDumper)
+
+
+def dump_nodl(doc: Union[Document, dict[str, Any]], format: str = 'yaml') -> str:
+    """Serialize a document (model or plain dict) as ``yaml`` or ``json`` text."""
+    data = doc if isinstance(doc, dict) else doc.to_dict()
+    if format == 'json':
+        return json.dumps(data, indent=2, ensure_ascii=False) + '\n'
+    if format == 'yaml':
+        return yaml.dump(data, Dumper=_Dumper, sort_keys=False, default_flow_style=False,
+                         allow_unicode=True, width=100)
+    raise ValueError(f"unsupported format {format!r}; expected 'yaml' or 'json'")

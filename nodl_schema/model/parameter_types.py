@@ -1,0 +1,97 @@
+"""Parameter types: the names a parameter definition may use, and what they mean.
+
+The types are those of generate_parameter_library plus ``byte_array`` (a
+ROS 2 parameter type): scalars, arrays, and fixed-size forms
+``<base>_fixed_<N>`` where N is the maximum length.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import Any
+
+__all__ = ['SCALAR_TYPES', 'ARRAY_TYPES', 'FIXED_BASES', 'ALL_TYPE_WORDS', 'TypeSpec',
+           'parse_type', 'value_fits']
+
+SCALAR_TYPES = ('bool', 'int', 'double', 'string', 'none')
+ARRAY_TYPES = ('bool_array', 'int_array', 'double_array', 'string_array', 'byte_array')
+FIXED_BASES = ('string', 'int_array', 'double_array', 'string_array')
+#: For messages and suggestions.
+ALL_TYPE_WORDS = SCALAR_TYPES + ARRAY_TYPES + tuple(f'{b}_fixed_N' for b in FIXED_BASES)
+
+_FIXED = re.compile(r'(string|int_array|double_array|string_array|bool_array)_fixed_([0-9]+)')
+
+
+@dataclass(frozen=True)
+class TypeSpec:
+    """A parsed parameter type."""
+
+    name: str
+    #: ``bool``, ``int``, ``double``, ``string``, ``none`` or an ``*_array`` name.
+    base: str
+    #: Maximum length of a fixed-size type, else None.
+    size: int | None = None
+
+    @property
+    def is_array(self) -> bool:
+        """True for every array type (including ``byte_array`` and fixed arrays)."""
+        return self.base.endswith('_array')
+
+    @property
+    def element(self) -> str:
+        """The scalar kind of the value or of each element: bool, int, double, string, byte, none."""
+        if self.base == 'byte_array':
+            return 'byte'
+        return self.base[:-len('_array')] if self.is_array else self.base
+
+    @property
+    def numeric(self) -> bool:
+        """True if values (or elements) are numbers."""
+        return self.element in ('int', 'double', 'byte')
+
+    @property
+    def category(self) -> str:
+        """Words for messages: 'int', 'string', 'double array', ..."""
+        return self.base.replace('_', ' ')
+
+
+def parse_type(name: Any) -> TypeSpec | None:
+    """Parse a type name; None if it is not a supported parameter type."""
+    if not isinstance(name, str):
+        return None
+    if name in SCALAR_TYPES or name in ARRAY_TYPES:
+        return TypeSpec(name, name)
+    match = _FIXED.fullmatch(name)
+    if match and match.group(1) != 'bool_array' and int(match.group(2)) >= 1 \
+            and not match.group(2).startswith('0'):
+        return TypeSpec(name, match.group(1), int(match.group(2)))
+    return None
+
+
+def element_fits(value: Any, element: str) -> bool:
+    """True if one scalar ``value`` has the kind ``element``."""
+    if element == 'bool':
+        return isinstance(value, bool)
+    if element == 'int':
+        return isinstance(value, int) and not isinstance(value, bool)
+    if element == 'double':
+        return isinstance(value, (int, float)) and not isinstance(value, bool)
+    if element == 'string':
+        return isinstance(value, str)
+    if element == 'byte':
+        return isinstance(value, int) and not isinstance(value, bool) and 0 <= value <= 255
+    return False
+
+
+def value_fits(value: Any, spec: TypeSpec) -> bool:
+    """True if ``value`` is a valid value of ``spec`` (ignoring validators)."""
+    if spec.is_array:
+        if not isinstance(value, list):
+            return False
+        if spec.size is not None and len(value) > spec.size:
+            return False
+        return all(element_fits(v, spec.element) for v in value)
+    if spec.size is not None and isinstance(value, str) and len(value) > spec.size:
+        return False
+    return element_fits(value, spec.element)

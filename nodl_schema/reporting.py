@@ -1,0 +1,53 @@
+"""Rendering diagnostics for people (text) and for tools (JSON)."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from typing import Iterable
+
+from nodl_schema.diagnostics import Diagnostic, Severity
+
+__all__ = ['Tally', 'format_text', 'format_json', 'summary_line']
+
+
+@dataclass
+class Tally:
+    """Counts for the summary line."""
+
+    files: int = 0
+    errors: int = 0
+    warnings: int = 0
+    infos: int = 0
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+
+    def add(self, diagnostics: Iterable[Diagnostic]) -> None:
+        """Count and keep diagnostics."""
+        for d in diagnostics:
+            self.diagnostics.append(d)
+            if d.severity is Severity.ERROR:
+                self.errors += 1
+            elif d.severity is Severity.WARNING:
+                self.warnings += 1
+            else:
+                self.infos += 1
+
+
+def _plural(count: int, word: str) -> str:
+    return f'{count} {word}{"" if count == 1 else "s"}'
+
+
+def summary_line(tally: Tally) -> str:
+    """``N files, N errors, N warnings``."""
+    return ', '.join((_plural(tally.files, 'file'), _plural(tally.errors, 'error'),
+                      _plural(tally.warnings, 'warning')))
+
+
+def format_text(diagnostics: Iterable[Diagnostic]) -> str:
+    """One ``FILE:LINE:COL: severity: message`` line per diagnostic."""
+    return ''.join(f'{d}\n' for d in diagnostics)
+
+
+def format_json(diagnostics: Iterable[Diagnostic]) -> str:
+    """A JSON array of diagnostic objects (file, line, column, path, severity, message)."""
+    return json.dumps([d.to_dict() for d in diagnostics], indent=2) + '\n'

@@ -1,0 +1,94 @@
+"""The NoDL v2 JSON Schema family, shipped as package data.
+
+``parameter.schema.json``, ``interface.schema.json`` and ``node.schema.json``
+are the source of truth for the structure of each kind of document: the
+validator interprets them directly, and ``nodl schema KIND`` prints them
+(bundled, so that an editor can use one file on its own).
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+__all__ = ['KINDS', 'schema_path', 'load_schema', 'bundled_schema']
+
+#: The kinds of NoDL document, each with a schema file.
+KINDS = ('parameter', 'interface', 'node')
+
+_HERE = Path(__file__).resolve().parent
+
+
+def schema_path(kind: str) -> Path:
+    """The path of the shipped schema file for ``kind``."""
+    if kind not in KINDS:
+        raise ValueError(f"unknown schema kind '{kind}'; expected one of: {', '.join(KINDS)}")
+    return _HERE / f'{kind}.schema.json'
+
+
+@lru_cache(maxsize=None)
+def _load(file_name: str) -> dict[str, Any]:
+    with open(_HERE / file_name, encoding='utf-8') as f:
+        return json.load(f)
+
+
+def load_schema(kind: str) -> dict[str, Any]:
+    """The schema for ``kind`` exactly as shipped (a fresh copy)."""
+    return copy.deepcopy(_load(schema_path(kind).name))
+
+
+def load_schema_file(file_name: str) -> dict[str, Any]:
+    """A shipped schema by file name (shared, do not modify)."""
+    return _load(file_name)
+
+
+def bundled_schema(kind: str) -> dict[str, Any]:
+    """The schema for ``kind`` with references to sibling files inlined.
+
+    The result is self-contained: every ``$ref`` points into its own
+    ``definitions``, so editors and other validators can use it alone.
+    """
+    result = load_schema(kind)
+    definitions: dict[str, Any] = result.setdefault('definitions', {})
+    imported = {schema_path(kind).name}
+    while True:
+        missing = {name for name in _external_files(result) if name not in imported}
+        if not missing:
+            break
+        for file_name in sorted(missing):
+            imported.add(file_name)
+            for name, definition in copy.deepcopy(_load(file_name)).get('definitions', {}).items():
+                definitions.setdefault(name, definition)
+    _localize(result)
+    return result
+
+
+def _external_files(node: Any) -> set[str]:
+    found: set[str] = set()
+    stack = [node]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, dict):
+            ref = item.get('$ref')
+            if isinstance(ref, str) and not ref.startswith('#'):
+                found.add(ref.partition('#')[0])
+            stack.extend(item.values())
+        elif isinstance(item, list):
+            stack.extend(item)
+    return found
+
+
+def _localize(node: Any) -> None:
+    stack = [node]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, dict):
+            ref = item.get('$ref')
+            if isinstance(ref, str) and not ref.startswith('#'):
+                item['$ref'] = '#' + ref.partition('#')[2]
+            stack.extend(item.values())
+        elif isinstance(item, list):
+            stack.extend(item)

@@ -1,0 +1,72 @@
+"""Validation of a document of a known kind: structure, then semantics."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Any
+
+from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
+from nodl_schema.validation.interfaces import check_interface
+from nodl_schema.validation.kinds import Kind
+from nodl_schema.validation.names import check_parameter_name, check_ros_name
+from nodl_schema.validation.parameters import (
+    check_parameter, check_parameter_type, check_validator_name)
+from nodl_schema.validation.references import check_reference
+from nodl_schema.validation.structure import Check, SchemaCompiler
+from nodl_schema.validation.types import check_action_type, check_msg_type, check_srv_type
+
+__all__ = ['validate_data', 'FORMATS']
+
+#: The ``format`` values of the shipped schemas, checked by Python code.
+FORMATS = {
+    'nodl-ros-name': check_ros_name,
+    'nodl-msg-type': check_msg_type,
+    'nodl-srv-type': check_srv_type,
+    'nodl-action-type': check_action_type,
+    'nodl-parameter-type': check_parameter_type,
+    'nodl-parameter-name': check_parameter_name,
+    'nodl-validator-name': check_validator_name,
+    'nodl-reference': check_reference,
+}
+
+
+@lru_cache(maxsize=None)
+def _structure(kind: Kind) -> Check:
+    return SchemaCompiler(FORMATS).compile_ref(f'{kind.value}.schema.json')
+
+
+def _check_node(data: Any, out: list[Diagnostic]) -> None:
+    if not isinstance(data, dict):
+        return
+    check_interface(data.get('main'), ('main',), out)
+    mixins = data.get('mixins')
+    if not isinstance(mixins, list):
+        return
+    seen: dict[str, int] = {}
+    for index, mixin in enumerate(mixins):
+        path: DocPath = ('mixins', index)
+        if isinstance(mixin, dict):
+            check_interface(mixin, path, out)
+        elif isinstance(mixin, str):
+            if mixin in seen:
+                out.append(Diagnostic(Severity.WARNING, f"mixin '{mixin}' is listed twice "
+                                      f'(first as mixins[{seen[mixin]}])', path))
+            else:
+                seen[mixin] = index
+
+
+def validate_data(data: Any, kind: Kind) -> list[Diagnostic]:
+    """Every diagnostic for ``data`` read as a document of ``kind``.
+
+    Diagnostics carry document paths but no positions; the caller places
+    them in the source text (see :class:`~nodl_schema.frontends.yaml_json.ParsedDocument`).
+    """
+    out: list[Diagnostic] = []
+    _structure(kind)(data, (), out)
+    if kind is Kind.PARAMETER:
+        check_parameter(data, (), out)
+    elif kind is Kind.INTERFACE:
+        check_interface(data, (), out)
+    else:
+        _check_node(data, out)
+    return out

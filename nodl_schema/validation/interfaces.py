@@ -1,0 +1,62 @@
+"""Checks across the entities of one interface definition.
+
+* an endpoint name appears at most once per section;
+* every parameter is checked by :mod:`nodl_schema.validation.parameters`;
+* warnings for what a reader of the interface will miss: an endpoint or
+  parameter without a description.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
+from nodl_schema.diagnostics import format_path
+from nodl_schema.validation.parameters import check_parameter
+
+__all__ = ['SECTIONS', 'check_interface']
+
+#: Endpoint sections and how one of their entries is called in messages.
+SECTIONS = {
+    'publishers': 'publisher',
+    'subscriptions': 'subscription',
+    'service_servers': 'service server',
+    'service_clients': 'service client',
+    'action_servers': 'action server',
+    'action_clients': 'action client',
+}
+
+
+def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
+    """Semantic checks of an interface definition found at ``path``."""
+    if not isinstance(data, dict):
+        return
+    parameters = data.get('parameters')
+    if isinstance(parameters, dict):
+        for name, param in parameters.items():
+            check_parameter(param, path + ('parameters', name), out)
+            if isinstance(param, dict) and not param.get('description'):
+                out.append(Diagnostic(Severity.WARNING, f"parameter '{name}' has no description",
+                                      path + ('parameters', name), anchor='key'))
+    for section, word in SECTIONS.items():
+        entries = data.get(section)
+        if not isinstance(entries, list):
+            continue
+        first_index: dict[str, int] = {}
+        for index, entry in enumerate(entries):
+            if not isinstance(entry, dict):
+                continue
+            name = entry.get('name')
+            entry_path = path + (section, index)
+            if isinstance(name, str):
+                if name in first_index:
+                    earlier = format_path(path + (section, first_index[name]))
+                    out.append(Diagnostic(
+                        Severity.ERROR, f"duplicate {word} '{name}' (already declared at {earlier}); "
+                        'a name appears once per section', entry_path + ('name',)))
+                else:
+                    first_index[name] = index
+            if not entry.get('description'):
+                label = f" '{name}'" if isinstance(name, str) else ''
+                out.append(Diagnostic(Severity.WARNING, f'{word}{label} has no description',
+                                      entry_path, anchor='key'))

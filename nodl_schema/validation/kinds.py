@@ -1,0 +1,43 @@
+"""The three kinds of NoDL document, and how a document's kind is detected."""
+
+from __future__ import annotations
+
+import enum
+from typing import Any
+
+__all__ = ['Kind', 'detect_kind', 'NODE_KEYS', 'INTERFACE_KEYS']
+
+NODE_KEYS = ('base', 'main', 'mixins')
+INTERFACE_KEYS = ('parameters', 'publishers', 'subscriptions', 'service_servers',
+                  'service_clients', 'action_servers', 'action_clients')
+
+
+class Kind(str, enum.Enum):
+    """A kind of NoDL document; each has a schema."""
+
+    PARAMETER = 'parameter'
+    INTERFACE = 'interface'
+    NODE = 'node'
+
+    def __str__(self) -> str:
+        return self.value
+
+
+def detect_kind(data: Any) -> Kind:
+    """Which kind of document ``data`` is, as spec 004 and the reference implementation decide.
+
+    A document with ``nodl_version`` is a node definition if it has any of
+    ``base``, ``main`` or ``mixins``, else an interface definition.  A
+    document without ``nodl_version`` is a parameter definition -- unless it
+    plainly is an interface or node definition that forgot its version (it
+    has no ``type`` but has their keys), so that the diagnostic says
+    "missing nodl_version" rather than "unknown key publishers".
+    """
+    if not isinstance(data, dict):
+        return Kind.PARAMETER if 'nodl_version' not in (data or ()) else Kind.INTERFACE
+    if 'nodl_version' in data or 'type' not in data:
+        if any(key in data for key in NODE_KEYS):
+            return Kind.NODE
+        if 'nodl_version' in data or any(key in data for key in INTERFACE_KEYS):
+            return Kind.INTERFACE
+    return Kind.PARAMETER

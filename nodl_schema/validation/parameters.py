@@ -1,0 +1,318 @@
+"""Parameter checks the JSON Schema cannot express.
+
+* the type name (with suggestions);
+* validator names: built-ins with or without ``<>``, custom C++ functions;
+* the default value against the type (scalar kinds, byte range, fixed sizes);
+* validators against the type (``bounds`` on a string is an error);
+* conflicting validators, as generate_parameter_library rejects them;
+* validator arguments of the parameter's type (``one_of``, ``subset_of``);
+* the default value against the validators (500 with ``bounds<>: [0, 10]``).
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
+from nodl_schema.model.parameter_types import (
+    ALL_TYPE_WORDS, ARRAY_TYPES, SCALAR_TYPES, TypeSpec, element_fits, parse_type)
+from nodl_schema.validation.messages import did_you_mean, kind_of, one_of, show
+
+__all__ = ['BUILTIN_VALIDATORS', 'check_parameter_type', 'check_validator_name', 'check_parameter']
+
+#: Built-in validators of generate_parameter_library and what they apply to.
+BUILTIN_VALIDATORS: dict[str, str] = {
+    'bounds': 'numeric', 'lt': 'numeric', 'gt': 'numeric', 'lt_eq': 'numeric', 'gt_eq': 'numeric',
+    'one_of': 'scalar',
+    'not_empty': 'sized', 'fixed_size': 'sized', 'size_gt': 'sized', 'size_lt': 'sized',
+    'unique': 'array', 'subset_of': 'array',
+    'element_bounds': 'numeric_array', 'lower_element_bounds': 'numeric_array',
+    'upper_element_bounds': 'numeric_array',
+}
+_APPLIES_WORDS = {
+    'numeric': 'int and double parameters',
+    'scalar': 'bool, int, double and string parameters',
+    'sized': 'string and array parameters',
+    'array': 'array parameters',
+    'numeric_array': 'int, double and byte arrays',
+}
+_CONFLICTS = [
+    ('bounds', ('lt', 'gt', 'lt_eq', 'gt_eq')),
+    ('element_bounds', ('lower_element_bounds', 'upper_element_bounds')),
+]
+_FUNCTION_NAME = re.compile(r'[A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)*(<>)?')
+_ELEMENT_WORDS = {'bool': 'a boolean', 'int': 'an integer', 'double': 'a number',
+                  'string': 'a string', 'byte': 'an integer from 0 to 255'}
+
+
+def _error(message: str, path: DocPath, anchor: str = 'value') -> Diagnostic:
+    return Diagnostic(Severity.ERROR, message, path, anchor=anchor)
+
+
+def check_parameter_type(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
+    """Format check ``nodl-parameter-type``."""
+    if not isinstance(value, str):
+        out.append(_error(f"'type' must be a string, not {kind_of(value)} ({show(value)})", path))
+        return
+    if parse_type(value) is not None:
+        return
+    if value.startswith('bool_array_fixed_'):
+        out.append(_error(f'{show(value)} is not supported: there are no fixed-size bool arrays '
+                          '(use bool_array)', path))
+        return
+    if re.fullmatch(r'\w+_fixed_0*', value) or re.fullmatch(r'\w+_fixed_0[0-9]+', value):
+        out.append(_error(f'{show(value)}: the size of a fixed-size type is a positive number '
+                          'without leading zeros', path))
+        return
+    out.append(_error(f'unknown parameter type {show(value)}; expected one of: '
+                      f'{", ".join(ALL_TYPE_WORDS)}{did_you_mean(value, SCALAR_TYPES + ARRAY_TYPES)}',
+                      path))
+
+
+def check_validator_name(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
+    """Format check ``nodl-validator-name`` (applied to keys of ``validation``)."""
+    if not isinstance(value, str):
+        return
+    bare = value[:-2] if value.endswith('<>') else value
+    if bare in BUILTIN_VALIDATORS:
+        return
+    if not _FUNCTION_NAME.fullmatch(value):
+        out.append(_error(
+            f'{show(value)} is not a validator name: use a built-in validator '
+            f'({", ".join(n + "<>" for n in BUILTIN_VALIDATORS)}) or a C++ function name '
+            '(my_namespace::my_check)', path, 'key'))
+        return
+    if '::' not in bare:
+        suffix = '<>' if value.endswith('<>') else ''
+        hint = did_you_mean(value, [name + suffix for name in BUILTIN_VALIDATORS])
+        if hint:
+            out.append(Diagnostic(
+                Severity.WARNING,
+                f'{show(value)} is not a built-in validator and will be called as a custom '
+                f'function{hint.replace(";", ",", 1)}', path, anchor='key'))
+
+
+def _scalar_arg(args: Any) -> Any:
+    """``[x]`` or ``x`` -> x (the two spellings generate_parameter_library accepts)."""
+    if isinstance(args, list) and len(args) == 1:
+        return args[0]
+    return args
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
+    """Semantic checks of one parameter definition found at ``path``."""
+    if not isinstance(param, dict):
+        return
+    spec = parse_type(param.get('type'))
+    if spec is None:
+        return  # the structural check has reported the type
+    has_default = 'default_value' in param
+    default = param.get('default_value')
+    default_path = path + ('default_value',)
+    default_ok = False
+    if spec.base == 'none':
+        if has_default:
+            out.append(Diagnostic(Severity.WARNING, "a parameter of type 'none' holds no value; "
+                                  'its default_value is ignored', default_path, anchor='key'))
+    elif has_default:
+        default_ok = _check_default(default, spec, default_path, out)
+
+    validation = param.get('validation')
+    if not isinstance(validation, dict):
+        return
+    vpath = path + ('validation',)
+    builtins: dict[str, tuple[str, Any]] = {}
+    for key, args in validation.items():
+        if not isinstance(key, str):
+            continue
+        bare = key[:-2] if key.endswith('<>') else key
+        if bare not in BUILTIN_VALIDATORS:
+            continue
+        if bare in builtins:
+            out.append(_error(f"'{builtins[bare][0]}' and '{key}' are the same validator; keep one",
+                              vpath + (key,), 'key'))
+            continue
+        builtins[bare] = (key, args)
+
+    if spec.base == 'none' and validation:
+        out.append(_error("a parameter of type 'none' holds no value, so it takes no validators",
+                          vpath, 'key'))
+        return
+
+    fitting: dict[str, tuple[str, Any]] = {}
+    for bare, (key, args) in builtins.items():
+        applies = BUILTIN_VALIDATORS[bare]
+        if not _applies(applies, spec):
+            out.append(_error(f"'{key}' does not apply to a {spec.category} parameter; it is for "
+                              f'{_APPLIES_WORDS[applies]}', vpath + (key,), 'key'))
+            continue
+        fitting[bare] = (key, args)
+
+    for first, others in _CONFLICTS:
+        if first in builtins:
+            for other in others:
+                if other in builtins:
+                    key = builtins[other][0]
+                    out.append(_error(f"'{builtins[first][0]}' conflicts with '{key}': give the range "
+                                      f'with one or the other, not both', vpath + (key,), 'key'))
+
+    args_ok = True
+    for bare, (key, args) in fitting.items():
+        if not _check_arguments(bare, key, args, spec, vpath + (key,), out):
+            args_ok = False
+    if default_ok and args_ok:
+        for bare, (key, args) in fitting.items():
+            problem = _default_breaks(bare, args, default, spec)
+            if problem:
+                out.append(_error(f'default_value {show(default)} breaks {key} '
+                                  f'{show(args)}: {problem}', default_path))
+
+
+def _applies(applies: str, spec: TypeSpec) -> bool:
+    if applies == 'numeric':
+        return not spec.is_array and spec.element in ('int', 'double')
+    if applies == 'scalar':
+        return not spec.is_array
+    if applies == 'sized':
+        return spec.is_array or spec.element == 'string'
+    if applies == 'array':
+        return spec.is_array
+    return spec.is_array and spec.numeric
+
+
+def _check_default(value: Any, spec: TypeSpec, path: DocPath, out: list[Diagnostic]) -> bool:
+    if value is None:
+        out.append(_error(f'default_value is null; a {spec.name} parameter needs '
+                          f'{_expected(spec)} (leave default_value out to make the parameter '
+                          'required at start-up)', path))
+        return False
+    if spec.is_array:
+        if not isinstance(value, list):
+            out.append(_error(f'default_value of a {spec.name} parameter must be a list of '
+                              f'{spec.element} values, not {kind_of(value)} ({show(value)})', path))
+            return False
+        ok = True
+        for index, item in enumerate(value):
+            if spec.element == 'byte' and element_fits(item, 'int'):
+                out.append(_error(f'element {index} of default_value is {item}; a byte_array holds '
+                                  'integers from 0 to 255', path + (index,)))
+                ok = False
+            elif not element_fits(item, spec.element):
+                out.append(_error(f'element {index} of default_value must be '
+                                  f'{_ELEMENT_WORDS[spec.element]}, not {kind_of(item)} ({show(item)})',
+                                  path + (index,)))
+                ok = False
+        if spec.size is not None and len(value) > spec.size:
+            out.append(_error(f'default_value has {len(value)} elements; {spec.name} holds at most '
+                              f'{spec.size}', path))
+            ok = False
+        return ok
+    if not element_fits(value, spec.element):
+        out.append(_error(f'default_value of a {spec.name} parameter must be {_expected(spec)}, '
+                          f'not {kind_of(value)} ({show(value)})', path))
+        return False
+    if spec.size is not None and len(value) > spec.size:
+        out.append(_error(f'default_value has {len(value)} characters; {spec.name} holds at most '
+                          f'{spec.size}', path))
+        return False
+    return True
+
+
+def _expected(spec: TypeSpec) -> str:
+    if spec.is_array:
+        return f'a list of {spec.element} values'
+    return _ELEMENT_WORDS.get(spec.element, 'a value')
+
+
+def _check_arguments(bare: str, key: str, args: Any, spec: TypeSpec, path: DocPath,
+                     out: list[Diagnostic]) -> bool:
+    """Arguments of the parameter's kind; False if they are unusable."""
+    if bare in ('bounds', 'element_bounds'):
+        if not (isinstance(args, list) and len(args) == 2 and all(map(_is_number, args))):
+            return False  # the structural check reported the shape
+        if args[0] > args[1]:
+            out.append(_error(f'{key}: the lower bound {show(args[0])} is greater than the upper '
+                              f'bound {show(args[1])}', path))
+            return False
+        return _integral(args, key, spec, path, out)
+    if bare in ('lt', 'gt', 'lt_eq', 'gt_eq', 'lower_element_bounds', 'upper_element_bounds'):
+        value = _scalar_arg(args)
+        return _is_number(value) and _integral([value], key, spec, path, out)
+    if bare in ('fixed_size', 'size_gt', 'size_lt'):
+        value = _scalar_arg(args)
+        return isinstance(value, int) and not isinstance(value, bool) and value >= 0
+    if bare in ('one_of', 'subset_of'):
+        if not (isinstance(args, list) and len(args) == 1 and isinstance(args[0], list)):
+            return False
+        ok = True
+        for index, item in enumerate(args[0]):
+            if not element_fits(item, spec.element):
+                out.append(_error(f'{key} value {show(item)} is not {_ELEMENT_WORDS[spec.element]}, '
+                                  f'so a {spec.name} parameter can never equal it',
+                                  path + (0, index)))
+                ok = False
+        return ok
+    return True
+
+
+def _integral(values: list[Any], key: str, spec: TypeSpec, path: DocPath,
+              out: list[Diagnostic]) -> bool:
+    if spec.element in ('int', 'byte'):
+        for value in values:
+            if isinstance(value, float) and not value.is_integer():
+                out.append(_error(f'{key} of an integer parameter must use integers, not '
+                                  f'{show(value)}', path))
+                return False
+    return True
+
+
+def _default_breaks(bare: str, args: Any, value: Any, spec: TypeSpec) -> str | None:
+    """Why ``value`` fails the validator, or None (None too for unknowable cases)."""
+    arg = _scalar_arg(args)
+    if bare == 'bounds':
+        return None if args[0] <= value <= args[1] else f'it is outside [{args[0]}, {args[1]}]'
+    if bare == 'lt':
+        return None if value < arg else f'it must be less than {arg}'
+    if bare == 'gt':
+        return None if value > arg else f'it must be greater than {arg}'
+    if bare == 'lt_eq':
+        return None if value <= arg else f'it must be at most {arg}'
+    if bare == 'gt_eq':
+        return None if value >= arg else f'it must be at least {arg}'
+    if bare == 'one_of':
+        return None if any(value == v and type(value) is type(v) or
+                           (_is_number(value) and _is_number(v) and value == v)
+                           for v in args[0]) else f'it must be one of {one_of(map(show, args[0]))}'
+    if bare == 'not_empty':
+        return None if len(value) else 'it must not be empty'
+    if bare == 'fixed_size':
+        return None if len(value) == arg else f'its size must be exactly {arg}'
+    if bare == 'size_gt':
+        return None if len(value) > arg else f'its size must be greater than {arg}'
+    if bare == 'size_lt':
+        return None if len(value) < arg else f'its size must be less than {arg}'
+    if bare == 'unique':
+        seen: list[Any] = []
+        for item in value:
+            if item in seen:
+                return f'{show(item)} appears more than once'
+            seen.append(item)
+        return None
+    if bare == 'subset_of':
+        extra = [item for item in value if item not in args[0]]
+        return f'{show(extra[0])} is not one of the allowed values' if extra else None
+    if bare == 'element_bounds':
+        bad = [item for item in value if not args[0] <= item <= args[1]]
+        return f'element {show(bad[0])} is outside [{args[0]}, {args[1]}]' if bad else None
+    if bare == 'lower_element_bounds':
+        bad = [item for item in value if item < arg]
+        return f'element {show(bad[0])} is below {arg}' if bad else None
+    if bare == 'upper_element_bounds':
+        bad = [item for item in value if item > arg]
+        return f'element {show(bad[0])} is above {arg}' if bad else None
+    return None
