@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
+import os
 import sys
-from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Iterable
 
 from nodl_schema.diagnostics import Diagnostic, Severity
@@ -15,19 +14,30 @@ from nodl_schema.validation.kinds import Kind
 __all__ = ['FileResult', 'check_paths']
 
 
-@dataclass
 class FileResult:
     """The outcome for one path: a report, or why it could not be read."""
 
-    path: str
-    report: Report | None = None
-    problem: str | None = None
-    diagnostics: list[Diagnostic] = field(default_factory=list)
+    def __init__(self, path: str, report: Report | None = None, problem: str | None = None,
+                 diagnostics: list[Diagnostic] | None = None) -> None:
+        self.path = path
+        self.report = report
+        self.problem = problem
+        self.diagnostics: list[Diagnostic] = diagnostics or []
 
     @property
     def readable(self) -> bool:
         """False if the path could not be read at all (an I/O or usage problem)."""
         return self.problem is None
+
+
+class _FilePath(os.PathLike):  # type: ignore[type-arg]
+    """A path without importing pathlib (it costs the command line start-up time)."""
+
+    def __init__(self, path: str) -> None:
+        self._path = path
+
+    def __fspath__(self) -> str:
+        return self._path
 
 
 def check_paths(paths: Iterable[str], kind: Kind | None = None) -> list[FileResult]:
@@ -41,11 +51,11 @@ def check_paths(paths: Iterable[str], kind: Kind | None = None) -> list[FileResu
             if target.path == STDIN:
                 report = check_source(sys.stdin.buffer.read(), kind=kind, file='<stdin>')
             else:
-                report = check_source(Path(target.path), kind=kind, file=target.path)
+                report = check_source(_FilePath(target.path), kind=kind, file=target.path)
         except OSError as exc:
             results.append(FileResult(target.path, problem=exc.strerror or str(exc)))
             continue
-        results.append(FileResult(target.path, report, diagnostics=report.diagnostics))
+        results.append(FileResult(report.file, report, diagnostics=report.diagnostics))
     return results
 
 

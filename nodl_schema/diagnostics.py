@@ -9,8 +9,7 @@ all and raises :class:`ValidationError` once, carrying every one.
 from __future__ import annotations
 
 import enum
-from dataclasses import dataclass, replace
-from typing import Iterable, Sequence, Union
+from typing import Any, Iterable, Sequence, Union
 
 __all__ = [
     'Severity',
@@ -56,22 +55,60 @@ def format_path(path: DocPath) -> str:
     return ''.join(out)
 
 
-@dataclass(frozen=True)
 class Diagnostic:
     """One problem (or remark) found in a document.
 
     ``line`` and ``column`` are 1-based; 0 means the position is unknown
-    (for example for a document given as a plain dict).
+    (for example for a document given as a plain dict).  ``anchor`` says
+    whether the diagnostic points at a mapping ``key`` or at its ``value``.
+    Diagnostics are immutable values.
     """
+
+    __slots__ = ('severity', 'message', 'path', 'file', 'line', 'column', 'anchor')
+    _FIELDS = __slots__
 
     severity: Severity
     message: str
-    path: DocPath = ()
-    file: str = '<string>'
-    line: int = 0
-    column: int = 0
-    #: Where the diagnostic points: the mapping ``key`` or its ``value``.
-    anchor: str = 'value'
+    path: DocPath
+    file: str
+    line: int
+    column: int
+    anchor: str
+
+    def __init__(self, severity: Severity, message: str, path: DocPath = (), file: str = '<string>',
+                 line: int = 0, column: int = 0, anchor: str = 'value') -> None:
+        # A plain class rather than a dataclass: importing dataclasses costs
+        # the command line ~20 ms of start-up.
+        set_ = object.__setattr__
+        set_(self, 'severity', Severity(severity))
+        set_(self, 'message', message)
+        set_(self, 'path', tuple(path))
+        set_(self, 'file', file)
+        set_(self, 'line', line)
+        set_(self, 'column', column)
+        set_(self, 'anchor', anchor)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError('Diagnostic is immutable; use .at() or .replace()')
+
+    def _key(self) -> tuple[Any, ...]:
+        return tuple(getattr(self, f) for f in self._FIELDS)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Diagnostic) and self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def __repr__(self) -> str:
+        fields = ', '.join(f'{f}={getattr(self, f)!r}' for f in self._FIELDS)
+        return f'Diagnostic({fields})'
+
+    def replace(self, **changes: Any) -> 'Diagnostic':
+        """A copy with some fields changed."""
+        values = {f: getattr(self, f) for f in self._FIELDS}
+        values.update(changes)
+        return Diagnostic(**values)
 
     @property
     def path_text(self) -> str:
@@ -80,7 +117,7 @@ class Diagnostic:
 
     def at(self, file: str, line: int, column: int) -> 'Diagnostic':
         """Return a copy placed at ``file:line:column``."""
-        return replace(self, file=file, line=line, column=column)
+        return self.replace(file=file, line=line, column=column)
 
     def __str__(self) -> str:
         where = self.file

@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
-from pathlib import Path
-from typing import Iterable
+from typing import Iterable, NamedTuple
 
 __all__ = ['NODL_SUFFIXES', 'STDIN', 'Target', 'find_nodl_files']
 
@@ -15,8 +13,7 @@ NODL_SUFFIXES = ('.nodl.yaml', '.nodl.yml', '.nodl.json')
 STDIN = '-'
 
 
-@dataclass(frozen=True)
-class Target:
+class Target(NamedTuple):
     """One thing to read: a file, standard input, or a problem finding it."""
 
     path: str
@@ -33,17 +30,16 @@ def find_nodl_files(paths: Iterable[str]) -> list[Target]:
         if raw == STDIN:
             targets.append(Target(STDIN))
             continue
-        path = Path(raw)
-        if path.is_dir():
+        if os.path.isdir(raw):
             found = sorted(
-                str(Path(root) / name)
-                for root, dirs, names in os.walk(path)
+                os.path.join(root, name)
+                for root, dirs, names in os.walk(raw)
                 for name in names if name.endswith(NODL_SUFFIXES))
             if not found:
                 targets.append(Target(raw, f'no NoDL files ({", ".join("*" + s for s in NODL_SUFFIXES)}) '
                                            'found in this directory'))
             targets.extend(Target(f) for f in found)
-        elif path.exists():
+        elif os.path.exists(raw):
             targets.append(Target(raw))
         else:
             targets.append(Target(raw, 'no such file or directory'))

@@ -9,16 +9,11 @@ diagnostic, for an invalid document.
 
 from __future__ import annotations
 
-import json
-from dataclasses import dataclass, field
-from typing import Any, Union
-
-import yaml
+from typing import TYPE_CHECKING, Any, Union
 
 from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
 from nodl_schema.frontends.source import Source, read_source
 from nodl_schema.frontends.yaml_json import ParsedDocument, parse_document
-from nodl_schema.model import Interface, Node, ParameterDefinition
 from nodl_schema.validation import Kind, detect_kind, validate_data
 
 __all__ = [
@@ -27,10 +22,20 @@ __all__ = [
     'model_from_data',
 ]
 
-#: Any loaded NoDL document.
-Document = Union[Interface, Node, ParameterDefinition]
+if TYPE_CHECKING:
+    from nodl_schema.model import Interface, Node, ParameterDefinition
 
-_MODELS = {Kind.PARAMETER: ParameterDefinition, Kind.INTERFACE: Interface, Kind.NODE: Node}
+#: Any loaded NoDL document.
+Document = Union['Interface', 'Node', 'ParameterDefinition']
+
+
+def _model_class(kind: Kind) -> Any:
+    # The model is imported on first use: `nodl validate` never needs it.
+    from nodl_schema import model
+
+    return {Kind.PARAMETER: model.ParameterDefinition, Kind.INTERFACE: model.Interface,
+            Kind.NODE: model.Node}[kind]
+
 _WHY = {
     Kind.PARAMETER: 'it has no nodl_version',
     Kind.INTERFACE: 'it has nodl_version and no base, main or mixins',
@@ -38,16 +43,17 @@ _WHY = {
 }
 
 
-@dataclass
 class Report:
     """The outcome of checking one document: its kind, data and diagnostics."""
 
-    file: str
-    kind: Kind | None
-    data: Any
-    _raw: list[Diagnostic] = field(default_factory=list)
-    _parsed: ParsedDocument | None = None
-    _placed: list[Diagnostic] | None = None
+    def __init__(self, file: str, kind: Kind | None, data: Any,
+                 raw: list[Diagnostic] | None = None, parsed: ParsedDocument | None = None) -> None:
+        self.file = file
+        self.kind = kind
+        self.data = data
+        self._raw: list[Diagnostic] = raw or []
+        self._parsed = parsed
+        self._placed: list[Diagnostic] | None = None
 
     @property
     def diagnostics(self) -> list[Diagnostic]:
@@ -79,7 +85,11 @@ class Report:
         """The typed document (only for a report without errors)."""
         if self.kind is None or self.has_errors():
             raise ValidationError(self.diagnostics)
-        return _MODELS[self.kind].from_dict(self.data)
+        return _model_class(self.kind).from_dict(self.data)
+
+
+def _article(kind: Kind) -> str:
+    return f'an {kind}' if kind is Kind.INTERFACE else f'a {kind}'
 
 
 def check_source(source: Source, *, kind: Kind | str | None = None,
@@ -101,8 +111,8 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
     detected = detect_kind(parsed.data)
     if wanted is not None and wanted is not detected:
         mismatch = Diagnostic(
-            Severity.ERROR, f'expected a {wanted} definition, but this is a {detected} '
-            f'definition ({_WHY[detected]})', (), text.file, 1, 1)
+            Severity.ERROR, f'expected {_article(wanted)} definition, but this is '
+            f'{_article(detected)} definition ({_WHY[detected]})', (), text.file, 1, 1)
         return Report(text.file, wanted, parsed.data, [mismatch], parsed)
     return Report(text.file, detected, parsed.data, validate_data(parsed.data, detected), parsed)
 
@@ -168,18 +178,20 @@ def model_from_data(data: dict[str, Any]) -> Document:
     """Validate a plain dict of any kind and return its typed model."""
     kind = detect_kind(data)
     _validate(data, kind)
-    return _MODELS[kind].from_dict(data)
-
-
-_Dumper = getattr(yaml, 'CSafeDumper', yaml.SafeDumper)
+    return _model_class(kind).from_dict(data)
 
 
 def dump_nodl(doc: Union[Document, dict[str, Any]], format: str = 'yaml') -> str:
     """Serialize a document (model or plain dict) as ``yaml`` or ``json`` text."""
     data = doc if isinstance(doc, dict) else doc.to_dict()
     if format == 'json':
+        import json
+
         return json.dumps(data, indent=2, ensure_ascii=False) + '\n'
     if format == 'yaml':
-        return yaml.dump(data, Dumper=_Dumper, sort_keys=False, default_flow_style=False,
+        import yaml
+
+        dumper = getattr(yaml, 'CSafeDumper', yaml.SafeDumper)
+        return yaml.dump(data, Dumper=dumper, sort_keys=False, default_flow_style=False,
                          allow_unicode=True, width=100)
     raise ValueError(f"unsupported format {format!r}; expected 'yaml' or 'json'")

@@ -18,8 +18,7 @@ from __future__ import annotations
 import os
 import re
 import sys
-from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable
+from typing import Any, Callable, Iterable, NamedTuple
 
 __all__ = [
     'PluginError',
@@ -32,8 +31,7 @@ _NORMALIZE = re.compile(r'[-_.]+')
 _META_SUFFIXES = ('.dist-info', '.egg-info')
 
 
-@dataclass(frozen=True)
-class EntryPointSpec:
+class EntryPointSpec(NamedTuple):
     """One entry point as declared by a distribution."""
 
     name: str
@@ -52,8 +50,7 @@ class EntryPointSpec:
         return obj
 
 
-@dataclass
-class PluginError:
+class PluginError(NamedTuple):
     """A plugin that could not be loaded; reported, never fatal."""
 
     group: str
@@ -70,10 +67,10 @@ class PluginError:
         )
 
 
-@dataclass
 class _Scan:
-    paths: tuple[str, ...]
-    groups: dict[str, list[EntryPointSpec]] = field(default_factory=dict)
+    def __init__(self, paths: tuple[str, ...]) -> None:
+        self.paths = paths
+        self.groups: dict[str, list[EntryPointSpec]] = {}
 
 
 _cache: _Scan | None = None

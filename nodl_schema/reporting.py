@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-from dataclasses import dataclass, field
 from typing import Iterable
 
 from nodl_schema.diagnostics import Diagnostic, Severity
@@ -11,15 +9,15 @@ from nodl_schema.diagnostics import Diagnostic, Severity
 __all__ = ['Tally', 'format_text', 'format_json', 'summary_line']
 
 
-@dataclass
 class Tally:
     """Counts for the summary line."""
 
-    files: int = 0
-    errors: int = 0
-    warnings: int = 0
-    infos: int = 0
-    diagnostics: list[Diagnostic] = field(default_factory=list)
+    def __init__(self) -> None:
+        self.files = 0
+        self.errors = 0
+        self.warnings = 0
+        self.infos = 0
+        self.diagnostics: list[Diagnostic] = []
 
     def add(self, diagnostics: Iterable[Diagnostic]) -> None:
         """Count and keep diagnostics."""
@@ -50,4 +48,6 @@ def format_text(diagnostics: Iterable[Diagnostic]) -> str:
 
 def format_json(diagnostics: Iterable[Diagnostic]) -> str:
     """A JSON array of diagnostic objects (file, line, column, path, severity, message)."""
+    import json
+
     return json.dumps([d.to_dict() for d in diagnostics], indent=2) + '\n'

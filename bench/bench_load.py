@@ -1,0 +1,54 @@
+"""load_nodl throughput against bare yaml.CSafeLoader parsing of the same texts.
+
+Target (issue 2): load_nodl reaches at least 0.75x the throughput of
+CSafeLoader.  The two are measured interleaved, several rounds, best round
+each, so that machine noise affects both alike.
+"""
+
+from __future__ import annotations
+
+import time
+
+import yaml
+
+from corpus import corpus
+from nodl_schema import load_nodl
+
+TARGET = 0.75
+
+
+def _round(fn, texts) -> float:
+    start = time.perf_counter()
+    for text in texts:
+        fn(text)
+    return time.perf_counter() - start
+
+
+def run(rounds: int = 7) -> dict[str, float]:
+    texts = corpus()
+    loader = yaml.CSafeLoader
+    for text in texts:  # warm-up and a correctness guard
+        load_nodl(text)
+    yaml_best = nodl_best = float('inf')
+    for _ in range(rounds):
+        yaml_best = min(yaml_best, _round(lambda t: yaml.load(t, Loader=loader), texts))
+        nodl_best = min(nodl_best, _round(load_nodl, texts))
+    size = sum(len(t.encode()) for t in texts) / len(texts)
+    yaml_rate = len(texts) / yaml_best
+    nodl_rate = len(texts) / nodl_best
+    return {'docs': len(texts), 'avg_bytes': size, 'yaml_docs_per_s': yaml_rate,
+            'nodl_docs_per_s': nodl_rate, 'ratio': nodl_rate / yaml_rate}
+
+
+def main() -> bool:
+    r = run()
+    print(f'load_nodl vs CSafeLoader ({r["docs"]} docs, {r["avg_bytes"]:.0f} bytes avg)')
+    print(f'  CSafeLoader: {r["yaml_docs_per_s"]:8.1f} docs/s')
+    print(f'  load_nodl:   {r["nodl_docs_per_s"]:8.1f} docs/s')
+    print(f'  ratio:       {r["ratio"]:.2f}x  (target >= {TARGET}x)  '
+          f'{"OK" if r["ratio"] >= TARGET else "BELOW TARGET"}')
+    return r['ratio'] >= TARGET
+
+
+if __name__ == '__main__':
+    raise SystemExit(0 if main() else 1)

@@ -1,0 +1,28 @@
+"""Run every benchmark; each prints its figures and the ratio to its baseline.
+
+`make bench`.  Exit status 1 if any ratio misses its target.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+import bench_cli_start  # noqa: E402
+import bench_load  # noqa: E402
+
+BENCHMARKS = [bench_load, bench_cli_start]
+
+
+def main() -> int:
+    ok = True
+    for bench in BENCHMARKS:
+        ok = bench.main() and ok
+        print()
+    return 0 if ok else 1
+
+
+if __name__ == '__main__':
+    sys.exit(main())

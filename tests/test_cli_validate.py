@@ -1,0 +1,126 @@
+"""`nodl validate`: run as a real process, as users run it."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+from conftest import FIXTURES, REPO
+
+CLI = FIXTURES / 'cli'
+
+
+def nodl(*args: str, stdin: str | None = None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+                          capture_output=True, input=stdin, timeout=60)
+
+
+def rel(path: Path) -> str:
+    return os.path.relpath(path, REPO)
+
+
+def test_valid_file_exits_0_and_prints_kind_and_summary() -> None:
+    result = nodl('validate', rel(CLI / 'valid_interface.nodl.yaml'))
+    assert result.returncode == 0, result.stderr
+    assert f'{rel(CLI / "valid_interface.nodl.yaml")}: valid interface definition' in result.stdout
+    assert result.stdout.rstrip().endswith('1 file, 0 errors, 0 warnings')
+
+
+def test_invalid_json_file_reports_file_line_col_and_exits_1(golden) -> None:
+    result = nodl('validate', rel(CLI / 'invalid_node.nodl.json'))
+    assert result.returncode == 1
+    golden.check(result.stdout, CLI / 'invalid_node.expected')
+
+
+def test_every_error_is_reported_with_position() -> None:
+    result = nodl('validate', rel(CLI / 'invalid_node.nodl.json'))
+    lines = [l for l in result.stdout.splitlines() if ': error: ' in l]
+    assert len(lines) == 2
+    assert lines[0].startswith(f'{rel(CLI / "invalid_node.nodl.json")}:3:11: error: ')
+    assert "did you mean 'node'?" in lines[0]
+    assert ':7:48: error: default_value of an int parameter must be an integer' in lines[1]
+
+
+def test_any_extension_is_accepted_when_named_explicitly() -> None:
+    result = nodl('validate', rel(CLI / 'any_extension.txt'))
+    assert result.returncode == 0, result.stdout
+    assert 'valid parameter definition' in result.stdout
+
+
+def test_directory_is_searched_for_nodl_files_only() -> None:
+    result = nodl('validate', '-q', rel(CLI))
+    # three *.nodl.* files; any_extension.txt is not picked up by the search
+    assert result.stdout.rstrip().splitlines()[-1].startswith('3 files, ')
+    assert 'any_extension.txt' not in result.stdout
+    assert result.returncode == 1
+
+
+def test_stdin() -> None:
+    text = (CLI / 'valid_interface.nodl.yaml').read_text()
+    result = nodl('validate', '-', stdin=text)
+    assert result.returncode == 0
+    assert '<stdin>: valid interface definition' in result.stdout
+
+
+def test_stdin_errors_are_placed() -> None:
+    result = nodl('validate', '-', stdin='nodl_version: 2\npublisher: []\n')
+    assert result.returncode == 1
+    assert "<stdin>:2:1: error: unknown key 'publisher'; did you mean 'publishers'?" in result.stdout
+
+
+def test_kind_is_enforced() -> None:
+    result = nodl('validate', '--kind', 'node', rel(CLI / 'valid_interface.nodl.yaml'))
+    assert result.returncode == 1
+    assert 'expected a node definition, but this is an interface definition' in result.stdout
+
+
+def test_warnings_fail_only_with_strict() -> None:
+    path = rel(CLI / 'warning_only.nodl.yaml')
+    relaxed = nodl('validate', path)
+    strict = nodl('validate', '--strict', path)
+    assert relaxed.returncode == 0
+    assert strict.returncode == 1
+    assert "warning: publisher '~/chatter' has no description" in strict.stdout
+    assert strict.stdout.rstrip().endswith('1 file, 0 errors, 1 warning')
+
+
+def test_json_format_lists_diagnostic_objects() -> None:
+    result = nodl('validate', '--format', 'json', rel(CLI / 'invalid_node.nodl.json'))
+    assert result.returncode == 1
+    diagnostics = json.loads(result.stdout)
+    assert [sorted(d) for d in diagnostics] == [
+        ['column', 'file', 'line', 'message', 'path', 'severity']] * 2
+    assert diagnostics[1]['path'] == 'main.parameters.gain.default_value'
+    assert (diagnostics[1]['line'], diagnostics[1]['column']) == (7, 48)
+    assert diagnostics[0]['severity'] == 'error'
+    assert result.stderr.strip() == '1 file, 2 errors, 0 warnings'
+
+
+def test_missing_file_is_an_io_error_exit_2_but_others_are_still_checked() -> None:
+    result = nodl('validate', 'does/not/exist.yaml', rel(CLI / 'valid_interface.nodl.yaml'))
+    assert result.returncode == 2
+    assert 'does/not/exist.yaml: error: no such file or directory' in result.stderr
+    assert 'valid interface definition' in result.stdout
+
+
+def test_usage_error_exits_2_without_traceback() -> None:
+    result = nodl('validate', '--kind', 'robot', 'x')
+    assert result.returncode == 2
+    assert 'Traceback' not in result.stderr
+    assert "invalid choice: 'robot'" in result.stderr
+
+
+def test_hostile_input_gives_one_line_not_a_traceback() -> None:
+    result = nodl('validate', '-', stdin='a: [' + '[' * 5000 + ']' * 5001 + '\n')
+    assert result.returncode == 1
+    assert 'Traceback' not in result.stdout + result.stderr
+    assert 'nests deeper than 100 levels' in result.stdout
+
+
+def test_examples_are_valid() -> None:
+    result = nodl('validate', '--strict', 'examples/')
+    assert result.returncode == 0, result.stdout
+    assert result.stdout.rstrip().endswith('4 files, 0 errors, 0 warnings')

@@ -1,0 +1,41 @@
+"""Diagnostics and ValidationError (nodl_schema.diagnostics)."""
+
+from __future__ import annotations
+
+import pytest
+
+from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError, format_path
+
+
+def test_paths_are_dotted_with_indices_and_quoted_odd_keys() -> None:
+    assert format_path(('main', 'parameters', 'gain', 'default_value')) == \
+        'main.parameters.gain.default_value'
+    assert format_path(('publishers', 2, 'qos')) == 'publishers[2].qos'
+    assert format_path(('parameters', 'pid.kp')) == 'parameters["pid.kp"]'
+    assert format_path(('validation', 'bounds<>')) == 'validation.bounds<>'
+    assert format_path(()) == ''
+
+
+def test_str_is_file_line_col_severity_message() -> None:
+    d = Diagnostic(Severity.ERROR, 'boom', ('a',), 'f.yaml', 3, 7)
+    assert str(d) == 'f.yaml:3:7: error: boom [a]'
+    assert str(Diagnostic(Severity.WARNING, 'w', (), 'f.yaml')) == 'f.yaml: warning: w'
+
+
+def test_diagnostics_are_immutable_values() -> None:
+    d = Diagnostic(Severity.INFO, 'x')
+    with pytest.raises(AttributeError):
+        d.line = 3  # type: ignore[misc]
+    assert d.at('f', 1, 2) == Diagnostic(Severity.INFO, 'x', (), 'f', 1, 2)
+    assert d.at('f', 1, 2) != d
+    assert len({d, d.replace()}) == 1
+
+
+def test_validation_error_carries_all_diagnostics_and_prints_errors() -> None:
+    err = Diagnostic(Severity.ERROR, 'e1', (), 'f', 1, 1)
+    warn = Diagnostic(Severity.WARNING, 'w1', (), 'f', 2, 1)
+    exc = ValidationError([err, warn])
+    assert exc.diagnostics == [err, warn]
+    assert exc.errors == [err]
+    assert str(exc) == 'f:1:1: error: e1'
+    assert isinstance(exc, ValueError)
