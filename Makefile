@@ -4,7 +4,11 @@
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
+DEPS := $(VENV)/.deps
 STAMP := $(VENV)/.installed
+# The project is installed for real (not editable: editable installs skip the CMake
+# files that `find_package(ament_nodl)` needs), and reinstalled when a source changes.
+SOURCES := $(shell find nodl_schema cmake -type f -not -name '*.pyc') pyproject.toml setup.py package.xml
 
 # Anything that starts ROS stays on loopback, in its own domain.
 export ROS_AUTOMATIC_DISCOVERY_RANGE := LOCALHOST
@@ -12,18 +16,20 @@ export ROS_DOMAIN_ID ?= 57
 # The ROS 2 wheels install an ament prefix into the virtual environment.
 export AMENT_PREFIX_PATH := $(abspath $(VENV))
 export CMAKE_PREFIX_PATH := $(abspath $(VENV))
+export PATH := $(abspath $(BIN)):$(PATH)
 
 .PHONY: demo test bench install clean
 
 install: $(STAMP)
 
-$(STAMP): pyproject.toml setup.py
+$(DEPS): pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[ros,test]'
-	# An editable install is not byte-compiled by pip; compile it so `nodl` starts fast
-	# even where PYTHONDONTWRITEBYTECODE is set.
-	$(BIN)/python -m compileall -q nodl_schema
+	$(BIN)/python -m pip install --quiet --upgrade pip 'setuptools>=77,<80' wheel
+	$(BIN)/python -m pip install --quiet '.[ros,test]'
+	touch $(DEPS)
+
+$(STAMP): $(DEPS) $(SOURCES)
+	$(BIN)/python -m pip install --quiet --no-deps --no-build-isolation --force-reinstall .
 	touch $(STAMP)
 
 demo: $(STAMP)

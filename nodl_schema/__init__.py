@@ -42,6 +42,8 @@ _EXPORTS = {
     'Severity': 'nodl_schema.diagnostics',
     'Kind': 'nodl_schema.validation.kinds',
     'detect_kind': 'nodl_schema.validation.kinds',
+    'compose': 'nodl_schema.composition',
+    'ComposedNode': 'nodl_schema.composition',
     'load_schema': 'nodl_schema.schemas',
     'bundled_schema': 'nodl_schema.schemas',
 }
@@ -49,6 +51,7 @@ _EXPORTS = {
 __all__ = sorted(_EXPORTS)
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
+    from nodl_schema.composition import ComposedNode, compose
     from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
     from nodl_schema.loading import (
         Document, Report, check_source, dump_nodl, load_interface, load_node, load_nodl,

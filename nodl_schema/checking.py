@@ -40,8 +40,13 @@ class _FilePath(os.PathLike):  # type: ignore[type-arg]
         return self._path
 
 
-def check_paths(paths: Iterable[str], kind: Kind | None = None) -> list[FileResult]:
-    """Check every NoDL file named by ``paths`` (see :func:`find_nodl_files`)."""
+def check_paths(paths: Iterable[str], kind: Kind | None = None,
+                resolve: bool = False) -> list[FileResult]:
+    """Check every NoDL file named by ``paths`` (see :func:`find_nodl_files`).
+
+    With ``resolve``, node definitions are also composed: their mixin
+    references must resolve to valid interface definitions.
+    """
     results: list[FileResult] = []
     for target in find_nodl_files(paths):
         if target.problem is not None:
@@ -55,7 +60,12 @@ def check_paths(paths: Iterable[str], kind: Kind | None = None) -> list[FileResu
         except OSError as exc:
             results.append(FileResult(target.path, problem=exc.strerror or str(exc)))
             continue
-        results.append(FileResult(report.file, report, diagnostics=report.diagnostics))
+        diagnostics = report.diagnostics
+        if resolve and report.kind is Kind.NODE and not report.has_errors():
+            from nodl_schema.composition import compose_report
+
+            diagnostics = compose_report(report)[1]
+        results.append(FileResult(report.file, report, diagnostics=diagnostics))
     return results
 
 

@@ -66,6 +66,12 @@ class Report:
             self._placed = placed
         return self._placed
 
+    def place(self, diagnostic: Diagnostic) -> Diagnostic:
+        """Place a diagnostic about this document (given by path) at file:line:column."""
+        if self._parsed is not None:
+            return self._parsed.place(diagnostic)
+        return diagnostic.at(self.file, diagnostic.line, diagnostic.column)
+
     @property
     def errors(self) -> list[Diagnostic]:
         """Diagnostics of severity error."""

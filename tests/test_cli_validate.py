@@ -123,4 +123,4 @@ def test_hostile_input_gives_one_line_not_a_traceback() -> None:
 def test_examples_are_valid() -> None:
     result = nodl('validate', '--strict', 'examples/')
     assert result.returncode == 0, result.stdout
-    assert result.stdout.rstrip().endswith('4 files, 0 errors, 0 warnings')
+    assert result.stdout.rstrip().endswith('7 files, 0 errors, 0 warnings')

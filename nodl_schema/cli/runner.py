@@ -8,10 +8,9 @@ from typing import Any
 
 from nodl_schema.cli.verb import EXIT_INTERNAL, EXIT_USAGE, help_text
 
-__all__ = ['VERB_GROUP', 'add_verbs', 'run_verb', 'REPORT_URL']
+__all__ = ['VERB_GROUP', 'add_verbs', 'run_verb']
 
 VERB_GROUP = 'nodl.verbs'
-REPORT_URL = 'https://github.com/ros-tooling/nodl/issues'
 
 
 def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb') -> dict[str, Any]:
@@ -49,6 +48,7 @@ def run_verb(parser: argparse.ArgumentParser, args: argparse.Namespace, dest: st
         return 0
     except Exception as exc:  # noqa: BLE001 - the last line of defence
         name = type(verb).__name__
-        print(f'nodl: internal error in {name}: {type(exc).__name__}: {exc} '
-              f'(this is a bug; please report it at {REPORT_URL})', file=sys.stderr)
+        print(f'nodl: internal error in {name}: {type(exc).__name__}: {exc} (this is a bug in '
+              'the toolkit or a plugin; please report it with the command and the input files)',
+              file=sys.stderr)
         return EXIT_INTERNAL

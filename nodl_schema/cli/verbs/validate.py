@@ -21,19 +21,30 @@ class ValidateVerb(Verb):
                             help='how to print diagnostics (default: text)')
         parser.add_argument('--strict', action='store_true',
                             help='treat warnings as errors')
+        parser.add_argument('--resolve', action='store_true',
+                            help="also compose node definitions: every mixin reference must "
+                                 "resolve (nodl:// through the ament index, paths relative to "
+                                 "the file) to a valid interface definition")
         parser.add_argument('-q', '--quiet', action='store_true',
-                            help='do not list valid files')
+                            help='print only diagnostics (no list of valid files, and no '
+                                 'summary when every file is clean)')
+        parser.add_argument('-v', '--verbose', action='store_true',
+                            help='also print informational diagnostics (e.g. which layer '
+                                 'overrides which, with --resolve)')
+        parser.add_argument('--stderr', action='store_true',
+                            help='print everything to standard error (for build systems, which '
+                                 'show a failed step\'s stderr)')
 
     def main(self, args: argparse.Namespace) -> int:
         from nodl_schema.checking import check_paths, failed
         from nodl_schema.reporting import Tally, format_json, format_text, summary_line
         from nodl_schema.validation.kinds import Kind
 
-        results = check_paths(args.paths, Kind(args.kind) if args.kind else None)
+        results = check_paths(args.paths, Kind(args.kind) if args.kind else None, args.resolve)
         tally = Tally()
         unreadable = False
         invalid = False
-        out = sys.stdout
+        out = sys.stderr if args.stderr else sys.stdout
         for result in results:
             if not result.readable:
                 unreadable = True
@@ -47,11 +58,13 @@ class ValidateVerb(Verb):
                 kind = result.report.kind
                 out.write(f'{result.path}: valid {kind} definition\n')
             if args.format == 'text':
-                out.write(format_text(result.diagnostics))
+                shown = result.diagnostics if args.verbose else [
+                    d for d in result.diagnostics if d.severity.value != 'info']
+                out.write(format_text(shown))
         if args.format == 'json':
             out.write(format_json(tally.diagnostics))
             print(summary_line(tally), file=sys.stderr)
-        else:
+        elif not (args.quiet and tally.errors + tally.warnings == 0 and not unreadable):
             out.write(summary_line(tally) + '\n')
         if unreadable:
             return EXIT_USAGE

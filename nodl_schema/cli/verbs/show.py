@@ -1,0 +1,45 @@
+"""``nodl show``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+
+class ShowVerb(Verb):
+    """Print a node's whole interface (base + mixins + main resolved) as an interface definition."""
+
+    def add_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument('target', nargs='+', metavar='FILE | PACKAGE EXECUTABLE',
+                            help='a NoDL file, or a package and one of its executables '
+                                 '(looked up in the ament index)')
+        parser.add_argument('--format', choices=('yaml', 'json'), default='yaml',
+                            help='output format (default: yaml)')
+        parser.add_argument('--layers', action='store_true',
+                            help="show the layer each entity comes from (base, mixin or main)")
+
+    def main(self, args: argparse.Namespace) -> int:
+        import os
+
+        from nodl_schema.reporting import format_text
+        from nodl_schema.show import render, show_file, show_registered
+
+        if len(args.target) == 1:
+            if not os.path.isfile(args.target[0]):
+                print(f'nodl show: error: {args.target[0]}: no such file (to look up an installed '
+                      'node, give PACKAGE EXECUTABLE)', file=sys.stderr)
+                return EXIT_USAGE
+            shown = show_file(args.target[0])
+        elif len(args.target) == 2:
+            shown = show_registered(*args.target)
+        else:
+            print('nodl show: error: expected FILE or PACKAGE EXECUTABLE', file=sys.stderr)
+            return EXIT_USAGE
+        problems = [d for d in shown.diagnostics if d.severity.value != 'info']
+        sys.stderr.write(format_text(problems))
+        if shown.interface is None:
+            return EXIT_FAILURE
+        sys.stdout.write(render(shown.interface, args.format, args.layers))
+        return EXIT_OK

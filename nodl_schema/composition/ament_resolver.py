@@ -1,0 +1,73 @@
+"""The ``nodl`` resolver: ``nodl://<package>/<name>`` through the ament index.
+
+Interface definitions are registered under the resource type
+``nodl_interfaces`` with the resource name ``<package>__<name>``.  The
+resource's content is the path of the installed file relative to
+``share/<package>`` (what ``ament_nodl_register_interface`` and the Python
+helper write), an absolute path (the build-time staging index), or the
+document itself (as the reference implementation registers it).
+"""
+
+from __future__ import annotations
+
+import os
+
+from nodl_schema.composition.resolvers import ResolutionError, ResolveContext, Resolved
+from nodl_schema.index import ament
+
+__all__ = ['AmentIndexResolver', 'read_registered', 'INTERFACE_RESOURCE', 'NODE_RESOURCE',
+           'resource_name']
+
+INTERFACE_RESOURCE = 'nodl_interfaces'
+NODE_RESOURCE = 'nodl_nodes'
+
+
+def resource_name(package: str, key: str) -> str:
+    """The ament resource name of a registered definition (package names never hold ``__``)."""
+    return f'{package}__{key}'
+
+
+def read_registered(resource: ament.Resource, package: str) -> Resolved:
+    """The document a registration resource points at (or holds)."""
+    content = resource.content.strip()
+    if content and '\n' not in content:
+        candidates = [content] if os.path.isabs(content) else [
+            os.path.join(resource.prefix, 'share', package, content)]
+        for candidate in candidates:
+            if os.path.isfile(candidate):
+                with open(candidate, 'rb') as f:
+                    return Resolved(f.read().decode('utf-8', errors='replace'), candidate)
+        raise ResolutionError(f'the index entry {resource.path} points at {candidates[0]}, '
+                              'which does not exist (is the package fully installed?)', candidates)
+    return Resolved(resource.content, resource.path)
+
+
+class AmentIndexResolver:
+    """Resolves ``nodl://<package>/<name>`` to a registered interface definition."""
+
+    def resolve(self, reference: str, context: ResolveContext) -> Resolved:
+        """Find the registered interface definition."""
+        from nodl_schema.validation.references import parse_nodl_uri
+
+        parsed = parse_nodl_uri(reference)
+        if parsed is None:
+            raise ResolutionError(f'{reference!r} is not of the form nodl://<package>/<name>')
+        package, name = parsed
+        prefixes = ament.prefix_paths()
+        key = resource_name(package, name)
+        resource = ament.get_resource(INTERFACE_RESOURCE, key, prefixes)
+        if resource is not None:
+            return read_registered(resource, package)
+        searched = [ament.resource_file(p, INTERFACE_RESOURCE, key) for p in prefixes]
+        if not prefixes:
+            raise ResolutionError('AMENT_PREFIX_PATH is empty, so no package can be found; '
+                                  'source the workspace (install/setup.bash) first')
+        available = sorted(n.split('__', 1)[1] for n in ament.get_resources(INTERFACE_RESOURCE, prefixes)
+                           if n.startswith(package + '__'))
+        if available:
+            raise ResolutionError(f"package '{package}' registers no interface definition "
+                                  f"'{name}' (it registers: {', '.join(available)})", searched)
+        if ament.package_share_directory(package, prefixes) is None:
+            raise ResolutionError(f"package '{package}' is not in the ament index "
+                                  f"(AMENT_PREFIX_PATH: {os.pathsep.join(prefixes)})", searched)
+        raise ResolutionError(f"package '{package}' registers no interface definitions", searched)

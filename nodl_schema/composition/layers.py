@@ -1,0 +1,44 @@
+"""A layer of a composed node: one interface definition and where it came from."""
+
+from __future__ import annotations
+
+from typing import Any, Callable
+
+from nodl_schema.diagnostics import Diagnostic, DocPath
+from nodl_schema.model import Interface
+
+__all__ = ['Layer', 'MAIN']
+
+#: The label of the ``main`` layer.
+MAIN = 'main'
+
+
+class Layer:
+    """One layer: ``base:<name>``, a mixin (its reference, or ``mixins[i]`` in place) or ``main``."""
+
+    __slots__ = ('label', 'interface', '_place', 'prefix')
+
+    def __init__(self, label: str, interface: Interface,
+                 place: Callable[[Diagnostic], Diagnostic] | None = None,
+                 prefix: DocPath = ()) -> None:
+        self.label = label
+        self.interface = interface
+        self._place = place
+        #: Where the interface sits in its document (``('main',)`` in a node file).
+        self.prefix = prefix
+
+    def place(self, diagnostic: Diagnostic) -> Diagnostic:
+        """Place a diagnostic whose path is relative to this layer's interface."""
+        moved = diagnostic.replace(path=self.prefix + diagnostic.path)
+        return self._place(moved) if self._place is not None else moved
+
+    @property
+    def is_base(self) -> bool:
+        """True for the base layer."""
+        return self.label.startswith('base:')
+
+    def __repr__(self) -> str:
+        return f'Layer({self.label!r})'
+
+    def __eq__(self, other: Any) -> bool:
+        return isinstance(other, Layer) and (self.label, self.interface) == (other.label, other.interface)

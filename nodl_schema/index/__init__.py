@@ -1,0 +1,1 @@
+"""Looking things up in the ament index (without needing ROS installed)."""

@@ -1,0 +1,112 @@
+"""Registered NoDL definitions: what packages install in the ament index.
+
+* ``nodl_nodes/<package>__<executable>``: a node definition for an executable;
+* ``nodl_interfaces/<package>__<name>``: an interface definition, used as
+  ``nodl://<package>/<name>``;
+* legacy packages: the ``nodl_desc/<package>`` marker (spec 001) and a
+  ``package.xml`` that exports ``<interface path="..."/>`` (spec 000).
+"""
+
+from __future__ import annotations
+
+import os
+from typing import NamedTuple
+
+from nodl_schema.composition.ament_resolver import (
+    INTERFACE_RESOURCE, NODE_RESOURCE, read_registered, resource_name)
+from nodl_schema.composition.resolvers import ResolutionError, Resolved
+from nodl_schema.index import ament
+
+__all__ = ['Registration', 'list_registrations', 'find_node', 'read_registration',
+           'LEGACY_RESOURCE']
+
+LEGACY_RESOURCE = 'nodl_desc'
+_KINDS = {NODE_RESOURCE: 'node', INTERFACE_RESOURCE: 'interface'}
+
+
+class Registration(NamedTuple):
+    """One registered definition."""
+
+    package: str
+    #: The executable (node definitions) or the name (interface definitions).
+    name: str
+    #: ``node``, ``interface`` or ``legacy node``.
+    kind: str
+    #: The file the definition is read from (for index entries holding the
+    #: document itself, the index entry).
+    file: str
+
+
+def _v2(resource_type: str, prefixes: list[str], package: str | None) -> list[Registration]:
+    found = []
+    for name in ament.get_resources(resource_type, prefixes):
+        pkg, sep, key = name.partition('__')
+        if not sep or (package is not None and pkg != package):
+            continue
+        resource = ament.get_resource(resource_type, name, prefixes)
+        assert resource is not None
+        try:
+            file = read_registered(resource, pkg).file
+        except ResolutionError:
+            file = resource.path
+        found.append(Registration(pkg, key, _KINDS[resource_type], file))
+    return found
+
+
+def list_registrations(package: str | None = None,
+                       prefixes: list[str] | None = None) -> list[Registration]:
+    """Every registered definition (of ``package`` only, if given), sorted."""
+    prefixes = prefixes if prefixes is not None else ament.prefix_paths()
+    found = _v2(NODE_RESOURCE, prefixes, package) + _v2(INTERFACE_RESOURCE, prefixes, package)
+    from nodl_schema.index.legacy import legacy_registrations
+
+    v2_nodes = {(r.package, r.name) for r in found if r.kind == 'node'}
+    found += [r for r in legacy_registrations(package, prefixes) if (r.package, r.name) not in v2_nodes]
+    return sorted(found)
+
+
+def find_node(package: str, executable: str,
+              prefixes: list[str] | None = None) -> Registration | None:
+    """The node definition registered for ``package``'s ``executable`` (v2 first, then legacy)."""
+    prefixes = prefixes if prefixes is not None else ament.prefix_paths()
+    resource = ament.get_resource(NODE_RESOURCE, resource_name(package, executable), prefixes)
+    if resource is not None:
+        try:
+            return Registration(package, executable, 'node', read_registered(resource, package).file)
+        except ResolutionError:
+            return Registration(package, executable, 'node', resource.path)
+    from nodl_schema.index.legacy import legacy_registrations
+
+    for registration in legacy_registrations(package, prefixes):
+        if registration.name == executable:
+            return registration
+    return None
+
+
+def read_registration(registration: Registration, prefixes: list[str] | None = None) -> Resolved:
+    """The text of a registered v2 definition."""
+    resource_type = NODE_RESOURCE if registration.kind == 'node' else INTERFACE_RESOURCE
+    resource = ament.get_resource(resource_type, resource_name(registration.package, registration.name),
+                                  prefixes)
+    if resource is None:
+        raise ResolutionError(f'{registration.package}/{registration.name} is not registered')
+    return read_registered(resource, registration.package)
+
+
+def describe_missing(package: str, executable: str, prefixes: list[str] | None = None) -> str:
+    """Why ``find_node`` found nothing, for an error message."""
+    prefixes = prefixes if prefixes is not None else ament.prefix_paths()
+    if not prefixes:
+        return 'AMENT_PREFIX_PATH is empty; source the workspace (install/setup.bash) first'
+    if ament.package_share_directory(package, prefixes) is None:
+        return f"package '{package}' is not in the ament index"
+    names = sorted(r.name for r in list_registrations(package, prefixes) if 'node' in r.kind)
+    if names:
+        return (f"package '{package}' registers no node definition for '{executable}' "
+                f"(it has: {', '.join(names)})")
+    return f"package '{package}' registers no node definitions"
+
+
+def share_file(prefix: str, package: str, relative: str) -> str:
+    """``<prefix>/share/<package>/<relative>``."""
+    return os.path.join(prefix, 'share', package, relative)

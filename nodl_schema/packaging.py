@@ -1,0 +1,127 @@
+"""Registering NoDL definitions from a Python (setuptools) package.
+
+The index layout is the one ``ament_nodl_register_node`` and
+``ament_nodl_register_interface`` produce for CMake packages:
+
+* the definition files in ``share/<package>/nodl/``;
+* ``share/ament_index/resource_index/nodl_nodes/<package>__<executable>`` and
+  ``.../nodl_interfaces/<package>__<name>``, each holding the installed path
+  relative to ``share/<package>`` (``nodl/<file>``).
+
+In ``setup.py``::
+
+    from nodl_schema.packaging import nodl_data_files
+
+    setup(
+        ...,
+        data_files=[
+            ('share/ament_index/resource_index/packages', ['resource/my_pkg']),
+            ('share/my_pkg', ['package.xml']),
+            *nodl_data_files('my_pkg',
+                             nodes={'talker': 'nodl/talker.nodl.yaml'},
+                             interfaces={'chatter': 'nodl/chatter.nodl.yaml'}),
+        ],
+    )
+
+The definitions are validated when the package is built (the kind enforced,
+mixin references resolved, also ``nodl://<this package>/...``); an invalid
+file stops the build with ``FILE:LINE:COL`` diagnostics.  The build then
+needs this toolkit importable (``pip install --no-build-isolation``, or the
+toolkit in ``[build-system] requires``).  Without that, use the plain recipe
+in the README, which needs nothing at build time.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import sys
+from typing import Mapping
+
+__all__ = ['nodl_data_files', 'NODE_RESOURCE', 'INTERFACE_RESOURCE']
+
+NODE_RESOURCE = 'nodl_nodes'
+INTERFACE_RESOURCE = 'nodl_interfaces'
+_KEY = re.compile(r'[A-Za-z0-9_][A-Za-z0-9_.-]*')
+_INDEX = 'share/ament_index/resource_index'
+
+
+def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
+                    interfaces: Mapping[str, str] | None = None, *,
+                    validate: bool = True, staging_dir: str = os.path.join('build', 'nodl_index'),
+                    ) -> list[tuple[str, list[str]]]:
+    """``data_files`` entries that install and register NoDL definitions.
+
+    :param package: the Python/ROS package name
+    :param nodes: executable -> node definition file (relative to setup.py)
+    :param interfaces: name -> interface definition file, used as ``nodl://<package>/<name>``
+    :param validate: validate every file now and stop the build if one is invalid
+    :param staging_dir: where the index marker files are written (relative to setup.py)
+    """
+    nodes = dict(nodes or {})
+    interfaces = dict(interfaces or {})
+    problems: list[str] = []
+    installed: dict[str, str] = {}
+    for key, file in list(nodes.items()) + list(interfaces.items()):
+        if not _KEY.fullmatch(key):
+            problems.append(f"nodl_data_files: '{key}' is not a valid name (letters, digits, '_', '.', '-')")
+        if not os.path.isfile(file):
+            problems.append(f"nodl_data_files: {file}: no such file (registered as '{key}')")
+        name = os.path.basename(file)
+        if installed.setdefault(name, file) != file:
+            problems.append(f'nodl_data_files: {installed[name]} and {file} would both be installed '
+                            f'as share/{package}/nodl/{name}; rename one')
+    if problems:
+        raise SystemExit('\n'.join(problems))
+
+    entries: dict[str, list[str]] = {}
+    for resource_type, registry in ((NODE_RESOURCE, nodes), (INTERFACE_RESOURCE, interfaces)):
+        folder = os.path.join(staging_dir, 'share', 'ament_index', 'resource_index', resource_type)
+        os.makedirs(folder, exist_ok=True)
+        for key, file in registry.items():
+            marker = os.path.join(folder, f'{package}__{key}')
+            with open(marker, 'w', encoding='utf-8') as f:
+                f.write(f'nodl/{os.path.basename(file)}')
+            entries.setdefault(f'{_INDEX}/{resource_type}', []).append(marker)
+    entries[f'share/{package}/nodl'] = sorted(set(installed.values()))
+    if validate:
+        _validate(package, nodes, interfaces, staging_dir)
+    return sorted(entries.items())
+
+
+def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, str],
+              staging_dir: str) -> None:
+    from nodl_schema.checking import check_paths
+    from nodl_schema.reporting import format_text
+    from nodl_schema.validation.kinds import Kind
+
+    # A staging index lets nodl://<package>/<name> resolve before installation: its
+    # markers point at the source files by absolute path.
+    stage = os.path.abspath(os.path.join(staging_dir, 'stage'))
+    folder = os.path.join(stage, 'share', 'ament_index', 'resource_index', INTERFACE_RESOURCE)
+    os.makedirs(folder, exist_ok=True)
+    for key, file in interfaces.items():
+        with open(os.path.join(folder, f'{package}__{key}'), 'w', encoding='utf-8') as f:
+            f.write(os.path.abspath(file))
+    packages = os.path.join(stage, 'share', 'ament_index', 'resource_index', 'packages')
+    os.makedirs(packages, exist_ok=True)
+    open(os.path.join(packages, package), 'w').close()
+
+    previous = os.environ.get('AMENT_PREFIX_PATH')
+    os.environ['AMENT_PREFIX_PATH'] = os.pathsep.join(p for p in (stage, previous) if p)
+    try:
+        failures = []
+        for kind, registry in ((Kind.INTERFACE, interfaces), (Kind.NODE, nodes)):
+            for result in check_paths(list(registry.values()), kind, resolve=True):
+                shown = [d for d in result.diagnostics if d.severity.value != 'info']
+                if shown:
+                    sys.stderr.write(format_text(shown))
+                if result.problem or any(d.severity.value == 'error' for d in result.diagnostics):
+                    failures.append(result.path)
+    finally:
+        if previous is None:
+            del os.environ['AMENT_PREFIX_PATH']
+        else:
+            os.environ['AMENT_PREFIX_PATH'] = previous
+    if failures:
+        raise SystemExit(f'{package}: invalid NoDL definitions: {", ".join(failures)}')
