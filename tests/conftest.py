@@ -49,6 +49,77 @@ def golden(request: pytest.FixtureRequest) -> Golden:
     return Golden(request.config.getoption('--update-golden'))
 
 
+NODES = Path(__file__).parent / 'nodes'
+
+
+class NodeProcess:
+    """A real ROS node in a process of its own (see tests/nodes/)."""
+
+    def __init__(self, script: str, name: str, namespace: str = '/', *args: str,
+                 timeout: float = 20.0) -> None:
+        import subprocess
+        import sys
+
+        self.name = name
+        self.namespace = namespace
+        self.process = subprocess.Popen(
+            [sys.executable, str(NODES / script), '--name', name, '--namespace', namespace, *args],
+            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=NODES)
+        self._wait_ready(timeout)
+
+    @property
+    def fqn(self) -> str:
+        return (self.namespace.rstrip('/') + '/' + self.name) if self.namespace != '/' else '/' + self.name
+
+    def _wait_ready(self, timeout: float) -> None:
+        import selectors
+        import time
+
+        assert self.process.stdout is not None
+        selector = selectors.DefaultSelector()
+        selector.register(self.process.stdout, selectors.EVENT_READ)
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if selector.select(timeout=max(0.0, deadline - time.monotonic())):
+                line = self.process.stdout.readline()
+                if line.strip() == 'ready':
+                    return
+                if not line:
+                    break
+        self.stop()
+        raise RuntimeError(f'{self.name} did not start: {self.process.stderr.read() if self.process.stderr else ""}')
+
+    def stop(self) -> None:
+        import signal
+        import subprocess
+
+        if self.process.poll() is None:
+            self.process.send_signal(signal.SIGINT)
+            try:
+                self.process.wait(timeout=5)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait(timeout=5)
+        for stream in (self.process.stdout, self.process.stderr):
+            if stream is not None:
+                stream.close()
+
+
+@pytest.fixture
+def ros_node():
+    """Start real node processes; every one is stopped after the test."""
+    started: list[NodeProcess] = []
+
+    def start(script: str, name: str, namespace: str = '/', *args: str) -> NodeProcess:
+        node = NodeProcess(script, name, namespace, *args)
+        started.append(node)
+        return node
+
+    yield start
+    for node in started:
+        node.stop()
+
+
 @pytest.fixture
 def fixtures() -> Path:
     """The fixture file folder."""

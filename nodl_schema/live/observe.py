@@ -1,0 +1,262 @@
+"""Observing a running node: its endpoints (with QoS), actions and parameters.
+
+Everything comes from the real ROS graph through rclpy.  Action servers and
+clients are folded from their hidden ``<action>/_action/*`` topics and
+services, which are then not listed as plain topics or services.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+from nodl_schema.live.qos import qos_from_rclpy
+from nodl_schema.live.session import LiveError, NodeNotFound, ros_session, split_node_name
+
+__all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
+           'wait_for_node', 'list_nodes', 'ACTION_INFIX']
+
+ACTION_INFIX = '/_action/'
+_PARAMETER_TYPES = {0: 'none', 1: 'bool', 2: 'int', 3: 'double', 4: 'string', 5: 'byte_array',
+                    6: 'bool_array', 7: 'int_array', 8: 'double_array', 9: 'string_array'}
+
+
+@dataclass
+class ObservedEndpoint:
+    """A topic, service or action endpoint as the graph reports it."""
+
+    name: str
+    type: str
+    #: NoDL QoS fields the middleware reported (topics only).
+    qos: dict[str, Any] | None = None
+    #: QoS fields the middleware could not report.
+    unobserved: list[str] = field(default_factory=list)
+
+
+@dataclass
+class ObservedParameter:
+    """A parameter as the node's parameter services report it."""
+
+    name: str
+    type: str
+    value: Any
+    description: str = ''
+    read_only: bool = False
+    #: ``(from, to)`` of an integer or floating point range, else None.
+    range: tuple[float, float] | None = None
+
+
+@dataclass
+class ObservedNode:
+    """Everything observed about one node."""
+
+    name: str
+    namespace: str
+    publishers: list[ObservedEndpoint] = field(default_factory=list)
+    subscriptions: list[ObservedEndpoint] = field(default_factory=list)
+    service_servers: list[ObservedEndpoint] = field(default_factory=list)
+    service_clients: list[ObservedEndpoint] = field(default_factory=list)
+    action_servers: list[ObservedEndpoint] = field(default_factory=list)
+    action_clients: list[ObservedEndpoint] = field(default_factory=list)
+    #: None when parameters were not asked for (or the node serves none).
+    parameters: dict[str, ObservedParameter] | None = None
+    #: Things that could not be observed, in words.
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def fully_qualified_name(self) -> str:
+        """``/namespace/name``."""
+        return (self.namespace.rstrip('/') + '/' + self.name) if self.namespace != '/' else '/' + self.name
+
+
+def list_nodes(node: Any) -> list[str]:
+    """Fully qualified names of the nodes in the graph (other than ``node``)."""
+    own = node.get_fully_qualified_name()
+    names = []
+    for name, namespace in node.get_node_names_and_namespaces():
+        fqn = (namespace.rstrip('/') + '/' + name) if namespace != '/' else '/' + name
+        if fqn != own:
+            names.append(fqn)
+    return sorted(set(names))
+
+
+def wait_for_node(node: Any, fqn: str, timeout: float) -> None:
+    """Wait until ``fqn`` is in the graph, or raise NodeNotFound."""
+    deadline = time.monotonic() + timeout
+    while True:
+        if fqn in list_nodes(node):
+            return
+        if time.monotonic() >= deadline:
+            raise NodeNotFound(f"node '{fqn}' was not found within {timeout:g} s (is it running, "
+                               'in the same ROS_DOMAIN_ID, with discovery reaching it?)')
+        node.nodl_executor.spin_once(timeout_sec=0.05)
+
+
+def _endpoints(node: Any, name: str, namespace: str) -> dict[str, list[tuple[str, list[str]]]]:
+    return {
+        'publishers': node.get_publisher_names_and_types_by_node(name, namespace),
+        'subscriptions': node.get_subscriber_names_and_types_by_node(name, namespace),
+        'service_servers': node.get_service_names_and_types_by_node(name, namespace),
+        'service_clients': node.get_client_names_and_types_by_node(name, namespace),
+    }
+
+
+def _signature(raw: dict[str, list[tuple[str, list[str]]]]) -> tuple[Any, ...]:
+    return tuple((k, tuple((n, tuple(t)) for n, t in sorted(v))) for k, v in sorted(raw.items()))
+
+
+def _settle(node: Any, name: str, namespace: str, fqn: str, timeout: float,
+            quiet: float) -> dict[str, list[tuple[str, list[str]]]]:
+    """Poll the node's endpoints until they stop changing for ``quiet`` seconds."""
+    deadline = time.monotonic() + timeout
+    last = None
+    stable_since = time.monotonic()
+    while True:
+        try:
+            raw = _endpoints(node, name, namespace)
+        except Exception as exc:  # the node vanished between two calls
+            if fqn not in list_nodes(node):
+                raise LiveError(f"node '{fqn}' disappeared while it was being observed") from None
+            raise LiveError(f"cannot read the endpoints of '{fqn}': {exc}") from None
+        signature = _signature(raw)
+        now = time.monotonic()
+        if signature != last:
+            last = signature
+            stable_since = now
+        elif now - stable_since >= quiet or now >= deadline:
+            return raw
+        node.nodl_executor.spin_once(timeout_sec=0.02)
+
+
+def _topic_qos(node: Any, topic: str, name: str, namespace: str, publishers: bool) -> Any:
+    infos = (node.get_publishers_info_by_topic(topic) if publishers
+             else node.get_subscriptions_info_by_topic(topic))
+    for info in infos:
+        if info.node_name == name and info.node_namespace == namespace:
+            return info.qos_profile
+    return None
+
+
+def _fold_actions(observed: ObservedNode, node: Any, name: str, namespace: str) -> None:
+    from rclpy.action import graph
+
+    servers = graph.get_action_server_names_and_types_by_node(node, name, namespace)
+    clients = graph.get_action_client_names_and_types_by_node(node, name, namespace)
+    observed.action_servers = [ObservedEndpoint(n, t[0]) for n, t in sorted(servers)]
+    observed.action_clients = [ObservedEndpoint(n, t[0]) for n, t in sorted(clients)]
+    action_names = {e.name for e in observed.action_servers + observed.action_clients}
+
+    def hidden(endpoint: ObservedEndpoint) -> bool:
+        prefix, infix, _ = endpoint.name.partition(ACTION_INFIX)
+        return bool(infix) and prefix in action_names
+
+    for section in ('publishers', 'subscriptions', 'service_servers', 'service_clients'):
+        setattr(observed, section, [e for e in getattr(observed, section) if not hidden(e)])
+
+
+def _call(node: Any, client: Any, request: Any, timeout: float) -> Any:
+    if not client.wait_for_service(timeout_sec=timeout):
+        return None
+    future = client.call_async(request)
+    deadline = time.monotonic() + timeout
+    while not future.done() and time.monotonic() < deadline:
+        node.nodl_executor.spin_once(timeout_sec=0.02)
+    return future.result() if future.done() else None
+
+
+def _value(value: Any) -> Any:
+    kind = value.type
+    if kind == 1:
+        return bool(value.bool_value)
+    if kind == 2:
+        return int(value.integer_value)
+    if kind == 3:
+        return float(value.double_value)
+    if kind == 4:
+        return str(value.string_value)
+    if kind == 5:
+        return [b[0] if isinstance(b, (bytes, bytearray)) else int(b) for b in value.byte_array_value]
+    if kind == 6:
+        return [bool(v) for v in value.bool_array_value]
+    if kind == 7:
+        return [int(v) for v in value.integer_array_value]
+    if kind == 8:
+        return [float(v) for v in value.double_array_value]
+    if kind == 9:
+        return [str(v) for v in value.string_array_value]
+    return None
+
+
+def _parameters(node: Any, fqn: str, timeout: float) -> dict[str, ObservedParameter] | None:
+    from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
+
+    list_client = node.create_client(ListParameters, f'{fqn}/list_parameters')
+    get_client = node.create_client(GetParameters, f'{fqn}/get_parameters')
+    describe_client = node.create_client(DescribeParameters, f'{fqn}/describe_parameters')
+    try:
+        listed = _call(node, list_client, ListParameters.Request(), timeout)
+        if listed is None:
+            return None
+        names = sorted(listed.result.names)
+        values = _call(node, get_client, GetParameters.Request(names=names), timeout)
+        descriptors = _call(node, describe_client, DescribeParameters.Request(names=names), timeout)
+        if values is None or descriptors is None:
+            return None
+        found: dict[str, ObservedParameter] = {}
+        for name, value, descriptor in zip(names, values.values, descriptors.descriptors):
+            rng: tuple[float, float] | None = None
+            if descriptor.integer_range:
+                r = descriptor.integer_range[0]
+                rng = (int(r.from_value), int(r.to_value))
+            elif descriptor.floating_point_range:
+                r = descriptor.floating_point_range[0]
+                rng = (float(r.from_value), float(r.to_value))
+            found[name] = ObservedParameter(
+                name, _PARAMETER_TYPES.get(value.type, 'none'), _value(value),
+                descriptor.description, bool(descriptor.read_only), rng)
+        return found
+    finally:
+        for client in (list_client, get_client, describe_client):
+            node.destroy_client(client)
+
+
+def observe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
+                 quiet: float = 0.25) -> ObservedNode:
+    """Observe the running node ``fqn`` (``/namespace/name``).
+
+    Waits up to ``timeout`` seconds for the node to appear and its endpoints
+    to settle (no change for ``quiet`` seconds).  Raises :class:`LiveError`
+    (:class:`NodeNotFound` if it never appears) with a message for the user.
+    """
+    namespace, name = split_node_name(fqn)
+    fqn = (namespace.rstrip('/') + '/' + name) if namespace != '/' else '/' + name
+    start = time.monotonic()
+    with ros_session() as node:
+        wait_for_node(node, fqn, timeout)
+        remaining = max(0.5, timeout - (time.monotonic() - start))
+        raw = _settle(node, name, namespace, fqn, remaining, quiet)
+        observed = ObservedNode(name, namespace)
+        for section, entries in raw.items():
+            topic = section in ('publishers', 'subscriptions')
+            endpoints = []
+            for topic_name, types in sorted(entries):
+                endpoint = ObservedEndpoint(topic_name, types[0] if types else '')
+                if topic:
+                    profile = _topic_qos(node, topic_name, name, namespace, section == 'publishers')
+                    if profile is not None:
+                        endpoint.qos, endpoint.unobserved = qos_from_rclpy(profile)
+                    else:
+                        endpoint.unobserved = ['qos']
+                endpoints.append(endpoint)
+            setattr(observed, section, endpoints)
+        _fold_actions(observed, node, name, namespace)
+        if parameters:
+            remaining = max(1.0, timeout - (time.monotonic() - start))
+            observed.parameters = _parameters(node, fqn, remaining)
+            if observed.parameters is None:
+                observed.notes.append('parameters could not be read (the node serves no '
+                                      'parameter services, or they did not answer in time)')
+        if fqn not in list_nodes(node):
+            raise LiveError(f"node '{fqn}' disappeared while it was being observed")
+        return observed
