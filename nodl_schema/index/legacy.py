@@ -1,16 +1,126 @@
 """Packages that ship only legacy (XML) NoDL files.
 
-Until the legacy frontend lands this finds nothing; it keeps the look-up
-code in one place.
+Two ways a legacy package announces its files:
+
+* the ``nodl_desc`` ament resource (spec 001): ``resource_index/nodl_desc/<package>``,
+  empty or holding the file's path relative to ``share/<package>``; when empty,
+  every ``*.nodl.xml`` in ``share/<package>`` is read;
+* its ``package.xml`` (spec 000): ``<export><interface path="..."/></export>``.
+
+Each ``<node>`` becomes a registration named after its executable (or its
+name where there is none); showing or checking it converts it to v2 in memory.
 """
 
 from __future__ import annotations
 
+import os
+
+from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
+from nodl_schema.index import ament
 from nodl_schema.index.registry import Registration
 
-__all__ = ['legacy_registrations']
+__all__ = ['legacy_registrations', 'legacy_files', 'legacy_node_interface', 'legacy_composed']
+
+LEGACY_RESOURCE = 'nodl_desc'
+LEGACY_KIND = 'legacy node'
+
+
+def legacy_files(package: str | None, prefixes: list[str]) -> list[tuple[str, str]]:
+    """``(package, file)`` for every legacy NoDL file found."""
+    found: list[tuple[str, str]] = []
+    for name, prefix in ament.get_resources(LEGACY_RESOURCE, prefixes).items():
+        if package is not None and name != package:
+            continue
+        share = os.path.join(prefix, 'share', name)
+        resource = ament.get_resource(LEGACY_RESOURCE, name, [prefix])
+        content = resource.content.strip() if resource else ''
+        if content:
+            found += [(name, os.path.join(share, line.strip()))
+                      for line in content.splitlines() if line.strip()]
+        elif os.path.isdir(share):
+            found += [(name, os.path.join(share, f)) for f in sorted(os.listdir(share))
+                      if f.endswith('.nodl.xml')]
+    from nodl_schema.frontends.legacy_xml import interface_files_from_package_xml
+
+    for name, prefix in ament.get_resources('packages', prefixes).items():
+        if package is not None and name != package:
+            continue
+        manifest = os.path.join(prefix, 'share', name, 'package.xml')
+        try:
+            with open(manifest, encoding='utf-8', errors='replace') as f:
+                if '<interface' not in f.read():
+                    continue
+            paths, _ = interface_files_from_package_xml(manifest)
+        except OSError:
+            continue
+        found += [(name, str(p)) for p in paths if (name, str(p)) not in found]
+    return found
 
 
 def legacy_registrations(package: str | None, prefixes: list[str]) -> list[Registration]:
-    """Legacy node definitions found through ``nodl_desc`` markers and package.xml exports."""
-    return []
+    """Legacy node definitions, one per ``<node>`` of every legacy file."""
+    from nodl_schema.frontends.legacy_xml import parse_legacy_xml
+
+    registrations = []
+    for name, file in legacy_files(package, prefixes):
+        if not os.path.isfile(file):
+            continue
+        from pathlib import Path
+
+        document = parse_legacy_xml(Path(file), file)
+        for node in document.nodes:
+            key = node.executable or node.name
+            if key:
+                registrations.append(Registration(name, key, LEGACY_KIND, file))
+    return registrations
+
+
+def _converted(registration: Registration):  # type: ignore[no-untyped-def]
+    from pathlib import Path
+
+    from nodl_schema.frontends.legacy_xml import parse_legacy_xml
+    from nodl_schema.legacy import convert_legacy
+
+    document = parse_legacy_xml(Path(registration.file), registration.file)
+    diagnostics = list(document.diagnostics)
+    for converted in convert_legacy(document):
+        if (converted.node.executable or converted.node.name) == registration.name:
+            return converted, diagnostics + converted.diagnostics
+    return None, diagnostics + [Diagnostic(
+        Severity.ERROR, f'no node for {registration.name!r} in this legacy file', (),
+        registration.file)]
+
+
+def _compose(registration: Registration):  # type: ignore[no-untyped-def]
+    from nodl_schema.composition import compose_report
+    from nodl_schema.loading import check_source, dump_nodl
+    from nodl_schema.validation.kinds import Kind
+
+    converted, diagnostics = _converted(registration)
+    if converted is None or not converted.ok:
+        return None, diagnostics
+    report = check_source(dump_nodl(converted.data, 'json'), kind=Kind.NODE,
+                          file=f'{registration.file} ({registration.name}, converted)')
+    composed, more = compose_report(report)
+    if composed is not None:
+        composed.file = registration.file
+    # Warnings about the in-memory v2 document (no descriptions, ...) say nothing the
+    # conversion has not said already; only errors matter here.
+    return composed, diagnostics + [d for d in more if d.severity is Severity.ERROR]
+
+
+def legacy_composed(registration: Registration):  # type: ignore[no-untyped-def]
+    """The legacy node converted to v2 and composed (raises ValidationError)."""
+    composed, diagnostics = _compose(registration)
+    if composed is None:
+        raise ValidationError(diagnostics)
+    return composed
+
+
+def legacy_node_interface(registration: Registration):  # type: ignore[no-untyped-def]
+    """What ``show`` prints for a legacy node: its v2 interface, composed."""
+    from nodl_schema.show import Shown
+
+    composed, diagnostics = _compose(registration)
+    shown = [d for d in diagnostics if d.severity is not Severity.INFO]
+    return Shown(composed.interface if composed is not None else None, shown, registration.file)

@@ -17,10 +17,8 @@ from nodl_schema.composition.ament_resolver import (
 from nodl_schema.composition.resolvers import ResolutionError, Resolved
 from nodl_schema.index import ament
 
-__all__ = ['Registration', 'list_registrations', 'find_node', 'read_registration',
-           'LEGACY_RESOURCE']
+__all__ = ['Registration', 'list_registrations', 'find_node', 'read_registration']
 
-LEGACY_RESOURCE = 'nodl_desc'
 _KINDS = {NODE_RESOURCE: 'node', INTERFACE_RESOURCE: 'interface'}
 
 

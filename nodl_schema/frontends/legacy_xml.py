@@ -1,0 +1,802 @@
+"""The legacy XML frontend: NoDL before v2 (specs 000, 001 and 002).
+
+A legacy file is ``<interface version="1">`` holding ``<node name executable>``
+elements, each with ``<parameter>``, ``<topic>``, ``<service>`` and ``<action>``
+children.  Endpoint roles are written either as boolean attributes
+(``publisher="true"``, ``subscription``, ``server``, ``client``; specs 000 and
+001) or as one ``role`` attribute (``publisher|subscription|both``,
+``server|client|both``; spec 002).  Endpoints may carry an old ``<qos>`` child.
+Spec 000 exported such files from ``package.xml``
+(``<export><interface path="..."/></export>``).
+
+This module reads that format into plain records that remember the 1-based
+line and column of every element (and of every attribute).  It never raises
+for bad content: malformed XML, a wrong root, unknown elements or attributes,
+missing names or types, invalid booleans, conflicting or missing roles are
+:class:`~nodl_schema.diagnostics.Diagnostic` objects, all collected.
+Document type declarations are rejected (no DTD is needed, and entity
+declarations are how XML bombs work); size and encoding limits are those of
+:mod:`nodl_schema.frontends.source`.
+
+Only :mod:`xml.parsers.expat` is used (it reports positions); dataclasses and
+pathlib are not imported at module level, to keep the command line fast.
+"""
+
+from __future__ import annotations
+
+import bisect
+import os
+import re
+from typing import TYPE_CHECKING, Any, Iterable, NamedTuple, Sequence
+from xml.parsers import expat
+
+from nodl_schema.diagnostics import Diagnostic, Severity
+
+if TYPE_CHECKING:  # pragma: no cover - for type checkers only
+    from pathlib import Path
+
+    from nodl_schema.frontends.source import Source
+
+__all__ = [
+    'LEGACY_VERSION', 'TOPIC_ROLES', 'SERVICE_ROLES', 'ACTION_ROLES', 'QOS_VALUES',
+    'XmlAttribute', 'XmlElement', 'XmlTree', 'load_xml',
+    'LegacyQoS', 'LegacyParameter', 'LegacyEndpoint', 'LegacyNode', 'LegacyDocument',
+    'legacy_document_from_tree', 'parse_legacy_xml',
+    'ExportedInterface', 'package_exports_from_tree', 'package_exports',
+    'interface_files_from_package_xml',
+]
+
+#: The only ``<interface version>`` the legacy format defines.
+LEGACY_VERSION = '1'
+
+TOPIC_ROLES = ('publisher', 'subscription')
+SERVICE_ROLES = ('server', 'client')
+ACTION_ROLES = ('server', 'client')
+_ROLES = {'topic': TOPIC_ROLES, 'service': SERVICE_ROLES, 'action': ACTION_ROLES}
+_ROLES_OF_OTHER_KINDS = {'topic': SERVICE_ROLES, 'service': TOPIC_ROLES, 'action': TOPIC_ROLES}
+
+#: Accepted (lower-case) values of the enumerated ``<qos>`` attributes: the
+#: rclpy short keys of the time.  Some have no NoDL v2 equivalent; the
+#: converter says so.
+QOS_VALUES: dict[str, tuple[str, ...]] = {
+    'history': ('keep_last', 'keep_all', 'system_default'),
+    'reliability': ('reliable', 'best_effort', 'system_default', 'best_available'),
+    'durability': ('transient_local', 'volatile', 'system_default', 'best_available'),
+    'liveliness': ('automatic', 'manual_by_topic', 'manual_by_node', 'system_default',
+                   'best_available'),
+}
+_QOS_DURATIONS = ('deadline', 'lifespan', 'liveliness_lease_duration')
+_QOS_ATTRIBUTES = ('history', 'reliability', 'durability', 'depth', 'deadline', 'lifespan',
+                   'liveliness', 'liveliness_lease_duration', 'avoid_ros_namespace_conventions')
+
+_SECONDS = re.compile(r'[0-9]+(\.[0-9]*)?|\.[0-9]+')
+_DEPTH = re.compile(r'[0-9]+')
+_TRUE = ('true', '1')
+_FALSE = ('false', '0')
+
+
+# --------------------------------------------------------------------------
+# Records
+
+
+class _Record:
+    """Plain value records (not dataclasses: importing dataclasses costs start-up time)."""
+
+    __slots__: tuple[str, ...] = ()
+
+    def __init__(self, **values: Any) -> None:
+        for name in self.__slots__:
+            setattr(self, name, values.pop(name, None))
+        if values:
+            raise TypeError(f'unknown fields for {type(self).__name__}: {sorted(values)}')
+
+    def _key(self) -> tuple[Any, ...]:
+        return tuple(getattr(self, name) for name in self.__slots__)
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return False
+        assert isinstance(other, _Record)
+        return self._key() == other._key()
+
+    __hash__ = None  # type: ignore[assignment]  # mutable records
+
+    def __repr__(self) -> str:
+        fields = ', '.join(f'{name}={getattr(self, name)!r}' for name in self.__slots__)
+        return f'{type(self).__name__}({fields})'
+
+
+class LegacyQoS(_Record):
+    """An old ``<qos>`` element.  Unset (absent or empty) attributes are ``None``.
+
+    Policies are lower-case rclpy short keys (``keep_last``, ``best_effort``,
+    ...); ``depth`` is an int; durations stay as written (seconds, ``".5"``).
+    """
+
+    __slots__ = ('history', 'reliability', 'durability', 'depth', 'deadline', 'lifespan',
+                 'liveliness', 'liveliness_lease_duration', 'avoid_ros_namespace_conventions',
+                 'line', 'column', 'positions')
+
+    history: str | None
+    reliability: str | None
+    durability: str | None
+    depth: int | None
+    deadline: str | None
+    lifespan: str | None
+    liveliness: str | None
+    liveliness_lease_duration: str | None
+    avoid_ros_namespace_conventions: bool | None
+    line: int
+    column: int
+    #: Attribute name -> (line, column) of the attribute in the file.
+    positions: dict[str, tuple[int, int]]
+
+
+class LegacyParameter(_Record):
+    """A ``<parameter name type>`` element (the type as written)."""
+
+    __slots__ = ('name', 'type', 'line', 'column', 'positions')
+
+    name: str
+    type: str
+    line: int
+    column: int
+    positions: dict[str, tuple[int, int]]
+
+
+class LegacyEndpoint(_Record):
+    """A ``<topic>``, ``<service>`` or ``<action>`` element.
+
+    ``kind`` is ``topic``, ``service`` or ``action``; ``roles`` the roles it
+    plays, in canonical order (``('publisher', 'subscription')`` for a topic
+    with role ``both``).
+    """
+
+    __slots__ = ('kind', 'name', 'type', 'roles', 'qos', 'line', 'column', 'positions')
+
+    kind: str
+    name: str
+    type: str
+    roles: tuple[str, ...]
+    qos: LegacyQoS | None
+    line: int
+    column: int
+    positions: dict[str, tuple[int, int]]
+
+
+class LegacyNode(_Record):
+    """A ``<node>`` element: its identity attributes and its interface, in file order."""
+
+    __slots__ = ('name', 'executable', 'parameters', 'topics', 'services', 'actions',
+                 'line', 'column', 'positions')
+
+    name: str | None
+    executable: str | None
+    parameters: list[LegacyParameter]
+    topics: list[LegacyEndpoint]
+    services: list[LegacyEndpoint]
+    actions: list[LegacyEndpoint]
+    line: int
+    column: int
+    positions: dict[str, tuple[int, int]]
+
+
+class LegacyDocument(_Record):
+    """A parsed legacy file: its nodes and every diagnostic found reading it.
+
+    Elements with a structural error are left out of ``nodes``; a document
+    with errors must not be converted as if it were complete.
+    """
+
+    __slots__ = ('file', 'version', 'nodes', 'diagnostics', 'line', 'column')
+
+    file: str
+    version: str | None
+    nodes: list[LegacyNode]
+    diagnostics: list[Diagnostic]
+    line: int
+    column: int
+
+    @property
+    def errors(self) -> list[Diagnostic]:
+        """Diagnostics of severity error."""
+        return [d for d in self.diagnostics if d.severity is Severity.ERROR]
+
+    @property
+    def ok(self) -> bool:
+        """True if the document has no errors."""
+        return not self.errors
+
+
+# --------------------------------------------------------------------------
+# XML with positions
+
+
+class XmlAttribute(NamedTuple):
+    """One attribute as written, with the position of its name."""
+
+    name: str
+    value: str
+    line: int
+    column: int
+
+
+class XmlElement:
+    """An element with its attributes (in file order), children and position."""
+
+    __slots__ = ('tag', 'attributes', 'children', 'line', 'column', 'text_at')
+
+    def __init__(self, tag: str, attributes: list[XmlAttribute], line: int, column: int) -> None:
+        self.tag = tag
+        self.attributes = attributes
+        self.children: list[XmlElement] = []
+        self.line = line
+        self.column = column
+        #: Where the first non-blank text directly inside the element is, if any.
+        self.text_at: tuple[int, int] | None = None
+
+    def get(self, name: str) -> XmlAttribute | None:
+        """The attribute called ``name``, or None."""
+        for attribute in self.attributes:
+            if attribute.name == name:
+                return attribute
+        return None
+
+    def __repr__(self) -> str:
+        return f'<XmlElement {self.tag} at {self.line}:{self.column}>'
+
+
+class XmlTree:
+    """A parsed XML file: its root element (None if there is none) and parse problems.
+
+    After a well-formedness error the tree holds what was read before it.
+    """
+
+    __slots__ = ('file', 'root', 'diagnostics')
+
+    def __init__(self, file: str, root: XmlElement | None, diagnostics: list[Diagnostic]) -> None:
+        self.file = file
+        self.root = root
+        self.diagnostics = diagnostics
+
+
+class _Rejected(Exception):
+    """Raised inside an expat handler to stop parsing a rejected document."""
+
+
+_LINE_BREAK = re.compile(r'\r\n|\r|\n')
+_TAG_NAME = re.compile(r'<[^\s/>]*')
+_ATTRIBUTE = re.compile(r'\s+([^\s=/>]+)\s*=\s*(?:"[^"]*"|\'[^\']*\')')
+
+
+class _Lines:
+    """Offsets <-> 1-based line and column, counting line breaks as XML does."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.starts = [0] + [m.end() for m in _LINE_BREAK.finditer(text)]
+
+    def offset(self, line: int, column: int) -> int:
+        return self.starts[line - 1] + column - 1 if 0 < line <= len(self.starts) else -1
+
+    def position(self, offset: int) -> tuple[int, int]:
+        index = bisect.bisect_right(self.starts, offset) - 1
+        return index + 1, offset - self.starts[index] + 1
+
+
+def _place_attributes(lines: _Lines, line: int, column: int,
+                      pairs: Sequence[str]) -> list[XmlAttribute]:
+    """Attach to each attribute the position of its name in the start tag."""
+    found: dict[str, tuple[int, int]] = {}
+    start = lines.offset(line, column)
+    tag = _TAG_NAME.match(lines.text, start) if start >= 0 else None
+    if tag is not None:
+        pos = tag.end()
+        while True:
+            match = _ATTRIBUTE.match(lines.text, pos)
+            if match is None:
+                break
+            found.setdefault(match.group(1), lines.position(match.start(1)))
+            pos = match.end()
+    out = []
+    for index in range(0, len(pairs), 2):
+        name = pairs[index]
+        at_line, at_column = found.get(name, (line, column))
+        out.append(XmlAttribute(name, pairs[index + 1], at_line, at_column))
+    return out
+
+
+def _error(file: str, message: str, line: int = 0, column: int = 0) -> Diagnostic:
+    return Diagnostic(Severity.ERROR, message, (), file, line, column)
+
+
+def _warning(file: str, message: str, line: int = 0, column: int = 0) -> Diagnostic:
+    return Diagnostic(Severity.WARNING, message, (), file, line, column)
+
+
+_DTD_MESSAGE = ('document type declarations (<!DOCTYPE ...>) are not allowed in NoDL XML: '
+                'the format needs no DTD, and entity declarations can expand without '
+                'bound (XML bombs); remove the declaration')
+
+
+def _parse_xml(text: str, file: str) -> XmlTree:
+    """Parse XML text with expat, keeping positions; rejects DTDs and entities."""
+    diagnostics: list[Diagnostic] = []
+    lines = _Lines(text)
+    stack: list[XmlElement] = []
+    roots: list[XmlElement] = []
+    parser = expat.ParserCreate(encoding='UTF-8')
+    parser.ordered_attributes = True
+    parser.buffer_text = True
+    parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)
+
+    def here() -> tuple[int, int]:
+        return parser.CurrentLineNumber, parser.CurrentColumnNumber + 1
+
+    def start(tag: str, pairs: list[str]) -> None:
+        line, column = here()
+        element = XmlElement(tag, _place_attributes(lines, line, column, pairs), line, column)
+        if stack:
+            stack[-1].children.append(element)
+        else:
+            roots.append(element)
+        stack.append(element)
+
+    def end(tag: str) -> None:
+        stack.pop()
+
+    def characters(data: str) -> None:
+        if not stack or stack[-1].text_at is not None:
+            return
+        stripped = data.lstrip()
+        if not stripped:
+            return
+        line, column = here()
+        lead = data[:len(data) - len(stripped)]
+        breaks = list(_LINE_BREAK.finditer(lead))
+        if breaks:
+            line += len(breaks)
+            column = len(lead) - breaks[-1].end() + 1
+        else:
+            column += len(lead)
+        stack[-1].text_at = (line, column)
+
+    def reject(*_: Any) -> None:
+        # Point at the start of the declaration, not where expat is inside it.
+        start = text.rfind('<!', 0, lines.offset(*here()) + 1)
+        line, column = lines.position(start) if start >= 0 else here()
+        diagnostics.append(_error(file, _DTD_MESSAGE, line, column))
+        raise _Rejected
+
+    def declaration(version: str | None, encoding: str | None, standalone: int) -> None:
+        if encoding and encoding.lower().replace('_', '-') not in ('utf-8', 'utf8'):
+            line, column = here()
+            diagnostics.append(_warning(
+                file, f"the XML declaration says encoding '{encoding}', but NoDL files are "
+                'UTF-8 and this one was read as UTF-8; change the declaration', line, column))
+
+    parser.StartElementHandler = start
+    parser.EndElementHandler = end
+    parser.CharacterDataHandler = characters
+    parser.StartDoctypeDeclHandler = reject
+    parser.EntityDeclHandler = reject
+    parser.XmlDeclHandler = declaration
+    try:
+        parser.Parse(text.encode('utf-8'), True)
+    except _Rejected:
+        pass
+    except expat.ExpatError as exc:
+        message = expat.ErrorString(exc.code) if exc.code is not None else str(exc)
+        diagnostics.append(_error(file, f'malformed XML: {message}', exc.lineno, exc.offset + 1))
+    return XmlTree(file, roots[0] if roots else None, diagnostics)
+
+
+def load_xml(source: Source, file: str | None = None) -> XmlTree:
+    """Read and parse an XML document (text, bytes, a file object or a path).
+
+    Documents over 10 MB, that are not UTF-8, or that contain a DTD are
+    rejected with a diagnostic.  I/O errors (a missing file) propagate as
+    :class:`OSError`, as in :func:`nodl_schema.check_source`.
+    """
+    from nodl_schema.frontends.source import read_source
+
+    text, problem = read_source(source, file)
+    if text is None:
+        assert problem is not None
+        return XmlTree(problem.file, None, [problem])
+    return _parse_xml(text.text, text.file)
+
+
+# --------------------------------------------------------------------------
+# Interpreting a legacy interface file
+
+
+def _did_you_mean(word: str, choices: Iterable[str]) -> str:
+    import difflib
+
+    close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+    return f"; did you mean '{close[0]}'?" if close else ''
+
+
+def _is_ignored_attribute(name: str) -> bool:
+    """Namespace declarations and XML Schema instance hints (``xsi:...``) are allowed anywhere."""
+    return name == 'xmlns' or name.startswith(('xmlns:', 'xsi:', 'xml:'))
+
+
+def _positions(element: XmlElement) -> dict[str, tuple[int, int]]:
+    return {a.name: (a.line, a.column) for a in element.attributes}
+
+
+class _Reader:
+    """Turns an :class:`XmlTree` into a :class:`LegacyDocument`, collecting diagnostics."""
+
+    def __init__(self, tree: XmlTree) -> None:
+        self.file = tree.file
+        self.tree = tree
+        self.diagnostics: list[Diagnostic] = list(tree.diagnostics)
+
+    # -- helpers ----------------------------------------------------------
+
+    def error(self, message: str, at: XmlElement | XmlAttribute | tuple[int, int]) -> None:
+        line, column = (at.line, at.column) if isinstance(at, (XmlElement, XmlAttribute)) else at
+        self.diagnostics.append(_error(self.file, message, line, column))
+
+    def warning(self, message: str, at: XmlElement | XmlAttribute) -> None:
+        self.diagnostics.append(_warning(self.file, message, at.line, at.column))
+
+    def error_count(self) -> int:
+        return sum(1 for d in self.diagnostics if d.severity is Severity.ERROR)
+
+    def attributes(self, element: XmlElement, allowed: Sequence[str],
+                   hints: dict[str, str] | None = None) -> dict[str, XmlAttribute]:
+        """The element's attributes by name; unknown ones are errors."""
+        out: dict[str, XmlAttribute] = {}
+        for attribute in element.attributes:
+            if attribute.name in allowed:
+                out[attribute.name] = attribute
+            elif not _is_ignored_attribute(attribute.name):
+                hint = (hints or {}).get(attribute.name)
+                if hint is None:
+                    hint = (f"; expected {', '.join(allowed)}"
+                            + _did_you_mean(attribute.name, allowed)) if allowed else \
+                        '; it takes no attributes'
+                else:
+                    hint = f'; {hint}'
+                self.error(f"unknown attribute '{attribute.name}' on <{element.tag}>{hint}",
+                           attribute)
+        return out
+
+    def no_text(self, element: XmlElement) -> None:
+        if element.text_at is not None:
+            self.error(f'unexpected text inside <{element.tag}>; legacy NoDL elements hold '
+                       'only elements and attributes', element.text_at)
+
+    def unknown_element(self, element: XmlElement, parent: XmlElement,
+                        allowed: Sequence[str]) -> None:
+        expected = (f"; <{parent.tag}> holds {', '.join(f'<{t}>' for t in allowed)}"
+                    + _did_you_mean(element.tag, allowed)) if allowed else \
+            f'; <{parent.tag}> holds no elements'
+        self.error(f'unknown element <{element.tag}> inside <{parent.tag}>{expected}', element)
+
+    def required(self, element: XmlElement, attributes: dict[str, XmlAttribute],
+                 name: str) -> str | None:
+        attribute = attributes.get(name)
+        if attribute is None:
+            self.error(f"<{element.tag}> has no '{name}' attribute", element)
+            return None
+        if not attribute.value.strip():
+            self.error(f"'{name}' of <{element.tag}> is empty", attribute)
+            return None
+        return attribute.value
+
+    def boolean(self, attribute: XmlAttribute) -> bool | None:
+        value = attribute.value.strip().lower()
+        if value in _TRUE:
+            return True
+        if value in _FALSE:
+            return False
+        self.error(f"invalid value '{attribute.value}' for '{attribute.name}'; "
+                   'expected true or false', attribute)
+        return None
+
+    # -- elements ---------------------------------------------------------
+
+    def document(self) -> LegacyDocument:
+        root = self.tree.root
+        doc = LegacyDocument(file=self.file, version=None, nodes=[], diagnostics=self.diagnostics,
+                             line=root.line if root else 0, column=root.column if root else 0)
+        if root is None:
+            if not self.tree.diagnostics:
+                self.error('the document has no root element', (1, 1))
+            return doc
+        if root.tag != 'interface':
+            hint = (' (this is a package manifest: convert it as a package.xml, which exports '
+                    'interface files)' if root.tag == 'package' else '')
+            self.error(f'the root element is <{root.tag}>; a legacy NoDL file has root '
+                       f'<interface version="1">{hint}', root)
+            return doc
+        attributes = self.attributes(root, ('version',))
+        version = attributes.get('version')
+        if version is None:
+            self.warning(f"<interface> has no 'version' attribute; read as version "
+                         f'{LEGACY_VERSION}', root)
+        elif version.value.strip() != LEGACY_VERSION:
+            self.error(f"unsupported legacy NoDL version '{version.value}'; this reader knows "
+                       f'version {LEGACY_VERSION}', version)
+        doc.version = version.value if version is not None else None
+        self.no_text(root)
+        for child in root.children:
+            if child.tag == 'node':
+                node = self.node(child)
+                if node is not None:
+                    doc.nodes.append(node)
+            else:
+                self.unknown_element(child, root, ('node',))
+        if not root.children:
+            self.warning('<interface> declares no nodes; there is nothing to convert', root)
+        self.diagnostics.sort(key=lambda d: (d.line, d.column))
+        return doc
+
+    def node(self, element: XmlElement) -> LegacyNode | None:
+        attributes = self.attributes(element, ('name', 'executable'))
+        values: dict[str, str | None] = {}
+        for key in ('name', 'executable'):
+            attribute = attributes.get(key)
+            if attribute is not None and not attribute.value.strip():
+                self.error(f"'{key}' of <node> is empty", attribute)
+            values[key] = attribute.value if attribute is not None and attribute.value.strip() \
+                else None
+        if 'name' not in attributes and 'executable' not in attributes:
+            self.error("<node> has neither an 'executable' nor a 'name' attribute; one of them "
+                       'says which node this is', element)
+        node = LegacyNode(name=values['name'], executable=values['executable'], parameters=[],
+                          topics=[], services=[], actions=[], line=element.line,
+                          column=element.column, positions=_positions(element))
+        self.no_text(element)
+        seen_parameters: dict[str, LegacyParameter] = {}
+        for child in element.children:
+            if child.tag == 'parameter':
+                parameter = self.parameter(child)
+                if parameter is None:
+                    continue
+                first = seen_parameters.get(parameter.name)
+                if first is not None:
+                    self.error(f"parameter '{parameter.name}' is declared twice in this node "
+                               f'(first at line {first.line})', child)
+                    continue
+                seen_parameters[parameter.name] = parameter
+                node.parameters.append(parameter)
+            elif child.tag in _ROLES:
+                endpoint = self.endpoint(child)
+                if endpoint is not None:
+                    getattr(node, f'{child.tag}s').append(endpoint)
+            else:
+                self.unknown_element(child, element, ('parameter', 'topic', 'service', 'action'))
+        return node
+
+    def parameter(self, element: XmlElement) -> LegacyParameter | None:
+        before = self.error_count()
+        attributes = self.attributes(element, ('name', 'type'))
+        name = self.required(element, attributes, 'name')
+        type_ = self.required(element, attributes, 'type')
+        self.no_text(element)
+        for child in element.children:
+            self.unknown_element(child, element, ())
+        if self.error_count() != before or name is None or type_ is None:
+            return None
+        return LegacyParameter(name=name, type=type_, line=element.line, column=element.column,
+                               positions=_positions(element))
+
+    def endpoint(self, element: XmlElement) -> LegacyEndpoint | None:
+        kind = element.tag
+        roles = _ROLES[kind]
+        before = self.error_count()
+        other = _ROLES_OF_OTHER_KINDS[kind]
+        hints = {word: (f"'{word}' is not a role of a {kind}; a {kind}'s roles are "
+                        f'{" and ".join(roles)}') for word in other}
+        attributes = self.attributes(element, ('name', 'type', *roles, 'role'), hints)
+        name = self.required(element, attributes, 'name')
+        type_ = self.required(element, attributes, 'type')
+        played = self.roles(element, attributes, roles, name)
+        self.no_text(element)
+        qos: LegacyQoS | None = None
+        first: XmlElement | None = None
+        for child in element.children:
+            if child.tag != 'qos':
+                self.unknown_element(child, element, ('qos',))
+            elif first is not None:
+                self.error(f'<{kind}> has more than one <qos> (the first is at line '
+                           f'{first.line})', child)
+            else:
+                first = child
+                qos = self.qos(child)
+        if self.error_count() != before or name is None or type_ is None or not played:
+            return None
+        return LegacyEndpoint(kind=kind, name=name, type=type_, roles=played, qos=qos,
+                              line=element.line, column=element.column,
+                              positions=_positions(element))
+
+    def roles(self, element: XmlElement, attributes: dict[str, XmlAttribute],
+              roles: tuple[str, str], name: str | None) -> tuple[str, ...]:
+        """The roles an endpoint plays, from boolean attributes or a ``role`` attribute."""
+        kind = element.tag
+        flags: dict[str, bool] = {}
+        for word in roles:
+            attribute = attributes.get(word)
+            if attribute is not None:
+                value = self.boolean(attribute)
+                if value is not None:
+                    flags[word] = value
+        from_flags = tuple(word for word in roles if flags.get(word))
+        role = attributes.get('role')
+        from_role: tuple[str, ...] | None = None
+        if role is not None:
+            value = role.value.strip()
+            if value == 'both':
+                from_role = roles
+            elif value in roles:
+                from_role = (value,)
+            else:
+                choices = (*roles, 'both')
+                self.error(f"invalid role '{role.value}' for <{kind}>; expected "
+                           f"{', '.join(choices[:-1])} or {choices[-1]}"
+                           + _did_you_mean(value, choices), role)
+                return ()
+        written = [attributes[w] for w in roles if w in attributes]
+        if role is not None and from_role is not None and written:
+            flag_text = ' '.join(f'{a.name}="{a.value}"' for a in written)
+            if set(from_role) == set(from_flags):
+                self.warning(f'<{kind}> gives its role twice, as role="{role.value}" and as '
+                             f'{flag_text}; keep only role="{role.value}"', role)
+            else:
+                self.error(f'role="{role.value}" conflicts with {flag_text} on <{kind}>; '
+                           'use only the role attribute', role)
+                return ()
+        played = from_role if from_role is not None else from_flags
+        misplaced = any(a.name in _ROLES_OF_OTHER_KINDS[kind] for a in element.attributes)
+        if not played and len(flags) == len(written) and not misplaced:
+            label = f" '{name}'" if name else ''
+            self.error(f'<{kind}>{label} has no role: give role="{roles[0]}", "{roles[1]}" or '
+                       f'"both" (or {roles[0]}="true" / {roles[1]}="true")', element)
+        return played
+
+    def qos(self, element: XmlElement) -> LegacyQoS | None:
+        before = self.error_count()
+        attributes = self.attributes(element, _QOS_ATTRIBUTES)
+        self.no_text(element)
+        for child in element.children:
+            self.unknown_element(child, element, ())
+        qos = LegacyQoS(line=element.line, column=element.column, positions=_positions(element))
+        for key, attribute in attributes.items():
+            value = attribute.value.strip()
+            if not value:
+                continue  # an empty string means unset
+            if key in QOS_VALUES:
+                lowered = value.lower()
+                if lowered in QOS_VALUES[key]:
+                    setattr(qos, key, lowered)
+                else:
+                    self.error(f"invalid {key} '{attribute.value}' in <qos>; expected one of: "
+                               f"{', '.join(QOS_VALUES[key])}"
+                               + _did_you_mean(lowered, QOS_VALUES[key]), attribute)
+            elif key == 'depth':
+                if _DEPTH.fullmatch(value):
+                    qos.depth = int(value)
+                else:
+                    self.error(f"invalid depth '{attribute.value}' in <qos>; expected a "
+                               'non-negative integer', attribute)
+            elif key in _QOS_DURATIONS:
+                if _SECONDS.fullmatch(value):
+                    setattr(qos, key, value)
+                else:
+                    self.error(f"invalid {key} '{attribute.value}' in <qos>; expected a "
+                               'non-negative number of seconds such as 0.5', attribute)
+            else:  # avoid_ros_namespace_conventions
+                qos.avoid_ros_namespace_conventions = self.boolean(attribute)
+        return qos if self.error_count() == before else None
+
+
+def legacy_document_from_tree(tree: XmlTree) -> LegacyDocument:
+    """Interpret a parsed XML tree as a legacy NoDL interface file."""
+    return _Reader(tree).document()
+
+
+def parse_legacy_xml(source: Source, file: str | None = None) -> LegacyDocument:
+    """Read a legacy ``.nodl.xml`` file (text, bytes, a file object or a path).
+
+    Never raises for bad content: every problem is in the returned
+    document's ``diagnostics``.  I/O errors propagate as :class:`OSError`.
+    """
+    return legacy_document_from_tree(load_xml(source, file))
+
+
+# --------------------------------------------------------------------------
+# package.xml exports (spec 000)
+
+
+class ExportedInterface(NamedTuple):
+    """An ``<interface path>`` exported by a package.xml, resolved against its directory."""
+
+    path: str
+    line: int
+    column: int
+
+
+def package_exports_from_tree(tree: XmlTree) -> tuple[list[ExportedInterface], list[Diagnostic]]:
+    """The interface files a parsed package.xml exports, and what is wrong with the export."""
+    file = tree.file
+    diagnostics = list(tree.diagnostics)
+    root = tree.root
+    if root is None:
+        if not diagnostics:
+            diagnostics.append(_error(file, 'the document has no root element', 1, 1))
+        return [], diagnostics
+    if root.tag != 'package':
+        diagnostics.append(_error(file, f'the root element is <{root.tag}>; a package manifest '
+                                  'has root <package>', root.line, root.column))
+        return [], diagnostics
+    base = os.path.dirname(file)
+    exports = [child for child in root.children if child.tag == 'export']
+    found: list[ExportedInterface] = []
+    seen: set[str] = set()
+    for export in exports:
+        for child in export.children:
+            if child.tag != 'interface':
+                continue  # other tools' exports (build_type, ...)
+            path = child.get('path')
+            for attribute in child.attributes:
+                if attribute.name != 'path' and not _is_ignored_attribute(attribute.name):
+                    diagnostics.append(_error(
+                        file, f"unknown attribute '{attribute.name}' on <interface>; "
+                        'expected path', attribute.line, attribute.column))
+            if path is None:
+                diagnostics.append(_error(file, "<interface> has no 'path' attribute",
+                                          child.line, child.column))
+                continue
+            value = path.value.strip()
+            if not value:
+                diagnostics.append(_error(file, "'path' of <interface> is empty",
+                                          path.line, path.column))
+                continue
+            normal = os.path.normpath(value)
+            if os.path.isabs(value) or normal == '..' or normal.startswith('..' + os.sep):
+                diagnostics.append(_error(
+                    file, f"interface path '{value}' leaves the package; it must be relative to "
+                    'the directory of package.xml', path.line, path.column))
+                continue
+            if normal in seen:
+                diagnostics.append(_warning(file, f"interface path '{value}' is exported twice",
+                                            path.line, path.column))
+                continue
+            seen.add(normal)
+            found.append(ExportedInterface(os.path.join(base, normal), path.line, path.column))
+    if not found and not any(d.severity is Severity.ERROR for d in diagnostics):
+        where = exports[0] if exports else root
+        diagnostics.append(_error(
+            file, 'package.xml exports no interface file; add '
+            '<export><interface path="FILE.nodl.xml"/></export>', where.line, where.column))
+    return found, diagnostics
+
+
+def package_exports(source: Source,
+                    file: str | None = None) -> tuple[list[ExportedInterface], list[Diagnostic]]:
+    """Read a package.xml and return the interface files it exports, with positions.
+
+    Paths are resolved against the directory of ``file`` (or of the path).
+    I/O errors propagate as :class:`OSError`.
+    """
+    return package_exports_from_tree(load_xml(source, file))
+
+
+def interface_files_from_package_xml(
+        path: str | os.PathLike[str]) -> tuple[list[Path], list[Diagnostic]]:
+    """The paths a package.xml exports with ``<export><interface path="..."/></export>``.
+
+    Paths are relative to the package.xml directory in the file and are
+    returned joined to it.  A missing or invalid export is a diagnostic.
+    I/O errors propagate as :class:`OSError`.
+    """
+    from pathlib import Path
+
+    exports, diagnostics = package_exports(Path(path))
+    return [Path(e.path) for e in exports], diagnostics

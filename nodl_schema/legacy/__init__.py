@@ -1,0 +1,22 @@
+"""Legacy NoDL (the XML formats of specs 000, 001 and 002) and its conversion to NoDL v2.
+
+Reading is done by :mod:`nodl_schema.frontends.legacy_xml`; converting, by
+:mod:`nodl_schema.legacy.convert`::
+
+    from nodl_schema.frontends.legacy_xml import parse_legacy_xml
+    from nodl_schema.legacy import convert_legacy, convert_file
+
+    for converted in convert_legacy(parse_legacy_xml(pathlib.Path('pkg.nodl.xml'))):
+        converted.file_name, converted.data, converted.diagnostics
+
+    written, diagnostics = convert_file('pkg.nodl.xml', 'out/')
+"""
+
+from __future__ import annotations
+
+from nodl_schema.legacy.convert import (
+    Converted, FileConversion, convert_file, convert_files, convert_legacy, render_converted,
+    seconds_to_ns)
+
+__all__ = ['Converted', 'FileConversion', 'convert_file', 'convert_files', 'convert_legacy',
+           'render_converted', 'seconds_to_ns']

@@ -1,0 +1,144 @@
+"""`nodl convert`: run as a real process, as users run it."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+from conftest import FIXTURES, REPO
+
+LEGACY = FIXTURES / 'legacy'
+
+
+def nodl(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+                          capture_output=True, timeout=60)
+
+
+def rel(path: Path) -> str:
+    return os.path.relpath(path, REPO)
+
+
+def test_converts_and_exits_0_with_warnings(tmp_path: Path, golden) -> None:
+    result = nodl('convert', rel(LEGACY / 'qos_child.nodl.xml'), '-o', str(tmp_path))
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert result.stderr == ''
+    assert sorted(p.name for p in tmp_path.iterdir()) == ['first.nodl.yaml', 'second.nodl.yaml']
+    golden.check(result.stdout.replace(str(tmp_path), 'OUT'),
+                 LEGACY / 'expected' / 'cli' / 'qos_child.stdout')
+    for name in ('first.nodl.yaml', 'second.nodl.yaml'):
+        assert (tmp_path / name).read_text(encoding='utf-8') == \
+            (LEGACY / 'expected' / 'qos_child' / name).read_text(encoding='utf-8')
+
+
+def test_diagnostics_are_file_line_col_lines(tmp_path: Path) -> None:
+    result = nodl('convert', rel(LEGACY / 'qos_child.nodl.xml'), '-o', str(tmp_path))
+    lines = [l for l in result.stdout.splitlines() if ': warning: ' in l]
+    assert lines[0].startswith(f'{rel(LEGACY / "qos_child.nodl.xml")}:2:9: warning: node name')
+    assert f'{rel(LEGACY / "qos_child.nodl.xml")}:27:7: warning: <qos> of action' in result.stdout
+
+
+def test_written_files_are_listed_and_valid(tmp_path: Path) -> None:
+    result = nodl('convert', rel(LEGACY / 'role_both.nodl.xml'), rel(LEGACY / 'warnings.nodl.xml'),
+                  '-o', str(tmp_path / 'new' / 'dir'))
+    assert result.returncode == 0, result.stdout
+    assert f'wrote {tmp_path / "new" / "dir" / "relay.nodl.yaml"}' in result.stdout
+    assert f'wrote {tmp_path / "new" / "dir" / "talker.nodl.yaml"}' in result.stdout
+    assert result.stdout.rstrip().splitlines()[-1] == \
+        '2 files read, 2 node definitions written, 0 errors, 8 warnings'
+    check = nodl('validate', '-q', str(tmp_path / 'new' / 'dir'))
+    assert check.returncode == 0, check.stdout
+    assert ' 0 errors' in check.stdout
+
+
+def test_structural_errors_exit_1_and_write_nothing(tmp_path: Path) -> None:
+    path = rel(LEGACY / 'errors' / 'structural.nodl.xml')
+    result = nodl('convert', path, '-o', str(tmp_path / 'out'))
+    assert result.returncode == 1
+    assert 'Traceback' not in result.stdout + result.stderr
+    assert f"{path}:3:5: error: <parameter> has no 'type' attribute" in result.stdout
+    assert f'{path}:10:49: error: role="publisher" conflicts with subscription="true"' in result.stdout
+    assert f'{path}: not converted (nothing written)' in result.stdout
+    assert not (tmp_path / 'out').exists()
+    assert result.stdout.rstrip().endswith('1 file read, 0 node definitions written, 21 errors, '
+                                           '1 warning')
+
+
+def test_v2_errors_exit_1(tmp_path: Path) -> None:
+    path = rel(LEGACY / 'invalid_v2.nodl.xml')
+    result = nodl('convert', path, '-o', str(tmp_path))
+    assert result.returncode == 1
+    assert f"{path}:3:12: error: not valid in NoDL v2: invalid ROS name 'bad name'" in result.stdout
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_xml_bomb_is_rejected_quickly(tmp_path: Path) -> None:
+    path = rel(LEGACY / 'errors' / 'billion_laughs.nodl.xml')
+    result = nodl('convert', path, '-o', str(tmp_path))
+    assert result.returncode == 1
+    assert f'{path}:2:1: error: document type declarations (<!DOCTYPE ...>) are not allowed' \
+        in result.stdout
+
+
+def test_not_utf8_is_an_invalid_document(tmp_path: Path) -> None:
+    path = rel(LEGACY / 'errors' / 'latin1.nodl.xml')
+    result = nodl('convert', path, '-o', str(tmp_path))
+    assert result.returncode == 1
+    assert f'{path}:2:18: error: document is not valid UTF-8' in result.stdout
+
+
+def test_package_xml(tmp_path: Path) -> None:
+    result = nodl('convert', rel(LEGACY / 'package' / 'package.xml'), '-o', str(tmp_path))
+    assert result.returncode == 0, result.stdout
+    assert sorted(p.name for p in tmp_path.iterdir()) == ['listener.nodl.yaml', 'talker.nodl.yaml']
+    talker = (tmp_path / 'talker.nodl.yaml').read_text(encoding='utf-8')
+    assert talker.startswith(f'# Converted from {rel(LEGACY / "package" / "interfaces" / "talker.nodl.xml")}')
+
+
+def test_package_xml_without_export_exits_1(tmp_path: Path) -> None:
+    path = rel(LEGACY / 'package_no_export' / 'package.xml')
+    result = nodl('convert', path, '-o', str(tmp_path))
+    assert result.returncode == 1
+    assert f'{path}:8:3: error: package.xml exports no interface file' in result.stdout
+
+
+def test_unreadable_input_exits_2_but_the_others_are_converted(tmp_path: Path) -> None:
+    result = nodl('convert', 'does/not/exist.nodl.xml', rel(LEGACY / 'role_both.nodl.xml'),
+                  '-o', str(tmp_path))
+    assert result.returncode == 2
+    assert 'does/not/exist.nodl.xml: error: no such file or directory' in result.stderr
+    assert (tmp_path / 'relay.nodl.yaml').is_file()
+    assert 'Traceback' not in result.stderr
+
+
+def test_unwritable_output_exits_2(tmp_path: Path) -> None:
+    blocker = tmp_path / 'blocker'
+    blocker.write_text('a file, not a directory')
+    result = nodl('convert', rel(LEGACY / 'role_both.nodl.xml'), '-o', str(blocker))
+    assert result.returncode == 2
+    assert 'cannot write' in result.stderr
+    assert 'Traceback' not in result.stderr
+
+
+def test_missing_output_dir_is_a_usage_error() -> None:
+    result = nodl('convert', rel(LEGACY / 'role_both.nodl.xml'))
+    assert result.returncode == 2
+    assert 'the following arguments are required: -o/--output-dir' in result.stderr
+    assert 'Traceback' not in result.stderr
+
+
+def test_two_inputs_converting_to_the_same_file_exit_1(tmp_path: Path) -> None:
+    result = nodl('convert', rel(LEGACY / 'boolean_attributes.nodl.xml'),
+                  rel(LEGACY / 'role_attributes.nodl.xml'), '-o', str(tmp_path))
+    assert result.returncode == 1
+    assert 'would be written twice' in result.stdout
+    assert f'{rel(LEGACY / "role_attributes.nodl.xml")}: not converted' in result.stdout
+
+
+def test_convert_is_a_registered_verb() -> None:
+    result = nodl('--help')
+    assert result.returncode == 0
+    assert 'convert' in result.stdout
+    assert 'Convert legacy NoDL XML' in result.stdout
