@@ -11,9 +11,10 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).parent))
 
 import bench_cli_start  # noqa: E402
+import bench_describe  # noqa: E402
 import bench_load  # noqa: E402
 
-BENCHMARKS = [bench_load, bench_cli_start]
+BENCHMARKS = [bench_load, bench_cli_start, bench_describe]
 
 
 def main() -> int:

@@ -90,7 +90,7 @@ def wait_for_node(node: Any, fqn: str, timeout: float) -> None:
         if time.monotonic() >= deadline:
             raise NodeNotFound(f"node '{fqn}' was not found within {timeout:g} s (is it running, "
                                'in the same ROS_DOMAIN_ID, with discovery reaching it?)')
-        node.nodl_executor.spin_once(timeout_sec=0.05)
+        node.nodl_executor.spin_once(timeout_sec=0.01)
 
 
 def _endpoints(node: Any, name: str, namespace: str) -> dict[str, list[tuple[str, list[str]]]]:
@@ -126,7 +126,7 @@ def _settle(node: Any, name: str, namespace: str, fqn: str, timeout: float,
             stable_since = now
         elif now - stable_since >= quiet or now >= deadline:
             return raw
-        node.nodl_executor.spin_once(timeout_sec=0.02)
+        node.nodl_executor.spin_once(timeout_sec=0.01)
 
 
 def _topic_qos(node: Any, topic: str, name: str, namespace: str, publishers: bool) -> Any:
@@ -222,7 +222,7 @@ def _parameters(node: Any, fqn: str, timeout: float) -> dict[str, ObservedParame
 
 
 def observe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
-                 quiet: float = 0.25) -> ObservedNode:
+                 quiet: float = 0.15) -> ObservedNode:
     """Observe the running node ``fqn`` (``/namespace/name``).
 
     Waits up to ``timeout`` seconds for the node to appear and its endpoints

@@ -1,0 +1,62 @@
+"""``nodl check``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+
+class CheckVerb(Verb):
+    """Check a running node against its node definition and report every difference."""
+
+    def add_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument('node', metavar='NODE', help='the running node, e.g. /robot/driver')
+        parser.add_argument('definition', nargs='+', metavar='FILE | PACKAGE EXECUTABLE',
+                            help='the node definition: a file, or a package and executable '
+                                 'registered in the ament index')
+        parser.add_argument('--remap', action='append', default=[], metavar='FROM:=TO',
+                            help='a remapping the node was launched with (repeatable)')
+        parser.add_argument('--timeout', type=float, default=5.0, metavar='S',
+                            help='seconds to wait for the node (default: 5)')
+        parser.add_argument('--no-parameters', action='store_true',
+                            help='do not check parameters')
+        parser.add_argument('--format', choices=('text', 'json'), default='text',
+                            help='output format (default: text)')
+        parser.add_argument('--junit', metavar='FILE', help='also write a JUnit XML report')
+        parser.add_argument('-v', '--verbose', action='store_true',
+                            help='also list what could not be verified')
+
+    def main(self, args: argparse.Namespace) -> int:
+        from nodl_schema.diagnostics import ValidationError
+        from nodl_schema.live.check import check_node
+        from nodl_schema.live.report import format_check_json, format_check_junit, format_check_text
+        from nodl_schema.live.session import LiveError
+        from nodl_schema.reporting import format_text
+
+        if len(args.definition) > 2:
+            print('nodl check: error: expected FILE or PACKAGE EXECUTABLE', file=sys.stderr)
+            return EXIT_USAGE
+        definition = args.definition[0] if len(args.definition) == 1 else tuple(args.definition)
+        try:
+            result = check_node(args.node, definition, timeout=args.timeout, remaps=args.remap,
+                                parameters=not args.no_parameters)
+        except ValidationError as exc:
+            sys.stderr.write(format_text(exc.diagnostics))
+            return EXIT_USAGE
+        except (LiveError, ValueError) as exc:
+            print(f'nodl check: error: {exc}', file=sys.stderr)
+            return EXIT_USAGE
+        if args.format == 'json':
+            sys.stdout.write(format_check_json(result))
+        else:
+            sys.stdout.write(format_check_text(result, args.verbose))
+        if args.junit:
+            try:
+                with open(args.junit, 'w', encoding='utf-8') as f:
+                    f.write(format_check_junit(result))
+            except OSError as exc:
+                print(f'nodl check: error: cannot write {args.junit}: {exc.strerror}', file=sys.stderr)
+                return EXIT_USAGE
+        return EXIT_OK if result.conforms else EXIT_FAILURE

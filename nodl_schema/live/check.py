@@ -1,0 +1,89 @@
+"""Checking a running node against its definition: load, compose, observe, compare."""
+
+from __future__ import annotations
+
+import os
+from typing import Iterable
+
+from nodl_schema.composition import ComposedNode, compose_report
+from nodl_schema.diagnostics import ValidationError
+from nodl_schema.live.conformance import Difference, compare, conforms, parse_remaps
+from nodl_schema.live.observe import ObservedNode, observe_node
+from nodl_schema.live.session import split_node_name
+
+__all__ = ['CheckResult', 'load_definition', 'check_node']
+
+
+class CheckResult:
+    """The outcome of one check."""
+
+    def __init__(self, fqn: str, definition: str, differences: list[Difference],
+                 composed: ComposedNode, observed: ObservedNode) -> None:
+        self.fqn = fqn
+        #: The definition's file.
+        self.definition = definition
+        self.differences = differences
+        self.composed = composed
+        self.observed = observed
+
+    @property
+    def conforms(self) -> bool:
+        """True if no difference is drift."""
+        return conforms(self.differences)
+
+    @property
+    def drift(self) -> list[Difference]:
+        """Only the differences that are drift."""
+        return [d for d in self.differences if d.severity == 'error']
+
+
+def load_definition(definition: str | os.PathLike | tuple[str, str]) -> ComposedNode:
+    """Compose a node definition given as a file or ``(package, executable)``.
+
+    Raises :class:`~nodl_schema.diagnostics.ValidationError` with every
+    diagnostic if it cannot be found, read or composed.
+    """
+    from pathlib import Path
+
+    from nodl_schema.diagnostics import Diagnostic, Severity
+    from nodl_schema.loading import check_source
+    from nodl_schema.validation.kinds import Kind
+
+    if isinstance(definition, tuple):
+        from nodl_schema.index.registry import describe_missing, find_node
+
+        package, executable = definition
+        registration = find_node(package, executable)
+        if registration is None:
+            raise ValidationError([Diagnostic(Severity.ERROR, describe_missing(package, executable),
+                                              (), f'{package}/{executable}')])
+        if registration.kind == 'legacy node':
+            from nodl_schema.index.legacy import legacy_composed
+
+            return legacy_composed(registration)
+        path = registration.file
+    else:
+        path = os.fspath(definition)
+    report = check_source(Path(path), kind=Kind.NODE, file=path)
+    composed, diagnostics = compose_report(report)
+    if composed is None:
+        raise ValidationError(diagnostics)
+    return composed
+
+
+def check_node(fqn: str, definition: str | os.PathLike | tuple[str, str], *,
+               timeout: float = 5.0, remaps: Iterable[str] = (),
+               parameters: bool = True) -> CheckResult:
+    """Check the running node ``fqn`` against ``definition`` (a file or ``(package, executable)``).
+
+    Raises ValidationError for a bad definition, LiveError when the node
+    cannot be observed (NodeNotFound if it never appears within ``timeout``),
+    and ValueError for a malformed remapping rule.
+    """
+    composed = load_definition(definition)
+    namespace, name = split_node_name(fqn)
+    rules = parse_remaps(remaps, name, namespace)
+    observed = observe_node(fqn, timeout=timeout, parameters=parameters)
+    differences = compare(composed, observed, rules)
+    return CheckResult(observed.fully_qualified_name, composed.file, differences, composed, observed)
+

@@ -1,0 +1,207 @@
+"""``check``: does a running node conform to its (composed) definition?
+
+Declared names are expanded against the node's namespace and name (and
+remapped with ``FROM:=TO`` rules), then compared with what the graph
+reports.  Each difference has a kind:
+
+* ``missing`` (declared, not observed) and ``extra`` (observed, not declared);
+* ``type`` (same name, another interface type);
+* ``qos`` (one per policy, declared against observed);
+* ``parameter_type`` and ``read_only``;
+* ``value`` (a warning: the current value breaks the declared validators);
+* ``unverifiable`` (listed, never failing): what the middleware cannot
+  report, such as service QoS or a topic's history on some middlewares.
+
+Each difference names the layer that declared the entity (base, mixin
+reference or main).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterable
+
+from nodl_schema.composition import ComposedNode
+from nodl_schema.live.observe import ObservedNode
+from nodl_schema.model import ENDPOINT_SECTIONS, QOS_POLICIES, Interface
+from nodl_schema.naming import expand
+from nodl_schema.validation.interfaces import SECTIONS
+
+__all__ = ['Difference', 'DRIFT_KINDS', 'compare', 'parse_remaps', 'conforms']
+
+#: Kinds that make a node non-conforming.
+DRIFT_KINDS = ('missing', 'extra', 'type', 'qos', 'parameter_type', 'read_only')
+
+
+class Difference:
+    """One difference between the declared and the observed interface."""
+
+    __slots__ = ('kind', 'section', 'name', 'declared', 'observed', 'layer', 'message')
+
+    def __init__(self, kind: str, section: str, name: str, message: str, *,
+                 declared: Any = None, observed: Any = None, layer: str | None = None) -> None:
+        self.kind = kind
+        self.section = section
+        self.name = name
+        self.declared = declared
+        self.observed = observed
+        self.layer = layer
+        self.message = message
+
+    @property
+    def severity(self) -> str:
+        """``error`` for drift, ``warning`` for a bad value, ``info`` for unverifiable."""
+        if self.kind in DRIFT_KINDS:
+            return 'error'
+        return 'warning' if self.kind == 'value' else 'info'
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready mapping."""
+        return {'kind': self.kind, 'severity': self.severity, 'section': self.section,
+                'name': self.name, 'declared': self.declared, 'observed': self.observed,
+                'layer': self.layer, 'message': self.message}
+
+    def __str__(self) -> str:
+        layer = f' (declared in {self.layer})' if self.layer else ''
+        return f'{self.severity}: {self.kind}: {self.message}{layer}'
+
+    def __repr__(self) -> str:
+        return f'Difference({self.kind!r}, {self.section!r}, {self.name!r})'
+
+
+def parse_remaps(rules: Iterable[str], node_name: str, namespace: str) -> dict[str, str]:
+    """``FROM:=TO`` rules (as given to ``--ros-args -r``), both sides expanded."""
+    remaps: dict[str, str] = {}
+    for rule in rules:
+        source, sep, target = rule.partition(':=')
+        if not sep or not source or not target:
+            raise ValueError(f"invalid remapping {rule!r}; expected FROM:=TO")
+        if ':' in source.split('/')[0] and not source.startswith(('/', '~')):
+            source = source.split(':', 1)[1]  # node-specific rule (node:from:=to)
+        remaps[expand(source, node_name, namespace)] = expand(target, node_name, namespace)
+    return remaps
+
+
+def conforms(differences: Iterable[Difference]) -> bool:
+    """True if no difference is drift."""
+    return not any(d.kind in DRIFT_KINDS for d in differences)
+
+
+def _word(section: str) -> str:
+    return SECTIONS[section]
+
+
+def _compare_qos(section: str, name: str, declared: Any, observed: dict[str, Any] | None,
+                 unobserved: list[str], layer: str | None) -> list[Difference]:
+    out: list[Difference] = []
+    if declared is None:
+        return out
+    word = _word(section)
+    if observed is None:
+        return [Difference('unverifiable', section, name, f"QoS of {word} '{name}' could not be "
+                           'read from the graph', declared=declared.to_dict(), layer=layer)]
+    for policy in QOS_POLICIES:
+        want = getattr(declared, policy)
+        if want is None:
+            continue
+        if policy == 'depth' and declared.history != 'KEEP_LAST':
+            continue
+        if policy in unobserved or want in ('SYSTEM_DEFAULT', 'BEST_AVAILABLE'):
+            why = ('the middleware does not report it' if policy in unobserved
+                   else f'{want} is resolved by the middleware')
+            out.append(Difference('unverifiable', section, name,
+                                  f"{word} '{name}' {policy}: declared {want}, {why}",
+                                  declared=want, layer=layer))
+            continue
+        have = observed.get(policy)
+        if policy.endswith('_ns') and have is None:
+            have = 0  # not reported = infinite / none, which 0 means in NoDL
+        if have != want:
+            out.append(Difference('qos', section, name, f"{word} '{name}' {policy}: declared "
+                                  f'{want}, observed {have}', declared=want, observed=have,
+                                  layer=layer))
+    return out
+
+
+def _compare_parameters(declared: Interface, observed: ObservedNode) -> list[Difference]:
+    from nodl_schema.validation.parameters import check_parameter
+
+    out: list[Difference] = []
+    params = declared.parameters or {}
+    if observed.parameters is None:
+        if params:
+            out.append(Difference('unverifiable', 'parameters', '*', 'parameters could not be read '
+                                  'from the node, so none was checked'))
+        return out
+    for name, param in params.items():
+        real = observed.parameters.get(name)
+        if real is None:
+            out.append(Difference('missing', 'parameters', name,
+                                  f"parameter '{name}' is declared but the node has no such parameter",
+                                  declared=param.type, layer=param.origin))
+            continue
+        if real.type != param.type and not (param.type_spec and real.type == param.type_spec.base):
+            out.append(Difference('parameter_type', 'parameters', name,
+                                  f"parameter '{name}': declared type {param.type}, observed "
+                                  f'{real.type}', declared=param.type, observed=real.type,
+                                  layer=param.origin))
+            continue
+        if bool(param.read_only) != real.read_only:
+            out.append(Difference('read_only', 'parameters', name,
+                                  f"parameter '{name}': declared read_only {param.read_only}, "
+                                  f'observed {real.read_only}', declared=param.read_only,
+                                  observed=real.read_only, layer=param.origin))
+        if param.validation and real.value is not None:
+            problems: list[Any] = []
+            check_parameter({'type': param.type, 'default_value': real.value,
+                             'validation': param.validation}, (), problems)
+            for problem in problems:
+                if problem.path == ('default_value',):
+                    message = problem.message.replace('default_value', 'current value', 1)
+                    out.append(Difference('value', 'parameters', name, f"parameter '{name}': {message}",
+                                          declared=param.validation, observed=real.value,
+                                          layer=param.origin))
+    for name in sorted(set(observed.parameters) - set(params)):
+        if name.startswith('qos_overrides.'):
+            continue
+        out.append(Difference('extra', 'parameters', name,
+                              f"parameter '{name}' is not declared", observed=observed.parameters[name].type))
+    return out
+
+
+def compare(composed: ComposedNode | Interface, observed: ObservedNode,
+            remaps: dict[str, str] | None = None) -> list[Difference]:
+    """Every difference between a declared interface and an observed node."""
+    declared = composed.interface if isinstance(composed, ComposedNode) else composed
+    remaps = remaps or {}
+    name, namespace = observed.name, observed.namespace
+    out: list[Difference] = []
+    for section in ENDPOINT_SECTIONS:
+        word = _word(section)
+        wanted: dict[str, Any] = {}
+        for entity in declared.endpoints(section):
+            full = expand(entity.name, name, namespace)
+            wanted[remaps.get(full, full)] = entity
+        seen = {e.name: e for e in getattr(observed, section)}
+        for full, entity in wanted.items():
+            real = seen.get(full)
+            if real is None:
+                out.append(Difference('missing', section, full, f"{word} '{full}' ({entity.type}) is "
+                                      'declared but not observed', declared=entity.type,
+                                      layer=entity.origin))
+                continue
+            if real.type != entity.type:
+                out.append(Difference('type', section, full, f"{word} '{full}': declared type "
+                                      f'{entity.type}, observed {real.type}', declared=entity.type,
+                                      observed=real.type, layer=entity.origin))
+                continue
+            if section in ('publishers', 'subscriptions'):
+                out += _compare_qos(section, full, entity.qos, real.qos, real.unobserved, entity.origin)
+            elif section in ('service_servers', 'service_clients') and entity.qos is not None:
+                out.append(Difference('unverifiable', section, full, f"{word} '{full}' QoS: the "
+                                      'middleware does not report service QoS',
+                                      declared=entity.qos.to_dict(), layer=entity.origin))
+        for full in sorted(set(seen) - set(wanted)):
+            out.append(Difference('extra', section, full, f"{word} '{full}' ({seen[full].type}) is "
+                                  'observed but not declared', observed=seen[full].type))
+    out += _compare_parameters(declared, observed)
+    return out

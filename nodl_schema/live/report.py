@@ -1,0 +1,71 @@
+"""Check results for people (text), tools (JSON) and CI (JUnit XML)."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+from xml.sax.saxutils import escape, quoteattr
+
+from nodl_schema.live.check import CheckResult
+
+__all__ = ['format_check_text', 'format_check_json', 'format_check_junit']
+
+
+def format_check_text(result: CheckResult, verbose: bool = False) -> str:
+    """One line per difference, then a verdict."""
+    lines = []
+    for d in result.differences:
+        if d.severity == 'info' and not verbose:
+            continue
+        lines.append(f'{result.fqn}: {d}')
+    drift = len(result.drift)
+    unverifiable = sum(1 for d in result.differences if d.kind == 'unverifiable')
+    if result.conforms:
+        verdict = f'{result.fqn} conforms to {result.definition}'
+    else:
+        verdict = (f'{result.fqn} drifts from {result.definition}: {drift} '
+                   f'difference{"s" * (drift != 1)}')
+    lines.append(verdict + (f' ({unverifiable} unverifiable, listed with -v)'
+                            if unverifiable and not verbose else
+                            f' ({unverifiable} unverifiable)' if unverifiable else ''))
+    return '\n'.join(lines) + '\n'
+
+
+def format_check_json(result: CheckResult) -> str:
+    """``{"node", "definition", "conforms", "differences": [...]}``."""
+    data: dict[str, Any] = {'node': result.fqn, 'definition': result.definition,
+                            'conforms': result.conforms,
+                            'differences': [d.to_dict() for d in result.differences]}
+    return json.dumps(data, indent=2, default=str) + '\n'
+
+
+def format_check_junit(result: CheckResult) -> str:
+    """A JUnit XML report: one test case per checked entity; drift is a failure."""
+    cases: dict[tuple[str, str], list[Any]] = {}
+    for section in ('publishers', 'subscriptions', 'service_servers', 'service_clients',
+                    'action_servers', 'action_clients'):
+        for entity in result.composed.interface.endpoints(section):
+            cases.setdefault((section, entity.name), [])
+    for name in result.composed.interface.parameters or {}:
+        cases.setdefault(('parameters', name), [])
+    for d in result.differences:
+        key = (d.section, d.name)
+        matched = next((k for k in cases if k[0] == d.section and
+                        (k[1] == d.name or d.name.endswith('/' + k[1].lstrip('~/')))), key)
+        cases.setdefault(matched, []).append(d)
+    failures = sum(1 for ds in cases.values() if any(d.severity == 'error' for d in ds))
+    suite = quoteattr(f'nodl check {result.fqn}')
+    out = ['<?xml version="1.0" encoding="UTF-8"?>',
+           f'<testsuite name={suite} tests="{len(cases)}" failures="{failures}" errors="0">']
+    for (section, name), diffs in sorted(cases.items()):
+        out.append(f'  <testcase classname={quoteattr(section)} name={quoteattr(name)}>')
+        for d in diffs:
+            text = escape(str(d))
+            if d.severity == 'error':
+                out.append(f'    <failure type={quoteattr(d.kind)} message={quoteattr(d.message)}>'
+                           f'{text}</failure>')
+            else:
+                out.append(f'    <system-out>{text}</system-out>')
+        out.append('  </testcase>')
+    out.append('</testsuite>')
+    return '\n'.join(out) + '\n'
