@@ -45,9 +45,12 @@ def format_path(path: DocPath) -> str:
     """
     out: list[str] = []
     for part in path:
-        if isinstance(part, int):
+        if isinstance(part, int) and not isinstance(part, bool):
             out.append(f'[{part}]')
-        elif part and set(part) <= _PLAIN_KEY_CHARS:
+            continue
+        if not isinstance(part, str):  # YAML allows keys such as null, true or 1.5
+            part = 'null' if part is None else str(part).lower() if isinstance(part, bool) else str(part)
+        if part and set(part) <= _PLAIN_KEY_CHARS:
             out.append(f'.{part}' if out else part)
         else:
             quoted = part.replace('\\', '\\\\').replace('"', '\\"')

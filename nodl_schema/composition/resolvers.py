@@ -59,7 +59,7 @@ class Resolver(Protocol):
 def scheme_of(reference: str) -> str:
     """``nodl`` for ``nodl://...``; ``file`` for a plain (relative) path."""
     match = _SCHEME.match(reference)
-    return match.group(1) if match else 'file'
+    return match.group(1).lower() if match else 'file'
 
 
 def load_resolvers(on_error: Callable[[object], None] | None = None) -> dict[str, Resolver]:

@@ -52,6 +52,14 @@ _LEADING = re.compile(r'^[ \t?:-]*', re.M)
 _constructor = yaml.constructor.SafeConstructor()
 
 
+def _quote(value: Any) -> str:
+    """A key or value for a one-line message: quoted, escaped and not too long."""
+    text = str(value)
+    if len(text) > 40:
+        text = text[:37] + '...'
+    return repr(text)
+
+
 def _error(file: str, message: str, mark: Any = None, path: DocPath = ()) -> Diagnostic:
     line = mark.line + 1 if mark is not None else 0
     column = mark.column + 1 if mark is not None else 0
@@ -79,7 +87,7 @@ class ParsedDocument:
             self._composed = True
             try:
                 self._root = yaml.compose(self.source.text, Loader=_Loader)
-            except yaml.YAMLError:
+            except (yaml.YAMLError, ValueError, RecursionError):
                 self._root = None
         return self._root
 
@@ -194,7 +202,7 @@ class _Builder:
                 first = first_keys.get(key)
                 where = f' (first defined at line {first.start_mark.line + 1})' if first is not None else ''
                 self.problems.append((
-                    f"duplicate key '{key}'{where}; YAML loaders keep only the last value, "
+                    f'duplicate key {_quote(key)}{where}; YAML loaders keep only the last value, '
                     'so remove or rename one of them', key_node.start_mark, node))
             out[key] = build(value_node)
         if merges:
@@ -216,19 +224,35 @@ class _Builder:
         if tag == _STR:
             return value
         if tag == _INT:
-            if value.isdigit() and (value[0] != '0' or len(value) == 1):
+            if value.isascii() and value.isdigit() and (value[0] != '0' or len(value) == 1):
                 return int(value)
-            return _constructor.construct_yaml_int(node)
+            try:
+                return _constructor.construct_yaml_int(node)
+            except (ValueError, IndexError):
+                return self.invalid(node, 'an integer')
         if tag == _FLOAT:
-            return _constructor.construct_yaml_float(node)
+            try:
+                return _constructor.construct_yaml_float(node)
+            except (ValueError, IndexError):
+                return self.invalid(node, 'a number')
         if tag == _BOOL:
-            return _BOOLS[value.lower()]
+            try:
+                return _BOOLS[value.lower()]
+            except KeyError:
+                return self.invalid(node, 'a boolean')
         if tag == _NULL:
             return None
         if tag == _TIMESTAMP:
             return value  # NoDL has no date type: keep the text as written
         self.unsupported(node)
         return value
+
+    def invalid(self, node: ScalarNode, kind: str) -> str:
+        """An explicit tag (``!!int abc``) on a value that is not of that type."""
+        self.problems.append((
+            f"{_quote(node.value)} is not {kind}, but it is tagged '{node.tag}'; "
+            'remove the tag or fix the value', node.start_mark, None))
+        return node.value
 
     def unsupported(self, node: Node) -> None:
         self.problems.append((
@@ -253,40 +277,50 @@ def _deep_nesting(text: str, file: str) -> Diagnostic | None:
                                         'NoDL documents are never this deep', event.start_mark)
             elif isinstance(event, yaml.CollectionEndEvent):
                 depth -= 1
-    except yaml.YAMLError:
+    except (yaml.YAMLError, ValueError):
         return None  # the composer reports syntax errors with better context
     return None
 
 
 def _alias_problem(root: Node, file: str) -> Diagnostic | None:
-    """Reject recursive aliases and alias expansion beyond MAX_ALIAS_NODES."""
+    """Reject recursive aliases, alias expansion beyond MAX_ALIAS_NODES, and
+    aliases that nest the data deeper than MAX_DEPTH collection levels."""
     sizes: dict[int, int] = {}
+    heights: dict[int, int] = {}  # collection levels in a node's expanded subtree
     on_stack: set[int] = set()
     shared: list[Node] = []
+    too_deep: list[Node] = []
 
-    def size(node: Node) -> int | None:
+    def size(node: Node, depth: int) -> int | None:
+        # ``depth``: collection levels above ``node`` in the expanded data.
         key = id(node)
         if key in sizes:
             shared.append(node)
+            if depth + heights[key] > MAX_DEPTH and not too_deep:
+                too_deep.append(node)
             return sizes[key]
         if key in on_stack:
             return None
         total = 1
+        height = 0
         if isinstance(node, (MappingNode, SequenceNode)):
             on_stack.add(key)
             children = node.value if isinstance(node, SequenceNode) else [n for pair in node.value for n in pair]
             for child in children:
-                child_size = size(child)
+                child_size = size(child, depth + 1)
                 if child_size is None:
                     return None
                 total += child_size
+                height = max(height, heights.get(id(child), 0))
                 if total > MAX_ALIAS_NODES + len(sizes) + 1:
                     break
             on_stack.discard(key)
+            height += 1
         sizes[key] = total
+        heights[key] = height
         return total
 
-    expanded = size(root)
+    expanded = size(root, 0)
     if expanded is None:
         return _error(file, 'document contains a recursive YAML alias (an anchor used inside itself)',
                       root.start_mark)
@@ -295,6 +329,9 @@ def _alias_problem(root: Node, file: str) -> Diagnostic | None:
         return _error(file, f'document expands to more than {MAX_ALIAS_NODES:,} nodes through YAML '
                             'aliases ("billion laughs"); write the content out instead of '
                             'multiplying it with aliases', worst.start_mark)
+    if too_deep:
+        return _error(file, f'document nests deeper than {MAX_DEPTH} levels through YAML aliases; '
+                            'NoDL documents are never this deep', too_deep[0].start_mark)
     return None
 
 
@@ -303,16 +340,38 @@ def _syntax_problem(exc: yaml.YAMLError, text: str, file: str) -> Diagnostic:
     problem = getattr(exc, 'problem', None) or str(exc)
     context = getattr(exc, 'context', None) or ''
     if isinstance(exc, yaml.reader.ReaderError):
+        line, column = _reader_position(exc, text)
         return Diagnostic(Severity.ERROR, f'document contains a character that is not allowed '
                           f'(#x{exc.character:04x}); NoDL files are UTF-8 text', (), file,
-                          0, 0)
-    if mark is not None and 'cannot start any token' in problem and _char_at(text, mark) == '\t':
+                          line, column)
+    if (mark is not None and ('cannot start any token' in problem or 'tab character' in problem)
+            and _char_at(text, mark) == '\t'):
         return _error(file, 'tab character used for indentation; YAML allows only spaces', mark)
+    if 'duplicate anchor' in context:
+        first = getattr(exc, 'context_mark', None)
+        where = f' (first defined at line {first.line + 1})' if first is not None else ''
+        return _error(file, f'YAML anchor defined twice{where}; give each anchor a name of its own',
+                      mark)
     if 'expected a single document' in problem + context:
         return _error(file, 'the file holds more than one YAML document; '
                             'put each definition in a file of its own', mark)
     message = f'YAML syntax error: {problem}' + (f' ({context})' if context else '')
+    context_mark = getattr(exc, 'context_mark', None)
+    if context_mark is not None and mark is not None and context_mark.line != mark.line:
+        message += f'; it starts at line {context_mark.line + 1}, column {context_mark.column + 1}'
     return _error(file, message, mark)
+
+
+def _reader_position(exc: Any, text: str) -> tuple[int, int]:
+    """1-based line and column of a reader error (libyaml counts UTF-8 bytes)."""
+    position = getattr(exc, 'position', None)
+    if not isinstance(position, int) or position < 0:
+        return (0, 0)
+    if exc.encoding != 'unicode':  # libyaml: a byte offset into the UTF-8 text
+        position = len(text.encode('utf-8', 'surrogatepass')[:position].decode('utf-8', 'replace'))
+    line = text.count('\n', 0, position) + 1
+    column = position - (text.rfind('\n', 0, position) + 1) + 1
+    return (line, column)
 
 
 def _char_at(text: str, mark: Any) -> str:
@@ -375,6 +434,10 @@ def parse_document(source: SourceText) -> ParsedDocument:
         return doc
     except RecursionError:
         doc.diagnostics.append(_error(file, f'document nests deeper than {MAX_DEPTH} levels'))
+        return doc
+    except UnicodeEncodeError:  # a lone surrogate in a str
+        doc.diagnostics.append(_error(file, 'document contains a character that is not valid '
+                                            'Unicode text; NoDL files are UTF-8 text'))
         return doc
     doc._root = root
     doc._composed = True

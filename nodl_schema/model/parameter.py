@@ -40,7 +40,7 @@ class ParameterDefinition:
             data.get('description', ''),
             data.get('read_only', False),
             data.get('additional_constraints', ''),
-            data.get('validation'),
+            dict(data['validation']) if data.get('validation') is not None else None,
         )
 
     def to_dict(self) -> dict[str, Any]:

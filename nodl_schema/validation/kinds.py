@@ -34,7 +34,8 @@ def detect_kind(data: Any) -> Kind:
     "missing nodl_version" rather than "unknown key publishers".
     """
     if not isinstance(data, dict):
-        return Kind.PARAMETER if 'nodl_version' not in (data or ()) else Kind.INTERFACE
+        # Not a mapping at all (the frontend reports that); the default kind.
+        return Kind.PARAMETER
     if 'nodl_version' in data or 'type' not in data:
         if any(key in data for key in NODE_KEYS):
             return Kind.NODE

@@ -7,12 +7,15 @@ from typing import Any, Iterable
 
 from nodl_schema.diagnostics import DocPath
 
-__all__ = ['show', 'kind_of', 'did_you_mean', 'subject', 'one_of']
+__all__ = ['show', 'kind_of', 'described', 'did_you_mean', 'subject', 'one_of']
 
 
 def show(value: Any, limit: int = 40) -> str:
     """A short rendering of a value as a user wrote it."""
     if isinstance(value, str):
+        if not value.isprintable():
+            # A diagnostic is one line: show control characters escaped.
+            value = ''.join(c if c.isprintable() else repr(c)[1:-1] for c in value)
         text = f"'{value}'"
     elif value is None:
         text = 'null'
@@ -42,6 +45,13 @@ def kind_of(value: Any) -> str:
     if isinstance(value, dict):
         return 'a mapping'
     return type(value).__name__
+
+
+def described(value: Any) -> str:
+    """The kind of a value and the value: ``a string ('x')``; ``a mapping`` and ``null`` alone."""
+    if value is None or isinstance(value, dict):
+        return kind_of(value)
+    return f'{kind_of(value)} ({show(value)})'
 
 
 def did_you_mean(word: Any, candidates: Iterable[str]) -> str:

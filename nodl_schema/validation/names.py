@@ -18,7 +18,7 @@ import re
 from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
-from nodl_schema.validation.messages import kind_of, show, subject
+from nodl_schema.validation.messages import described, show, subject
 
 __all__ = ['SUBSTITUTIONS', 'ros_name_problem', 'parameter_name_problem',
            'check_ros_name', 'check_parameter_name']
@@ -80,7 +80,7 @@ def parameter_name_problem(name: str) -> str | None:
     if not name:
         return 'a parameter name must not be empty'
     if _PARAMETER_NAME.fullmatch(name) is None:
-        return ("parameter names are words of letters, digits and '_' separated by '.', "
+        return ("parameter names are words of letters, digits, '_' and '/' separated by '.', "
                 "each word starting with a letter or '_'")
     return None
 
@@ -89,7 +89,7 @@ def check_ros_name(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Format check ``nodl-ros-name``."""
     if not isinstance(value, str):
         out.append(Diagnostic(Severity.ERROR, f'{subject(path)} must be a string, not '
-                              f'{kind_of(value)} ({show(value)})', path))
+                              f'{described(value)}', path))
         return
     problem = ros_name_problem(value)
     if problem:

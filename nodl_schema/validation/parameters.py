@@ -17,7 +17,7 @@ from typing import Any
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.model.parameter_types import (
     ALL_TYPE_WORDS, ARRAY_TYPES, SCALAR_TYPES, TypeSpec, element_fits, parse_type)
-from nodl_schema.validation.messages import did_you_mean, kind_of, one_of, show
+from nodl_schema.validation.messages import described, did_you_mean, one_of, show
 
 __all__ = ['BUILTIN_VALIDATORS', 'check_parameter_type', 'check_validator_name', 'check_parameter']
 
@@ -50,10 +50,15 @@ def _error(message: str, path: DocPath, anchor: str = 'value') -> Diagnostic:
     return Diagnostic(Severity.ERROR, message, path, anchor=anchor)
 
 
+def _a(word: str) -> str:
+    """``word`` with its indefinite article: 'an int', 'a string'."""
+    return f"{'an' if word[:1] in 'aeiou' else 'a'} {word}"
+
+
 def check_parameter_type(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Format check ``nodl-parameter-type``."""
     if not isinstance(value, str):
-        out.append(_error(f"'type' must be a string, not {kind_of(value)} ({show(value)})", path))
+        out.append(_error(f"'type' must be a string, not {described(value)}", path))
         return
     if parse_type(value) is not None:
         return
@@ -84,8 +89,11 @@ def check_validator_name(value: Any, path: DocPath, out: list[Diagnostic]) -> No
             '(my_namespace::my_check)', path, 'key'))
         return
     if '::' not in bare:
+        # Compare without the '<>' suffix: two shared characters would make
+        # unrelated names look close ('finite<>' and 'unique<>').
+        close = did_you_mean(bare, list(BUILTIN_VALIDATORS))
         suffix = '<>' if value.endswith('<>') else ''
-        hint = did_you_mean(value, [name + suffix for name in BUILTIN_VALIDATORS])
+        hint = close.replace("'?", f"{suffix}'?") if close else ''
         if hint:
             out.append(Diagnostic(
                 Severity.WARNING,
@@ -148,7 +156,7 @@ def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
     for bare, (key, args) in builtins.items():
         applies = BUILTIN_VALIDATORS[bare]
         if not _applies(applies, spec):
-            out.append(_error(f"'{key}' does not apply to a {spec.category} parameter; it is for "
+            out.append(_error(f"'{key}' does not apply to {_a(spec.category)} parameter; it is for "
                               f'{_APPLIES_WORDS[applies]}', vpath + (key,), 'key'))
             continue
         fitting[bare] = (key, args)
@@ -187,24 +195,25 @@ def _applies(applies: str, spec: TypeSpec) -> bool:
 
 def _check_default(value: Any, spec: TypeSpec, path: DocPath, out: list[Diagnostic]) -> bool:
     if value is None:
-        out.append(_error(f'default_value is null; a {spec.name} parameter needs '
+        out.append(_error(f'default_value is null; {_a(spec.name)} parameter needs '
                           f'{_expected(spec)} (leave default_value out to make the parameter '
                           'required at start-up)', path))
         return False
     if spec.is_array:
         if not isinstance(value, list):
-            out.append(_error(f'default_value of a {spec.name} parameter must be a list of '
-                              f'{spec.element} values, not {kind_of(value)} ({show(value)})', path))
+            out.append(_error(f'default_value of {_a(spec.name)} parameter must be a list of '
+                              f'{spec.element} values, not {described(value)}', path))
             return False
         ok = True
         for index, item in enumerate(value):
-            if spec.element == 'byte' and element_fits(item, 'int'):
+            if (spec.element == 'byte' and element_fits(item, 'int')
+                    and not element_fits(item, 'byte')):
                 out.append(_error(f'element {index} of default_value is {item}; a byte_array holds '
                                   'integers from 0 to 255', path + (index,)))
                 ok = False
             elif not element_fits(item, spec.element):
                 out.append(_error(f'element {index} of default_value must be '
-                                  f'{_ELEMENT_WORDS[spec.element]}, not {kind_of(item)} ({show(item)})',
+                                  f'{_ELEMENT_WORDS[spec.element]}, not {described(item)}',
                                   path + (index,)))
                 ok = False
         if spec.size is not None and len(value) > spec.size:
@@ -213,8 +222,8 @@ def _check_default(value: Any, spec: TypeSpec, path: DocPath, out: list[Diagnost
             ok = False
         return ok
     if not element_fits(value, spec.element):
-        out.append(_error(f'default_value of a {spec.name} parameter must be {_expected(spec)}, '
-                          f'not {kind_of(value)} ({show(value)})', path))
+        out.append(_error(f'default_value of {_a(spec.name)} parameter must be {_expected(spec)}, '
+                          f'not {described(value)}', path))
         return False
     if spec.size is not None and len(value) > spec.size:
         out.append(_error(f'default_value has {len(value)} characters; {spec.name} holds at most '
@@ -252,9 +261,11 @@ def _check_arguments(bare: str, key: str, args: Any, spec: TypeSpec, path: DocPa
         ok = True
         for index, item in enumerate(args[0]):
             if not element_fits(item, spec.element):
+                never = (f'no element of {_a(spec.name)} parameter can equal it'
+                         if bare == 'subset_of' else
+                         f'{_a(spec.name)} parameter can never equal it')
                 out.append(_error(f'{key} value {show(item)} is not {_ELEMENT_WORDS[spec.element]}, '
-                                  f'so a {spec.name} parameter can never equal it',
-                                  path + (0, index)))
+                                  f'so {never}', path + (0, index)))
                 ok = False
         return ok
     return True

@@ -10,7 +10,7 @@ import re
 from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
-from nodl_schema.validation.messages import kind_of, show
+from nodl_schema.validation.messages import described, show
 
 __all__ = ['NODL_SCHEME', 'parse_nodl_uri', 'reference_problem', 'check_reference']
 
@@ -23,7 +23,7 @@ _RESOURCE = re.compile(r'[A-Za-z0-9_][A-Za-z0-9_.-]*')
 def parse_nodl_uri(text: str) -> tuple[str, str] | None:
     """``nodl://pkg/name`` -> ``('pkg', 'name')``; None if malformed."""
     match = _SCHEME.fullmatch(text)
-    if not match or match.group(1) != NODL_SCHEME:
+    if not match or match.group(1).lower() != NODL_SCHEME:
         return None
     package, _, name = match.group(2).partition('/')
     if not _PACKAGE.fullmatch(package) or not _RESOURCE.fullmatch(name):
@@ -37,7 +37,7 @@ def reference_problem(text: str) -> str | None:
         return 'a mixin reference must not be empty'
     match = _SCHEME.fullmatch(text)
     if match:
-        if match.group(1) == NODL_SCHEME and parse_nodl_uri(text) is None:
+        if match.group(1).lower() == NODL_SCHEME and parse_nodl_uri(text) is None:
             return (f'{show(text)} is not a valid nodl:// reference; expected '
                     'nodl://<package>/<name>, for example nodl://my_pkg/diagnostics')
         return None
@@ -51,7 +51,7 @@ def check_reference(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Format check ``nodl-reference``."""
     if not isinstance(value, str):
         out.append(Diagnostic(Severity.ERROR, f'a mixin must be a reference or an interface '
-                              f'definition, not {kind_of(value)} ({show(value)})', path))
+                              f'definition, not {described(value)}', path))
         return
     problem = reference_problem(value)
     if problem:

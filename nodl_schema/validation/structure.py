@@ -29,7 +29,8 @@ from typing import Any, Callable
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.schemas import load_schema_file
-from nodl_schema.validation.messages import did_you_mean, kind_of, one_of, show, subject
+from nodl_schema.validation.messages import (
+    described, did_you_mean, kind_of, one_of, show, subject)
 
 __all__ = ['Check', 'FormatCheck', 'SchemaCompiler']
 
@@ -116,7 +117,8 @@ class SchemaCompiler:
             checks.append(self._pattern(schema['pattern']))
         for keyword in ('anyOf', 'oneOf'):
             if keyword in schema:
-                checks.append(self._any_of(schema[keyword], schema.get('description'), file_name))
+                checks.append(self._any_of(schema[keyword], schema.get('description'), file_name,
+                                           exclusive=keyword == 'oneOf'))
         for sub in schema.get('allOf', ()):
             checks.append(self.compile(sub, file_name))
         if 'if' in schema:
@@ -145,8 +147,7 @@ class SchemaCompiler:
             for test in tests:
                 if test(value):
                     return
-            out.append(_err(f'{subject(path)} must be {expected}, not {kind_of(value)} '
-                            f'({show(value)})', path))
+            out.append(_err(f'{subject(path)} must be {expected}, not {described(value)}', path))
         return check
 
     def _const(self, const: Any) -> Check:
@@ -196,7 +197,7 @@ class SchemaCompiler:
                     continue
                 child = path + (key,)
                 if names_check is not None:
-                    names_check(key, child, out)
+                    _at_key(names_check, key, child, out)
                 sub = properties.get(key)
                 if sub is not None:
                     sub(item, child, out)
@@ -248,9 +249,12 @@ class SchemaCompiler:
         return check
 
     def _min_length(self, minimum: int) -> Check:
+        expected = ('must not be empty' if minimum == 1 else
+                    f'must be at least {minimum} characters long')
+
         def check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
             if isinstance(value, str) and len(value) < minimum:
-                out.append(_err(f'{subject(path)} must not be empty', path))
+                out.append(_err(f'{subject(path)} {expected}', path))
         return check
 
     def _pattern(self, pattern: str) -> Check:
@@ -263,7 +267,7 @@ class SchemaCompiler:
         return check
 
     def _any_of(self, branches: list[dict[str, Any]], description: str | None,
-                file_name: str) -> Check:
+                file_name: str, exclusive: bool = False) -> Check:
         compiled = [(self._admits(b, file_name), self.compile(b, file_name)) for b in branches]
         expected = (description.rstrip('.') if description else
                     one_of(self._summary(b, file_name) for b in branches))
@@ -272,16 +276,25 @@ class SchemaCompiler:
             fitting = [c for admits, c in compiled if admits(value)]
             if not fitting:
                 out.append(_err(f'{subject(path)} must be {_lower_first(expected)}; '
-                                f'got {kind_of(value)} ({show(value)})', path))
+                                f'got {described(value)}', path))
                 return
             first_errors: list[Diagnostic] | None = None
+            passed = 0
             for branch in fitting:
                 errors: list[Diagnostic] = []
                 branch(value, path, errors)
                 if not errors:
-                    return
-                if first_errors is None:
+                    if not exclusive:
+                        return
+                    passed += 1
+                elif first_errors is None:
                     first_errors = errors
+            if passed == 1:
+                return
+            if passed > 1:  # oneOf: exactly one branch may match
+                out.append(_err(f'{subject(path)} fits more than one of the allowed forms '
+                                f'({_lower_first(expected)}); it must fit exactly one', path))
+                return
             if description:
                 out.append(_err(f'invalid {subject(path)}: expected {_lower_first(expected)}; '
                                 f'got {show(value)}', path))
@@ -354,6 +367,14 @@ def _guarded(type_check: Check, body: Check) -> Check:
         if len(out) == before:
             body(value, path, out)
     return check
+
+
+def _at_key(check: Check, key: str, path: DocPath, out: list[Diagnostic]) -> None:
+    """Run a ``propertyNames`` check: what it finds is about the key, not its value."""
+    found: list[Diagnostic] = []
+    check(key, path, found)
+    out.extend(d if d.anchor == 'key' else
+               Diagnostic(d.severity, d.message, d.path, anchor='key') for d in found)
 
 
 def _override_message(body: Check, message: str) -> Check:

@@ -11,7 +11,7 @@ import re
 from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
-from nodl_schema.validation.messages import kind_of, show, subject
+from nodl_schema.validation.messages import described, show, subject
 
 __all__ = ['NAMESPACE_WORDS', 'split_type', 'type_problem', 'check_msg_type',
            'check_srv_type', 'check_action_type']
@@ -64,7 +64,7 @@ def _make(namespace: str) -> Any:
     def check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
         if not isinstance(value, str):
             out.append(Diagnostic(Severity.ERROR, f'{subject(path)} must be a string, not '
-                                  f'{kind_of(value)} ({show(value)})', path))
+                                  f'{described(value)}', path))
             return
         problem = type_problem(value, namespace)
         if problem is not None:
