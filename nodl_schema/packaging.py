@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 import sys
 from typing import Mapping
 
@@ -98,6 +99,9 @@ def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, s
     # A staging index lets nodl://<package>/<name> resolve before installation: its
     # markers point at the source files by absolute path.
     stage = os.path.abspath(os.path.join(staging_dir, 'stage'))
+    # Rebuilt every time: an entry left over from an earlier build (an interface since
+    # removed from setup.py) would let a reference to it pass here and fail once installed.
+    shutil.rmtree(stage, ignore_errors=True)
     folder = os.path.join(stage, 'share', 'ament_index', 'resource_index', INTERFACE_RESOURCE)
     os.makedirs(folder, exist_ok=True)
     for key, file in interfaces.items():
@@ -112,7 +116,8 @@ def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, s
     try:
         failures = []
         for kind, registry in ((Kind.INTERFACE, interfaces), (Kind.NODE, nodes)):
-            for result in check_paths(list(registry.values()), kind, resolve=True):
+            # one file may serve several keys: check (and report) it once
+            for result in check_paths(list(dict.fromkeys(registry.values())), kind, resolve=True):
                 shown = [d for d in result.diagnostics if d.severity.value != 'info']
                 if shown:
                     sys.stderr.write(format_text(shown))

@@ -74,6 +74,14 @@ def show_registered(package: str, executable: str) -> Shown:
         from nodl_schema.index.legacy import legacy_node_interface
 
         return legacy_node_interface(registration)
+    from nodl_schema.composition.resolvers import ResolutionError
+    from nodl_schema.index.registry import read_registration
+
+    try:  # an entry pointing at a file that is not there (a partly removed installation)
+        read_registration(registration)
+    except ResolutionError as exc:
+        return Shown(None, [Diagnostic(Severity.ERROR, exc.message, (), f'{package}/{executable}')],
+                     f'{package}/{executable}')
     return show_file(registration.file)
 
 
@@ -112,7 +120,8 @@ def render(iface: Interface, format: str = 'yaml', layers: bool = False) -> str:
         origins = [{'section': section, 'name': next(iter(item)) if isinstance(item, dict)
                     else item[0]['name'], 'layer': origin}
                    for section, items in _entity_blocks(iface) for origin, item in items]
-        return json.dumps({'interface': iface.to_dict(), 'layers': origins}, indent=2) + '\n'
+        return json.dumps({'interface': iface.to_dict(), 'layers': origins}, indent=2,
+                          ensure_ascii=False) + '\n'
     if format != 'yaml':
         raise ValueError(f"unsupported format {format!r}; expected 'yaml' or 'json'")
     if not layers:
@@ -124,7 +133,8 @@ def render(iface: Interface, format: str = 'yaml', layers: bool = False) -> str:
     for section, items in _entity_blocks(iface):
         lines.append(f'{section}:')
         for origin, item in items:
-            lines.append(f'  # layer: {origin}')
+            if origin is not None:
+                lines.append(f'  # layer: {origin}')
             text = _yaml(item).rstrip('\n')
             lines.extend('  ' + line for line in text.splitlines())
     return '\n'.join(lines) + '\n'

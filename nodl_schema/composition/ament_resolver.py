@@ -30,7 +30,9 @@ def resource_name(package: str, key: str) -> str:
 def read_registered(resource: ament.Resource, package: str) -> Resolved:
     """The document a registration resource points at (or holds)."""
     content = resource.content.strip()
-    if content and '\n' not in content:
+    # A path is one line; a document held in the entry may be one line too (flow YAML
+    # or minified JSON: '{...}', or 'key: value').
+    if content and '\n' not in content and not content.startswith('{') and ': ' not in content:
         candidates = [content] if os.path.isabs(content) else [
             os.path.join(resource.prefix, 'share', package, content)]
         for candidate in candidates:

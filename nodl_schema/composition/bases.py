@@ -34,4 +34,4 @@ def base_layer(base: Base | str) -> Layer:
     """The layer a node inherits from ``base``."""
     name = Base(base).value
     report = _report(name)
-    return Layer(f'base:{name}', report.model(), report.place)
+    return Layer(f'base:{name}', report.model(), report.place, role='base')

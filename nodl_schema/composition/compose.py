@@ -44,12 +44,12 @@ class ComposedNode:
 
     def forward(self) -> Interface:
         """base + main only: what code generation implements (mixins belong to other code)."""
-        merged, _ = merge_layers([l for l in self.layers if l.is_base or l.label == MAIN])
+        merged, _ = merge_layers([l for l in self.layers if l.role in ('base', 'main')])
         return merged
 
     def layer(self, label: str) -> Layer:
         """The layer called ``label``."""
-        for layer in self.layers:
+        for layer in sorted(self.layers, key=lambda l: l.role == 'mixin'):  # base/main first
             if layer.label == label:
                 return layer
         raise KeyError(label)
@@ -98,7 +98,7 @@ def _mixin_layer(reference: str, index: int, report: Report, context: ResolveCon
         fail(f"mixin '{reference}' ({resolved.file}) is a {sub.kind} definition, not an interface "
              f'definition: {why}')
         return None
-    return Layer(reference, sub.model(), sub.place)  # type: ignore[arg-type]
+    return Layer(reference, sub.model(), sub.place, role='mixin')  # type: ignore[arg-type]
 
 
 def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None
@@ -124,8 +124,9 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None
                 if layer is not None:
                     layers.append(layer)
             else:
-                layers.append(Layer(f'mixins[{index}]', mixin, report.place, ('mixins', index)))
-    layers.append(Layer(MAIN, node.main, report.place, ('main',)))
+                layers.append(Layer(f'mixins[{index}]', mixin, report.place, ('mixins', index),
+                                    role='mixin'))
+    layers.append(Layer(MAIN, node.main, report.place, ('main',), role='main'))
     if errors:
         return None, diagnostics + errors
     merged, notes = merge_layers(layers)

@@ -16,16 +16,20 @@ MAIN = 'main'
 class Layer:
     """One layer: ``base:<name>``, a mixin (its reference, or ``mixins[i]`` in place) or ``main``."""
 
-    __slots__ = ('label', 'interface', '_place', 'prefix')
+    __slots__ = ('label', 'interface', '_place', 'prefix', 'role')
 
     def __init__(self, label: str, interface: Interface,
                  place: Callable[[Diagnostic], Diagnostic] | None = None,
-                 prefix: DocPath = ()) -> None:
+                 prefix: DocPath = (), role: str | None = None) -> None:
         self.label = label
         self.interface = interface
         self._place = place
         #: Where the interface sits in its document (``('main',)`` in a node file).
         self.prefix = prefix
+        #: ``base``, ``mixin`` or ``main`` (by default guessed from the label; a mixin
+        #: reference may look like a base or main label, e.g. a file called ``main``).
+        self.role = role if role is not None else (
+            'base' if label.startswith('base:') else 'main' if label == MAIN else 'mixin')
 
     def place(self, diagnostic: Diagnostic) -> Diagnostic:
         """Place a diagnostic whose path is relative to this layer's interface."""
@@ -35,7 +39,7 @@ class Layer:
     @property
     def is_base(self) -> bool:
         """True for the base layer."""
-        return self.label.startswith('base:')
+        return self.role == 'base'
 
     def __repr__(self) -> str:
         return f'Layer({self.label!r})'

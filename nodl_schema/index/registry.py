@@ -96,9 +96,10 @@ def describe_missing(package: str, executable: str, prefixes: list[str] | None =
     prefixes = prefixes if prefixes is not None else ament.prefix_paths()
     if not prefixes:
         return 'AMENT_PREFIX_PATH is empty; source the workspace (install/setup.bash) first'
-    if ament.package_share_directory(package, prefixes) is None:
+    registered = list_registrations(package, prefixes)
+    names = sorted(r.name for r in registered if 'node' in r.kind)
+    if not registered and ament.package_share_directory(package, prefixes) is None:
         return f"package '{package}' is not in the ament index"
-    names = sorted(r.name for r in list_registrations(package, prefixes) if 'node' in r.kind)
     if names:
         return (f"package '{package}' registers no node definition for '{executable}' "
                 f"(it has: {', '.join(names)})")

@@ -1,0 +1,94 @@
+"""`nodl list`: run as a real process, as users run it."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+from conftest import FIXTURES, REPO
+
+INDEX = FIXTURES / 'index'
+FIRST = str(INDEX / 'first')
+SECOND = str(INDEX / 'second')
+BOTH = os.pathsep.join([FIRST, SECOND])
+
+
+def nodl(*args: str, prefixes: str | None = BOTH) -> subprocess.CompletedProcess[str]:
+    env = dict(os.environ)
+    if prefixes is None:
+        env.pop('AMENT_PREFIX_PATH', None)
+    else:
+        env['AMENT_PREFIX_PATH'] = prefixes
+    return subprocess.run([sys.executable, '-m', 'nodl_schema', 'list', *args], cwd=REPO,
+                          env=env, text=True, capture_output=True, timeout=60)
+
+
+def rows(stdout: str) -> list[tuple[str, ...]]:
+    return [tuple(line.split()) for line in stdout.splitlines()]
+
+
+def test_lists_every_registration_sorted() -> None:
+    result = nodl()
+    assert result.returncode == 0, result.stderr
+    assert result.stderr == ''
+    share = lambda prefix, pkg, f: os.path.join(prefix, 'share', pkg, 'nodl', f)  # noqa: E731
+    entry = lambda prefix, t, n: os.path.join(prefix, 'share', 'ament_index',  # noqa: E731
+                                              'resource_index', t, n)
+    assert rows(result.stdout) == [
+        ('alpha', 'interface', 'chatter', share(FIRST, 'alpha', 'chatter.nodl.yaml')),
+        ('alpha', 'node', 'inline', entry(FIRST, 'nodl_nodes', 'alpha__inline')),
+        ('alpha', 'node', 'listener', share(SECOND, 'alpha', 'listener.nodl.yaml')),
+        ('alpha', 'node', 'talker', share(FIRST, 'alpha', 'talker.nodl.yaml')),
+        ('beta', 'node', 'node', share(SECOND, 'beta', 'node.nodl.yaml')),
+        ('beta', 'interface', 'status', share(SECOND, 'beta', 'status.nodl.yaml')),
+        ('delta', 'node', 'dangling', entry(FIRST, 'nodl_nodes', 'delta__dangling')),
+    ]
+
+
+def test_columns_are_aligned() -> None:
+    lines = nodl().stdout.splitlines()
+    assert lines[0].startswith('alpha' + ' ' * (25 - len('alpha')) + 'interface')
+    assert len({line.index('/') for line in lines}) == 1  # the file column starts at one place
+
+
+def test_one_package() -> None:
+    result = nodl('beta')
+    assert result.returncode == 0
+    assert [r[:3] for r in rows(result.stdout)] == [('beta', 'node', 'node'),
+                                                    ('beta', 'interface', 'status')]
+
+
+def test_first_prefix_wins() -> None:
+    swapped = os.pathsep.join([SECOND, FIRST])
+    talker = [r for r in rows(nodl('alpha', prefixes=swapped).stdout) if r[2] == 'talker']
+    assert talker == [('alpha', 'node', 'talker',
+                       os.path.join(SECOND, 'share', 'alpha', 'nodl', 'talker.nodl.yaml'))]
+
+
+def test_json_format() -> None:
+    result = nodl('--format', 'json')
+    assert result.returncode == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert [(d['package'], d['name'], d['kind']) for d in data] == [
+        ('alpha', 'chatter', 'interface'), ('alpha', 'inline', 'node'),
+        ('alpha', 'listener', 'node'), ('alpha', 'talker', 'node'), ('beta', 'node', 'node'),
+        ('beta', 'status', 'interface'), ('delta', 'dangling', 'node')]
+    assert set(data[0]) == {'package', 'name', 'kind', 'file'}
+    assert json.loads(nodl('zeta', '--format', 'json').stdout) == []
+
+
+def test_nothing_registered_says_so_on_stderr_and_exits_0() -> None:
+    result = nodl(prefixes=None)
+    assert (result.returncode, result.stdout) == (0, '')
+    assert result.stderr == 'no NoDL definitions registered (AMENT_PREFIX_PATH: empty)\n'
+    result = nodl('zeta')
+    assert (result.returncode, result.stdout) == (0, '')
+    assert result.stderr == (f"no NoDL definitions registered for package 'zeta' "
+                             f'(AMENT_PREFIX_PATH: {BOTH})\n')
+
+
+def test_bad_arguments_are_usage_errors() -> None:
+    assert nodl('--format', 'xml').returncode == 2
+    assert nodl('a', 'b').returncode == 2

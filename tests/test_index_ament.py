@@ -1,0 +1,102 @@
+"""The ament resource index reader (nodl_schema.index.ament)."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from conftest import FIXTURES
+from nodl_schema.index import ament
+
+FIRST = str(FIXTURES / 'index' / 'first')
+SECOND = str(FIXTURES / 'index' / 'second')
+BOTH = [FIRST, SECOND]
+INDEX = os.path.join('share', 'ament_index', 'resource_index')
+
+
+def test_prefix_paths_splits_in_order_without_duplicates_or_empty_parts() -> None:
+    value = os.pathsep.join(['/b', '', '/a', '/b', '/c', ''])
+    assert ament.prefix_paths({'AMENT_PREFIX_PATH': value}) == ['/b', '/a', '/c']
+    assert ament.prefix_paths({}) == []
+    assert ament.prefix_paths({'AMENT_PREFIX_PATH': ''}) == []
+
+
+def test_prefix_paths_reads_the_environment(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv('AMENT_PREFIX_PATH', os.pathsep.join(BOTH))
+    assert ament.prefix_paths() == BOTH
+    monkeypatch.delenv('AMENT_PREFIX_PATH')
+    assert ament.prefix_paths() == []
+
+
+def test_resource_file() -> None:
+    assert ament.resource_file('/opt/ros', 'nodl_nodes', 'p__e') == os.path.join(
+        '/opt/ros', INDEX, 'nodl_nodes', 'p__e')
+
+
+def test_get_resource_reads_content_prefix_and_path() -> None:
+    resource = ament.get_resource('nodl_interfaces', 'alpha__chatter', BOTH)
+    assert resource == ament.Resource('nodl/chatter.nodl.yaml\n', FIRST,
+                                      os.path.join(FIRST, INDEX, 'nodl_interfaces',
+                                                   'alpha__chatter'))
+
+
+def test_get_resource_first_prefix_wins() -> None:
+    assert ament.get_resource('nodl_nodes', 'alpha__talker', BOTH).prefix == FIRST
+    assert ament.get_resource('nodl_nodes', 'alpha__talker', [SECOND, FIRST]).prefix == SECOND
+    # only in the second
+    assert ament.get_resource('nodl_nodes', 'alpha__listener', BOTH).prefix == SECOND
+
+
+def test_get_resource_missing_is_none() -> None:
+    assert ament.get_resource('nodl_nodes', 'alpha__nope', BOTH) is None
+    assert ament.get_resource('no_such_type', 'alpha', BOTH) is None
+    assert ament.get_resource('packages', 'alpha', []) is None
+
+
+def test_get_resource_uses_the_environment_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv('AMENT_PREFIX_PATH', SECOND)
+    assert ament.get_resource('nodl_nodes', 'alpha__talker').prefix == SECOND
+    monkeypatch.setenv('AMENT_PREFIX_PATH', '')
+    assert ament.get_resource('nodl_nodes', 'alpha__talker') is None
+
+
+def test_get_resources_lists_names_with_their_first_prefix() -> None:
+    nodes = ament.get_resources('nodl_nodes', BOTH)
+    assert nodes == {
+        'alpha__inline': FIRST, 'alpha__talker': FIRST, 'delta__dangling': FIRST,
+        'noseparator': FIRST, 'alpha__listener': SECOND, 'beta__node': SECOND,
+    }
+    assert '.alpha__hidden' not in nodes  # hidden files are not resources
+    assert ament.get_resources('packages', BOTH) == {
+        'alpha': FIRST, 'delta': FIRST, 'gamma': FIRST, 'beta': SECOND}
+    assert ament.get_resources('no_such_type', BOTH) == {}
+
+
+def test_get_resources_skips_folders_and_missing_prefixes(tmp_path: Path) -> None:
+    folder = tmp_path / INDEX / 'nodl_nodes'
+    (folder / 'p__a_folder').mkdir(parents=True)
+    (folder / 'p__file').write_text('x')
+    assert ament.get_resources('nodl_nodes', [str(tmp_path / 'missing'), str(tmp_path)]) == {
+        'p__file': str(tmp_path)}
+    assert ament.get_resource('nodl_nodes', 'p__a_folder', [str(tmp_path)]) is None
+
+
+def test_package_share_directory() -> None:
+    assert ament.package_share_directory('alpha', BOTH) == os.path.join(FIRST, 'share', 'alpha')
+    assert ament.package_share_directory('beta', BOTH) == os.path.join(SECOND, 'share', 'beta')
+    assert ament.package_share_directory('zeta', BOTH) is None
+
+
+def test_reading_needs_no_ros(tmp_path: Path) -> None:
+    import subprocess
+    import sys
+
+    # Importing the index reader must not import ament_index_python or rclpy.
+    code = ('import sys, nodl_schema.index.registry; '
+            "print(sorted(m for m in sys.modules if m.startswith(('rclpy', 'ament_index'))))")
+    result = subprocess.run([sys.executable, '-c', code], cwd=FIXTURES.parent.parent, text=True,
+                            capture_output=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == '[]'
