@@ -7,9 +7,10 @@ size limit and the UTF-8 requirement.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Union
+from typing import IO, Any, Callable, Union
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
@@ -39,6 +40,57 @@ def _too_large() -> str:
             'split it into smaller definitions')
 
 
+#: Lone surrogates: a Python ``str`` can hold them, UTF-8 text cannot.
+_SURROGATE = re.compile('[\ud800-\udfff]')
+
+
+def _text_too_large(text: str) -> bool:
+    """True if ``text`` is more than :data:`MAX_BYTES` bytes once encoded as UTF-8."""
+    size = len(text)
+    if size > MAX_BYTES:
+        return True
+    if 4 * size <= MAX_BYTES or text.isascii():
+        return False
+    return len(text.encode('utf-8', 'surrogatepass')) > MAX_BYTES
+
+
+def _check_text(text: str, file: str) -> tuple[SourceText | None, Diagnostic | None]:
+    """Apply the limits that :func:`decode` applies to bytes to text given as ``str``."""
+    if _text_too_large(text):
+        return None, _problem(file, _too_large())
+    if text.startswith('\ufeff'):
+        text = text[1:]
+    bad = _SURROGATE.search(text)
+    if bad is not None:
+        start = bad.start()
+        line = text.count('\n', 0, start) + 1
+        column = start - (text.rfind('\n', 0, start) + 1) + 1
+        return None, _problem(
+            file,
+            f'document contains a lone surrogate (U+{ord(bad.group()):04X}), which is not '
+            'valid Unicode text; NoDL files are UTF-8',
+            line, column)
+    return SourceText(text, file), None
+
+
+def _read_stream(read: Callable[[int], Any]) -> Any:
+    """Read up to ``MAX_BYTES + 1`` units, also from streams that return short reads."""
+    first = read(MAX_BYTES + 1)
+    if not first:
+        return first if first is not None else b''
+    chunks = [first]
+    total = len(first)
+    while total <= MAX_BYTES:
+        more = read(MAX_BYTES + 1 - total)
+        if not more:
+            break
+        chunks.append(more)
+        total += len(more)
+    if len(chunks) == 1:
+        return first
+    return ''.join(chunks) if isinstance(first, str) else b''.join(bytes(c) for c in chunks)
+
+
 def decode(data: bytes, file: str) -> tuple[str | None, Diagnostic | None]:
     """Decode UTF-8 (a BOM is allowed); anything else is a clear error."""
     if len(data) > MAX_BYTES:
@@ -49,7 +101,11 @@ def decode(data: bytes, file: str) -> tuple[str | None, Diagnostic | None]:
         text = data.decode('utf-8')
     except UnicodeDecodeError as exc:
         line = data.count(b'\n', 0, exc.start) + 1
-        column = exc.start - (data.rfind(b'\n', 0, exc.start) + 1) + 1
+        line_start = data.rfind(b'\n', 0, exc.start) + 1
+        # Columns count characters of the text without its BOM, as in every
+        # other diagnostic; everything before the first bad byte is valid UTF-8.
+        before = data[line_start:exc.start].decode('utf-8')
+        column = len(before[1:] if line_start == 0 and before.startswith('\ufeff') else before) + 1
         return None, _problem(
             file,
             f'document is not valid UTF-8 (byte 0x{data[exc.start]:02x} cannot be decoded); '
@@ -73,13 +129,14 @@ def read_source(source: Source, file: str | None = None) -> tuple[SourceText | N
         size = path.stat().st_size
         if size > MAX_BYTES:
             return None, _problem(name, _too_large())
-        text, problem = decode(path.read_bytes(), name)
+        # Read at most one byte more than the limit: a FIFO or a device such
+        # as /dev/zero reports size 0 and may never end.
+        with path.open('rb') as stream:
+            data = _read_stream(stream.read)
+        text, problem = decode(bytes(data), name)
         return (SourceText(text, name), None) if text is not None else (None, problem)
     if isinstance(source, str):
-        name = file or '<string>'
-        if len(source) > MAX_BYTES:
-            return None, _problem(name, _too_large())
-        return SourceText(source[1:] if source.startswith('\ufeff') else source, name), None
+        return _check_text(source, file or '<string>')
     if isinstance(source, (bytes, bytearray, memoryview)):
         name = file or '<bytes>'
         text, problem = decode(bytes(source), name)
@@ -90,10 +147,8 @@ def read_source(source: Source, file: str | None = None) -> tuple[SourceText | N
             f'cannot read a NoDL document from {type(source).__name__}; '
             'pass text, bytes, a file object or a pathlib.Path')
     name = file or str(getattr(source, 'name', '<stream>'))
-    content = read(MAX_BYTES + 1)
+    content = _read_stream(read)
     if isinstance(content, str):
-        if len(content) > MAX_BYTES:
-            return None, _problem(name, _too_large())
-        return SourceText(content[1:] if content.startswith('\ufeff') else content, name), None
+        return _check_text(content, name)
     text, problem = decode(bytes(content), name)
     return (SourceText(text, name), None) if text is not None else (None, problem)

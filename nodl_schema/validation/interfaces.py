@@ -12,6 +12,7 @@ from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.diagnostics import format_path
+from nodl_schema.validation.messages import show
 from nodl_schema.validation.parameters import check_parameter
 
 __all__ = ['SECTIONS', 'check_interface']
@@ -36,7 +37,7 @@ def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
         for name, param in parameters.items():
             check_parameter(param, path + ('parameters', name), out)
             if isinstance(param, dict) and not param.get('description'):
-                out.append(Diagnostic(Severity.WARNING, f"parameter '{name}' has no description",
+                out.append(Diagnostic(Severity.WARNING, f'parameter {show(name)} has no description',
                                       path + ('parameters', name), anchor='key'))
     for section, word in SECTIONS.items():
         entries = data.get(section)
@@ -52,11 +53,11 @@ def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
                 if name in first_index:
                     earlier = format_path(path + (section, first_index[name]))
                     out.append(Diagnostic(
-                        Severity.ERROR, f"duplicate {word} '{name}' (already declared at {earlier}); "
+                        Severity.ERROR, f'duplicate {word} {show(name)} (already declared at {earlier}); '
                         'a name appears once per section', entry_path + ('name',)))
                 else:
                     first_index[name] = index
             if not entry.get('description'):
-                label = f" '{name}'" if isinstance(name, str) else ''
+                label = f' {show(name)}' if isinstance(name, str) else ''
                 out.append(Diagnostic(Severity.WARNING, f'{word}{label} has no description',
                                       entry_path, anchor='key'))

@@ -79,8 +79,8 @@ def subject(path: DocPath) -> str:
     if path and isinstance(path[-1], int):
         for part in reversed(path):
             if isinstance(part, str):
-                return f"item {path[-1]} of '{part}'"
+                return f'item {path[-1]} of {show(part)}'
     for part in reversed(path):
         if isinstance(part, str):
-            return f"'{part}'"
+            return show(part)
     return 'the document'

@@ -211,12 +211,12 @@ class SchemaCompiler:
                     continue
                 if additional is False:
                     if key in hints:
-                        out.append(_err(f"unknown key '{key}': {hints[key]}", child, 'key'))
+                        out.append(_err(f'unknown key {show(key)}: {hints[key]}', child, 'key'))
                     else:
                         suggestion = did_you_mean(key, known)
                         if not suggestion and known:
                             suggestion = f'; expected one of: {", ".join(known)}'
-                        out.append(_err(f"unknown key '{key}'{suggestion}", child, 'key'))
+                        out.append(_err(f'unknown key {show(key)}{suggestion}', child, 'key'))
                 elif additional_check is not None:
                     additional_check(item, child, out)
         return check
