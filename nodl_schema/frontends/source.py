@@ -8,9 +8,8 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Any, Callable, Union
+from typing import IO, Any, Callable, NamedTuple, Union
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
@@ -23,8 +22,7 @@ MAX_BYTES = 10 * 1024 * 1024
 Source = Union[str, bytes, bytearray, memoryview, IO[str], IO[bytes], os.PathLike]
 
 
-@dataclass(frozen=True)
-class SourceText:
+class SourceText(NamedTuple):
     """A document's text and the name to use for it in diagnostics."""
 
     text: str

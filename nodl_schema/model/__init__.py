@@ -1,12 +1,36 @@
-"""The document model: typed classes for the three kinds of NoDL document."""
+"""The document model: typed classes for the three kinds of NoDL document.
 
-from nodl_schema.model.interface import (
-    ENDPOINT_SECTIONS, ActionEndpoint, Endpoint, Interface, ServiceEndpoint, TopicEndpoint)
-from nodl_schema.model.node import Base, Mixin, Node
-from nodl_schema.model.parameter import ParameterDefinition
-from nodl_schema.model.qos import QOS_POLICIES, QoSProfile
+Names are imported lazily: validation needs only ``parameter_types``, and the
+command line should not pay for the dataclasses it does not use.
+"""
 
-__all__ = [
-    'ENDPOINT_SECTIONS', 'ActionEndpoint', 'Base', 'Endpoint', 'Interface', 'Mixin', 'Node',
-    'ParameterDefinition', 'QOS_POLICIES', 'QoSProfile', 'ServiceEndpoint', 'TopicEndpoint',
-]
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+_EXPORTS = {
+    'ENDPOINT_SECTIONS': 'interface', 'ActionEndpoint': 'interface', 'Endpoint': 'interface',
+    'Interface': 'interface', 'ServiceEndpoint': 'interface', 'TopicEndpoint': 'interface',
+    'Base': 'node', 'Mixin': 'node', 'Node': 'node',
+    'ParameterDefinition': 'parameter',
+    'QOS_POLICIES': 'qos', 'QoSProfile': 'qos',
+}
+
+__all__ = sorted(_EXPORTS)
+
+if TYPE_CHECKING:  # pragma: no cover
+    from nodl_schema.model.interface import (
+        ENDPOINT_SECTIONS, ActionEndpoint, Endpoint, Interface, ServiceEndpoint, TopicEndpoint)
+    from nodl_schema.model.node import Base, Mixin, Node
+    from nodl_schema.model.parameter import ParameterDefinition
+    from nodl_schema.model.qos import QOS_POLICIES, QoSProfile
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
+    value = getattr(importlib.import_module(f'{__name__}.{module}'), name)
+    globals()[name] = value
+    return value

@@ -8,8 +8,7 @@ ROS 2 parameter type): scalars, arrays, and fixed-size forms
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 __all__ = ['SCALAR_TYPES', 'ARRAY_TYPES', 'FIXED_BASES', 'ALL_TYPE_WORDS', 'TypeSpec',
            'parse_type', 'value_fits']
@@ -23,8 +22,7 @@ ALL_TYPE_WORDS = SCALAR_TYPES + ARRAY_TYPES + tuple(f'{b}_fixed_N' for b in FIXE
 _FIXED = re.compile(r'(string|int_array|double_array|string_array|bool_array)_fixed_([0-9]+)')
 
 
-@dataclass(frozen=True)
-class TypeSpec:
+class TypeSpec(NamedTuple):
     """A parsed parameter type."""
 
     name: str
