@@ -53,7 +53,7 @@ def run(repeats: int = 15) -> dict[str, float]:
 
 
 def main() -> bool:
-    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+    os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
     r = run()
     print('nodl validate FILE cold start vs python -I -c "import yaml"')
     print(f'  python -I -c "import yaml": {r["baseline_s"] * 1000:7.1f} ms (median)')

@@ -11,15 +11,21 @@ from nodl_schema.live.conformance import Difference, compare, conforms, parse_re
 from nodl_schema.live.observe import ObservedNode, observe_node
 from nodl_schema.live.session import split_node_name
 
-__all__ = ['CheckResult', 'load_definition', 'check_node']
+__all__ = ['CheckResult', 'load_definition', 'check_node', 'RECHECK']
+
+#: Seconds to wait before looking again when declared endpoints are missing (within the timeout).
+RECHECK = 1.0
 
 
 class CheckResult:
     """The outcome of one check."""
 
     def __init__(self, fqn: str, definition: str, differences: list[Difference],
-                 composed: ComposedNode, observed: ObservedNode) -> None:
+                 composed: ComposedNode, observed: ObservedNode,
+                 remaps: dict[str, str] | None = None) -> None:
         self.fqn = fqn
+        #: The remapping rules the node was checked with (expanded FROM -> TO).
+        self.remaps = remaps or {}
         #: The definition's file.
         self.definition = definition
         self.differences = differences
@@ -78,12 +84,30 @@ def check_node(fqn: str, definition: str | os.PathLike | tuple[str, str], *,
 
     Raises ValidationError for a bad definition, LiveError when the node
     cannot be observed (NodeNotFound if it never appears within ``timeout``),
-    and ValueError for a malformed remapping rule.
+    and ValueError for a malformed remapping rule.  Declared endpoints that
+    are missing are looked for once more after ``RECHECK`` seconds (if the
+    timeout leaves that much), as discovery may only be late.
     """
+    import time
+
+    from nodl_schema.live.session import ros_session
+
     composed = load_definition(definition)
     namespace, name = split_node_name(fqn)
     rules = parse_remaps(remaps, name, namespace)
-    observed = observe_node(fqn, timeout=timeout, parameters=parameters)
-    differences = compare(composed, observed, rules)
-    return CheckResult(observed.fully_qualified_name, composed.file, differences, composed, observed)
+    start = time.monotonic()
+    with ros_session() as session:
+        observed = observe_node(fqn, timeout=timeout, parameters=parameters, session=session)
+        differences = compare(composed, observed, rules)
+        late = max(0.0, min(RECHECK, timeout - (time.monotonic() - start)))
+        if late and any(d.kind == 'missing' and d.section != 'parameters' for d in differences):
+            # Declared endpoints not seen yet may only be late in discovery: look again.
+            deadline = time.monotonic() + late
+            while time.monotonic() < deadline:
+                session.nodl_executor.spin_once(timeout_sec=0.05)
+            observed = observe_node(fqn, timeout=max(1.0, timeout - (time.monotonic() - start)),
+                                    parameters=parameters, session=session)
+            differences = compare(composed, observed, rules)
+    return CheckResult(observed.fully_qualified_name, composed.file, differences, composed, observed,
+                       rules)
 

@@ -69,15 +69,23 @@ class Difference:
 
 
 def parse_remaps(rules: Iterable[str], node_name: str, namespace: str) -> dict[str, str]:
-    """``FROM:=TO`` rules (as given to ``--ros-args -r``), both sides expanded."""
+    """``FROM:=TO`` rules (as given to ``--ros-args -r``), both sides expanded.
+
+    As in rcl, the first rule that matches a name wins, and a node-specific
+    rule (``node:FROM:=TO``) only applies to the node of that name.
+    """
     remaps: dict[str, str] = {}
     for rule in rules:
         source, sep, target = rule.partition(':=')
         if not sep or not source or not target:
             raise ValueError(f"invalid remapping {rule!r}; expected FROM:=TO")
         if ':' in source.split('/')[0] and not source.startswith(('/', '~')):
-            source = source.split(':', 1)[1]  # node-specific rule (node:from:=to)
-        remaps[expand(source, node_name, namespace)] = expand(target, node_name, namespace)
+            only_for, source = source.split(':', 1)  # node-specific rule (node:from:=to)
+            if not source:
+                raise ValueError(f"invalid remapping {rule!r}; expected [NODE:]FROM:=TO")
+            if only_for != node_name:
+                continue
+        remaps.setdefault(expand(source, node_name, namespace), expand(target, node_name, namespace))
     return remaps
 
 

@@ -107,9 +107,14 @@ def describe_observed(observed: ObservedNode) -> Description:
     return Description(observed.fully_qualified_name, definition, notes)
 
 
-def describe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True) -> Description:
-    """Observe the running node ``fqn`` and describe it (raises LiveError for the user)."""
-    return describe_observed(observe_node(fqn, timeout=timeout, parameters=parameters))
+def describe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
+                  session: Any = None) -> Description:
+    """Observe the running node ``fqn`` and describe it (raises LiveError for the user).
+
+    ``session``: an observer node of :func:`~nodl_schema.live.session.ros_session` to reuse.
+    """
+    return describe_observed(observe_node(fqn, timeout=timeout, parameters=parameters,
+                                          session=session))
 
 
 def render_description(description: Description, format: str = 'yaml') -> str:

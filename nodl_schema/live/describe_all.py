@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import os
+import time
+from typing import Any
 
 from nodl_schema.live.describe import describe_node, render_description
 from nodl_schema.live.observe import list_nodes
@@ -16,29 +18,50 @@ def file_name_for(fqn: str, format: str = 'yaml') -> str:
     return fqn.strip('/').replace('/', '.') + ('.nodl.json' if format == 'json' else '.nodl.yaml')
 
 
+def _discover(node: Any, timeout: float, settle: float, quiet: float = 0.5) -> list[str]:
+    """The nodes of the graph once discovery has had its time.
+
+    Remote participants are discovered one by one, each up to one announcement
+    period after we start (Fast DDS: 3 s; from milliseconds to 3 s in practice),
+    so the list is taken once ``settle`` seconds have passed and it has not
+    changed for ``quiet`` seconds; while it is empty, up to ``timeout``.
+    """
+    start = time.monotonic()
+    names = list_nodes(node)
+    changed = start
+    while True:
+        now = time.monotonic()
+        if now - start >= timeout:
+            return names
+        if names and now - start >= settle and now - changed >= quiet:
+            return names
+        node.nodl_executor.spin_once(timeout_sec=0.01)
+        current = list_nodes(node)
+        if current != names:
+            names, changed = current, time.monotonic()
+
+
 def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = True,
-                 format: str = 'yaml', settle: float = 1.0) -> list[tuple[str, str, list[str]]]:
+                 format: str = 'yaml', settle: float = 3.5) -> list[tuple[str, str, list[str]]]:
     """Describe every node in the graph into ``directory``; returns (node, file, notes) per node.
 
-    A node that vanishes while it is described is reported in its notes and skipped.
+    Discovery is given up to ``timeout`` seconds (see :func:`_discover`); every
+    node is then observed in the same session.  A node that vanishes while it
+    is described is reported in its notes and skipped.
     """
-    import time
-
     with ros_session() as node:
-        deadline = time.monotonic() + settle
-        while time.monotonic() < deadline:
-            node.nodl_executor.spin_once(timeout_sec=0.05)
-        names = list_nodes(node)
-    os.makedirs(directory, exist_ok=True)
-    written = []
-    for fqn in names:
-        try:
-            description = describe_node(fqn, timeout=timeout, parameters=parameters)
-        except LiveError as exc:
-            written.append((fqn, '(skipped)', [str(exc)]))
-            continue
-        path = os.path.join(directory, file_name_for(fqn, format))
-        with open(path, 'w', encoding='utf-8') as f:
-            f.write(render_description(description, format))
-        written.append((fqn, path, description.notes))
+        names = _discover(node, timeout, settle)
+        os.makedirs(directory, exist_ok=True)
+        written = []
+        for fqn in names:
+            try:
+                description = describe_node(fqn, timeout=timeout, parameters=parameters,
+                                            session=node)
+            except LiveError as exc:
+                written.append((fqn, '(skipped)', [str(exc)]))
+                continue
+            path = os.path.join(directory, file_name_for(fqn, format))
+            with open(path, 'w', encoding='utf-8') as f:
+                f.write(render_description(description, format))
+            written.append((fqn, path, description.notes))
     return written

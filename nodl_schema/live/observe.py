@@ -106,9 +106,29 @@ def _signature(raw: dict[str, list[tuple[str, list[str]]]]) -> tuple[Any, ...]:
     return tuple((k, tuple((n, tuple(t)) for n, t in sorted(v))) for k, v in sorted(raw.items()))
 
 
+#: How long the endpoints must stay unchanged when only writers or only readers are seen.
+LOPSIDED_QUIET = 1.5
+
+
+def _lopsided(raw: dict[str, list[tuple[str, list[str]]]]) -> bool:
+    """Writers (publishers) but no readers (subscriptions, services), or the reverse.
+
+    DDS discovers a participant's writers and readers through two separate
+    streams, and one can arrive well after the other (seen on Fast DDS under
+    load: every subscription and service missing for longer than ``quiet``).
+    A default node has both (/rosout, the parameter services), so a lopsided
+    view is given more time to fill in.
+    """
+    readers = raw['subscriptions'] or raw['service_servers'] or raw['service_clients']
+    return bool(raw['publishers']) != bool(readers)
+
+
 def _settle(node: Any, name: str, namespace: str, fqn: str, timeout: float,
             quiet: float) -> dict[str, list[tuple[str, list[str]]]]:
-    """Poll the node's endpoints until they stop changing for ``quiet`` seconds."""
+    """Poll the node's endpoints until they stop changing for ``quiet`` seconds.
+
+    (``LOPSIDED_QUIET`` seconds if only writers or only readers are seen.)
+    """
     deadline = time.monotonic() + timeout
     last = None
     stable_since = time.monotonic()
@@ -124,7 +144,9 @@ def _settle(node: Any, name: str, namespace: str, fqn: str, timeout: float,
         if signature != last:
             last = signature
             stable_since = now
-        elif now - stable_since >= quiet or now >= deadline:
+        needed = max(quiet, LOPSIDED_QUIET) if _lopsided(raw) else quiet
+        if now - stable_since >= needed or now >= deadline:
+            # at the deadline, a node whose endpoints keep changing is taken as it is then
             return raw
         node.nodl_executor.spin_once(timeout_sec=0.01)
 
@@ -155,11 +177,10 @@ def _fold_actions(observed: ObservedNode, node: Any, name: str, namespace: str) 
         setattr(observed, section, [e for e in getattr(observed, section) if not hidden(e)])
 
 
-def _call(node: Any, client: Any, request: Any, timeout: float) -> Any:
-    if not client.wait_for_service(timeout_sec=timeout):
+def _call(node: Any, client: Any, request: Any, deadline: float) -> Any:
+    if not client.wait_for_service(timeout_sec=max(0.0, deadline - time.monotonic())):
         return None
     future = client.call_async(request)
-    deadline = time.monotonic() + timeout
     while not future.done() and time.monotonic() < deadline:
         node.nodl_executor.spin_once(timeout_sec=0.02)
     return future.result() if future.done() else None
@@ -194,13 +215,14 @@ def _parameters(node: Any, fqn: str, timeout: float) -> dict[str, ObservedParame
     list_client = node.create_client(ListParameters, f'{fqn}/list_parameters')
     get_client = node.create_client(GetParameters, f'{fqn}/get_parameters')
     describe_client = node.create_client(DescribeParameters, f'{fqn}/describe_parameters')
+    deadline = time.monotonic() + timeout  # for the three calls together
     try:
-        listed = _call(node, list_client, ListParameters.Request(), timeout)
+        listed = _call(node, list_client, ListParameters.Request(), deadline)
         if listed is None:
             return None
         names = sorted(listed.result.names)
-        values = _call(node, get_client, GetParameters.Request(names=names), timeout)
-        descriptors = _call(node, describe_client, DescribeParameters.Request(names=names), timeout)
+        values = _call(node, get_client, GetParameters.Request(names=names), deadline)
+        descriptors = _call(node, describe_client, DescribeParameters.Request(names=names), deadline)
         if values is None or descriptors is None:
             return None
         found: dict[str, ObservedParameter] = {}
@@ -222,41 +244,49 @@ def _parameters(node: Any, fqn: str, timeout: float) -> dict[str, ObservedParame
 
 
 def observe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
-                 quiet: float = 0.15) -> ObservedNode:
+                 quiet: float = 0.15, session: Any = None) -> ObservedNode:
     """Observe the running node ``fqn`` (``/namespace/name``).
 
     Waits up to ``timeout`` seconds for the node to appear and its endpoints
     to settle (no change for ``quiet`` seconds).  Raises :class:`LiveError`
     (:class:`NodeNotFound` if it never appears) with a message for the user.
+    ``session`` is an observer node from :func:`ros_session` to reuse (its
+    discovery is then already under way); by default a session of its own.
     """
+    if session is None:
+        with ros_session() as node:
+            return _observe(node, fqn, timeout, parameters, quiet)
+    return _observe(session, fqn, timeout, parameters, quiet)
+
+
+def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float) -> ObservedNode:
     namespace, name = split_node_name(fqn)
     fqn = (namespace.rstrip('/') + '/' + name) if namespace != '/' else '/' + name
     start = time.monotonic()
-    with ros_session() as node:
-        wait_for_node(node, fqn, timeout)
-        remaining = max(0.5, timeout - (time.monotonic() - start))
-        raw = _settle(node, name, namespace, fqn, remaining, quiet)
-        observed = ObservedNode(name, namespace)
-        for section, entries in raw.items():
-            topic = section in ('publishers', 'subscriptions')
-            endpoints = []
-            for topic_name, types in sorted(entries):
-                endpoint = ObservedEndpoint(topic_name, types[0] if types else '')
-                if topic:
-                    profile = _topic_qos(node, topic_name, name, namespace, section == 'publishers')
-                    if profile is not None:
-                        endpoint.qos, endpoint.unobserved = qos_from_rclpy(profile)
-                    else:
-                        endpoint.unobserved = ['qos']
-                endpoints.append(endpoint)
-            setattr(observed, section, endpoints)
-        _fold_actions(observed, node, name, namespace)
-        if parameters:
-            remaining = max(1.0, timeout - (time.monotonic() - start))
-            observed.parameters = _parameters(node, fqn, remaining)
-            if observed.parameters is None:
-                observed.notes.append('parameters could not be read (the node serves no '
-                                      'parameter services, or they did not answer in time)')
-        if fqn not in list_nodes(node):
-            raise LiveError(f"node '{fqn}' disappeared while it was being observed")
-        return observed
+    wait_for_node(node, fqn, timeout)
+    remaining = max(0.5, timeout - (time.monotonic() - start))
+    raw = _settle(node, name, namespace, fqn, remaining, quiet)
+    observed = ObservedNode(name, namespace)
+    for section, entries in raw.items():
+        topic = section in ('publishers', 'subscriptions')
+        endpoints = []
+        for topic_name, types in sorted(entries):
+            endpoint = ObservedEndpoint(topic_name, types[0] if types else '')
+            if topic:
+                profile = _topic_qos(node, topic_name, name, namespace, section == 'publishers')
+                if profile is not None:
+                    endpoint.qos, endpoint.unobserved = qos_from_rclpy(profile)
+                else:
+                    endpoint.unobserved = ['qos']
+            endpoints.append(endpoint)
+        setattr(observed, section, endpoints)
+    _fold_actions(observed, node, name, namespace)
+    if parameters:
+        remaining = max(1.0, timeout - (time.monotonic() - start))
+        observed.parameters = _parameters(node, fqn, remaining)
+        if observed.parameters is None:
+            observed.notes.append('parameters could not be read (the node serves no '
+                                  'parameter services, or they did not answer in time)')
+    if fqn not in list_nodes(node):
+        raise LiveError(f"node '{fqn}' disappeared while it was being observed")
+    return observed

@@ -41,31 +41,38 @@ def format_check_json(result: CheckResult) -> str:
 
 def format_check_junit(result: CheckResult) -> str:
     """A JUnit XML report: one test case per checked entity; drift is a failure."""
+    from nodl_schema.naming import expand
+
     cases: dict[tuple[str, str], list[Any]] = {}
+    # A difference names the entity as observed (expanded, remapped): find its declaration.
+    declared_as: dict[tuple[str, str], tuple[str, str]] = {}
+    node_name, node_namespace = result.observed.name, result.observed.namespace
+    remaps = result.remaps or {}
     for section in ('publishers', 'subscriptions', 'service_servers', 'service_clients',
                     'action_servers', 'action_clients'):
         for entity in result.composed.interface.endpoints(section):
             cases.setdefault((section, entity.name), [])
-    for name in result.composed.interface.parameters or {}:
-        cases.setdefault(('parameters', name), [])
+            full = expand(entity.name, node_name, node_namespace)
+            declared_as[(section, remaps.get(full, full))] = (section, entity.name)
+    for param in result.composed.interface.parameters or {}:
+        cases.setdefault(('parameters', param), [])
     for d in result.differences:
-        key = (d.section, d.name)
-        matched = next((k for k in cases if k[0] == d.section and
-                        (k[1] == d.name or d.name.endswith('/' + k[1].lstrip('~/')))), key)
-        cases.setdefault(matched, []).append(d)
+        key = declared_as.get((d.section, d.name), (d.section, d.name))
+        cases.setdefault(key, []).append(d)
     failures = sum(1 for ds in cases.values() if any(d.severity == 'error' for d in ds))
     suite = quoteattr(f'nodl check {result.fqn}')
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            f'<testsuite name={suite} tests="{len(cases)}" failures="{failures}" errors="0">']
     for (section, name), diffs in sorted(cases.items()):
         out.append(f'  <testcase classname={quoteattr(section)} name={quoteattr(name)}>')
+        # JUnit's schema wants the failures first and at most one system-out
         for d in diffs:
-            text = escape(str(d))
             if d.severity == 'error':
                 out.append(f'    <failure type={quoteattr(d.kind)} message={quoteattr(d.message)}>'
-                           f'{text}</failure>')
-            else:
-                out.append(f'    <system-out>{text}</system-out>')
+                           f'{escape(str(d))}</failure>')
+        notes = [escape(str(d)) for d in diffs if d.severity != 'error']
+        if notes:
+            out.append('    <system-out>' + '\n'.join(notes) + '</system-out>')
         out.append('  </testcase>')
     out.append('</testsuite>')
     return '\n'.join(out) + '\n'

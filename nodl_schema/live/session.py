@@ -18,8 +18,12 @@ class NodeNotFound(LiveError):
 
 
 def require_rclpy() -> Any:
-    """Import rclpy, or explain how to get it."""
-    os.environ.setdefault('ROS_AUTOMATIC_DISCOVERY_RANGE', 'LOCALHOST')
+    """Import rclpy, or explain how to get it.
+
+    Discovery settings (``ROS_AUTOMATIC_DISCOVERY_RANGE``, ``ROS_DOMAIN_ID``)
+    are the user's: the toolkit observes whatever graph their environment
+    reaches.  Our tests, demo and benchmarks confine themselves to loopback.
+    """
     try:
         import rclpy
     except ImportError as exc:

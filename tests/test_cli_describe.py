@@ -1,0 +1,108 @@
+"""`nodl describe` as users run it: a real process observing real node processes."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Iterator
+
+import pytest
+
+from conftest import REPO, NodeProcess
+from nodl_schema import load_node, validate_node
+
+
+def nodl(*args: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
+    """Run `python -m nodl_schema` (it inherits ROS_DOMAIN_ID and the loopback-only discovery)."""
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+                            capture_output=True, timeout=timeout)
+    assert 'Traceback' not in result.stdout + result.stderr, result.stderr
+    return result
+
+
+@pytest.fixture(scope='module')
+def nodes() -> Iterator[dict[str, NodeProcess]]:
+    started: dict[str, NodeProcess] = {}
+    try:
+        started['full'] = NodeProcess('full_node.py', 'full', '/cli_d')
+        started['managed'] = NodeProcess('lifecycle_node.py', 'managed', '/cli_d')
+        yield started
+    finally:
+        for node in started.values():
+            node.stop()
+
+
+def test_describe_node_to_a_file(nodes, tmp_path: Path) -> None:
+    out = tmp_path / 'new' / 'dir' / 'full.nodl.yaml'
+    result = nodl('describe', '/cli_d/full', '-o', str(out), '--timeout', '15')
+    assert result.returncode == 0, result.stderr
+    assert result.stdout == f'/cli_d/full -> {out}\n'
+    text = out.read_text(encoding='utf-8')
+    assert text.startswith('# Described from the running node /cli_d/full by `nodl describe`.\n')
+    # every note is a warning on stderr and a line of the header comment
+    warnings = [l for l in result.stderr.splitlines() if l.startswith('nodl describe: warning: ')]
+    assert any('service QoS' in w for w in warnings)
+    for warning in warnings:
+        assert '#   - ' + warning[len('nodl describe: warning: '):] in text
+    node = load_node(text)
+    assert node.base == 'node'
+    assert set(node.main.parameters) == {'frame_id', 'gain', 'joints', 'rate', 'verbose'}
+    assert {p.name for p in node.main.publishers} == {'~/status', 'measurement', '/global_chatter'}
+
+
+def test_describe_to_stdout_as_json_without_parameters(nodes) -> None:
+    result = nodl('describe', '/cli_d/full', '--no-parameters', '--format', 'json',
+                  '--timeout', '15')
+    assert result.returncode == 0, result.stderr
+    definition = json.loads(result.stdout)
+    validate_node(definition)
+    assert definition['base'] == 'node'
+    assert 'parameters' not in definition['main']
+    assert {e['name'] for e in definition['main']['subscriptions']} == {'/emergency_stop', 'commands'}
+
+
+def test_describe_all_writes_one_file_per_node(nodes, tmp_path: Path) -> None:
+    out = tmp_path / 'all'
+    result = nodl('describe', '--all', '-o', str(out), '--timeout', '10')
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    # (a node of someone else's that vanished meanwhile would be listed as '(skipped)')
+    written = {fqn: path for fqn, path in (line.split(' -> ') for line in lines)
+               if path != '(skipped)'}
+    assert {'/cli_d/full', '/cli_d/managed'} <= set(written)
+    assert written['/cli_d/full'] == str(out / 'cli_d.full.nodl.yaml')
+    assert written['/cli_d/managed'] == str(out / 'cli_d.managed.nodl.yaml')
+    # one file per node, and the observer did not describe itself
+    files = sorted(p.name for p in out.iterdir())
+    assert files == sorted(Path(p).name for p in written.values())
+    assert not [f for f in files if 'nodl_observer' in f]
+    assert not [n for n in written if 'nodl_observer' in n]
+    managed = load_node((out / 'cli_d.managed.nodl.yaml').read_text(encoding='utf-8'))
+    assert managed.base == 'lifecycle_node'
+    for path in written.values():
+        load_node(Path(path).read_text(encoding='utf-8'))
+
+
+def test_node_not_found_exits_2_within_the_timeout() -> None:
+    start = time.monotonic()
+    result = nodl('describe', '/cli_d/nobody', '--timeout', '1')
+    elapsed = time.monotonic() - start
+    assert result.returncode == 2
+    assert result.stdout == ''
+    assert result.stderr.startswith("nodl describe: error: node '/cli_d/nobody' was not found "
+                                    'within 1 s')
+    assert elapsed < 1 + 5
+
+
+@pytest.mark.parametrize('args, message', [
+    ([], 'give a NODE, or --all with -o DIR'),
+    (['/x', '--all', '-o', 'd'], 'give a NODE, or --all with -o DIR'),
+    (['--all'], '--all needs -o DIR'),
+])
+def test_usage_errors_exit_2(args: list[str], message: str) -> None:
+    result = nodl('describe', *args)
+    assert result.returncode == 2
+    assert message in result.stderr
