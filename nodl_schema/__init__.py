@@ -12,7 +12,10 @@ Names are imported lazily so that the command line starts fast.
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
 
 __version__ = '0.1.0'
 

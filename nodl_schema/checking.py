@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Iterable
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Iterable
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.files import STDIN, find_nodl_files

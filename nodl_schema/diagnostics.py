@@ -9,7 +9,10 @@ all and raises :class:`ValidationError` once, carrying every one.
 from __future__ import annotations
 
 import enum
-from typing import Any, Iterable, Sequence, Union
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any, Iterable, Sequence, Union
 
 __all__ = [
     'Severity',
@@ -20,7 +23,10 @@ __all__ = [
 ]
 
 #: A location inside a document: mapping keys and sequence indices.
-DocPath = tuple[Union[str, int], ...]
+if TYPE_CHECKING:
+    DocPath = tuple[Union[str, int], ...]
+else:
+    DocPath = tuple
 
 
 class Severity(str, enum.Enum):

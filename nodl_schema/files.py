@@ -3,7 +3,11 @@
 from __future__ import annotations
 
 import os
-from typing import Iterable, NamedTuple
+from collections import namedtuple
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Iterable
 
 __all__ = ['NODL_SUFFIXES', 'STDIN', 'Target', 'find_nodl_files']
 
@@ -13,11 +17,10 @@ NODL_SUFFIXES = ('.nodl.yaml', '.nodl.yml', '.nodl.json')
 STDIN = '-'
 
 
-class Target(NamedTuple):
+class Target(namedtuple('Target', ['path', 'problem'], defaults=[None])):
     """One thing to read: a file, standard input, or a problem finding it."""
 
-    path: str
-    problem: str | None = None
+    __slots__ = ()
 
 
 def find_nodl_files(paths: Iterable[str]) -> list[Target]:

@@ -9,7 +9,9 @@ diagnostic, for an invalid document.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Union
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any, Union
 
 from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
 from nodl_schema.frontends.source import Source, read_source
@@ -26,7 +28,10 @@ if TYPE_CHECKING:
     from nodl_schema.model import Interface, Node, ParameterDefinition
 
 #: Any loaded NoDL document.
-Document = Union['Interface', 'Node', 'ParameterDefinition']
+if TYPE_CHECKING:
+    Document = Union['Interface', 'Node', 'ParameterDefinition']
+else:
+    Document = object
 
 
 def _model_class(kind: Kind) -> Any:

@@ -18,7 +18,11 @@ from __future__ import annotations
 import os
 import re
 import sys
-from typing import Any, Callable, Iterable, NamedTuple
+from collections import namedtuple
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any, Callable, Iterable
 
 __all__ = [
     'PluginError',
@@ -31,13 +35,10 @@ _NORMALIZE = re.compile(r'[-_.]+')
 _META_SUFFIXES = ('.dist-info', '.egg-info')
 
 
-class EntryPointSpec(NamedTuple):
+class EntryPointSpec(namedtuple('EntryPointSpec', ['name', 'value', 'group', 'distribution'], defaults=[''])):
     """One entry point as declared by a distribution."""
 
-    name: str
-    value: str
-    group: str
-    distribution: str = ''
+    __slots__ = ()
 
     def load(self) -> Any:
         """Import the module and return the named attribute."""
@@ -50,14 +51,10 @@ class EntryPointSpec(NamedTuple):
         return obj
 
 
-class PluginError(NamedTuple):
+class PluginError(namedtuple('PluginError', ['group', 'name', 'value', 'distribution', 'error'])):
     """A plugin that could not be loaded; reported, never fatal."""
 
-    group: str
-    name: str
-    value: str
-    distribution: str
-    error: str
+    __slots__ = ()
 
     def __str__(self) -> str:
         where = f' (from {self.distribution})' if self.distribution else ''

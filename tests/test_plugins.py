@@ -59,11 +59,24 @@ def _nodl(*args: str) -> subprocess.CompletedProcess[str]:
                           text=True, capture_output=True, timeout=60)
 
 
-def test_cli_runs_a_third_party_verb_and_survives_a_broken_one() -> None:
+def test_cli_runs_a_third_party_verb_loading_only_that_verb() -> None:
     result = _nodl('hello', 'world')
     assert result.returncode == 0
     assert result.stdout == 'hello world\n'
-    assert "warning: skipped plugin 'broken'" in result.stderr
+    # verbs are loaded on demand: the broken plugin is not even imported
+    assert 'broken' not in result.stderr
+
+
+def test_a_broken_verb_is_reported_and_skipped_not_fatal() -> None:
+    listed = _nodl('--help')
+    assert listed.returncode == 0
+    assert "warning: skipped plugin 'broken'" in listed.stderr
+    assert 'validate' in listed.stdout and 'hello' in listed.stdout
+    invoked = _nodl('broken')
+    assert invoked.returncode == 2
+    assert "warning: skipped plugin 'broken'" in invoked.stderr
+    assert "invalid choice: 'broken'" in invoked.stderr
+    assert 'Traceback' not in invoked.stderr
 
 
 def test_help_lists_plugin_verbs_with_their_docstring() -> None:

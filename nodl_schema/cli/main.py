@@ -10,20 +10,22 @@ from nodl_schema.cli.runner import add_verbs, run_verb
 __all__ = ['main', 'build_parser']
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The ``nodl`` argument parser with every installed verb."""
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The ``nodl`` argument parser (with only the verb ``argv`` names, if it names one)."""
     parser = argparse.ArgumentParser(
         prog='nodl',
         description='NoDL toolkit: validate, compose and inspect ROS 2 node definitions.')
     from nodl_schema import __version__
     parser.add_argument('--version', action='version', version=f'%(prog)s {__version__}')
-    add_verbs(parser)
+    add_verbs(parser, argv=argv)
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of ``nodl``; returns the exit code."""
-    parser = build_parser()
+    if argv is None:
+        argv = sys.argv[1:]
+    parser = build_parser(argv)
     args = parser.parse_args(argv)
     return run_verb(parser, args)
 

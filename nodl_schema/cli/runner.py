@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import Any
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
 
 from nodl_schema.cli.verb import EXIT_INTERNAL, EXIT_USAGE, help_text
 
@@ -13,13 +16,26 @@ __all__ = ['VERB_GROUP', 'add_verbs', 'run_verb']
 VERB_GROUP = 'nodl.verbs'
 
 
-def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb') -> dict[str, Any]:
-    """Add one sub-command per verb plugin; a broken plugin is reported and skipped."""
-    from nodl_schema.plugins import load_plugins
+def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb',
+              argv: list[str] | None = None) -> dict[str, Any]:
+    """Add one sub-command per verb plugin; a broken plugin is reported and skipped.
 
+    With ``argv``, verbs are added on demand: when its first argument names
+    a verb, only that verb is loaded and given a parser (what ros2cli does
+    too); otherwise, for help or a mistyped verb, every verb is.
+    """
+    from nodl_schema.plugins import iter_entry_points, load_plugins
+
+    wanted = None
+    if argv:
+        first = next((a for a in argv if not a.startswith('-')), None)
+        if first is not None and first in {e.name for e in iter_entry_points(VERB_GROUP)}:
+            wanted = [first]
     verbs: dict[str, Any] = {}
-    subparsers = parser.add_subparsers(title='verbs', metavar='VERB', dest=dest)
-    for name, factory in sorted(load_plugins(VERB_GROUP).items()):
+    # An explicit prog spares argparse building a help formatter on every run.
+    subparsers = parser.add_subparsers(title='verbs', metavar='VERB', dest=dest,
+                                       prog=parser.prog)
+    for name, factory in sorted(load_plugins(VERB_GROUP, names=wanted).items()):
         try:
             verb = factory()
             text = help_text(verb)

@@ -8,8 +8,12 @@ from __future__ import annotations
 
 import os
 import re
+from collections import namedtuple
 from pathlib import Path
-from typing import IO, Any, Callable, NamedTuple, Union
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import IO, Any, Callable, Union
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
@@ -19,14 +23,16 @@ __all__ = ['MAX_BYTES', 'Source', 'SourceText', 'read_source', 'decode']
 MAX_BYTES = 10 * 1024 * 1024
 
 #: Everything the loaders accept as a document.
-Source = Union[str, bytes, bytearray, memoryview, IO[str], IO[bytes], os.PathLike]
+if TYPE_CHECKING:
+    Source = Union[str, bytes, bytearray, memoryview, IO[str], IO[bytes], os.PathLike]
+else:
+    Source = object
 
 
-class SourceText(NamedTuple):
+class SourceText(namedtuple('SourceText', ['text', 'file'])):
     """A document's text and the name to use for it in diagnostics."""
 
-    text: str
-    file: str
+    __slots__ = ()
 
 
 def _problem(file: str, message: str, line: int = 0, column: int = 0) -> Diagnostic:

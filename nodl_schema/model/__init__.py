@@ -7,7 +7,10 @@ command line should not pay for the dataclasses it does not use.
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
 
 _EXPORTS = {
     'ENDPOINT_SECTIONS': 'interface', 'ActionEndpoint': 'interface', 'Endpoint': 'interface',

@@ -7,8 +7,13 @@ ROS 2 parameter type): scalars, arrays, and fixed-size forms
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import re
-from typing import Any, NamedTuple
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ['SCALAR_TYPES', 'ARRAY_TYPES', 'FIXED_BASES', 'ALL_TYPE_WORDS', 'TypeSpec',
            'parse_type', 'value_fits']
@@ -22,14 +27,10 @@ ALL_TYPE_WORDS = SCALAR_TYPES + ARRAY_TYPES + tuple(f'{b}_fixed_N' for b in FIXE
 _FIXED = re.compile(r'(string|int_array|double_array|string_array|bool_array)_fixed_([0-9]+)')
 
 
-class TypeSpec(NamedTuple):
+class TypeSpec(namedtuple('TypeSpec', ['name', 'base', 'size'], defaults=[None])):
     """A parsed parameter type."""
 
-    name: str
-    #: ``bool``, ``int``, ``double``, ``string``, ``none`` or an ``*_array`` name.
-    base: str
-    #: Maximum length of a fixed-size type, else None.
-    size: int | None = None
+    __slots__ = ()
 
     @property
     def is_array(self) -> bool:

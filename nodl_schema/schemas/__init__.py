@@ -12,7 +12,10 @@ import copy
 import json
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ['KINDS', 'schema_path', 'load_schema', 'bundled_schema']
 

@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 from functools import lru_cache
-from typing import Any
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.validation.interfaces import check_interface

@@ -8,7 +8,9 @@
 
 from __future__ import annotations
 
-from typing import Any
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.diagnostics import format_path

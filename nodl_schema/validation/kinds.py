@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import enum
-from typing import Any
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ['Kind', 'detect_kind', 'NODE_KEYS', 'INTERFACE_KEYS']
 

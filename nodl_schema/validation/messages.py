@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
-import difflib
-from typing import Any, Iterable
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any, Iterable
 
 from nodl_schema.diagnostics import DocPath
 
@@ -62,6 +64,8 @@ def did_you_mean(word: Any, candidates: Iterable[str]) -> str:
     lowered = {c.lower(): c for c in options}
     if word.lower() in lowered:
         return f"; did you mean '{lowered[word.lower()]}'?"
+    import difflib  # only when a suggestion is needed: it costs start-up time
+
     close = difflib.get_close_matches(word, options, n=1, cutoff=0.6)
     return f"; did you mean '{close[0]}'?" if close else ''
 

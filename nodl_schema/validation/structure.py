@@ -25,7 +25,10 @@ below the cost of parsing the YAML.
 from __future__ import annotations
 
 import re
-from typing import Any, Callable
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any, Callable
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.schemas import load_schema_file
@@ -35,7 +38,10 @@ from nodl_schema.validation.messages import (
 __all__ = ['Check', 'FormatCheck', 'SchemaCompiler']
 
 #: A compiled check: appends diagnostics for ``value`` found at ``path``.
-Check = Callable[[Any, DocPath, list[Diagnostic]], None]
+if TYPE_CHECKING:
+    Check = Callable[[Any, DocPath, list[Diagnostic]], None]
+else:
+    Check = object
 #: A format checker has the same shape as a compiled check.
 FormatCheck = Check
 

@@ -8,7 +8,10 @@ accepted (it is common in older files) with a warning naming the full form.
 from __future__ import annotations
 
 import re
-from typing import Any
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.validation.messages import described, show, subject
