@@ -54,7 +54,7 @@ _EXPORTS = {
 __all__ = sorted(_EXPORTS)
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
-    from nodl_schema.composition import ComposedNode, compose
+    from nodl_schema.composition.compose import ComposedNode, compose
     from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
     from nodl_schema.loading import (
         Document, Report, check_source, dump_nodl, load_interface, load_node, load_nodl,

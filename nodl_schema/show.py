@@ -126,7 +126,7 @@ def render(iface: Interface, format: str = 'yaml', layers: bool = False) -> str:
         raise ValueError(f"unsupported format {format!r}; expected 'yaml' or 'json'")
     if not layers:
         return dump_nodl(iface, 'yaml')
-    head = {'nodl_version': iface.nodl_version}
+    head: dict[str, Any] = {'nodl_version': iface.nodl_version}
     if iface.description is not None:
         head['description'] = iface.description
     lines = [_yaml(head).rstrip('\n')]

@@ -631,16 +631,16 @@ class _Reader:
         role = attributes.get('role')
         from_role: tuple[str, ...] | None = None
         if role is not None:
-            value = role.value.strip()
-            if value == 'both':
+            role_value = role.value.strip()
+            if role_value == 'both':
                 from_role = roles
-            elif value in roles:
-                from_role = (value,)
+            elif role_value in roles:
+                from_role = (role_value,)
             else:
                 choices = (*roles, 'both')
                 self.error(f"invalid role '{role.value}' for <{kind}>; expected "
                            f"{', '.join(choices[:-1])} or {choices[-1]}"
-                           + _did_you_mean(value, choices), role)
+                           + _did_you_mean(role_value, choices), role)
                 return ()
         written = [attributes[w] for w in roles if w in attributes]
         if role is not None and from_role is not None and written:

@@ -89,7 +89,7 @@ class ActionEndpoint:
 Endpoint = Union[TopicEndpoint, ServiceEndpoint, ActionEndpoint]
 
 #: Section name -> endpoint class, in file order.
-ENDPOINT_SECTIONS: dict[str, type] = {
+ENDPOINT_SECTIONS: dict[str, Any] = {
     'publishers': TopicEndpoint,
     'subscriptions': TopicEndpoint,
     'service_servers': ServiceEndpoint,
