@@ -145,3 +145,11 @@ def test_usage_errors_exit_2(args: list[str], message: str) -> None:
     result = nodl('check', *args, '--timeout', '30')
     assert result.returncode == 2
     assert message in result.stderr
+
+
+def test_missing_definition_file_is_an_io_error_not_a_crash(tmp_path: Path) -> None:
+    result = nodl('check', '/whatever', str(tmp_path / 'missing.nodl.yaml'), '--timeout', '1')
+    assert result.returncode == 2
+    assert 'cannot read the definition' in result.stderr
+    assert 'missing.nodl.yaml' in result.stderr
+    assert 'internal error' not in result.stderr and 'Traceback' not in result.stderr

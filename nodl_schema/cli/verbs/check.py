@@ -45,6 +45,10 @@ class CheckVerb(Verb):
         except ValidationError as exc:
             sys.stderr.write(format_text(exc.diagnostics))
             return EXIT_USAGE
+        except OSError as exc:
+            print(f'nodl check: error: cannot read the definition {exc.filename or ""}: '
+                  f'{exc.strerror or exc}', file=sys.stderr)
+            return EXIT_USAGE
         except (LiveError, ValueError) as exc:
             print(f'nodl check: error: {exc}', file=sys.stderr)
             return EXIT_USAGE

@@ -28,7 +28,8 @@ class ShowVerb(Verb):
 
         if len(args.target) == 1:
             if not os.path.isfile(args.target[0]):
-                print(f'nodl show: error: {args.target[0]}: no such file (to look up an installed '
+                what = 'is a directory' if os.path.isdir(args.target[0]) else 'no such file'
+                print(f'nodl show: error: {args.target[0]}: {what} (to look up an installed '
                       'node, give PACKAGE EXECUTABLE)', file=sys.stderr)
                 return EXIT_USAGE
             shown = show_file(args.target[0])
