@@ -38,7 +38,7 @@ def step(title: str, args: list[str], expect: int = 0, head: int | None = None,
 
 def validate_and_compose() -> None:
     step('Validate every bundled example (node, lifecycle node, interface, parameter)',
-         ['validate', '-q', 'examples/'])
+         ['validate', 'examples/'])
     step('A file full of typical mistakes: every problem at once, with FILE:LINE:COL',
          ['validate', 'examples/mistakes/typos.yaml'], expect=1)
     step('The same diagnostics as JSON, for tools',
