@@ -9,7 +9,7 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Iterable
 
-from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.diagnostics import Diagnostic, has_errors
 from nodl_schema.files import STDIN, find_nodl_files
 from nodl_schema.loading import Report, check_source
 from nodl_schema.validation.kinds import Kind
@@ -74,5 +74,4 @@ def check_paths(paths: Iterable[str], kind: Kind | None = None,
 
 def failed(result: FileResult, strict: bool) -> bool:
     """True if the file is invalid (with ``strict``, warnings count)."""
-    failing = (Severity.ERROR, Severity.WARNING) if strict else (Severity.ERROR,)
-    return any(d.severity in failing for d in result.diagnostics)
+    return has_errors(result.diagnostics, strict)

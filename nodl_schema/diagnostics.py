@@ -149,24 +149,10 @@ class Diagnostic:
         }
 
 
-def error(message: str, path: DocPath = (), anchor: str = 'value') -> Diagnostic:
-    """Shorthand used by the checks: an error at ``path``."""
-    return Diagnostic(Severity.ERROR, message, path, anchor=anchor)
-
-
-def warning(message: str, path: DocPath = (), anchor: str = 'value') -> Diagnostic:
-    """Shorthand used by the checks: a warning at ``path``."""
-    return Diagnostic(Severity.WARNING, message, path, anchor=anchor)
-
-
-def info(message: str, path: DocPath = (), anchor: str = 'value') -> Diagnostic:
-    """Shorthand used by the checks: an informational remark at ``path``."""
-    return Diagnostic(Severity.INFO, message, path, anchor=anchor)
-
-
-def has_errors(diagnostics: Iterable[Diagnostic]) -> bool:
-    """True if any diagnostic is an error."""
-    return any(d.severity is Severity.ERROR for d in diagnostics)
+def has_errors(diagnostics: Iterable[Diagnostic], strict: bool = False) -> bool:
+    """True if any diagnostic is an error (with ``strict``, a warning too)."""
+    failing = (Severity.ERROR, Severity.WARNING) if strict else (Severity.ERROR,)
+    return any(d.severity in failing for d in diagnostics)
 
 
 class ValidationError(ValueError):
@@ -174,8 +160,7 @@ class ValidationError(ValueError):
 
     def __init__(self, diagnostics: Sequence[Diagnostic]):
         self.diagnostics: list[Diagnostic] = list(diagnostics)
-        errors = [d for d in self.diagnostics if d.severity is Severity.ERROR] or self.diagnostics
-        super().__init__('\n'.join(str(d) for d in errors))
+        super().__init__('\n'.join(str(d) for d in self.errors or self.diagnostics))
 
     @property
     def errors(self) -> list[Diagnostic]:

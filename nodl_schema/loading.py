@@ -13,10 +13,12 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Any, Union
 
-from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
+from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError, has_errors
 from nodl_schema.frontends.source import Source, read_source
 from nodl_schema.frontends.yaml_json import ParsedDocument, parse_document
 from nodl_schema.validation import Kind, detect_kind, validate_data
+from nodl_schema.validation.kinds import KIND_REASONS
+from nodl_schema.validation.messages import article, kind_of
 
 __all__ = [
     'Document', 'Report', 'check_source', 'load_nodl', 'load_parameter', 'load_interface',
@@ -41,11 +43,6 @@ def _model_class(kind: Kind) -> Any:
     return {Kind.PARAMETER: model.ParameterDefinition, Kind.INTERFACE: model.Interface,
             Kind.NODE: model.Node}[kind]
 
-_WHY = {
-    Kind.PARAMETER: 'it has no nodl_version',
-    Kind.INTERFACE: 'it has nodl_version and no base, main or mixins',
-    Kind.NODE: 'it has base, main or mixins',
-}
 
 
 class Report:
@@ -64,9 +61,7 @@ class Report:
     def diagnostics(self) -> list[Diagnostic]:
         """Every diagnostic, placed at ``file:line:column`` and in source order."""
         if self._placed is None:
-            parsed = self._parsed
-            placed = [parsed.place(d) if parsed is not None else d.at(self.file, d.line, d.column)
-                      for d in self._raw]
+            placed = [self.place(d) for d in self._raw]
             placed.sort(key=lambda d: (d.line, d.column))
             self._placed = placed
         return self._placed
@@ -89,18 +84,13 @@ class Report:
 
     def has_errors(self, strict: bool = False) -> bool:
         """True if the document is invalid (with ``strict``, warnings count too)."""
-        failing = (Severity.ERROR, Severity.WARNING) if strict else (Severity.ERROR,)
-        return any(d.severity in failing for d in self._raw)
+        return has_errors(self._raw, strict)
 
     def model(self) -> Document:
         """The typed document (only for a report without errors)."""
         if self.kind is None or self.has_errors():
             raise ValidationError(self.diagnostics)
         return _model_class(self.kind).from_dict(self.data)
-
-
-def _article(kind: Kind) -> str:
-    return f'an {kind}' if kind is Kind.INTERFACE else f'a {kind}'
 
 
 def check_source(source: Source, *, kind: Kind | str | None = None,
@@ -122,8 +112,8 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
     detected = detect_kind(parsed.data)
     if wanted is not None and wanted is not detected:
         mismatch = Diagnostic(
-            Severity.ERROR, f'expected {_article(wanted)} definition, but this is '
-            f'{_article(detected)} definition ({_WHY[detected]})', (), text.file, 1, 1)
+            Severity.ERROR, f'expected {article(wanted)} definition, but this is '
+            f'{article(detected)} definition ({KIND_REASONS[detected]})', (), text.file, 1, 1)
         return Report(text.file, wanted, parsed.data, [mismatch], parsed)
     return Report(text.file, detected, parsed.data, validate_data(parsed.data, detected), parsed)
 
@@ -162,10 +152,10 @@ def load_node(source: Source, *, strict: bool = False, file: str | None = None) 
 def _validate(data: Any, kind: Kind) -> list[Diagnostic]:
     if not isinstance(data, dict):
         raise ValidationError([Diagnostic(
-            Severity.ERROR, f'a {kind} definition is a mapping, not {type(data).__name__}',
+            Severity.ERROR, f'{article(kind)} definition is a mapping, not {kind_of(data)}',
             (), '<dict>')])
     diagnostics = [d.at('<dict>', 0, 0) for d in validate_data(data, kind)]
-    if any(d.severity is Severity.ERROR for d in diagnostics):
+    if has_errors(diagnostics):
         raise ValidationError(diagnostics)
     return diagnostics
 

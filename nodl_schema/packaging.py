@@ -92,8 +92,8 @@ def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
 
 def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, str],
               staging_dir: str) -> None:
-    from nodl_schema.checking import check_paths
-    from nodl_schema.reporting import format_text
+    from nodl_schema.checking import check_paths, failed
+    from nodl_schema.reporting import format_text, without_info
     from nodl_schema.validation.kinds import Kind
 
     # A staging index lets nodl://<package>/<name> resolve before installation: its
@@ -118,10 +118,10 @@ def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, s
         for kind, registry in ((Kind.INTERFACE, interfaces), (Kind.NODE, nodes)):
             # one file may serve several keys: check (and report) it once
             for result in check_paths(list(dict.fromkeys(registry.values())), kind, resolve=True):
-                shown = [d for d in result.diagnostics if d.severity.value != 'info']
+                shown = without_info(result.diagnostics)
                 if shown:
                     sys.stderr.write(format_text(shown))
-                if result.problem or any(d.severity.value == 'error' for d in result.diagnostics):
+                if result.problem or failed(result, strict=False):
                     failures.append(result.path)
     finally:
         if previous is None:

@@ -8,7 +8,7 @@ if TYPE_CHECKING:
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
-__all__ = ['Tally', 'format_text', 'format_json', 'summary_line']
+__all__ = ['Tally', 'without_info', 'format_text', 'format_json', 'summary_line']
 
 
 class Tally:
@@ -31,6 +31,11 @@ class Tally:
                 self.warnings += 1
             else:
                 self.infos += 1
+
+
+def without_info(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
+    """The diagnostics a user sees by default: errors and warnings."""
+    return [d for d in diagnostics if d.severity is not Severity.INFO]
 
 
 def _plural(count: int, word: str) -> str:

@@ -64,25 +64,10 @@ def show_file(path: str) -> Shown:
 
 def show_registered(package: str, executable: str) -> Shown:
     """The resolved interface of the node definition registered for ``package``'s ``executable``."""
-    from nodl_schema.index.registry import describe_missing, find_node
+    from nodl_schema.index.registry import compose_registered
 
-    registration = find_node(package, executable)
-    if registration is None:
-        return Shown(None, [Diagnostic(Severity.ERROR, describe_missing(package, executable),
-                                       (), f'{package}/{executable}')], f'{package}/{executable}')
-    if registration.kind == 'legacy node':
-        from nodl_schema.index.legacy import legacy_node_interface
-
-        return legacy_node_interface(registration)
-    from nodl_schema.composition.resolvers import ResolutionError
-    from nodl_schema.index.registry import read_registration
-
-    try:  # an entry pointing at a file that is not there (a partly removed installation)
-        read_registration(registration)
-    except ResolutionError as exc:
-        return Shown(None, [Diagnostic(Severity.ERROR, exc.message, (), f'{package}/{executable}')],
-                     f'{package}/{executable}')
-    return show_file(registration.file)
+    composed, diagnostics, source = compose_registered(package, executable)
+    return Shown(composed.interface if composed is not None else None, diagnostics, source)
 
 
 def _entity_blocks(iface: Interface) -> list[tuple[str, list[tuple[str | None, Any]]]]:

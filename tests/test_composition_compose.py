@@ -369,7 +369,31 @@ def test_path_resolver_reads_relative_to_the_node_file() -> None:
     resolved = PathResolver().resolve('file://first.nodl.yaml',
                                       ResolveContext(str(node), str(LAYERS.parent)))
     assert resolved.file == str((LAYERS / 'first.nodl.yaml').resolve())
-    assert resolved.text == (LAYERS / 'first.nodl.yaml').read_text()
+    assert resolved.text == (LAYERS / 'first.nodl.yaml').read_bytes()  # raw: the loader decodes it
+
+
+def test_a_mixin_file_gets_the_same_encoding_check_as_any_document(tmp_path: Path) -> None:
+    (tmp_path / 'package.xml').write_text('<package/>')
+    (tmp_path / 'latin1.nodl.yaml').write_bytes('nodl_version: 2\ndescription: caf\xe9\n'.encode('latin-1'))
+    node = tmp_path / 'node.nodl.yaml'
+    node.write_text('nodl_version: 2\nmixins: [latin1.nodl.yaml]\nmain: {nodl_version: 2}\n')
+    with pytest.raises(ValidationError) as caught:
+        compose(node)
+    messages = [str(d) for d in caught.value.diagnostics]
+    assert any(m.startswith(f'{node}:2:10: error: mixin ') for m in messages), messages
+    assert any(':2:17: error: document is not valid UTF-8' in m for m in messages), messages
+
+
+def test_a_symbolic_link_may_not_lead_out_of_the_package(tmp_path: Path) -> None:
+    package = tmp_path / 'pkg'
+    package.mkdir()
+    (package / 'package.xml').write_text('<package/>')
+    (tmp_path / 'outside.nodl.yaml').write_text('nodl_version: 2\n')
+    (package / 'inside.nodl.yaml').symlink_to(tmp_path / 'outside.nodl.yaml')
+    node = package / 'node.nodl.yaml'
+    node.write_text('nodl_version: 2\nmixins: [inside.nodl.yaml]\nmain: {nodl_version: 2}\n')
+    with pytest.raises(ValidationError, match='leaves the package directory'):
+        compose(node)
 
 
 class _Exploding:

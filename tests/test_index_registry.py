@@ -92,13 +92,13 @@ def test_read_registration() -> None:
     talker = find_node('alpha', 'talker', BOTH)
     resolved = read_registration(talker, BOTH)
     assert resolved.file == talker.file
-    assert resolved.text == Path(talker.file).read_text()
+    assert resolved.text == Path(talker.file).read_bytes()  # raw: the loader decodes it
     inline = find_node('alpha', 'inline', BOTH)
     resolved = read_registration(inline, BOTH)
     assert resolved.file == entry(FIRST, 'nodl_nodes', 'alpha__inline')
     assert 'A node definition held in the index entry itself.' in resolved.text
     chatter = next(r for r in list_registrations('alpha', BOTH) if r.name == 'chatter')
-    assert read_registration(chatter, BOTH).text.startswith('nodl_version: 2\ndescription: Chatting.')
+    assert read_registration(chatter, BOTH).text.startswith(b'nodl_version: 2\ndescription: Chatting.')
 
 
 def test_read_registration_errors() -> None:

@@ -212,8 +212,9 @@ def test_validation_error_diagnostic_fields() -> None:
 def test_validate_refuses_what_is_not_a_mapping(validate: Any, kind: str, data: Any) -> None:
     with pytest.raises(ValidationError) as info:
         validate(data)
+    expected_kind = {list: 'a list', str: 'a string', type(None): 'null', int: 'an integer'}[type(data)]
     assert [d.message for d in info.value.diagnostics] == [
-        f'a {kind} definition is a mapping, not {type(data).__name__}']
+        f"{'an' if kind == 'interface' else 'a'} {kind} definition is a mapping, not {expected_kind}"]
 
 
 def test_validate_does_not_detect_the_kind() -> None:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import os
 
 from nodl_schema.composition.resolvers import ResolutionError, ResolveContext, Resolved
+from nodl_schema.frontends.source import read_limited
 from nodl_schema.index import ament
 
 __all__ = ['AmentIndexResolver', 'read_registered', 'INTERFACE_RESOURCE', 'NODE_RESOURCE',
@@ -37,8 +38,7 @@ def read_registered(resource: ament.Resource, package: str) -> Resolved:
             os.path.join(resource.prefix, 'share', package, content)]
         for candidate in candidates:
             if os.path.isfile(candidate):
-                with open(candidate, 'rb') as f:
-                    return Resolved(f.read().decode('utf-8', errors='replace'), candidate)
+                return Resolved(read_limited(candidate), candidate)
         raise ResolutionError(f'the index entry {resource.path} points at {candidates[0]}, '
                               'which does not exist (is the package fully installed?)', candidates)
     return Resolved(resource.content, resource.path)

@@ -11,7 +11,6 @@ searched; the referenced file's own diagnostics follow with their positions.
 from __future__ import annotations
 
 import os
-from typing import Sequence
 
 from nodl_schema.composition.bases import base_layer
 from nodl_schema.composition.layers import MAIN, Layer
@@ -22,7 +21,7 @@ from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
 from nodl_schema.frontends.source import Source
 from nodl_schema.loading import Report, check_source
 from nodl_schema.model import Interface, Node
-from nodl_schema.validation.kinds import Kind
+from nodl_schema.validation.kinds import KIND_REASONS, Kind
 
 __all__ = ['ComposedNode', 'compose', 'compose_report']
 
@@ -93,8 +92,8 @@ def _mixin_layer(reference: str, index: int, report: Report, context: ResolveCon
         out.extend(sub.diagnostics)
         return None
     if sub.kind is not Kind.INTERFACE:
-        why = ('it declares base, main or mixins; mixins are single-level'
-               if sub.kind is Kind.NODE else 'it has no nodl_version')
+        assert sub.kind is not None  # a kind is known once there are no errors
+        why = KIND_REASONS[sub.kind] + ('; mixins are single-level' if sub.kind is Kind.NODE else '')
         fail(f"mixin '{reference}' ({resolved.file}) is a {sub.kind} definition, not an interface "
              f'definition: {why}')
         return None
@@ -146,7 +145,3 @@ def compose(source: Source, *, file: str | None = None,
         raise ValidationError(diagnostics)
     return composed
 
-
-def layer_labels(layers: Sequence[Layer]) -> list[str]:
-    """The labels of ``layers`` (for display)."""
-    return [layer.label for layer in layers]

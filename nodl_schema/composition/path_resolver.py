@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 
 from nodl_schema.composition.resolvers import ResolutionError, ResolveContext, Resolved
+from nodl_schema.frontends.source import read_limited
 
 __all__ = ['PathResolver']
 
@@ -28,16 +29,15 @@ class PathResolver:
                                   'load the node definition from a file')
         base = os.path.dirname(os.path.abspath(context.node_file))
         target = os.path.normpath(os.path.join(base, path))
-        boundary = context.boundary or base
-        if os.path.commonpath([boundary, target]) != os.path.normpath(boundary):
+        boundary = os.path.realpath(context.boundary or base)
+        # Real paths: a symbolic link inside the package must not lead out of it.
+        if os.path.commonpath([boundary, os.path.realpath(target)]) != boundary:
             raise ResolutionError(f'{reference!r} leaves the package directory {boundary}; '
                                   'a mixin path must stay inside its package (use '
                                   'nodl://<package>/<name> for another package)', [target])
         if not os.path.isfile(target):
             raise ResolutionError(f'no file {target}', [target])
         try:
-            with open(target, 'rb') as f:
-                data = f.read()
+            return Resolved(read_limited(target), target)
         except OSError as exc:
             raise ResolutionError(f'cannot read {target}: {exc.strerror}', [target]) from None
-        return Resolved(data.decode('utf-8', errors='replace'), target)

@@ -33,9 +33,13 @@ class ResolveContext(NamedTuple):
 
 
 class Resolved(NamedTuple):
-    """A resolved reference: the document text and the file it came from."""
+    """A resolved reference: the document and the file it came from.
 
-    text: str
+    ``text`` may be ``bytes`` as read from disk: the loader then applies the
+    same size and UTF-8 checks as to any other document.
+    """
+
+    text: str | bytes
     file: str
 
 

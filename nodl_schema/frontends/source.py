@@ -9,7 +9,6 @@ from __future__ import annotations
 import os
 import re
 from collections import namedtuple
-from pathlib import Path
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
@@ -17,7 +16,7 @@ if TYPE_CHECKING:
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
-__all__ = ['MAX_BYTES', 'Source', 'SourceText', 'read_source', 'decode']
+__all__ = ['MAX_BYTES', 'Source', 'SourceText', 'read_source', 'read_limited', 'decode']
 
 #: Documents larger than this are rejected before parsing.
 MAX_BYTES = 10 * 1024 * 1024
@@ -95,6 +94,16 @@ def _read_stream(read: Callable[[int], Any]) -> Any:
     return ''.join(chunks) if isinstance(first, str) else b''.join(bytes(c) for c in chunks)
 
 
+def read_limited(path: str | os.PathLike) -> bytes:
+    """A file's bytes, read only up to the size limit plus one byte.
+
+    A FIFO or a device such as /dev/zero reports size 0 and may never end;
+    the caller's :func:`decode` rejects what is over the limit.
+    """
+    with open(path, 'rb') as stream:
+        return bytes(_read_stream(stream.read))
+
+
 def decode(data: bytes, file: str) -> tuple[str | None, Diagnostic | None]:
     """Decode UTF-8 (a BOM is allowed); anything else is a clear error."""
     if len(data) > MAX_BYTES:
@@ -128,16 +137,10 @@ def read_source(source: Source, file: str | None = None) -> tuple[SourceText | N
     I/O errors (a missing file, a directory) propagate as :class:`OSError`.
     """
     if isinstance(source, os.PathLike):
-        path = Path(source)
-        name = file or str(path)
-        size = path.stat().st_size
-        if size > MAX_BYTES:
+        name = file or os.fspath(source)
+        if os.stat(source).st_size > MAX_BYTES:
             return None, _problem(name, _too_large())
-        # Read at most one byte more than the limit: a FIFO or a device such
-        # as /dev/zero reports size 0 and may never end.
-        with path.open('rb') as stream:
-            data = _read_stream(stream.read)
-        text, problem = decode(bytes(data), name)
+        text, problem = decode(read_limited(source), name)
         return (SourceText(text, name), None) if text is not None else (None, problem)
     if isinstance(source, str):
         return _check_text(source, file or '<string>')

@@ -15,11 +15,11 @@ from __future__ import annotations
 
 import os
 
-from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
+from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.index import ament
 from nodl_schema.index.registry import Registration
 
-__all__ = ['legacy_registrations', 'legacy_files', 'legacy_node_interface', 'legacy_composed']
+__all__ = ['legacy_registrations', 'legacy_files', 'compose_legacy']
 
 LEGACY_RESOURCE = 'nodl_desc'
 LEGACY_KIND = 'legacy node'
@@ -91,7 +91,8 @@ def _converted(registration: Registration):  # type: ignore[no-untyped-def]
         registration.file)]
 
 
-def _compose(registration: Registration):  # type: ignore[no-untyped-def]
+def compose_legacy(registration: Registration):  # type: ignore[no-untyped-def]
+    """The legacy node converted to v2 and composed: ``(composed or None, diagnostics)``."""
     from nodl_schema.composition import compose_report
     from nodl_schema.loading import check_source, dump_nodl
     from nodl_schema.validation.kinds import Kind
@@ -107,20 +108,3 @@ def _compose(registration: Registration):  # type: ignore[no-untyped-def]
     # Warnings about the in-memory v2 document (no descriptions, ...) say nothing the
     # conversion has not said already; only errors matter here.
     return composed, diagnostics + [d for d in more if d.severity is Severity.ERROR]
-
-
-def legacy_composed(registration: Registration):  # type: ignore[no-untyped-def]
-    """The legacy node converted to v2 and composed (raises ValidationError)."""
-    composed, diagnostics = _compose(registration)
-    if composed is None:
-        raise ValidationError(diagnostics)
-    return composed
-
-
-def legacy_node_interface(registration: Registration):  # type: ignore[no-untyped-def]
-    """What ``show`` prints for a legacy node: its v2 interface, composed."""
-    from nodl_schema.show import Shown
-
-    composed, diagnostics = _compose(registration)
-    shown = [d for d in diagnostics if d.severity is not Severity.INFO]
-    return Shown(composed.interface if composed is not None else None, shown, registration.file)

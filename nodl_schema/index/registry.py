@@ -17,7 +17,8 @@ from nodl_schema.composition.ament_resolver import (
 from nodl_schema.composition.resolvers import ResolutionError, Resolved
 from nodl_schema.index import ament
 
-__all__ = ['Registration', 'list_registrations', 'find_node', 'read_registration']
+__all__ = ['Registration', 'list_registrations', 'find_node', 'read_registration',
+           'compose_registered', 'describe_missing']
 
 _KINDS = {NODE_RESOURCE: 'node', INTERFACE_RESOURCE: 'interface'}
 
@@ -106,6 +107,32 @@ def describe_missing(package: str, executable: str, prefixes: list[str] | None =
     return f"package '{package}' registers no node definitions"
 
 
-def share_file(prefix: str, package: str, relative: str) -> str:
-    """``<prefix>/share/<package>/<relative>``."""
-    return os.path.join(prefix, 'share', package, relative)
+def compose_registered(package: str, executable: str, prefixes: list[str] | None = None):  # type: ignore[no-untyped-def]
+    """Find and compose the node definition registered for ``package``'s ``executable``.
+
+    Returns ``(composed or None, diagnostics, source)``; a legacy node is
+    converted to v2 in memory first.  Never raises for a missing or broken
+    registration: that is a diagnostic.
+    """
+    from nodl_schema.composition import compose_report
+    from nodl_schema.diagnostics import Diagnostic, Severity
+    from nodl_schema.loading import check_source
+    from nodl_schema.validation.kinds import Kind
+
+    where = f'{package}/{executable}'
+    registration = find_node(package, executable, prefixes)
+    if registration is None:
+        return None, [Diagnostic(Severity.ERROR, describe_missing(package, executable, prefixes),
+                                 (), where)], where
+    if registration.kind == 'legacy node':
+        from nodl_schema.index.legacy import compose_legacy
+
+        composed, diagnostics = compose_legacy(registration)
+        return composed, diagnostics, registration.file
+    try:
+        resolved = read_registration(registration, prefixes)
+    except ResolutionError as exc:  # an entry whose file is gone (a partly removed install)
+        return None, [Diagnostic(Severity.ERROR, exc.message, (), where)], where
+    composed, diagnostics = compose_report(
+        check_source(resolved.text, kind=Kind.NODE, file=resolved.file))
+    return composed, diagnostics, resolved.file

@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 from typing import Iterable
 
-from nodl_schema.composition import ComposedNode, compose_report
+from nodl_schema.composition import ComposedNode, compose
 from nodl_schema.diagnostics import ValidationError
 from nodl_schema.live.conformance import Difference, compare, conforms, parse_remaps
 from nodl_schema.live.observe import ObservedNode, observe_node
@@ -47,34 +47,20 @@ def load_definition(definition: str | os.PathLike | tuple[str, str]) -> Composed
     """Compose a node definition given as a file or ``(package, executable)``.
 
     Raises :class:`~nodl_schema.diagnostics.ValidationError` with every
-    diagnostic if it cannot be found, read or composed.
+    diagnostic if it cannot be found, read or composed (OSError for an
+    unreadable file).
     """
+    if isinstance(definition, tuple):
+        from nodl_schema.index.registry import compose_registered
+
+        composed, diagnostics, _ = compose_registered(*definition)
+        if composed is None:
+            raise ValidationError(diagnostics)
+        return composed
     from pathlib import Path
 
-    from nodl_schema.diagnostics import Diagnostic, Severity
-    from nodl_schema.loading import check_source
-    from nodl_schema.validation.kinds import Kind
-
-    if isinstance(definition, tuple):
-        from nodl_schema.index.registry import describe_missing, find_node
-
-        package, executable = definition
-        registration = find_node(package, executable)
-        if registration is None:
-            raise ValidationError([Diagnostic(Severity.ERROR, describe_missing(package, executable),
-                                              (), f'{package}/{executable}')])
-        if registration.kind == 'legacy node':
-            from nodl_schema.index.legacy import legacy_composed
-
-            return legacy_composed(registration)
-        path = registration.file
-    else:
-        path = os.fspath(definition)
-    report = check_source(Path(path), kind=Kind.NODE, file=path)
-    composed, diagnostics = compose_report(report)
-    if composed is None:
-        raise ValidationError(diagnostics)
-    return composed
+    path = os.fspath(definition)
+    return compose(Path(path), file=path)
 
 
 def check_node(fqn: str, definition: str | os.PathLike | tuple[str, str], *,

@@ -24,7 +24,7 @@ FIXED_BASES = ('string', 'int_array', 'double_array', 'string_array')
 #: For messages and suggestions.
 ALL_TYPE_WORDS = SCALAR_TYPES + ARRAY_TYPES + tuple(f'{b}_fixed_N' for b in FIXED_BASES)
 
-_FIXED = re.compile(r'(string|int_array|double_array|string_array|bool_array)_fixed_([0-9]+)')
+_FIXED = re.compile(r'(string|int_array|double_array|string_array)_fixed_([1-9][0-9]*)')
 
 
 class TypeSpec(namedtuple('TypeSpec', ['name', 'base', 'size'], defaults=[None])):
@@ -62,8 +62,7 @@ def parse_type(name: Any) -> TypeSpec | None:
     if name in SCALAR_TYPES or name in ARRAY_TYPES:
         return TypeSpec(name, name)
     match = _FIXED.fullmatch(name)
-    if match and match.group(1) != 'bool_array' and int(match.group(2)) >= 1 \
-            and not match.group(2).startswith('0'):
+    if match:
         return TypeSpec(name, match.group(1), int(match.group(2)))
     return None
 

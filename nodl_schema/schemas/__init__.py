@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import copy
 import json
+import os
 from functools import lru_cache
-from pathlib import Path
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
+    from pathlib import Path
     from typing import Any
 
 __all__ = ['KINDS', 'schema_path', 'load_schema', 'bundled_schema']
@@ -22,25 +23,31 @@ __all__ = ['KINDS', 'schema_path', 'load_schema', 'bundled_schema']
 #: The kinds of NoDL document, each with a schema file.
 KINDS = ('parameter', 'interface', 'node')
 
-_HERE = Path(__file__).resolve().parent
+_HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def _file_name(kind: str) -> str:
+    if kind not in KINDS:
+        raise ValueError(f"unknown schema kind '{kind}'; expected one of: {', '.join(KINDS)}")
+    return f'{kind}.schema.json'
 
 
 def schema_path(kind: str) -> Path:
     """The path of the shipped schema file for ``kind``."""
-    if kind not in KINDS:
-        raise ValueError(f"unknown schema kind '{kind}'; expected one of: {', '.join(KINDS)}")
-    return _HERE / f'{kind}.schema.json'
+    from pathlib import Path
+
+    return Path(_HERE, _file_name(kind))
 
 
 @lru_cache(maxsize=None)
 def _load(file_name: str) -> dict[str, Any]:
-    with open(_HERE / file_name, encoding='utf-8') as f:
+    with open(os.path.join(_HERE, file_name), encoding='utf-8') as f:
         return json.load(f)
 
 
 def load_schema(kind: str) -> dict[str, Any]:
     """The schema for ``kind`` exactly as shipped (a fresh copy)."""
-    return copy.deepcopy(_load(schema_path(kind).name))
+    return copy.deepcopy(_load(_file_name(kind)))
 
 
 def load_schema_file(file_name: str) -> dict[str, Any]:
@@ -56,7 +63,7 @@ def bundled_schema(kind: str) -> dict[str, Any]:
     """
     result = load_schema(kind)
     definitions: dict[str, Any] = result.setdefault('definitions', {})
-    imported = {schema_path(kind).name}
+    imported = {_file_name(kind)}
     while True:
         missing = {name for name in _external_files(result) if name not in imported}
         if not missing:

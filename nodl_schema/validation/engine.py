@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from functools import lru_cache
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
@@ -33,9 +32,15 @@ FORMATS = {
 }
 
 
-@lru_cache(maxsize=None)
+_compiler: SchemaCompiler | None = None
+
+
 def _structure(kind: Kind) -> Check:
-    return SchemaCompiler(FORMATS).compile_ref(f'{kind.value}.schema.json')
+    # One compiler for every kind: it caches what the schema files share.
+    global _compiler
+    if _compiler is None:
+        _compiler = SchemaCompiler(FORMATS)
+    return _compiler.compile_ref(f'{kind.value}.schema.json')
 
 
 def _check_node(data: Any, out: list[Diagnostic]) -> None:

@@ -8,7 +8,7 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Any
 
-__all__ = ['Kind', 'detect_kind', 'NODE_KEYS', 'INTERFACE_KEYS']
+__all__ = ['Kind', 'detect_kind', 'KIND_REASONS', 'NODE_KEYS', 'INTERFACE_KEYS']
 
 NODE_KEYS = ('base', 'main', 'mixins')
 INTERFACE_KEYS = ('parameters', 'publishers', 'subscriptions', 'service_servers',
@@ -24,6 +24,14 @@ class Kind(str, enum.Enum):
 
     def __str__(self) -> str:
         return self.value
+
+
+#: Why :func:`detect_kind` decides on each kind, for messages.
+KIND_REASONS = {
+    Kind.PARAMETER: 'it has no nodl_version',
+    Kind.INTERFACE: 'it has nodl_version and no base, main or mixins',
+    Kind.NODE: 'it has base, main or mixins',
+}
 
 
 def detect_kind(data: Any) -> Kind:

@@ -30,6 +30,12 @@ def show(value: Any, limit: int = 40) -> str:
     return text if len(text) <= limit else text[:limit - 3] + '...'
 
 
+def article(word: object) -> str:
+    """``word`` with its indefinite article: 'an int', 'a string', 'an interface'."""
+    text = str(word)
+    return f"{'an' if text[:1] in 'aeiou' else 'a'} {text}"
+
+
 def kind_of(value: Any) -> str:
     """The YAML/JSON kind of a value, with an article."""
     if value is None:

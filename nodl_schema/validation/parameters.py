@@ -20,7 +20,7 @@ if TYPE_CHECKING:
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.model.parameter_types import (
     ALL_TYPE_WORDS, ARRAY_TYPES, SCALAR_TYPES, TypeSpec, element_fits, parse_type)
-from nodl_schema.validation.messages import described, did_you_mean, one_of, show
+from nodl_schema.validation.messages import article, described, did_you_mean, one_of, show
 
 __all__ = ['BUILTIN_VALIDATORS', 'check_parameter_type', 'check_validator_name', 'check_parameter']
 
@@ -51,11 +51,6 @@ _ELEMENT_WORDS = {'bool': 'a boolean', 'int': 'an integer', 'double': 'a number'
 
 def _error(message: str, path: DocPath, anchor: str = 'value') -> Diagnostic:
     return Diagnostic(Severity.ERROR, message, path, anchor=anchor)
-
-
-def _a(word: str) -> str:
-    """``word`` with its indefinite article: 'an int', 'a string'."""
-    return f"{'an' if word[:1] in 'aeiou' else 'a'} {word}"
 
 
 def check_parameter_type(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
@@ -111,10 +106,6 @@ def _scalar_arg(args: Any) -> Any:
     return args
 
 
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
 def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Semantic checks of one parameter definition found at ``path``."""
     if not isinstance(param, dict):
@@ -159,7 +150,7 @@ def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
     for bare, (key, args) in builtins.items():
         applies = BUILTIN_VALIDATORS[bare]
         if not _applies(applies, spec):
-            out.append(_error(f"'{key}' does not apply to {_a(spec.category)} parameter; it is for "
+            out.append(_error(f"'{key}' does not apply to {article(spec.category)} parameter; it is for "
                               f'{_APPLIES_WORDS[applies]}', vpath + (key,), 'key'))
             continue
         fitting[bare] = (key, args)
@@ -198,13 +189,13 @@ def _applies(applies: str, spec: TypeSpec) -> bool:
 
 def _check_default(value: Any, spec: TypeSpec, path: DocPath, out: list[Diagnostic]) -> bool:
     if value is None:
-        out.append(_error(f'default_value is null; {_a(spec.name)} parameter needs '
+        out.append(_error(f'default_value is null; {article(spec.name)} parameter needs '
                           f'{_expected(spec)} (leave default_value out to make the parameter '
                           'required at start-up)', path))
         return False
     if spec.is_array:
         if not isinstance(value, list):
-            out.append(_error(f'default_value of {_a(spec.name)} parameter must be a list of '
+            out.append(_error(f'default_value of {article(spec.name)} parameter must be a list of '
                               f'{spec.element} values, not {described(value)}', path))
             return False
         ok = True
@@ -225,7 +216,7 @@ def _check_default(value: Any, spec: TypeSpec, path: DocPath, out: list[Diagnost
             ok = False
         return ok
     if not element_fits(value, spec.element):
-        out.append(_error(f'default_value of {_a(spec.name)} parameter must be {_expected(spec)}, '
+        out.append(_error(f'default_value of {article(spec.name)} parameter must be {_expected(spec)}, '
                           f'not {described(value)}', path))
         return False
     if spec.size is not None and len(value) > spec.size:
@@ -245,7 +236,7 @@ def _check_arguments(bare: str, key: str, args: Any, spec: TypeSpec, path: DocPa
                      out: list[Diagnostic]) -> bool:
     """Arguments of the parameter's kind; False if they are unusable."""
     if bare in ('bounds', 'element_bounds'):
-        if not (isinstance(args, list) and len(args) == 2 and all(map(_is_number, args))):
+        if not (isinstance(args, list) and len(args) == 2 and all(element_fits(a, 'double') for a in args)):
             return False  # the structural check reported the shape
         if args[0] > args[1]:
             out.append(_error(f'{key}: the lower bound {show(args[0])} is greater than the upper '
@@ -254,7 +245,7 @@ def _check_arguments(bare: str, key: str, args: Any, spec: TypeSpec, path: DocPa
         return _integral(args, key, spec, path, out)
     if bare in ('lt', 'gt', 'lt_eq', 'gt_eq', 'lower_element_bounds', 'upper_element_bounds'):
         value = _scalar_arg(args)
-        return _is_number(value) and _integral([value], key, spec, path, out)
+        return element_fits(value, 'double') and _integral([value], key, spec, path, out)
     if bare in ('fixed_size', 'size_gt', 'size_lt'):
         value = _scalar_arg(args)
         return isinstance(value, int) and not isinstance(value, bool) and value >= 0
@@ -264,9 +255,9 @@ def _check_arguments(bare: str, key: str, args: Any, spec: TypeSpec, path: DocPa
         ok = True
         for index, item in enumerate(args[0]):
             if not element_fits(item, spec.element):
-                never = (f'no element of {_a(spec.name)} parameter can equal it'
+                never = (f'no element of {article(spec.name)} parameter can equal it'
                          if bare == 'subset_of' else
-                         f'{_a(spec.name)} parameter can never equal it')
+                         f'{article(spec.name)} parameter can never equal it')
                 out.append(_error(f'{key} value {show(item)} is not {_ELEMENT_WORDS[spec.element]}, '
                                   f'so {never}', path + (0, index)))
                 ok = False
@@ -300,7 +291,7 @@ def _default_breaks(bare: str, args: Any, value: Any, spec: TypeSpec) -> str | N
         return None if value >= arg else f'it must be at least {arg}'
     if bare == 'one_of':
         return None if any(value == v and type(value) is type(v) or
-                           (_is_number(value) and _is_number(v) and value == v)
+                           (element_fits(value, 'double') and element_fits(v, 'double') and value == v)
                            for v in args[0]) else f'it must be one of {one_of(map(show, args[0]))}'
     if bare == 'not_empty':
         return None if len(value) else 'it must not be empty'

@@ -163,7 +163,7 @@ class SchemaCompiler:
         return check
 
     def _enum(self, options: list[Any]) -> Check:
-        allowed = [o for o in options]
+        allowed = options
         words = [o for o in options if isinstance(o, str)]
 
         def check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
@@ -379,8 +379,7 @@ def _at_key(check: Check, key: str, path: DocPath, out: list[Diagnostic]) -> Non
     """Run a ``propertyNames`` check: what it finds is about the key, not its value."""
     found: list[Diagnostic] = []
     check(key, path, found)
-    out.extend(d if d.anchor == 'key' else
-               Diagnostic(d.severity, d.message, d.path, anchor='key') for d in found)
+    out.extend(d.replace(anchor='key') for d in found)
 
 
 def _override_message(body: Check, message: str) -> Check:

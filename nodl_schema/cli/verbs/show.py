@@ -23,7 +23,7 @@ class ShowVerb(Verb):
     def main(self, args: argparse.Namespace) -> int:
         import os
 
-        from nodl_schema.reporting import format_text
+        from nodl_schema.reporting import format_text, without_info
         from nodl_schema.show import render, show_file, show_registered
 
         if len(args.target) == 1:
@@ -38,7 +38,7 @@ class ShowVerb(Verb):
         else:
             print('nodl show: error: expected FILE or PACKAGE EXECUTABLE', file=sys.stderr)
             return EXIT_USAGE
-        problems = [d for d in shown.diagnostics if d.severity.value != 'info']
+        problems = without_info(shown.diagnostics)
         sys.stderr.write(format_text(problems))
         if shown.interface is None:
             return EXIT_FAILURE

@@ -37,7 +37,7 @@ class ValidateVerb(Verb):
 
     def main(self, args: argparse.Namespace) -> int:
         from nodl_schema.checking import check_paths, failed
-        from nodl_schema.reporting import Tally, format_json, format_text, summary_line
+        from nodl_schema.reporting import Tally, format_json, format_text, summary_line, without_info
         from nodl_schema.validation.kinds import Kind
 
         results = check_paths(args.paths, Kind(args.kind) if args.kind else None, args.resolve)
@@ -58,8 +58,7 @@ class ValidateVerb(Verb):
                 kind = result.report.kind
                 out.write(f'{result.path}: valid {kind} definition\n')
             if args.format == 'text':
-                shown = result.diagnostics if args.verbose else [
-                    d for d in result.diagnostics if d.severity.value != 'info']
+                shown = result.diagnostics if args.verbose else without_info(result.diagnostics)
                 out.write(format_text(shown))
         if args.format == 'json':
             out.write(format_json(tally.diagnostics))
