@@ -8,7 +8,7 @@ if TYPE_CHECKING:
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
-__all__ = ['Tally', 'without_info', 'format_text', 'format_json', 'summary_line']
+__all__ = ['Tally', 'plural', 'without_info', 'format_text', 'format_json', 'summary_line']
 
 
 class Tally:
@@ -38,14 +38,14 @@ def without_info(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
     return [d for d in diagnostics if d.severity is not Severity.INFO]
 
 
-def _plural(count: int, word: str) -> str:
+def plural(count: int, word: str) -> str:
     return f'{count} {word}{"" if count == 1 else "s"}'
 
 
 def summary_line(tally: Tally) -> str:
     """``N files, N errors, N warnings``."""
-    return ', '.join((_plural(tally.files, 'file'), _plural(tally.errors, 'error'),
-                      _plural(tally.warnings, 'warning')))
+    return ', '.join((plural(tally.files, 'file'), plural(tally.errors, 'error'),
+                      plural(tally.warnings, 'warning')))
 
 
 def format_text(diagnostics: Iterable[Diagnostic]) -> str:

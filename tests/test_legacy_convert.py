@@ -395,3 +395,12 @@ def test_render_converted_has_a_header() -> None:
         f'# Converted from {LEGACY / "role_attributes.nodl.xml"} by `nodl convert`',
         "# (legacy NoDL XML: node 'node_2', executable 'second', line 7)."]
     assert nodl_schema.load_node(text).main.action_servers[0].name == '/example_action'  # type: ignore[index]
+
+
+def test_a_failed_write_names_the_output_and_keeps_what_was_written(tmp_path: Path) -> None:
+    (tmp_path / 'second.nodl.yaml').mkdir()  # the second node's output cannot be written
+    [result] = convert_files([LEGACY / 'role_attributes.nodl.xml'], tmp_path)
+    assert result.problem is not None
+    assert result.problem.startswith(f'cannot write {tmp_path / "second.nodl.yaml"}: ')
+    assert result.written == [str(tmp_path / 'first.nodl.yaml')]
+    assert (tmp_path / 'first.nodl.yaml').is_file()

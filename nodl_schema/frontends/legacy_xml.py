@@ -412,10 +412,10 @@ def load_xml(source: Source, file: str | None = None) -> XmlTree:
 
 
 def _did_you_mean(word: str, choices: Iterable[str]) -> str:
-    import difflib
+    # Imported here: the validation package is not otherwise needed to read XML.
+    from nodl_schema.validation.messages import did_you_mean
 
-    close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
-    return f"; did you mean '{close[0]}'?" if close else ''
+    return did_you_mean(word, choices)
 
 
 def _is_ignored_attribute(name: str) -> bool:
@@ -434,18 +434,21 @@ class _Reader:
         self.file = tree.file
         self.tree = tree
         self.diagnostics: list[Diagnostic] = list(tree.diagnostics)
+        self.errors = sum(1 for d in self.diagnostics if d.severity is Severity.ERROR)
 
     # -- helpers ----------------------------------------------------------
 
     def error(self, message: str, at: XmlElement | XmlAttribute | tuple[int, int]) -> None:
         line, column = (at.line, at.column) if isinstance(at, (XmlElement, XmlAttribute)) else at
         self.diagnostics.append(_error(self.file, message, line, column))
+        self.errors += 1
 
     def warning(self, message: str, at: XmlElement | XmlAttribute) -> None:
         self.diagnostics.append(_warning(self.file, message, at.line, at.column))
 
     def error_count(self) -> int:
-        return sum(1 for d in self.diagnostics if d.severity is Severity.ERROR)
+        # A running count: summing the diagnostics for every element was quadratic.
+        return self.errors
 
     def attributes(self, element: XmlElement, allowed: Sequence[str],
                    hints: dict[str, str] | None = None) -> dict[str, XmlAttribute]:

@@ -153,8 +153,7 @@ def _find_pair(mapping: MappingNode, part: Any) -> tuple[Node, Node] | None:
 class _Builder:
     """Constructs Python values from a composed node tree."""
 
-    def __init__(self, file: str) -> None:
-        self.file = file
+    def __init__(self) -> None:
         self.problems: list[tuple[str, Any, Node | None]] = []
         self.memo: dict[int, Any] = {}
 
@@ -268,6 +267,21 @@ def _depth_bound(text: str) -> int:
     """A cheap upper bound of the nesting depth (exact check only if it is large)."""
     lead = max(map(len, _LEADING.findall(text)), default=0)
     return text.count('[') + text.count('{') + 2 * lead + 2
+
+
+def _data_depth(data: Any) -> int:
+    """How deeply lists and mappings nest in loaded data (iteratively)."""
+    deepest = 0
+    stack = [(data, 1)]
+    while stack:
+        item, depth = stack.pop()
+        if isinstance(item, dict):
+            item = item.values()
+        elif not isinstance(item, list):
+            continue
+        deepest = max(deepest, depth)
+        stack.extend((child, depth + 1) for child in item if isinstance(child, (dict, list)))
+    return deepest
 
 
 def _deep_nesting(text: str, file: str) -> Diagnostic | None:
@@ -405,12 +419,6 @@ def parse_document(source: SourceText) -> ParsedDocument:
     file = source.file
     doc = ParsedDocument(source)
     head = text.lstrip()[:1]
-    if _depth_bound(text) > MAX_DEPTH:
-        problem = _deep_nesting(text, file)
-        if problem is not None:
-            doc.diagnostics.append(problem)
-            return doc
-
     if head in ('{', '['):
         duplicates: list[bool] = []
 
@@ -420,16 +428,24 @@ def parse_document(source: SourceText) -> ParsedDocument:
                 duplicates.append(True)
             return result
 
-        try:
+        try:  # the C scanner raises RecursionError, it does not crash, on deep nesting
             data = json.loads(text, object_pairs_hook=pairs_hook)
         except (ValueError, RecursionError):
-            pass  # not JSON after all: YAML flow style is a superset
+            pass  # not JSON after all (YAML flow style is a superset), or far too deep
         else:
-            if not duplicates:
+            if not duplicates and _data_depth(data) <= MAX_DEPTH:
                 doc.data = data
                 doc.is_json = True
                 _check_top(doc)
                 return doc
+            # duplicates or deep nesting: the YAML path below places them
+
+    # libyaml's composer recurses in C: nesting must be bounded before it runs.
+    if _depth_bound(text) > MAX_DEPTH:
+        problem = _deep_nesting(text, file)
+        if problem is not None:
+            doc.diagnostics.append(problem)
+            return doc
 
     try:
         root = yaml.compose(text, Loader=_Loader)
@@ -446,20 +462,20 @@ def parse_document(source: SourceText) -> ParsedDocument:
     doc._root = root
     doc._composed = True
     if root is None:
-        doc.diagnostics.append(Diagnostic(
-            Severity.ERROR, 'document is empty; a NoDL document is a mapping that starts with '
-            'nodl_version: 2 (or, for a single parameter definition, type: ...)', (), file, 1, 1))
+        _check_top(doc)  # data is None: the document is empty
         return doc
     if '*' in text:
         problem = _alias_problem(root, file)
         if problem is not None:
             doc.diagnostics.append(problem)
             return doc
-    builder = _Builder(file)
+    builder = _Builder()
     doc.data = builder.build(root)
-    for message, mark, mapping in builder.problems:
-        path = _path_to(root, mapping) if mapping is not None else ()
-        doc.diagnostics.append(_error(file, message, mark, path))
+    if builder.problems:
+        paths = _paths_of(root, {id(m) for _, _, m in builder.problems if m is not None})
+        for message, mark, mapping in builder.problems:
+            path = paths.get(id(mapping), ()) if mapping is not None else ()
+            doc.diagnostics.append(_error(file, message, mark, path))
     _check_top(doc)
     return doc
 
@@ -481,21 +497,23 @@ def _check_top(doc: ParsedDocument) -> None:
             (), file, line or 1, column or 1))
 
 
-def _path_to(root: Node, target: Node) -> DocPath:
-    """The document path of ``target`` in the tree under ``root`` (rare path)."""
+def _paths_of(root: Node, targets: set[int]) -> dict[int, DocPath]:
+    """The document paths of the nodes in ``targets`` (by id), in one walk of the tree."""
+    keys = _Builder()  # its own: building keys again must not add to the reported problems
+    found: dict[int, DocPath] = {}
     stack: list[tuple[Node, DocPath]] = [(root, ())]
     seen: set[int] = set()
-    while stack:
+    while stack and len(found) < len(targets):
         node, path = stack.pop()
-        if node is target:
-            return path
+        if id(node) in targets:
+            found.setdefault(id(node), path)
         if id(node) in seen:
             continue
         seen.add(id(node))
         if isinstance(node, MappingNode):
             for key, value in node.value:
                 if isinstance(key, ScalarNode):
-                    stack.append((value, path + (_Builder('').scalar(key),)))
+                    stack.append((value, path + (keys.scalar(key),)))
         elif isinstance(node, SequenceNode):
             stack.extend((child, path + (i,)) for i, child in enumerate(node.value))
-    return ()
+    return found

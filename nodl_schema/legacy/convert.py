@@ -28,7 +28,7 @@ import os
 import re
 from typing import TYPE_CHECKING, Any, Iterable
 
-from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
+from nodl_schema.diagnostics import Diagnostic, DocPath, Severity, has_errors
 from nodl_schema.frontends.legacy_xml import (
     LegacyDocument, LegacyEndpoint, LegacyNode, LegacyQoS, XmlTree, legacy_document_from_tree,
     load_xml, package_exports_from_tree)
@@ -333,6 +333,7 @@ def _validate(data: dict[str, Any], converter: _NodeConverter) -> None:
     """Validate the v2 document; place what it finds at the legacy element it came from."""
     from nodl_schema.diagnostics import ValidationError
     from nodl_schema.loading import validate_node
+    from nodl_schema.validation.interfaces import NO_DESCRIPTION
 
     try:
         found = validate_node(data)
@@ -342,7 +343,7 @@ def _validate(data: dict[str, Any], converter: _NodeConverter) -> None:
     for d in found:
         if any(p[:len(d.path)] == d.path or d.path[:len(p)] == p for p in converter.failed):
             continue  # the converter already said what is wrong there
-        if d.severity is Severity.WARNING and d.message.endswith(' has no description'):
+        if d.severity is Severity.WARNING and d.message.endswith(NO_DESCRIPTION):
             continue  # the legacy format has no descriptions: nothing the converter can do
         path = d.path
         while path not in converter.origins:
@@ -471,12 +472,12 @@ def _gather(path: str) -> tuple[list[Converted], list[Diagnostic]]:
     for each in trees:
         doc = legacy_document_from_tree(each)
         diagnostics.extend(doc.diagnostics)
-        if any(d.severity is Severity.ERROR for d in each.diagnostics):
+        if has_errors(each.diagnostics):
             continue  # unreadable XML: converting what was read before the error is noise
         for item in convert_legacy(doc):
             converted.append(item)
             diagnostics.extend(item.diagnostics)
-    return converted, _sorted(diagnostics)
+    return converted, diagnostics  # sorted once, by the caller
 
 
 def _convert(path: str, out_dir: str, taken: dict[str, str]) -> tuple[list[str], list[Diagnostic]]:
@@ -495,18 +496,35 @@ def _convert(path: str, out_dir: str, taken: dict[str, str]) -> tuple[list[str],
                 'nodes different executables', (), item.source, item.node.line, item.node.column))
         else:
             planned[key] = item
-    if any(d.severity is Severity.ERROR for d in diagnostics):
+    if has_errors(diagnostics):
         return [], _sorted(diagnostics)
     written: list[str] = []
     if planned:
-        os.makedirs(out_dir, exist_ok=True)
+        try:
+            os.makedirs(out_dir, exist_ok=True)
+        except OSError as exc:
+            raise _WriteFailed(out_dir, exc, written, _sorted(diagnostics)) from None
     for key, item in planned.items():
         target = os.path.join(out_dir, item.file_name)
-        with open(target, 'w', encoding='utf-8', newline='\n') as stream:
-            stream.write(render_converted(item))
+        try:
+            with open(target, 'w', encoding='utf-8', newline='\n') as stream:
+                stream.write(render_converted(item))
+        except OSError as exc:
+            raise _WriteFailed(target, exc, written, _sorted(diagnostics)) from None
         taken[key] = f'{item.source}:{item.node.line}'
         written.append(target)
     return written, _sorted(diagnostics)
+
+
+class _WriteFailed(Exception):
+    """Writing an output failed; carries what had been written before."""
+
+    def __init__(self, target: str, error: OSError, written: list[str],
+                 diagnostics: list[Diagnostic]) -> None:
+        super().__init__(target)
+        self.problem = f'cannot write {target}: {_reason(error)}'
+        self.written = written
+        self.diagnostics = diagnostics
 
 
 def convert_file(path: str | os.PathLike[str],
@@ -540,11 +558,11 @@ def convert_files(paths: Iterable[str | os.PathLike[str]],
         path = os.fspath(raw)
         try:
             written, diagnostics = _convert(path, out, taken)
-        except OSError as exc:
-            name = exc.filename if isinstance(exc.filename, str) else path
-            reading = os.path.abspath(name) == os.path.abspath(path)
-            problem = _reason(exc) if reading else f'cannot write {name}: {_reason(exc)}'
-            results.append(FileConversion(path, problem=problem))
+        except _WriteFailed as failure:
+            results.append(FileConversion(path, failure.written, failure.diagnostics, failure.problem))
+            continue
+        except OSError as exc:  # reading the input
+            results.append(FileConversion(path, problem=_reason(exc)))
             continue
         results.append(FileConversion(path, written, diagnostics))
     return results

@@ -17,7 +17,10 @@ from nodl_schema.diagnostics import format_path
 from nodl_schema.validation.messages import show
 from nodl_schema.validation.parameters import check_parameter
 
-__all__ = ['SECTIONS', 'check_interface']
+__all__ = ['SECTIONS', 'NO_DESCRIPTION', 'check_interface']
+
+#: How every missing-description warning ends (tools may recognise it).
+NO_DESCRIPTION = 'has no description'
 
 #: Endpoint sections and how one of their entries is called in messages.
 SECTIONS = {
@@ -39,7 +42,7 @@ def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
         for name, param in parameters.items():
             check_parameter(param, path + ('parameters', name), out)
             if isinstance(param, dict) and not param.get('description'):
-                out.append(Diagnostic(Severity.WARNING, f'parameter {show(name)} has no description',
+                out.append(Diagnostic(Severity.WARNING, f'parameter {show(name)} {NO_DESCRIPTION}',
                                       path + ('parameters', name), anchor='key'))
     for section, word in SECTIONS.items():
         entries = data.get(section)
@@ -61,5 +64,5 @@ def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
                     first_index[name] = index
             if not entry.get('description'):
                 label = f' {show(name)}' if isinstance(name, str) else ''
-                out.append(Diagnostic(Severity.WARNING, f'{word}{label} has no description',
+                out.append(Diagnostic(Severity.WARNING, f'{word}{label} {NO_DESCRIPTION}',
                                       entry_path, anchor='key'))

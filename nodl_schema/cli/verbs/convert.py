@@ -21,7 +21,7 @@ class ConvertVerb(Verb):
 
     def main(self, args: argparse.Namespace) -> int:
         from nodl_schema.legacy.convert import convert_files
-        from nodl_schema.reporting import Tally, format_text
+        from nodl_schema.reporting import Tally, format_text, plural
 
         out = sys.stdout
         tally = Tally()
@@ -30,6 +30,9 @@ class ConvertVerb(Verb):
         for result in convert_files(args.files, args.output_dir):
             if not result.readable:
                 unreadable = True
+                for path in result.written:  # before an output could not be written
+                    out.write(f'wrote {path}\n')
+                written += len(result.written)
                 print(f'{result.path}: error: {result.problem}', file=sys.stderr)
                 continue
             tally.files += 1
@@ -41,10 +44,8 @@ class ConvertVerb(Verb):
             for path in result.written:
                 out.write(f'wrote {path}\n')
             written += len(result.written)
-        out.write(f'{tally.files} file{"" if tally.files == 1 else "s"} read, '
-                  f'{written} node definition{"" if written == 1 else "s"} written, '
-                  f'{tally.errors} error{"" if tally.errors == 1 else "s"}, '
-                  f'{tally.warnings} warning{"" if tally.warnings == 1 else "s"}\n')
+        out.write(f'{plural(tally.files, "file")} read, {plural(written, "node definition")} '
+                  f'written, {plural(tally.errors, "error")}, {plural(tally.warnings, "warning")}\n')
         if unreadable:
             return EXIT_USAGE
         return EXIT_FAILURE if failed else EXIT_OK
