@@ -73,7 +73,7 @@ class Diagnostic:
     Diagnostics are immutable values.
     """
 
-    __slots__ = ('severity', 'message', 'path', 'file', 'line', 'column', 'anchor')
+    __slots__ = ('severity', 'message', 'path', 'file', 'line', 'column', 'anchor', 'code', 'related')
     _FIELDS = __slots__
 
     severity: Severity
@@ -83,9 +83,14 @@ class Diagnostic:
     line: int
     column: int
     anchor: str
+    #: The stable code (``NODL101``); see :mod:`nodl_schema.codes`. Empty when not yet coded.
+    code: str
+    #: Other places that matter (for example the layer a value overrides): ``(file, line, column, message)``.
+    related: tuple[tuple[str, int, int, str], ...]
 
     def __init__(self, severity: Severity, message: str, path: DocPath = (), file: str = '<string>',
-                 line: int = 0, column: int = 0, anchor: str = 'value') -> None:
+                 line: int = 0, column: int = 0, anchor: str = 'value', code: str = '',
+                 related: Iterable[tuple[str, int, int, str]] = ()) -> None:
         # A plain class rather than a dataclass: importing dataclasses costs
         # the command line ~20 ms of start-up.
         set_ = object.__setattr__
@@ -96,6 +101,8 @@ class Diagnostic:
         set_(self, 'line', line)
         set_(self, 'column', column)
         set_(self, 'anchor', anchor)
+        set_(self, 'code', code)
+        set_(self, 'related', tuple(related))
 
     def __setattr__(self, name: str, value: Any) -> None:
         raise AttributeError('Diagnostic is immutable; use .at() or .replace()')
