@@ -26,13 +26,98 @@ code listed here is used).
 
 from __future__ import annotations
 
-__all__ = ['CODES', 'explain']
+__all__ = ['CODES', 'explain', 'default_severity', 'is_code']
 
 #: code -> (default severity, one-line explanation).
 CODES: dict[str, tuple[str, str]] = {
+    # -- NODL0xx: reading files --------------------------------------------
+    'NODL001': ('error', 'the file is larger than the 10 MB limit'),
+    'NODL002': ('error', 'the file is not UTF-8 text (another encoding, a byte or character that is not allowed)'),
+    'NODL003': ('error', 'YAML or JSON syntax error'),
+    'NODL004': ('error', 'a tab character is used for indentation; YAML allows only spaces'),
+    'NODL005': ('error', 'the file holds more than one YAML document'),
+    'NODL006': ('error', 'a mapping has the same key twice (YAML loaders would silently keep the last)'),
+    'NODL007': ('error', 'a YAML anchor is defined twice'),
+    'NODL008': ('error', 'YAML aliases are recursive or expand beyond 10,000 nodes ("billion laughs")'),
+    'NODL009': ('error', 'the document nests deeper than 100 levels'),
+    'NODL010': ('error', 'a YAML construct NoDL does not accept: a tag, a non-scalar key, a bad merge key'),
+    'NODL011': ('error', 'the document is empty or is not a mapping'),
+    'NODL012': ('error', 'XML syntax error'),
+    'NODL013': ('error', 'an XML document type declaration or entity (not allowed: XML bombs)'),
+    'NODL014': ('warning', 'the XML declaration names an encoding other than UTF-8'),
+    'NODL015': ('error', 'a file the document refers to cannot be read'),
+    # -- NODL1xx: structure (the JSON Schemas) ------------------------------
+    'NODL101': ('error', 'unknown key'),
+    'NODL102': ('error', 'a required key is missing'),
+    'NODL103': ('error', 'a value (or key) has the wrong type'),
+    'NODL104': ('error', 'a value is not one of the allowed values'),
+    'NODL105': ('error', 'a value is too small, too short, or a list has too few or too many items'),
+    'NODL106': ('error', 'a string does not match the required pattern'),
+    'NODL107': ('error', 'a value fits none (or more than one) of the allowed forms'),
+    'NODL108': ('error', 'the document is not of the required kind (parameter, interface or node definition)'),
+    # -- NODL2xx: semantic rules -------------------------------------------
+    'NODL201': ('error', 'invalid ROS name (topic, service or action)'),
+    'NODL202': ('error', 'invalid parameter name'),
+    'NODL203': ('error', 'invalid interface type name (package/msg|srv|action/Type)'),
+    'NODL204': ('error', 'the interface type is of the wrong kind for its section (a srv type on a topic)'),
+    'NODL205': ('warning', 'a short interface type name (pkg/Type) without its namespace'),
+    'NODL206': ('error', 'unknown parameter type'),
+    'NODL207': ('error', 'invalid validator name'),
+    'NODL208': ('warning', 'a validator name close to a built-in one will be called as a custom function'),
+    'NODL209': ('error', 'the default value does not fit the parameter type'),
+    'NODL210': ('error', 'the default value breaks a validator'),
+    'NODL211': ('error', 'a validator does not apply to the parameter type'),
+    'NODL212': ('error', 'validators conflict or are given twice'),
+    'NODL213': ('error', 'invalid validator arguments'),
+    'NODL214': ('warning', "a parameter of type 'none' has a default value, which is ignored"),
+    'NODL215': ('error', 'an endpoint name appears twice in a section'),
+    'NODL216': ('warning', 'a parameter or endpoint has no description'),
+    'NODL217': ('error', 'invalid mixin reference'),
+    'NODL218': ('warning', 'a mixin is listed twice'),
+    # -- NODL3xx: composition ----------------------------------------------
+    'NODL301': ('error', 'a mixin reference cannot be resolved'),
+    'NODL302': ('error', 'a mixin is not a valid interface definition'),
+    'NODL303': ('error', 'a mixin is a parameter or node definition, not an interface definition'),
+    'NODL304': ('info', 'an entity overrides the one of an earlier layer'),
+    'NODL305': ('error', 'this kind of document cannot be composed or shown as an interface'),
+    'NODL306': ('error', 'no node definition is registered for this package and executable'),
+    # -- NODL4xx: live drift -----------------------------------------------
+    'NODL401': ('error', 'drift: declared but not observed on the running node'),
+    'NODL402': ('error', 'drift: observed on the running node but not declared'),
+    'NODL403': ('error', 'drift: the observed interface type differs from the declared one'),
+    'NODL404': ('error', 'drift: an observed QoS policy differs from the declared one'),
+    'NODL405': ('error', 'drift: the observed parameter type differs from the declared one'),
+    'NODL406': ('error', 'drift: the observed read_only flag differs from the declared one'),
+    'NODL407': ('warning', "a parameter's current value breaks its declared validators"),
+    'NODL408': ('info', 'cannot be verified: the middleware does not report it'),
+    # -- NODL8xx: dialects and conversion ----------------------------------
+    'NODL801': ('error', 'legacy XML: an element, attribute or text the legacy format does not have'),
+    'NODL802': ('error', 'legacy XML: a required attribute is missing or empty'),
+    'NODL803': ('error', 'legacy XML: an attribute has an invalid value'),
+    'NODL804': ('error', 'legacy XML: unsupported legacy NoDL version'),
+    'NODL805': ('warning', "legacy XML: <interface> has no 'version' attribute"),
+    'NODL806': ('error', 'legacy XML: the root element is missing or not the expected one'),
+    'NODL807': ('error', 'legacy XML: something is declared twice'),
+    'NODL808': ('error', 'legacy XML: an endpoint has no role, or conflicting roles'),
+    'NODL809': ('warning', 'legacy XML: the file declares no nodes'),
+    'NODL810': ('error', 'package.xml: the interface export is missing or invalid'),
+    'NODL811': ('warning', 'conversion: a legacy setting has no NoDL v2 meaning and is dropped'),
+    'NODL812': ('warning', 'conversion: a value NoDL v2 requires is written as a default or completed; check it'),
+    'NODL813': ('error', 'conversion: a legacy value cannot be expressed in NoDL v2'),
+    'NODL814': ('error', 'conversion: two nodes would be written to the same file'),
 }
 
 
 def explain(code: str) -> str:
     """The one-line explanation of ``code`` (KeyError for an unknown code)."""
     return CODES[code][1]
+
+
+def default_severity(code: str) -> str:
+    """``error``, ``warning`` or ``info``: how bad ``code`` is unless promoted (KeyError if unknown)."""
+    return CODES[code][0]
+
+
+def is_code(text: str) -> bool:
+    """True if ``text`` is a catalogued code."""
+    return text in CODES
