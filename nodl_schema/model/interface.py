@@ -7,6 +7,7 @@ from typing import Any, Union
 
 from nodl_schema.model.parameter import ParameterDefinition
 from nodl_schema.model.qos import QoSProfile
+from nodl_schema.vocabulary import SECTIONS
 
 __all__ = ['TopicEndpoint', 'ServiceEndpoint', 'ActionEndpoint', 'Endpoint', 'Interface',
            'ENDPOINT_SECTIONS']
@@ -88,15 +89,9 @@ class ActionEndpoint:
 
 Endpoint = Union[TopicEndpoint, ServiceEndpoint, ActionEndpoint]
 
-#: Section name -> endpoint class, in file order.
-ENDPOINT_SECTIONS: dict[str, Any] = {
-    'publishers': TopicEndpoint,
-    'subscriptions': TopicEndpoint,
-    'service_servers': ServiceEndpoint,
-    'service_clients': ServiceEndpoint,
-    'action_servers': ActionEndpoint,
-    'action_clients': ActionEndpoint,
-}
+_ENDPOINT_CLASSES = {'topic': TopicEndpoint, 'service': ServiceEndpoint, 'action': ActionEndpoint}
+#: Section name -> endpoint class, in file order (derived from :mod:`nodl_schema.vocabulary`).
+ENDPOINT_SECTIONS: dict[str, Any] = {s.key: _ENDPOINT_CLASSES[s.kind] for s in SECTIONS}
 
 
 @dataclass(slots=True)

@@ -11,6 +11,8 @@ from collections import namedtuple
 
 import re
 
+from nodl_schema.vocabulary import ALL_TYPE_WORDS, ARRAY_TYPES, FIXED_BASES, SCALAR_TYPES
+
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from typing import Any
@@ -18,13 +20,7 @@ if TYPE_CHECKING:
 __all__ = ['SCALAR_TYPES', 'ARRAY_TYPES', 'FIXED_BASES', 'ALL_TYPE_WORDS', 'TypeSpec',
            'parse_type', 'value_fits']
 
-SCALAR_TYPES = ('bool', 'int', 'double', 'string', 'none')
-ARRAY_TYPES = ('bool_array', 'int_array', 'double_array', 'string_array', 'byte_array')
-FIXED_BASES = ('string', 'int_array', 'double_array', 'string_array')
-#: For messages and suggestions.
-ALL_TYPE_WORDS = SCALAR_TYPES + ARRAY_TYPES + tuple(f'{b}_fixed_N' for b in FIXED_BASES)
-
-_FIXED = re.compile(r'(string|int_array|double_array|string_array)_fixed_([1-9][0-9]*)')
+_FIXED = re.compile(f'({"|".join(FIXED_BASES)})_fixed_([1-9][0-9]*)')
 
 
 class TypeSpec(namedtuple('TypeSpec', ['name', 'base', 'size'], defaults=[None])):

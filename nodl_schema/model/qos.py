@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from typing import Any
+
+from nodl_schema.vocabulary import QOS_KEYS
 
 __all__ = ['QoSProfile', 'QOS_POLICIES']
 
@@ -36,5 +38,5 @@ class QoSProfile:
         return out
 
 
-#: Field names in file order.
-QOS_POLICIES = tuple(f.name for f in fields(QoSProfile))
+#: Field names in file order (the vocabulary's QoS keys; a test keeps the fields in agreement).
+QOS_POLICIES = QOS_KEYS

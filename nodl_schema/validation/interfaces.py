@@ -16,21 +16,15 @@ from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.diagnostics import format_path
 from nodl_schema.validation.messages import show
 from nodl_schema.validation.parameters import check_parameter
+from nodl_schema.vocabulary import SECTION_WORDS
 
 __all__ = ['SECTIONS', 'NO_DESCRIPTION', 'check_interface']
 
 #: How every missing-description warning ends (tools may recognise it).
 NO_DESCRIPTION = 'has no description'
 
-#: Endpoint sections and how one of their entries is called in messages.
-SECTIONS = {
-    'publishers': 'publisher',
-    'subscriptions': 'subscription',
-    'service_servers': 'service server',
-    'service_clients': 'service client',
-    'action_servers': 'action server',
-    'action_clients': 'action client',
-}
+#: Endpoint sections and how one of their entries is called in messages (from the vocabulary).
+SECTIONS = SECTION_WORDS
 
 
 def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:

@@ -2,28 +2,13 @@
 
 from __future__ import annotations
 
-import enum
+from nodl_schema.vocabulary import INTERFACE_KEYS, NODE_KEYS, Kind
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from typing import Any
 
 __all__ = ['Kind', 'detect_kind', 'KIND_REASONS', 'NODE_KEYS', 'INTERFACE_KEYS']
-
-NODE_KEYS = ('base', 'main', 'mixins')
-INTERFACE_KEYS = ('parameters', 'publishers', 'subscriptions', 'service_servers',
-                  'service_clients', 'action_servers', 'action_clients')
-
-
-class Kind(str, enum.Enum):
-    """A kind of NoDL document; each has a schema."""
-
-    PARAMETER = 'parameter'
-    INTERFACE = 'interface'
-    NODE = 'node'
-
-    def __str__(self) -> str:
-        return self.value
 
 
 #: Why :func:`detect_kind` decides on each kind, for messages.
