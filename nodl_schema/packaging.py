@@ -39,10 +39,10 @@ import shutil
 import sys
 from typing import Mapping
 
+from nodl_schema.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, resource_name
+
 __all__ = ['nodl_data_files', 'NODE_RESOURCE', 'INTERFACE_RESOURCE']
 
-NODE_RESOURCE = 'nodl_nodes'
-INTERFACE_RESOURCE = 'nodl_interfaces'
 _KEY = re.compile(r'[A-Za-z0-9_][A-Za-z0-9_.-]*')
 _INDEX = 'share/ament_index/resource_index'
 
@@ -80,7 +80,7 @@ def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
         folder = os.path.join(staging_dir, 'share', 'ament_index', 'resource_index', resource_type)
         os.makedirs(folder, exist_ok=True)
         for key, file in registry.items():
-            marker = os.path.join(folder, f'{package}__{key}')
+            marker = os.path.join(folder, resource_name(package, key))
             with open(marker, 'w', encoding='utf-8') as f:
                 f.write(f'nodl/{os.path.basename(file)}')
             entries.setdefault(f'{_INDEX}/{resource_type}', []).append(marker)
@@ -105,7 +105,7 @@ def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, s
     folder = os.path.join(stage, 'share', 'ament_index', 'resource_index', INTERFACE_RESOURCE)
     os.makedirs(folder, exist_ok=True)
     for key, file in interfaces.items():
-        with open(os.path.join(folder, f'{package}__{key}'), 'w', encoding='utf-8') as f:
+        with open(os.path.join(folder, resource_name(package, key)), 'w', encoding='utf-8') as f:
             f.write(os.path.abspath(file))
     packages = os.path.join(stage, 'share', 'ament_index', 'resource_index', 'packages')
     os.makedirs(packages, exist_ok=True)

@@ -15,17 +15,11 @@ import os
 from nodl_schema.composition.resolvers import ResolutionError, ResolveContext, Resolved
 from nodl_schema.frontends.source import read_limited
 from nodl_schema.index import ament
+from nodl_schema.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, resource_name
 
 __all__ = ['AmentIndexResolver', 'read_registered', 'INTERFACE_RESOURCE', 'NODE_RESOURCE',
            'resource_name']
 
-INTERFACE_RESOURCE = 'nodl_interfaces'
-NODE_RESOURCE = 'nodl_nodes'
-
-
-def resource_name(package: str, key: str) -> str:
-    """The ament resource name of a registered definition (package names never hold ``__``)."""
-    return f'{package}__{key}'
 
 
 def read_registered(resource: ament.Resource, package: str) -> Resolved:
@@ -64,8 +58,9 @@ class AmentIndexResolver:
         if not prefixes:
             raise ResolutionError('AMENT_PREFIX_PATH is empty, so no package can be found; '
                                   'source the workspace (install/setup.bash) first')
-        available = sorted(n.split('__', 1)[1] for n in ament.get_resources(INTERFACE_RESOURCE, prefixes)
-                           if n.startswith(package + '__'))
+        prefix = resource_name(package, '')
+        available = sorted(n[len(prefix):] for n in ament.get_resources(INTERFACE_RESOURCE, prefixes)
+                           if n.startswith(prefix))
         if available:
             raise ResolutionError(f"package '{package}' registers no interface definition "
                                   f"'{name}' (it registers: {', '.join(available)})", searched)

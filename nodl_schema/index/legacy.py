@@ -18,10 +18,10 @@ import os
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.index import ament
 from nodl_schema.index.registry import Registration
+from nodl_schema.vocabulary import LEGACY_RESOURCE
 
 __all__ = ['legacy_registrations', 'legacy_files', 'compose_legacy']
 
-LEGACY_RESOURCE = 'nodl_desc'
 LEGACY_KIND = 'legacy node'
 
 

@@ -16,6 +16,7 @@ from nodl_schema.composition.ament_resolver import (
     INTERFACE_RESOURCE, NODE_RESOURCE, read_registered, resource_name)
 from nodl_schema.composition.resolvers import ResolutionError, Resolved
 from nodl_schema.index import ament
+from nodl_schema.vocabulary import RESOURCE_SEPARATOR
 
 __all__ = ['Registration', 'list_registrations', 'find_node', 'read_registration',
            'compose_registered', 'describe_missing']
@@ -39,7 +40,7 @@ class Registration(NamedTuple):
 def _v2(resource_type: str, prefixes: list[str], package: str | None) -> list[Registration]:
     found = []
     for name in ament.get_resources(resource_type, prefixes):
-        pkg, sep, key = name.partition('__')
+        pkg, sep, key = name.partition(RESOURCE_SEPARATOR)
         if not sep or (package is not None and pkg != package):
             continue
         resource = ament.get_resource(resource_type, name, prefixes)
