@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any, Iterable, NamedTuple, Sequence
 from xml.parsers import expat
 
 from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.vocabulary import QOS_DURATIONS, QOS_ENUMS, legacy_roles
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers only
     from pathlib import Path
@@ -39,6 +40,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers only
 
 __all__ = [
     'LEGACY_VERSION', 'TOPIC_ROLES', 'SERVICE_ROLES', 'ACTION_ROLES', 'QOS_VALUES',
+    'LEGACY_ONLY_QOS_VALUES',
     'XmlAttribute', 'XmlElement', 'XmlTree', 'load_xml',
     'LegacyQoS', 'LegacyParameter', 'LegacyEndpoint', 'LegacyNode', 'LegacyDocument',
     'legacy_document_from_tree', 'parse_legacy_xml',
@@ -49,23 +51,21 @@ __all__ = [
 #: The only ``<interface version>`` the legacy format defines.
 LEGACY_VERSION = '1'
 
-TOPIC_ROLES = ('publisher', 'subscription')
-SERVICE_ROLES = ('server', 'client')
-ACTION_ROLES = ('server', 'client')
+TOPIC_ROLES = legacy_roles('topic')
+SERVICE_ROLES = legacy_roles('service')
+ACTION_ROLES = legacy_roles('action')
 _ROLES = {'topic': TOPIC_ROLES, 'service': SERVICE_ROLES, 'action': ACTION_ROLES}
 _ROLES_OF_OTHER_KINDS = {'topic': SERVICE_ROLES, 'service': TOPIC_ROLES, 'action': TOPIC_ROLES}
 
 #: Accepted (lower-case) values of the enumerated ``<qos>`` attributes: the
 #: rclpy short keys of the time.  Some have no NoDL v2 equivalent; the
 #: converter says so.
+#: The v2 values in lower case, plus the values only the legacy format knows.
+LEGACY_ONLY_QOS_VALUES: dict[str, tuple[str, ...]] = {'liveliness': ('manual_by_node',)}
 QOS_VALUES: dict[str, tuple[str, ...]] = {
-    'history': ('keep_last', 'keep_all', 'system_default'),
-    'reliability': ('reliable', 'best_effort', 'system_default', 'best_available'),
-    'durability': ('transient_local', 'volatile', 'system_default', 'best_available'),
-    'liveliness': ('automatic', 'manual_by_topic', 'manual_by_node', 'system_default',
-                   'best_available'),
-}
-_QOS_DURATIONS = ('deadline', 'lifespan', 'liveliness_lease_duration')
+    policy: tuple(v.lower() for v in values) + LEGACY_ONLY_QOS_VALUES.get(policy, ())
+    for policy, values in QOS_ENUMS.items()}
+_QOS_DURATIONS = tuple(QOS_DURATIONS.values())
 _QOS_ATTRIBUTES = ('history', 'reliability', 'durability', 'depth', 'deadline', 'lifespan',
                    'liveliness', 'liveliness_lease_duration', 'avoid_ros_namespace_conventions')
 

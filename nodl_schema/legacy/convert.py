@@ -30,8 +30,10 @@ from typing import TYPE_CHECKING, Any, Iterable
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity, has_errors
 from nodl_schema.frontends.legacy_xml import (
-    LegacyDocument, LegacyEndpoint, LegacyNode, LegacyQoS, XmlTree, legacy_document_from_tree,
+    LEGACY_ONLY_QOS_VALUES, LegacyDocument, LegacyEndpoint, LegacyNode, LegacyQoS, XmlTree, legacy_document_from_tree,
     load_xml, package_exports_from_tree)
+from nodl_schema.vocabulary import ENDPOINT_KINDS, KIND_NAMESPACES, QOS_DURATIONS, SECTION_KEYS
+from nodl_schema.vocabulary import SECTIONS as _VOCABULARY_SECTIONS
 
 if TYPE_CHECKING:  # pragma: no cover
     from pathlib import Path
@@ -58,19 +60,16 @@ PARAMETER_TYPES = {
 }
 
 #: Endpoint kind -> legacy role -> v2 section.
-SECTIONS = {
-    'topic': {'publisher': 'publishers', 'subscription': 'subscriptions'},
-    'service': {'server': 'service_servers', 'client': 'service_clients'},
-    'action': {'server': 'action_servers', 'client': 'action_clients'},
-}
-_SECTION_ORDER = ('publishers', 'subscriptions', 'service_servers', 'service_clients',
-                  'action_servers', 'action_clients')
-_INTERFACE_NAMESPACE = {'topic': 'msg', 'service': 'srv', 'action': 'action'}
+SECTIONS: dict[str, dict[str, str]] = {
+    kind: {s.legacy_role: s.key for s in _VOCABULARY_SECTIONS if s.kind == kind}
+    for kind in ENDPOINT_KINDS}
+_SECTION_ORDER = SECTION_KEYS
+_INTERFACE_NAMESPACE = KIND_NAMESPACES
 
 #: Legacy QoS values v2 has no name for.
-_QOS_WITHOUT_V2 = {('liveliness', 'manual_by_node')}
-_DURATIONS = (('deadline', 'deadline_ns'), ('lifespan', 'lifespan_ns'),
-              ('liveliness_lease_duration', 'liveliness_lease_duration_ns'))
+_QOS_WITHOUT_V2 = {(policy, value) for policy, values in LEGACY_ONLY_QOS_VALUES.items()
+                   for value in values}
+_DURATIONS = tuple((legacy, v2) for v2, legacy in QOS_DURATIONS.items())
 _INT64_MAX = 2 ** 63 - 1
 _SHORT_TYPE = re.compile(r'([A-Za-z][A-Za-z0-9_]*)/([A-Za-z][A-Za-z0-9_]*)')
 _FILE_STEM = re.compile(r'[A-Za-z0-9_][A-Za-z0-9_.+-]*')
