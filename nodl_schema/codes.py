@@ -46,6 +46,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL013': ('error', 'an XML document type declaration or entity (not allowed: XML bombs)'),
     'NODL014': ('warning', 'the XML declaration names an encoding other than UTF-8'),
     'NODL015': ('error', 'a file the document refers to cannot be read'),
+    'NODL020': ('error', 'a path given to a command cannot be read: missing, not permitted, a socket, '
+                         'a dangling link, a directory that cannot be scanned or holds no NoDL files'),
     # -- NODL1xx: structure (the JSON Schemas) ------------------------------
     'NODL101': ('error', 'unknown key'),
     'NODL102': ('error', 'a required key is missing'),
@@ -81,6 +83,10 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL304': ('info', 'an entity overrides the one of an earlier layer'),
     'NODL305': ('error', 'this kind of document cannot be composed or shown as an interface'),
     'NODL306': ('error', 'no node definition is registered for this package and executable'),
+    'NODL307': ('error', 'a layer changes the type of an entity of the base (the client library creates it)'),
+    'NODL308': ('error', 'a layer changes the QoS of an entity of the base (the client library creates it)'),
+    'NODL309': ('error', 'a layer changes read_only of a parameter of the base (the client library declares it)'),
+    'NODL310': ('warning', 'a layer changes the type of an entity a mixin declares (the mixin\'s code and the node disagree)'),
     # -- NODL4xx: live drift -----------------------------------------------
     'NODL401': ('error', 'drift: declared but not observed on the running node'),
     'NODL402': ('error', 'drift: observed on the running node but not declared'),
@@ -104,7 +110,10 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL811': ('warning', 'conversion: a legacy setting has no NoDL v2 meaning and is dropped'),
     'NODL812': ('warning', 'conversion: a value NoDL v2 requires is written as a default or completed; check it'),
     'NODL813': ('error', 'conversion: a legacy value cannot be expressed in NoDL v2'),
-    'NODL814': ('error', 'conversion: two nodes would be written to the same file'),
+    'NODL814': ('error', 'conversion: a node cannot get a file of its own (a name unusable as a file name, '
+                'or two nodes for one file)'),
+    'NODL815': ('warning', 'legacy XML: something is given twice, redundantly (a role, an exported path)'),
+    'NODL816': ('warning', 'conversion: an executable holds several nodes; each gets a file named after both'),
 }
 
 
