@@ -21,15 +21,23 @@ from __future__ import annotations
 from typing import Any, Iterable
 
 from nodl_schema.composition import ComposedNode
+from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.live.observe import ObservedNode
 from nodl_schema.model import ENDPOINT_SECTIONS, QOS_POLICIES, Interface
 from nodl_schema.naming import expand
-from nodl_schema.validation.interfaces import SECTIONS
+from nodl_schema.vocabulary import SECTION_WORDS, SERVICE_SECTIONS, TOPIC_SECTIONS
 
-__all__ = ['Difference', 'DRIFT_KINDS', 'compare', 'parse_remaps', 'conforms']
+__all__ = ['Difference', 'DRIFT_KINDS', 'KIND_CODES', 'compare', 'parse_remaps', 'conforms']
 
 #: Kinds that make a node non-conforming.
 DRIFT_KINDS = ('missing', 'extra', 'type', 'qos', 'parameter_type', 'read_only')
+
+#: The diagnostic code of each kind of difference (see :mod:`nodl_schema.codes`).
+KIND_CODES = {
+    'missing': 'NODL401', 'extra': 'NODL402', 'type': 'NODL403', 'qos': 'NODL404',
+    'parameter_type': 'NODL405', 'read_only': 'NODL406', 'value': 'NODL407',
+    'unverifiable': 'NODL408',
+}
 
 
 class Difference:
@@ -54,9 +62,24 @@ class Difference:
             return 'error'
         return 'warning' if self.kind == 'value' else 'info'
 
+    @property
+    def code(self) -> str:
+        """The stable diagnostic code of this kind of difference (``NODL401`` ...)."""
+        return KIND_CODES[self.kind]
+
+    def to_diagnostic(self, file: str, line: int = 0, column: int = 0) -> Diagnostic:
+        """The same difference as a :class:`~nodl_schema.diagnostics.Diagnostic`.
+
+        ``file`` (and a position, when known) is the definition; the path is
+        ``(section, name)``; the layer, if any, is in the message as in the text output.
+        """
+        layer = f' (declared in {self.layer})' if self.layer else ''
+        return Diagnostic(Severity(self.severity), f'{self.kind}: {self.message}{layer}',
+                          (self.section, self.name), file, line, column, code=self.code)
+
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready mapping."""
-        return {'kind': self.kind, 'severity': self.severity, 'section': self.section,
+        return {'kind': self.kind, 'code': self.code, 'severity': self.severity, 'section': self.section,
                 'name': self.name, 'declared': self.declared, 'observed': self.observed,
                 'layer': self.layer, 'message': self.message}
 
@@ -95,7 +118,7 @@ def conforms(differences: Iterable[Difference]) -> bool:
 
 
 def _word(section: str) -> str:
-    return SECTIONS[section]
+    return SECTION_WORDS[section]
 
 
 def _compare_qos(section: str, name: str, declared: Any, observed: dict[str, Any] | None,
@@ -202,9 +225,9 @@ def compare(composed: ComposedNode | Interface, observed: ObservedNode,
                                       f'{entity.type}, observed {real.type}', declared=entity.type,
                                       observed=real.type, layer=entity.origin))
                 continue
-            if section in ('publishers', 'subscriptions'):
+            if section in TOPIC_SECTIONS:
                 out += _compare_qos(section, full, entity.qos, real.qos, real.unobserved, entity.origin)
-            elif section in ('service_servers', 'service_clients') and entity.qos is not None:
+            elif section in SERVICE_SECTIONS and entity.qos is not None:
                 out.append(Difference('unverifiable', section, full, f"{word} '{full}' QoS: the "
                                       'middleware does not report service QoS',
                                       declared=entity.qos.to_dict(), layer=entity.origin))

@@ -16,6 +16,7 @@ from nodl_schema.composition.bases import base_layer
 from nodl_schema.live.observe import ObservedNode, ObservedParameter, observe_node
 from nodl_schema.model import ENDPOINT_SECTIONS
 from nodl_schema.naming import expand, relativize
+from nodl_schema.vocabulary import QOS_KEYS, TOPIC_SECTIONS
 
 __all__ = ['Description', 'deduce_base', 'describe_observed', 'describe_node', 'render_description']
 
@@ -79,7 +80,7 @@ def describe_observed(observed: ObservedNode) -> Description:
                 continue
             entry: dict[str, Any] = {'name': relativize(endpoint.name, name, namespace),
                                      'type': endpoint.type}
-            if section in ('publishers', 'subscriptions'):
+            if section in TOPIC_SECTIONS:
                 qos = dict(endpoint.qos or {})
                 unobserved.update(endpoint.unobserved)
                 if 'history' not in qos:
@@ -87,9 +88,7 @@ def describe_observed(observed: ObservedNode) -> Description:
                     qos['history'] = 'SYSTEM_DEFAULT'
                 if 'reliability' not in qos:
                     qos['reliability'] = 'SYSTEM_DEFAULT'
-                entry['qos'] = {k: qos[k] for k in ('history', 'depth', 'reliability', 'durability',
-                                                    'deadline_ns', 'lifespan_ns', 'liveliness',
-                                                    'liveliness_lease_duration_ns') if k in qos}
+                entry['qos'] = {k: qos[k] for k in QOS_KEYS if k in qos}
             entries.append(entry)
         if entries:
             main[section] = entries

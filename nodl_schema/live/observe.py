@@ -13,6 +13,7 @@ from typing import Any
 
 from nodl_schema.live.qos import qos_from_rclpy
 from nodl_schema.live.session import LiveError, NodeNotFound, ros_session, split_node_name
+from nodl_schema.vocabulary import SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
            'wait_for_node', 'list_nodes', 'ACTION_INFIX']
@@ -173,7 +174,7 @@ def _fold_actions(observed: ObservedNode, node: Any, name: str, namespace: str) 
         prefix, infix, _ = endpoint.name.partition(ACTION_INFIX)
         return bool(infix) and prefix in action_names
 
-    for section in ('publishers', 'subscriptions', 'service_servers', 'service_clients'):
+    for section in TOPIC_SECTIONS + SERVICE_SECTIONS:
         setattr(observed, section, [e for e in getattr(observed, section) if not hidden(e)])
 
 
@@ -268,7 +269,7 @@ def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float
     raw = _settle(node, name, namespace, fqn, remaining, quiet)
     observed = ObservedNode(name, namespace)
     for section, entries in raw.items():
-        topic = section in ('publishers', 'subscriptions')
+        topic = section in TOPIC_SECTIONS
         endpoints = []
         for topic_name, types in sorted(entries):
             endpoint = ObservedEndpoint(topic_name, types[0] if types else '')

@@ -7,6 +7,7 @@ from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
 from nodl_schema.live.check import CheckResult
+from nodl_schema.vocabulary import SECTION_KEYS
 
 __all__ = ['format_check_text', 'format_check_json', 'format_check_junit']
 
@@ -48,8 +49,7 @@ def format_check_junit(result: CheckResult) -> str:
     declared_as: dict[tuple[str, str], tuple[str, str]] = {}
     node_name, node_namespace = result.observed.name, result.observed.namespace
     remaps = result.remaps or {}
-    for section in ('publishers', 'subscriptions', 'service_servers', 'service_clients',
-                    'action_servers', 'action_clients'):
+    for section in SECTION_KEYS:
         for entity in result.composed.interface.endpoints(section):
             cases.setdefault((section, entity.name), [])
             full = expand(entity.name, node_name, node_namespace)
