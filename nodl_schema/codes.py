@@ -46,6 +46,7 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL013': ('error', 'an XML document type declaration or entity (not allowed: XML bombs)'),
     'NODL014': ('warning', 'the XML declaration names an encoding other than UTF-8'),
     'NODL015': ('error', 'a file the document refers to cannot be read'),
+    'NODL020': ('error', 'a path given on the command line cannot be read'),
     'NODL020': ('error', 'a path given to a command cannot be read: missing, not permitted, a socket, '
                          'a dangling link, a directory that cannot be scanned or holds no NoDL files'),
     # -- NODL1xx: structure (the JSON Schemas) ------------------------------
@@ -114,6 +115,17 @@ CODES: dict[str, tuple[str, str]] = {
                 'or two nodes for one file)'),
     'NODL815': ('warning', 'legacy XML: something is given twice, redundantly (a role, an exported path)'),
     'NODL816': ('warning', 'conversion: an executable holds several nodes; each gets a file named after both'),
+    'NODL851': ('warning', "include dialect: the reference implementation's include/includes file is read "
+                'as a node definition (base + mixins + main); nodl convert rewrites it'),
+    'NODL852': ('error', 'include dialect: an include entry is not a mapping with one ref'),
+    'NODL853': ('error', "include dialect: both 'include' and 'includes' are given"),
+    'NODL861': ('error', 'a generate_parameter_library file, not a NoDL document (nodl convert --from genparamlib)'),
+    'NODL862': ('warning', 'generate_parameter_library: parameters under __map_ segments have no NoDL form '
+                'and are not converted'),
+    'NODL863': ('error', 'generate_parameter_library: not a namespace of parameters (two top-level keys, '
+                'a value that is neither a parameter nor a namespace)'),
+    'NODL864': ('warning', 'generate_parameter_library export: a parameter has no generate_parameter_library '
+                "form (type 'none', a name that is not a C++ identifier path) and is left out"),
 }
 
 

@@ -14,6 +14,7 @@ if TYPE_CHECKING:
     from typing import Any, Union
 
 from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError, has_errors
+from nodl_schema.dialects import adapt
 from nodl_schema.frontends.source import Source, read_source
 from nodl_schema.frontends.yaml_json import ParsedDocument, parse_document
 from nodl_schema.validation import Kind, detect_kind, validate_data
@@ -109,13 +110,22 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
     parsed = parse_document(text)
     if parsed.diagnostics:
         return Report(text.file, None, parsed.data, list(parsed.diagnostics), parsed)
+    # A dialect (the reference's include files, generate_parameter_library files) is read
+    # as NoDL v2 where it has a NoDL meaning; its diagnostics land on the original text.
+    dialect = adapt(parsed)
+    early: list[Diagnostic] = []
+    if dialect is not None:
+        if dialect.data is None:  # recognised, but not a NoDL document: say what it is
+            return Report(text.file, None, parsed.data, dialect.diagnostics, parsed)
+        parsed, early = dialect.document, dialect.diagnostics
     detected = detect_kind(parsed.data)
     if wanted is not None and wanted is not detected:
         mismatch = Diagnostic(
             Severity.ERROR, f'expected {article(wanted)} definition, but this is '
             f'{article(detected)} definition ({KIND_REASONS[detected]})', (), text.file, 1, 1)
-        return Report(text.file, wanted, parsed.data, [mismatch], parsed)
-    return Report(text.file, detected, parsed.data, validate_data(parsed.data, detected), parsed)
+        return Report(text.file, wanted, parsed.data, early + [mismatch], parsed)
+    return Report(text.file, detected, parsed.data,
+                  early + validate_data(parsed.data, detected), parsed)
 
 
 def _load(source: Source, kind: Kind | None, strict: bool, file: str | None) -> Document:
