@@ -1,0 +1,219 @@
+"""Expansion and remapping of names for a node (``rcl_expand_topic_name``, ``remap.c``,
+``rcl_node_init``, ``rcl_node_resolve_name``), and joining/splitting full names."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from nodl_schema.naming.remap_rules import RemapArgs, RemapRule, parse_remap_rules
+from nodl_schema.naming.validation import (InvalidNameError, checked_namespace, full_name_error,
+                                           namespace_error, normalize_namespace, topic_name_error)
+
+__all__ = ['expand_name', 'node_name_after_remaps', 'node_namespace_after_remaps', 'NodeNames',
+           'node_fqn', 'resolve_name', 'join_name', 'split_name', 'expand', 'relativize',
+           'fully_qualified']
+
+
+# -- expansion (rcl_expand_topic_name) ---------------------------------------------------------
+
+_SUBSTITUTIONS = ('{node}', '{ns}', '{namespace}')
+
+
+def _expand(name: str, node_name: str, namespace: str) -> str:
+    """rcl's expansion of a valid ``name`` for a node in the absolute ``namespace``."""
+    root = namespace == '/'
+    has_substitution = '{' in name
+    if name.startswith('/') and not has_substitution:
+        return name
+    if name.startswith('~'):
+        name = (namespace if root else namespace + '/') + node_name + name[1:]
+    if has_substitution:
+        while '{' in name:
+            start = name.index('{')
+            key = name[start:name.index('}', start) + 1]
+            if key not in _SUBSTITUTIONS:
+                raise InvalidNameError('topic name', name, f'unknown substitution: {key}')
+            name = name.replace(key, node_name if key == '{node}' else namespace)
+    if not name.startswith('/'):
+        name = (namespace if root else namespace + '/') + name
+    return name
+
+
+def expand_name(name: str, node_name: str, namespace: str) -> str:
+    """The fully qualified form of ``name`` for the node ``node_name`` in ``namespace``.
+
+    The same result as ``rclpy.expand_topic_name`` (which may still be an
+    invalid full name, e.g. ``{ns}/x`` in ``/`` gives ``//x``; :func:`resolve_name`
+    checks that).  ``namespace`` is taken as a node takes it: ``''`` means
+    ``/`` and a missing leading ``/`` is added.  Raises
+    :class:`InvalidNameError` for an invalid name, node name or namespace.
+    """
+    problem = topic_name_error(name)
+    if problem:
+        raise InvalidNameError('topic name', name, problem)
+    namespace = checked_namespace(node_name, namespace)
+    return _expand(name, node_name, namespace)
+
+
+# -- applying rules (rcl remap.c, node.c, node_resolve_name.c) ---------------------------------
+
+
+def node_name_after_remaps(node_name: str, remap_args: RemapArgs = None) -> str:
+    """The node's name after the first ``__node`` rule for it (matched on ``node_name``)."""
+    for rule in parse_remap_rules(remap_args):
+        if rule.kind == 'node' and rule.applies_to(node_name):
+            return rule.replacement
+    return node_name
+
+
+def node_namespace_after_remaps(node_name: str, namespace: str,
+                                remap_args: RemapArgs = None) -> str:
+    """The node's namespace after the first ``__ns`` rule for it.
+
+    As in ``rcl_node_init``, the ``__ns`` rule's node scope is compared with
+    the node's name after its ``__node`` rule.
+    """
+    rules = parse_remap_rules(remap_args)
+    final_name = node_name_after_remaps(node_name, rules)
+    for rule in rules:
+        if rule.kind == 'namespace' and rule.applies_to(final_name):
+            return rule.replacement
+    return normalize_namespace(namespace)
+
+
+@dataclass(frozen=True)
+class NodeNames:
+    """A node's final name and namespace with its rules: resolves names as the node does.
+
+    Build it with :meth:`create` from the name and namespace a node is
+    created with (``__node``/``__ns`` rules are applied), or directly from the
+    final name and namespace of a running node (as the graph reports them).
+    """
+
+    #: The node's final name.
+    name: str
+    #: The node's final, absolute namespace.
+    namespace: str
+    #: Every rule the node was given (``__node``/``__ns`` rules are already reflected above).
+    rules: tuple[RemapRule, ...] = ()
+
+    @classmethod
+    def create(cls, node_name: str, namespace: str, remap_args: RemapArgs = None) -> NodeNames:
+        """The node ``Node(node_name, namespace=namespace)`` given ``remap_args`` becomes.
+
+        Raises :class:`InvalidNameError` when rcl would refuse to create it.
+        """
+        rules = parse_remap_rules(remap_args)
+        checked_namespace(node_name, namespace)
+        final_name = node_name_after_remaps(node_name, rules)
+        final_namespace = node_namespace_after_remaps(node_name, namespace, rules)
+        problem = namespace_error(final_namespace)
+        if problem:
+            raise InvalidNameError('node namespace', final_namespace, problem)
+        return cls(final_name, final_namespace, tuple(rules))
+
+    @property
+    def fqn(self) -> str:
+        """``/namespace/name``."""
+        return join_name(self.namespace, self.name)
+
+    def expand(self, name: str) -> str:
+        """``name`` expanded for this node (no remapping); see :func:`expand_name`."""
+        return expand_name(name, self.name, self.namespace)
+
+    def rule_for(self, name: str, *, service: bool = False) -> RemapRule | None:
+        """The rule that remaps ``name`` (a topic, or a service) for this node, if one does."""
+        expanded = self.expand(name)
+        wanted = 'service' if service else 'topic'
+        for rule in self.rules:
+            if rule.kind in ('name', wanted) and rule.applies_to(self.name):
+                assert rule.match is not None
+                if _expand(rule.match, self.name, self.namespace) == expanded:
+                    return rule
+        return None
+
+    def resolve(self, name: str, *, service: bool = False) -> str:
+        """The final name of the topic (or service) ``name``; see :func:`resolve_name`.
+
+        An action's name resolves as a topic name (as ``rcl_action`` does).
+        """
+        rule = self.rule_for(name, service=service)
+        resolved = self.expand(name) if rule is None else \
+            _expand(rule.replacement, self.name, self.namespace)
+        problem = full_name_error(resolved)
+        if problem:
+            raise InvalidNameError('resolved name', resolved, problem)
+        return resolved
+
+
+def node_fqn(node_name: str, namespace: str, remap_args: RemapArgs = None) -> str:
+    """The fully qualified name of a node created as ``Node(node_name, namespace=...)``
+    with ``remap_args`` (``__node``, ``__name`` and ``__ns`` rules change it)."""
+    return NodeNames.create(node_name, namespace, remap_args).fqn
+
+
+def resolve_name(name: str, node_name: str, namespace: str, remap_args: RemapArgs = None, *,
+                 service: bool = False) -> str:
+    """The name a real node (``Node(node_name, namespace=...)`` with ``remap_args``) uses for
+    the topic (or, with ``service=True``, the service) ``name``.
+
+    As ``Node.resolve_topic_name`` / ``resolve_service_name``: the name is
+    expanded against the node's final name and namespace, the first rule that
+    applies to the node (and to topics, or services) and whose expanded match
+    side equals it replaces it with its expanded replacement, and the result
+    must be a valid fully qualified name (else :class:`InvalidNameError`).
+    """
+    return NodeNames.create(node_name, namespace, remap_args).resolve(name, service=service)
+
+
+# -- joining and splitting fully qualified names -----------------------------------------------
+
+
+def join_name(namespace: str, name: str) -> str:
+    """``namespace`` + ``/`` + ``name``, without doubling the root's ``/``."""
+    namespace = '/' + namespace.strip('/') if namespace.strip('/') else ''
+    return f'{namespace}/{name}'
+
+
+def split_name(fqn: str) -> tuple[str, str]:
+    """``/ns/sub/name`` -> ``('/ns/sub', 'name')``; a bare name is in ``/``."""
+    fqn = fqn.strip()
+    if not fqn.startswith('/'):
+        fqn = '/' + fqn
+    namespace, _, base = fqn.rpartition('/')
+    return namespace or '/', base
+
+
+# -- tolerant helpers for names read from a running graph --------------------------------------
+
+
+def fully_qualified(namespace: str, name: str) -> str:
+    """``/namespace/name`` for a node (the namespace may lack its ``/`` or have extra ones)."""
+    return join_name(namespace, name)
+
+
+def expand(name: str, node_name: str, namespace: str) -> str:
+    """The fully qualified form of topic/service/action ``name`` for the given node.
+
+    Like :func:`expand_name` without validation, and with a namespace that
+    may be written without its leading ``/`` or with a trailing one.
+    """
+    ns = '/' + namespace.strip('/') if namespace.strip('/') else '/'
+    return _expand(name, node_name, ns)
+
+
+def relativize(name: str, node_name: str, namespace: str) -> str:
+    """The shortest faithful form of an absolute ``name`` for this node.
+
+    Under the node: ``~/x``.  Under its namespace (not at the root): ``x``.
+    Otherwise the absolute name.
+    """
+    own = fully_qualified(namespace, node_name)
+    if name == own:
+        return '~'
+    if name.startswith(own + '/'):
+        return '~' + name[len(own):]
+    ns = '/' + namespace.strip('/') if namespace.strip('/') else ''
+    if ns and name.startswith(ns + '/'):
+        return name[len(ns) + 1:]
+    return name
