@@ -7,25 +7,27 @@ import sys
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Iterable
+    from typing import Iterable, Iterator
 
 from nodl_schema.diagnostics import Diagnostic, has_errors
-from nodl_schema.files import STDIN, find_nodl_files
+from nodl_schema.files import STDIN, iter_nodl_files
 from nodl_schema.loading import Report, check_source
 from nodl_schema.validation.kinds import Kind
 
-__all__ = ['FileResult', 'check_paths']
+__all__ = ['FileResult', 'check_paths', 'iter_check_paths', 'failed']
 
 
 class FileResult:
     """The outcome for one path: a report, or why it could not be read."""
 
     def __init__(self, path: str, report: Report | None = None, problem: str | None = None,
-                 diagnostics: list[Diagnostic] | None = None) -> None:
+                 diagnostics: list[Diagnostic] | None = None, note: str | None = None) -> None:
         self.path = path
         self.report = report
         self.problem = problem
         self.diagnostics: list[Diagnostic] = diagnostics or []
+        #: A remark that is not a result (a file a scan skipped, a pipe read that waits).
+        self.note = note
 
     @property
     def readable(self) -> bool:
@@ -48,28 +50,77 @@ def check_paths(paths: Iterable[str], kind: Kind | None = None,
     """Check every NoDL file named by ``paths`` (see :func:`find_nodl_files`).
 
     With ``resolve``, node definitions are also composed: their mixin
-    references must resolve to valid interface definitions.
+    references must resolve to valid interface definitions.  Notes (see
+    :func:`iter_check_paths`) are left out.
     """
-    results: list[FileResult] = []
-    for target in find_nodl_files(paths):
+    return [r for r in iter_check_paths(paths, kind, resolve) if r.note is None]
+
+
+def iter_check_paths(paths: Iterable[str], kind: Kind | None = None,
+                     resolve: bool = False) -> Iterator[FileResult]:
+    """Check the files named by ``paths`` one at a time, yielding each result as soon as it is known.
+
+    Besides one result per file (a report, or the problem that kept it from
+    being read), it yields notes (``result.note``): a file a directory scan
+    skipped, or a named pipe about to be read that has no writer yet (the
+    read waits for one).
+    """
+    for target in iter_nodl_files(paths):
+        if target.skipped is not None:
+            yield FileResult(target.path, note=f'skipped: {target.skipped}')
+            continue
         if target.problem is not None:
-            results.append(FileResult(target.path, problem=target.problem))
+            yield FileResult(target.path, problem=target.problem)
             continue
         try:
             if target.path == STDIN:
                 report = check_source(sys.stdin.buffer.read(), kind=kind, file='<stdin>')
+            elif target.special == 'named pipe':
+                data = _read_pipe_if_written(target.path)
+                if data is None:
+                    yield FileResult(target.path, note='is a named pipe: waiting for a program to '
+                                                       'write to it (Ctrl-C to stop)')
+                    from nodl_schema.frontends.source import read_limited
+
+                    data = read_limited(target.path)
+                report = check_source(data, kind=kind, file=target.path)
             else:
                 report = check_source(_FilePath(target.path), kind=kind, file=target.path)
         except OSError as exc:
-            results.append(FileResult(target.path, problem=exc.strerror or str(exc)))
+            yield FileResult(target.path, problem=exc.strerror or str(exc))
             continue
         diagnostics = report.diagnostics
         if resolve and report.kind is Kind.NODE and not report.has_errors():
             from nodl_schema.composition import compose_report
 
             diagnostics = compose_report(report)[1]
-        results.append(FileResult(report.file, report, diagnostics=diagnostics))
-    return results
+        yield FileResult(report.file, report, diagnostics=diagnostics)
+
+
+def _read_pipe_if_written(path: str) -> bytes | None:
+    """A named pipe's content if a writer has it open; None if opening it would wait for one."""
+    from nodl_schema.frontends.source import MAX_BYTES
+
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    try:
+        try:
+            first = os.read(fd, 65536)
+        except BlockingIOError:  # a writer is there, it has not written yet
+            first = None
+        if first == b'':  # no writer (or one that wrote nothing): a plain open would wait
+            return None
+        os.set_blocking(fd, True)
+        chunks = [first] if first else []
+        total = len(first or b'')
+        while total <= MAX_BYTES:
+            chunk = os.read(fd, MAX_BYTES + 1 - total)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            total += len(chunk)
+        return b''.join(chunks)
+    finally:
+        os.close(fd)
 
 
 def failed(result: FileResult, strict: bool) -> bool:

@@ -1,4 +1,5 @@
-"""The ``nodl`` command."""
+# PYTHON_ARGCOMPLETE_OK
+"""The ``nodl`` command (shell completion: see :mod:`nodl_schema.cli.completion`)."""
 
 from __future__ import annotations
 
@@ -25,6 +26,12 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of ``nodl``; returns the exit code."""
     if argv is None:
         argv = sys.argv[1:]
+        import os
+
+        if os.environ.get('_ARGCOMPLETE'):  # a shell asks for completions (argcomplete)
+            from nodl_schema.cli.completion import autocomplete
+
+            autocomplete(build_parser)
     parser = build_parser(argv)
     args = parser.parse_args(argv)
     return run_verb(parser, args)

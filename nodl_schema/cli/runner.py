@@ -9,9 +9,10 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Any
 
-from nodl_schema.cli.verb import EXIT_INTERNAL, EXIT_USAGE, help_text
+from nodl_schema.cli.verb import (EXIT_BROKEN_PIPE, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_USAGE,
+                                  exit_status_epilog, help_text)
 
-__all__ = ['VERB_GROUP', 'add_verbs', 'run_verb']
+__all__ = ['VERB_GROUP', 'add_verbs', 'add_common_arguments', 'run_verb']
 
 VERB_GROUP = 'nodl.verbs'
 
@@ -39,8 +40,11 @@ def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb',
         try:
             verb = factory()
             text = help_text(verb)
-            sub = subparsers.add_parser(name, help=text, description=text)
+            sub = subparsers.add_parser(name, help=text, description=text,
+                                        epilog=exit_status_epilog(verb),
+                                        formatter_class=argparse.RawDescriptionHelpFormatter)
             verb.add_arguments(sub)
+            add_common_arguments(sub)
         except Exception as exc:  # noqa: BLE001 - a broken plugin must not break the tool
             print(f"warning: skipped verb '{name}': {type(exc).__name__}: {exc}", file=sys.stderr)
             continue
@@ -49,22 +53,70 @@ def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb',
     return verbs
 
 
+def add_common_arguments(parser: argparse.ArgumentParser) -> None:
+    """The options every verb has (``--color``)."""
+    from nodl_schema.cli.output import COLOR_CHOICES
+
+    if any('--color' in a.option_strings for a in parser._actions):
+        return  # the verb declares its own
+    parser.add_argument('--color', choices=COLOR_CHOICES, default='auto',
+                        help='colour severity words: auto (on a terminal, unless NO_COLOR is '
+                             'set), always or never (default: auto)')
+
+
 def run_verb(parser: argparse.ArgumentParser, args: argparse.Namespace, dest: str = '_verb') -> int:
-    """Run the verb chosen in ``args``; internal errors become one line, not a traceback."""
+    """Run the verb chosen in ``args``, with the exit statuses of :data:`~nodl_schema.cli.verb.EXIT_STATUSES`.
+
+    Internal errors become one line, not a traceback; output that cannot be
+    written is one ``cannot write ...`` line and status 2; a closed pipe ends
+    quietly with status 141; Ctrl-C keeps what was printed and ends with 130.
+    """
     verb = getattr(args, dest, None)
     if verb is None:
         parser.print_help()
         return EXIT_USAGE
+    from nodl_schema.cli.output import OutputError, guarded_streams
+
+    with guarded_streams(getattr(args, 'color', 'auto')) as (out, _):
+        try:
+            try:
+                code = int(verb.main(args))
+            finally:
+                out.flush()  # what the verb printed reaches its reader, also when it failed
+            return code
+        except KeyboardInterrupt:
+            _report('interrupted')
+            return EXIT_INTERRUPTED
+        except BrokenPipeError:
+            _silence_stdout()
+            return EXIT_BROKEN_PIPE
+        except OutputError as exc:
+            _silence_stdout()
+            _report(f'error: {exc}')
+            return EXIT_USAGE
+        except Exception as exc:  # noqa: BLE001 - the last line of defence
+            name = type(verb).__name__
+            _report(f'internal error in {name}: {type(exc).__name__}: {exc} (this is a bug in '
+                    'the toolkit or a plugin; please report it with the command and the input files)')
+            return EXIT_INTERNAL
+
+
+def _report(line: str) -> None:
+    """One line on standard error, even if it can no longer be written."""
     try:
-        return int(verb.main(args))
-    except KeyboardInterrupt:
-        print('interrupted', file=sys.stderr)
-        return 130
-    except BrokenPipeError:
-        return 0
-    except Exception as exc:  # noqa: BLE001 - the last line of defence
-        name = type(verb).__name__
-        print(f'nodl: internal error in {name}: {type(exc).__name__}: {exc} (this is a bug in '
-              'the toolkit or a plugin; please report it with the command and the input files)',
-              file=sys.stderr)
-        return EXIT_INTERNAL
+        sys.stderr.write(f'nodl: {line}\n')
+        sys.stderr.flush()
+    except (OSError, Exception):  # noqa: BLE001 - nowhere left to say it
+        pass
+
+
+def _silence_stdout() -> None:
+    """Point standard output at /dev/null, so that Python's own flush at exit cannot fail again."""
+    import os
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.__stdout__.fileno())  # type: ignore[union-attr]
+        os.close(devnull)
+    except (OSError, AttributeError, ValueError):
+        pass

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import argparse
 
-__all__ = ['Verb', 'EXIT_OK', 'EXIT_FAILURE', 'EXIT_USAGE', 'EXIT_INTERNAL', 'help_text']
+__all__ = ['Verb', 'EXIT_OK', 'EXIT_FAILURE', 'EXIT_USAGE', 'EXIT_INTERNAL', 'EXIT_INTERRUPTED',
+           'EXIT_BROKEN_PIPE', 'EXIT_STATUSES', 'help_text', 'exit_status_epilog']
 
 EXIT_OK = 0
 #: The checked thing is invalid / does not conform.
@@ -18,10 +19,30 @@ EXIT_FAILURE = 1
 EXIT_USAGE = 2
 #: A bug in the toolkit (or a plugin).
 EXIT_INTERNAL = 3
+#: Interrupted with Ctrl-C (128 + SIGINT); what was printed before is kept.
+EXIT_INTERRUPTED = 130
+#: Standard output was closed early, e.g. piped into ``head`` (128 + SIGPIPE, as other tools).
+EXIT_BROKEN_PIPE = 141
+
+#: What each exit status means, the same for every verb; status 1 is described by the
+#: verb's ``failure`` attribute (None: the verb never returns it).
+EXIT_STATUSES = (
+    (EXIT_OK, 'success'),
+    (EXIT_FAILURE, ''),
+    (EXIT_USAGE, 'usage error, or a path, node or output that cannot be read or written '
+                 '(one line says which)'),
+    (EXIT_INTERNAL, 'internal error: a bug in the toolkit or a plugin, please report it'),
+    (EXIT_INTERRUPTED, 'interrupted (Ctrl-C); what was already printed is kept'),
+    (EXIT_BROKEN_PIPE, 'standard output was closed early (e.g. piped into head); nothing more '
+                       'is printed'),
+)
 
 
 class Verb:
     """Base class of verbs (subclassing it is optional; the protocol is what counts)."""
+
+    #: What exit status 1 means for this verb (None: it never exits 1); shown in ``--help``.
+    failure: str | None = 'the check found a problem'
 
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
         """Declare the verb's arguments."""
@@ -35,3 +56,16 @@ def help_text(verb: object) -> str:
     """The first line of a verb's docstring."""
     doc = (type(verb).__doc__ or '').strip()
     return doc.splitlines()[0] if doc else ''
+
+
+def exit_status_epilog(verb: object) -> str:
+    """The ``exit status`` section of a verb's ``--help`` (see :data:`EXIT_STATUSES`)."""
+    failure = getattr(verb, 'failure', Verb.failure)
+    lines = ['exit status:']
+    for status, meaning in EXIT_STATUSES:
+        if status == EXIT_FAILURE:
+            if not failure:
+                continue
+            meaning = failure
+        lines.append(f'  {status:<4} {meaning}')
+    return '\n'.join(lines)

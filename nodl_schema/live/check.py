@@ -9,9 +9,10 @@ from nodl_schema.composition import ComposedNode, compose
 from nodl_schema.diagnostics import ValidationError
 from nodl_schema.live.conformance import Difference, compare, conforms, parse_remaps
 from nodl_schema.live.observe import ObservedNode, observe_node
-from nodl_schema.live.session import split_node_name
+from nodl_schema.live.session import DuplicateNode, split_node_name
+from nodl_schema.model import ENDPOINT_SECTIONS
 
-__all__ = ['CheckResult', 'load_definition', 'check_node', 'RECHECK']
+__all__ = ['CheckResult', 'load_definition', 'check_node', 'base_mismatch', 'RECHECK']
 
 #: Seconds to wait before looking again when declared endpoints are missing (within the timeout).
 RECHECK = 1.0
@@ -31,6 +32,9 @@ class CheckResult:
         self.differences = differences
         self.composed = composed
         self.observed = observed
+        #: One line when the node's base is not the declared one (``use `base: lifecycle_node```),
+        #: and the differences that mismatch explains (the other base's own entities).
+        self.base_hint, self.base_differences = base_mismatch(composed, observed, differences)
 
     @property
     def conforms(self) -> bool:
@@ -41,6 +45,38 @@ class CheckResult:
     def drift(self) -> list[Difference]:
         """Only the differences that are drift."""
         return [d for d in self.differences if d.severity == 'error']
+
+
+def base_mismatch(composed: ComposedNode, observed: ObservedNode,
+                  differences: list[Difference]) -> tuple[str | None, list[Difference]]:
+    """The one-line summary of a base mismatch, and the differences it accounts for.
+
+    A node that serves the lifecycle services but is declared ``base: node``
+    (or the reverse) differs by every entity of the lifecycle base; the
+    summary says what to write instead.  ``(None, [])`` when the bases agree.
+    """
+    from nodl_schema.composition.bases import base_layer
+    from nodl_schema.live.describe import deduce_base
+    from nodl_schema.naming import expand
+
+    declared = composed.node.base
+    declared_name = getattr(declared, 'value', declared)
+    seen = deduce_base(observed)
+    if declared_name is None or declared_name == seen:
+        return None, []
+    if seen == 'lifecycle_node':
+        hint = 'the node serves the lifecycle services: use `base: lifecycle_node`'
+    else:
+        hint = 'the node does not serve the lifecycle services: use `base: node`'
+    name, namespace = observed.name, observed.namespace
+    entities: set[tuple[str, str]] = set()
+    for base, sign in (('lifecycle_node', 1), ('node', -1)):
+        interface = base_layer(base, composed.client_library).interface
+        names = {(section, expand(e.name, name, namespace))
+                 for section in ENDPOINT_SECTIONS for e in interface.endpoints(section)}
+        names |= {('parameters', p) for p in interface.parameters or {}}
+        entities = entities | names if sign > 0 else entities - names
+    return hint, [d for d in differences if (d.section, d.name) in entities]
 
 
 def load_definition(definition: str | os.PathLike | tuple[str, str]) -> ComposedNode:
@@ -69,10 +105,11 @@ def check_node(fqn: str, definition: str | os.PathLike | tuple[str, str], *,
     """Check the running node ``fqn`` against ``definition`` (a file or ``(package, executable)``).
 
     Raises ValidationError for a bad definition, LiveError when the node
-    cannot be observed (NodeNotFound if it never appears within ``timeout``),
-    and ValueError for a malformed remapping rule.  Declared endpoints that
-    are missing are looked for once more after ``RECHECK`` seconds (if the
-    timeout leaves that much), as discovery may only be late.
+    cannot be observed (NodeNotFound if it never appears within ``timeout``,
+    DuplicateNode if several nodes share its name), and ValueError for a
+    malformed remapping rule.  Declared endpoints that are missing are
+    looked for once more after ``RECHECK`` seconds (if the timeout leaves
+    that much), as discovery may only be late.
     """
     import time
 
@@ -84,6 +121,11 @@ def check_node(fqn: str, definition: str | os.PathLike | tuple[str, str], *,
     start = time.monotonic()
     with ros_session() as session:
         observed = observe_node(fqn, timeout=timeout, parameters=parameters, session=session)
+        if observed.instances > 1:
+            raise DuplicateNode(f'{observed.instances} nodes in the graph are named '
+                                f'{observed.fully_qualified_name}: their endpoints cannot be told '
+                                'apart, so none is checked; give each a unique name (e.g. '
+                                '--ros-args -r __node:=other_name) and check again')
         differences = compare(composed, observed, rules)
         late = max(0.0, min(RECHECK, timeout - (time.monotonic() - start)))
         if late and any(d.kind == 'missing' and d.section != 'parameters' for d in differences):

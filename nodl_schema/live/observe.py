@@ -12,11 +12,11 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from nodl_schema.live.qos import qos_from_rclpy
-from nodl_schema.live.session import LiveError, NodeNotFound, ros_session, split_node_name
+from nodl_schema.live.session import LiveError, NodeNotFound, did_you_mean, ros_session, split_node_name
 from nodl_schema.vocabulary import SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
-           'wait_for_node', 'list_nodes', 'ACTION_INFIX']
+           'wait_for_node', 'list_nodes', 'count_nodes', 'ACTION_INFIX']
 
 ACTION_INFIX = '/_action/'
 _PARAMETER_TYPES = {0: 'none', 1: 'bool', 2: 'int', 3: 'double', 4: 'string', 5: 'byte_array',
@@ -64,6 +64,8 @@ class ObservedNode:
     parameters: dict[str, ObservedParameter] | None = None
     #: Things that could not be observed, in words.
     notes: list[str] = field(default_factory=list)
+    #: How many nodes in the graph have this name (more than one: what is observed is all of them).
+    instances: int = 1
 
     @property
     def fully_qualified_name(self) -> str:
@@ -82,15 +84,32 @@ def list_nodes(node: Any) -> list[str]:
     return sorted(set(names))
 
 
+def count_nodes(node: Any) -> dict[str, int]:
+    """How many nodes in the graph have each fully qualified name (other than ``node``).
+
+    A name held more than once is a name several nodes share (usually in
+    several processes): the graph cannot tell their endpoints apart.
+    """
+    own = node.get_fully_qualified_name()
+    counts: dict[str, int] = {}
+    for name, namespace in node.get_node_names_and_namespaces():
+        fqn = (namespace.rstrip('/') + '/' + name) if namespace != '/' else '/' + name
+        if fqn != own:
+            counts[fqn] = counts.get(fqn, 0) + 1
+    return counts
+
+
 def wait_for_node(node: Any, fqn: str, timeout: float) -> None:
-    """Wait until ``fqn`` is in the graph, or raise NodeNotFound."""
+    """Wait until ``fqn`` is in the graph, or raise NodeNotFound (naming the closest nodes seen)."""
     deadline = time.monotonic() + timeout
     while True:
-        if fqn in list_nodes(node):
+        names = list_nodes(node)
+        if fqn in names:
             return
         if time.monotonic() >= deadline:
-            raise NodeNotFound(f"node '{fqn}' was not found within {timeout:g} s (is it running, "
-                               'in the same ROS_DOMAIN_ID, with discovery reaching it?)')
+            hint = did_you_mean(fqn, names)
+            raise NodeNotFound(f"node '{fqn}' was not found within {timeout:g} s{hint} (is it "
+                               'running, in the same ROS_DOMAIN_ID, with discovery reaching it?)')
         node.nodl_executor.spin_once(timeout_sec=0.01)
 
 
@@ -268,6 +287,10 @@ def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float
     remaining = max(0.5, timeout - (time.monotonic() - start))
     raw = _settle(node, name, namespace, fqn, remaining, quiet)
     observed = ObservedNode(name, namespace)
+    observed.instances = max(1, count_nodes(node).get(fqn, 1))
+    if observed.instances > 1:
+        observed.notes.append(f'{observed.instances} nodes in the graph are named {fqn}: what was '
+                              'observed is all of them together (give each node a unique name)')
     for section, entries in raw.items():
         topic = section in TOPIC_SECTIONS
         endpoints = []

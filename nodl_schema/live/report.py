@@ -15,8 +15,12 @@ __all__ = ['format_check_text', 'format_check_json', 'format_check_junit']
 def format_check_text(result: CheckResult, verbose: bool = False) -> str:
     """One line per difference, then a verdict."""
     lines = []
+    folded = result.base_differences if not verbose else []
+    if result.base_hint:
+        more = (f' ({len(folded)} differences of the base, listed with -v)' if folded else '')
+        lines.append(f'{result.fqn}: error: base: {result.base_hint}{more}')
     for d in result.differences:
-        if d.severity == 'info' and not verbose:
+        if (d.severity == 'info' and not verbose) or any(d is f for f in folded):
             continue
         lines.append(f'{result.fqn}: {d}')
     drift = len(result.drift)
@@ -36,6 +40,7 @@ def format_check_json(result: CheckResult) -> str:
     """``{"node", "definition", "conforms", "differences": [...]}``."""
     data: dict[str, Any] = {'node': result.fqn, 'definition': result.definition,
                             'conforms': result.conforms,
+                            'base_hint': result.base_hint,
                             'differences': [d.to_dict() for d in result.differences]}
     return json.dumps(data, indent=2, default=str) + '\n'
 

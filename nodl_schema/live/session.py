@@ -6,7 +6,8 @@ import os
 from typing import Any, Iterator
 from contextlib import contextmanager
 
-__all__ = ['LiveError', 'NodeNotFound', 'require_rclpy', 'ros_session', 'split_node_name']
+__all__ = ['LiveError', 'NodeNotFound', 'DuplicateNode', 'require_rclpy', 'ros_session',
+           'split_node_name', 'node_name_problem', 'did_you_mean']
 
 
 class LiveError(Exception):
@@ -15,6 +16,38 @@ class LiveError(Exception):
 
 class NodeNotFound(LiveError):
     """The node did not appear in the graph within the timeout."""
+
+
+class DuplicateNode(LiveError):
+    """Several nodes in the graph share the name; which one is meant cannot be told."""
+
+
+def node_name_problem(name: str) -> str | None:
+    """Why ``name`` is not a node name (``/namespace/name`` or ``name``), or None.
+
+    The ROS name rules apply (:func:`~nodl_schema.validation.names.ros_name_problem`),
+    without the ``~`` and ``{}`` substitutions, which a running node's name never holds.
+    """
+    from nodl_schema.validation.names import ros_name_problem
+
+    if not name.strip():
+        return 'a node name must not be empty'
+    if name == '/':
+        return "'/' is a namespace, not a node name"
+    if any(c in name for c in '~{}'):
+        return "a running node's name holds no '~' or '{}' substitutions; write /namespace/name"
+    return ros_name_problem(name)
+
+
+def did_you_mean(name: str, candidates: list[str]) -> str:
+    """`` (did you mean '/a'?)`` with the closest of ``candidates``, or ``''``."""
+    import difflib
+
+    by_base = [c for c in candidates if c.rpartition('/')[2] == name.rpartition('/')[2]]
+    close = by_base or difflib.get_close_matches(name, candidates, n=3, cutoff=0.6)
+    if not close:
+        return ''
+    return ' (did you mean ' + ' or '.join(f"'{c}'" for c in close[:3]) + '?)'
 
 
 def require_rclpy() -> Any:

@@ -5,20 +5,35 @@ from __future__ import annotations
 import argparse
 import sys
 
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
+
+from nodl_schema.cli.arguments import node_name, seconds
 from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+
+def _complete_definition(**kwargs: Any) -> list[str]:
+    from nodl_schema.cli.completion import complete_definition
+
+    return complete_definition(**kwargs)
 
 
 class CheckVerb(Verb):
     """Check a running node against its node definition and report every difference."""
 
+    failure = 'the node drifts from its definition'
+
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
-        parser.add_argument('node', metavar='NODE', help='the running node, e.g. /robot/driver')
+        parser.add_argument('node', metavar='NODE', type=node_name,
+                            help='the running node, e.g. /robot/driver')
         parser.add_argument('definition', nargs='+', metavar='FILE | PACKAGE EXECUTABLE',
                             help='the node definition: a file, or a package and executable '
-                                 'registered in the ament index')
+                                 'registered in the ament index'
+                            ).completer = _complete_definition  # type: ignore[attr-defined]
         parser.add_argument('--remap', action='append', default=[], metavar='FROM:=TO',
                             help='a remapping the node was launched with (repeatable)')
-        parser.add_argument('--timeout', type=float, default=5.0, metavar='S',
+        parser.add_argument('--timeout', type=seconds, default=5.0, metavar='S',
                             help='seconds to wait for the node (default: 5)')
         parser.add_argument('--no-parameters', action='store_true',
                             help='do not check parameters')
@@ -29,14 +44,16 @@ class CheckVerb(Verb):
                             help='also list what could not be verified')
 
     def main(self, args: argparse.Namespace) -> int:
+        from nodl_schema.cli.arguments import definition_problem
         from nodl_schema.diagnostics import ValidationError
         from nodl_schema.live.check import check_node
         from nodl_schema.live.report import format_check_json, format_check_junit, format_check_text
         from nodl_schema.live.session import LiveError
         from nodl_schema.reporting import format_text
 
-        if len(args.definition) > 2:
-            print('nodl check: error: expected FILE or PACKAGE EXECUTABLE', file=sys.stderr)
+        problem = definition_problem(args.definition)
+        if problem is not None:
+            print(f'nodl check: error: {problem}', file=sys.stderr)
             return EXIT_USAGE
         definition = args.definition[0] if len(args.definition) == 1 else tuple(args.definition)
         try:

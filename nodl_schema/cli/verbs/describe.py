@@ -5,20 +5,23 @@ from __future__ import annotations
 import argparse
 import sys
 
-from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+from nodl_schema.cli.arguments import node_name, seconds
+from nodl_schema.cli.verb import EXIT_OK, EXIT_USAGE, Verb
 
 
 class DescribeVerb(Verb):
     """Observe a running node and write the node definition it exposes."""
 
+    failure = None
+
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
-        parser.add_argument('node', nargs='?', metavar='NODE',
+        parser.add_argument('node', nargs='?', metavar='NODE', type=node_name,
                             help='the node, e.g. /robot/driver (omit with --all)')
         parser.add_argument('-o', '--output', metavar='PATH',
                             help='file to write (with --all: a directory); default: standard output')
         parser.add_argument('--all', action='store_true',
                             help='describe every node in the graph, one file each in -o DIR')
-        parser.add_argument('--timeout', type=float, default=5.0, metavar='S',
+        parser.add_argument('--timeout', type=seconds, default=5.0, metavar='S',
                             help='seconds to wait for the node to appear and settle (default: 5)')
         parser.add_argument('--no-parameters', action='store_true',
                             help="do not read the node's parameters")
@@ -28,6 +31,7 @@ class DescribeVerb(Verb):
     def main(self, args: argparse.Namespace) -> int:
         import os
 
+        from nodl_schema.cli.output import OutputError, write_file
         from nodl_schema.live.describe import describe_node, render_description
         from nodl_schema.live.session import LiveError
 
@@ -37,12 +41,25 @@ class DescribeVerb(Verb):
         if args.all and not args.output:
             print('nodl describe: error: --all needs -o DIR', file=sys.stderr)
             return EXIT_USAGE
+        if args.all and os.path.exists(args.output) and not os.path.isdir(args.output):
+            print(f'nodl describe: error: cannot write into {args.output}: not a directory '
+                  '(--all writes one file per node into -o DIR)', file=sys.stderr)
+            return EXIT_USAGE
         try:
             if args.all:
                 from nodl_schema.live.describe_all import describe_all
 
-                written = describe_all(args.output, timeout=args.timeout,
-                                       parameters=not args.no_parameters, format=args.format)
+                try:
+                    written = describe_all(args.output, timeout=args.timeout,
+                                           parameters=not args.no_parameters, format=args.format)
+                except OSError as exc:
+                    raise OutputError(f'cannot write {exc.filename or args.output}: '
+                                      f'{exc.strerror or exc}') from None
+                if not written:
+                    print(f'nodl describe: error: no node found in the graph within '
+                          f'{args.timeout:g} s (ROS_DOMAIN_ID={os.environ.get("ROS_DOMAIN_ID", "0")}; '
+                          'is discovery reaching the nodes?)', file=sys.stderr)
+                    return EXIT_USAGE
                 for fqn, path, notes in written:
                     print(f'{fqn} -> {path}')
                     for note in notes:
@@ -61,10 +78,8 @@ class DescribeVerb(Verb):
             return EXIT_OK
         try:
             os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
-            with open(args.output, 'w', encoding='utf-8') as f:
-                f.write(text)
         except OSError as exc:
-            print(f'nodl describe: error: cannot write {args.output}: {exc.strerror}', file=sys.stderr)
-            return EXIT_FAILURE
+            raise OutputError(f'cannot write {args.output}: {exc.strerror or exc}') from None
+        write_file(args.output, text)
         print(f'{description.fqn} -> {args.output}')
         return EXIT_OK

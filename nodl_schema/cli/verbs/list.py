@@ -11,6 +11,8 @@ from nodl_schema.cli.verb import EXIT_OK, Verb
 class ListVerb(Verb):
     """List the node and interface definitions registered in the ament index."""
 
+    failure = None
+
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
         parser.add_argument('package', nargs='?', help='only this package')
         parser.add_argument('--format', choices=('text', 'json'), default='text',

@@ -5,11 +5,13 @@ from __future__ import annotations
 import argparse
 import sys
 
-from nodl_schema.cli.verb import EXIT_OK, EXIT_USAGE, Verb
+from nodl_schema.cli.verb import EXIT_OK, Verb
 
 
 class SchemaVerb(Verb):
     """Print the JSON Schema of a kind of NoDL document (self-contained, for editors)."""
+
+    failure = None
 
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
         parser.add_argument('kind', nargs='?', choices=('parameter', 'interface', 'node'),
@@ -26,10 +28,7 @@ class SchemaVerb(Verb):
         if not args.output:
             sys.stdout.write(text)
             return EXIT_OK
-        try:
-            with open(args.output, 'w', encoding='utf-8') as f:
-                f.write(text)
-        except OSError as exc:
-            print(f'nodl schema: error: cannot write {args.output}: {exc.strerror}', file=sys.stderr)
-            return EXIT_USAGE
+        from nodl_schema.cli.output import write_file
+
+        write_file(args.output, text)  # a failure is one 'cannot write' line, exit status 2
         return EXIT_OK

@@ -5,7 +5,17 @@ from __future__ import annotations
 import argparse
 import sys
 
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
+
 from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+
+def _complete_definition(**kwargs: Any) -> list[str]:
+    from nodl_schema.cli.completion import complete_definition
+
+    return complete_definition(**kwargs)
 
 
 class ShowVerb(Verb):
@@ -14,18 +24,26 @@ class ShowVerb(Verb):
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
         parser.add_argument('target', nargs='+', metavar='FILE | PACKAGE EXECUTABLE',
                             help='a NoDL file, or a package and one of its executables '
-                                 '(looked up in the ament index)')
+                                 '(looked up in the ament index)'
+                            ).completer = _complete_definition  # type: ignore[attr-defined]
         parser.add_argument('--format', choices=('yaml', 'json'), default='yaml',
                             help='output format (default: yaml)')
         parser.add_argument('--layers', action='store_true',
                             help="show the layer each entity comes from (base, mixin or main)")
 
+    failure = 'the definition is invalid, or cannot be composed'
+
     def main(self, args: argparse.Namespace) -> int:
         import os
 
+        from nodl_schema.cli.arguments import definition_problem
         from nodl_schema.reporting import format_text, without_info
         from nodl_schema.show import render, show_file, show_registered
 
+        problem = definition_problem(args.target)
+        if problem is not None:
+            print(f'nodl show: error: {problem}', file=sys.stderr)
+            return EXIT_USAGE
         if len(args.target) == 1:
             if not os.path.isfile(args.target[0]):
                 what = 'is a directory' if os.path.isdir(args.target[0]) else 'no such file'

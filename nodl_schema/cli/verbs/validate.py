@@ -8,8 +8,14 @@ import sys
 from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
 
+#: The code of a path that cannot be read (see nodl_schema.codes).
+UNREADABLE_CODE = 'NODL020'
+
+
 class ValidateVerb(Verb):
     """Validate NoDL files (parameter, interface or node definitions) and report every problem."""
+
+    failure = 'a file is invalid (with --strict: or has warnings)'
 
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
         parser.add_argument('paths', nargs='+', metavar='PATH',
@@ -36,35 +42,57 @@ class ValidateVerb(Verb):
                                  'show a failed step\'s stderr)')
 
     def main(self, args: argparse.Namespace) -> int:
-        from nodl_schema.checking import check_paths, failed
-        from nodl_schema.reporting import Tally, format_json, format_text, summary_line, without_info
+        from nodl_schema.checking import failed, iter_check_paths
+        from nodl_schema.cli.output import Progress
+        from nodl_schema.diagnostics import Diagnostic, Severity
+        from nodl_schema.reporting import Tally, format_json, format_text, plural, summary_line, without_info
         from nodl_schema.validation.kinds import Kind
 
-        results = check_paths(args.paths, Kind(args.kind) if args.kind else None, args.resolve)
         tally = Tally()
-        unreadable = False
+        unreadable: list[Diagnostic] = []
         invalid = False
         out = sys.stderr if args.stderr else sys.stdout
+        text = args.format == 'text'
+        progress = Progress('nodl validate')
+        for stream in (sys.stdout, sys.stderr):  # the progress line is erased before any output
+            if hasattr(stream, 'before_write'):
+                stream.before_write = progress.clear  # type: ignore[union-attr]
+        if '-' in args.paths and sys.stdin.isatty():
+            print('nodl validate: note: reading standard input (end it with Ctrl-D)', file=sys.stderr)
+        results = iter_check_paths(args.paths, Kind(args.kind) if args.kind else None, args.resolve)
         for result in results:
+            if result.note is not None:
+                print(f'{result.path}: note: {result.note}', file=sys.stderr)
+                continue
             if not result.readable:
-                unreadable = True
-                print(f'{result.path}: error: {result.problem}', file=sys.stderr)
+                # An I/O problem: counted, in the JSON output too, and exit status 2.
+                problem = Diagnostic(Severity.ERROR, result.problem or 'cannot be read',
+                                     file=result.path, code=UNREADABLE_CODE)
+                unreadable.append(problem)
+                print(problem, file=sys.stderr)
+                sys.stderr.flush()
                 continue
             tally.files += 1
             tally.add(result.diagnostics)
             if failed(result, args.strict):
                 invalid = True
-            elif args.format == 'text' and not args.quiet and result.report is not None:
+            elif text and not args.quiet and result.report is not None:
                 kind = result.report.kind
                 out.write(f'{result.path}: valid {kind} definition\n')
-            if args.format == 'text':
+            if text:
                 shown = result.diagnostics if args.verbose else without_info(result.diagnostics)
                 out.write(format_text(shown))
-        if args.format == 'json':
-            out.write(format_json(tally.diagnostics))
-            print(summary_line(tally), file=sys.stderr)
+            out.flush()  # each file's diagnostics as soon as it is checked (Ctrl-C keeps them)
+            progress.update(tally.files + len(unreadable))
+        progress.clear()
+        summary = summary_line(tally)
+        if unreadable:
+            summary += ', ' + plural(len(unreadable), 'unreadable path')
+        if not text:
+            out.write(format_json(tally.diagnostics + unreadable))
+            print(summary, file=sys.stderr)
         elif not (args.quiet and tally.errors + tally.warnings == 0 and not unreadable):
-            out.write(summary_line(tally) + '\n')
+            out.write(summary + '\n')
         if unreadable:
             return EXIT_USAGE
         return EXIT_FAILURE if invalid else EXIT_OK
