@@ -29,7 +29,7 @@ from nodl_schema.frontends.yaml_json import ParsedDocument
 from nodl_schema.validation.kinds import INCLUDE_KEYS, NODE_KEYS
 
 __all__ = ['INCLUDE_KEYS', 'BASE_DESCRIPTIONS', 'LOCAL_SCHEME', 'CODEGEN_KEY',
-           'is_include_document', 'IncludeReading', 'read_include', 'adapt_include']
+           'is_include_document', 'IncludeReading', 'read_include', 'remapped', 'adapt_include']
 
 #: The reference's built-in base descriptions and the NoDL v2 base each one is.
 BASE_DESCRIPTIONS = {
@@ -193,6 +193,11 @@ class _RemappedDocument(ParsedDocument):
         path = self._reading.original_path(diagnostic.path)
         line, column = self._original.position(path, diagnostic.anchor)
         return diagnostic.replace(path=path, file=self.source.file, line=line, column=column)
+
+
+def remapped(parsed: ParsedDocument, reading: IncludeReading) -> ParsedDocument:
+    """A document that places diagnostics about ``reading.data`` in ``parsed``'s text."""
+    return _RemappedDocument(parsed, reading)
 
 
 def adapt_include(parsed: ParsedDocument):  # type: ignore[no-untyped-def]

@@ -1,0 +1,94 @@
+"""``nodl export``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+#: The formats ``nodl export`` writes.
+FORMATS = ('genparamlib',)
+
+
+class ExportVerb(Verb):
+    """Write the parameters of a definition in another tool's format (generate_parameter_library)."""
+
+    failure = 'the definition is invalid or cannot be composed (nothing is written)'
+
+    def add_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument('format', choices=FORMATS,
+                            help='genparamlib: a generate_parameter_library YAML file, for builds '
+                                 'that generate their parameter code with it')
+        parser.add_argument('definition', nargs='+', metavar='FILE | PACKAGE EXECUTABLE',
+                            help='a node or interface definition file, or a package and one of its '
+                                 'executables (looked up in the ament index)')
+        parser.add_argument('-o', '--output', required=True, metavar='FILE',
+                            help="the file to write ('-' for standard output)")
+        parser.add_argument('--namespace', metavar='NAME',
+                            help='the top-level key (the namespace of the generated code; default: '
+                                 'the definition file name without .nodl.yaml, or the executable)')
+        parser.add_argument('--with-mixins', action='store_true',
+                            help="also export the mixins' parameters (default: main's only; the "
+                                 "base's are always left out, the client library declares them)")
+
+    def main(self, args: argparse.Namespace) -> int:
+        import os
+
+        from nodl_schema.dialects.export import parameters_of_file, parameters_of_registered
+        from nodl_schema.dialects.genparamlib import IDENTIFIER, export_genparamlib
+        from nodl_schema.reporting import format_text, without_info
+
+        if len(args.definition) == 1:
+            path = args.definition[0]
+            if not os.path.isfile(path):
+                what = 'is a directory' if os.path.isdir(path) else 'no such file'
+                print(f'nodl export: error: {path}: {what} (to export an installed node, give '
+                      'PACKAGE EXECUTABLE)', file=sys.stderr)
+                return EXIT_USAGE
+            try:
+                source = parameters_of_file(path, args.with_mixins)
+            except OSError as exc:
+                print(f'nodl export: error: {path}: {exc.strerror or exc}', file=sys.stderr)
+                return EXIT_USAGE
+        elif len(args.definition) == 2:
+            source = parameters_of_registered(*args.definition, with_mixins=args.with_mixins)
+        else:
+            print('nodl export: error: expected FILE or PACKAGE EXECUTABLE', file=sys.stderr)
+            return EXIT_USAGE
+        namespace = args.namespace or source.name
+        if not IDENTIFIER.fullmatch(namespace):
+            print(f"nodl export: error: '{namespace}' is not a C++ identifier, which the "
+                  'generate_parameter_library namespace must be; give one with --namespace',
+                  file=sys.stderr)
+            return EXIT_USAGE
+        sys.stderr.write(format_text(without_info(source.diagnostics)))
+        if source.parameters is None:
+            return EXIT_FAILURE
+        exported = export_genparamlib(source.parameters, namespace, source.source)
+        sys.stderr.write(format_text(exported.diagnostics))
+        text = exported.text(f'generate_parameter_library parameters of {source.source}, '
+                             'written by nodl export')
+        if args.output == '-':
+            sys.stdout.write(text)
+            return EXIT_OK
+        try:
+            with open(args.output, 'w', encoding='utf-8', newline='\n') as stream:
+                stream.write(text)
+        except OSError as exc:
+            print(f'nodl export: error: cannot write {args.output}: {exc.strerror or exc}',
+                  file=sys.stderr)
+            return EXIT_USAGE
+        count = sum(1 for _ in _leaves(exported.data))
+        print(f'wrote {args.output} ({count} parameter{"s" if count != 1 else ""})', file=sys.stderr)
+        return EXIT_OK
+
+
+def _leaves(tree: dict) -> list[object]:  # type: ignore[type-arg]
+    found: list[object] = []
+    for value in tree.values():
+        if isinstance(value, dict) and isinstance(value.get('type'), str):
+            found.append(value)
+        elif isinstance(value, dict):
+            found += _leaves(value)
+    return found
