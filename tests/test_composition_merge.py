@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from nodl_schema import load_interface
 from nodl_schema.composition import Layer
 from nodl_schema.composition.merge import merge_layers
@@ -85,18 +87,106 @@ def test_the_description_is_the_last_layers_even_when_empty() -> None:
     assert merged.description is None
 
 
-def test_overrides_are_info_diagnostics_at_the_winning_entity() -> None:
+def test_overrides_are_diagnostics_at_the_winning_entity() -> None:
     _, notes = merge_layers([layer('a', A, 'a.yaml'), layer('b', B, 'b.yaml'),
                              layer('c', C, 'c.yaml')])
-    assert all(n.severity is Severity.INFO for n in notes)
+    # None of these layers is a base: a type change is a warning, the rest is info.
     assert [str(n) for n in notes] == [
-        "b.yaml:3:3: info: parameter 'shared' from b overrides the one from a [parameters.shared]",
-        "b.yaml:9:5: info: publisher 'chatter' from b overrides the one from a [publishers[1]]",
+        "b.yaml:3:3: warning: parameter 'shared' from b changes the type of the one from a "
+        '(int -> double); the code behind a and this node disagree [parameters.shared] [NODL310]',
+        "b.yaml:9:5: warning: publisher 'chatter' from b changes the type of the one from a "
+        '(std_msgs/msg/String -> std_msgs/msg/Bool); the code behind a and this node disagree '
+        '[publishers[1]] [NODL310]',
         "b.yaml:14:5: info: action client '~/go' from b overrides the one from a "
-        '[action_clients[0]]',
-        "c.yaml:4:3: info: parameter 'shared' from c overrides the one from b [parameters.shared]",
+        '[action_clients[0]] [NODL304]',
+        "c.yaml:4:3: warning: parameter 'shared' from c changes the type of the one from b "
+        '(double -> string); the code behind b and this node disagree [parameters.shared] [NODL310]',
     ]
     assert notes[0].anchor == 'key'
+    # each one relates the declaration it overrides
+    assert notes[0].related == (('a.yaml', 4, 3, 'the declaration in a'),)
+    assert notes[1].related == (('a.yaml', 7, 5, 'the declaration in a'),)
+
+
+def base(text: str, file: str = 'base.yaml') -> Layer:
+    report = check_source(text, file=file)
+    assert not report.has_errors(), report.diagnostics
+    return Layer('base:test', report.model(), report.place, role='base')  # type: ignore[arg-type]
+
+
+BASE = """\
+nodl_version: 2
+parameters:
+  p: {type: int, default_value: 1, read_only: true, description: Base p.}
+publishers:
+  - name: /out
+    type: std_msgs/msg/String
+    description: Base out.
+    qos: {history: KEEP_LAST, depth: 1, reliability: RELIABLE}
+service_servers:
+  - {name: ~/srv, type: std_srvs/srv/Empty, description: Base srv., qos: {history: KEEP_LAST, depth: 5, reliability: RELIABLE}}
+"""
+
+
+def test_refining_a_base_entity_is_info() -> None:
+    refined = layer('main', """\
+nodl_version: 2
+parameters:
+  p: {type: int, default_value: 7, read_only: true, description: Refined p.}
+publishers:
+  - name: /out
+    type: std_msgs/msg/String
+    description: Refined out.
+    qos: {history: KEEP_LAST, depth: 1, reliability: RELIABLE}
+service_servers:
+  - {name: ~/srv, type: std_srvs/srv/Empty, description: Refined srv without QoS.}
+""", 'main.yaml')
+    merged, notes = merge_layers([base(BASE), refined])
+    assert [(n.severity, n.code) for n in notes] == [(Severity.INFO, 'NODL304')] * 3
+    assert merged.parameters['p'].description == 'Refined p.'
+
+
+@pytest.mark.parametrize('change, code, words', [
+    ('parameters: {p: {type: double, default_value: 1.0, read_only: true, description: x}}',
+     'NODL307', "changes the type of the one from base:test (int -> double)"),
+    ('parameters: {p: {type: int, default_value: 1, description: x}}',
+     'NODL309', 'changes read_only of the one from base:test (True -> False)'),
+    ('publishers: [{name: /out, type: std_msgs/msg/Bool, description: x, '
+     'qos: {history: KEEP_LAST, depth: 1, reliability: RELIABLE}}]',
+     'NODL307', 'changes the type of the one from base:test'),
+    ('publishers: [{name: /out, type: std_msgs/msg/String, description: x, '
+     'qos: {history: KEEP_LAST, depth: 2, reliability: RELIABLE}}]',
+     'NODL308', 'changes the QoS of the one from base:test'),
+    ('service_servers: [{name: ~/srv, type: std_srvs/srv/Empty, description: x, '
+     'qos: {history: KEEP_LAST, depth: 9, reliability: RELIABLE}}]',
+     'NODL308', 'changes the QoS of the one from base:test'),
+])
+def test_changing_what_the_base_creates_is_an_error(change: str, code: str, words: str) -> None:
+    _, [note] = merge_layers([base(BASE), layer('main', f'nodl_version: 2\n{change}\n', 'main.yaml')])
+    assert (note.severity, note.code, note.file) == (Severity.ERROR, code, 'main.yaml')
+    assert words in note.message
+    assert note.related and note.related[0][0] == 'base.yaml'
+
+
+def test_a_base_entity_is_judged_against_the_base_even_after_a_mixin() -> None:
+    mixin = layer('mixin', 'nodl_version: 2\nparameters: {p: {type: double, default_value: 1.0, '
+                  'read_only: true, description: x}}\n', 'mixin.yaml')
+    main = layer('main', 'nodl_version: 2\nparameters: {p: {type: double, default_value: 2.0, '
+                 'read_only: true, description: y}}\n', 'main.yaml')
+    _, notes = merge_layers([base(BASE), mixin, main])
+    assert [(n.file, n.code) for n in notes] == [('mixin.yaml', 'NODL307'), ('main.yaml', 'NODL307')]
+
+
+def test_traced_declarations_list_every_layer_in_order() -> None:
+    from nodl_schema.composition.merge import merge_traced
+
+    result = merge_traced([layer('a', A, 'a.yaml'), layer('b', B, 'b.yaml'), layer('c', C, 'c.yaml')])
+    trace = result.declarations[('parameters', 'shared')]
+    assert [(d.layer.label, d.path) for d in trace] == [
+        ('a', ('parameters', 'shared')), ('b', ('parameters', 'shared')),
+        ('c', ('parameters', 'shared'))]
+    assert [d.layer.label for d in result.declarations[('publishers', 'other')]] == ['b']
+    assert result.declarations[('publishers', 'chatter')][1].path == ('publishers', 1)
 
 
 def test_no_override_no_note() -> None:
@@ -137,7 +227,7 @@ def test_a_layer_prefix_places_notes_inside_a_node_document() -> None:
                              Layer('main', model.main, report.place, ('main',))])
     assert [str(n) for n in notes] == [
         "node.yaml:9:5: info: parameter 'p' from main overrides the one from mixins[0] "
-        '[main.parameters.p]']
+        '[main.parameters.p] [NODL304]']
 
 
 def test_a_layer_without_placement_gives_unplaced_notes() -> None:

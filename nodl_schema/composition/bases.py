@@ -1,37 +1,138 @@
-"""The built-in bases ``node`` and ``lifecycle_node``, shipped as interface definitions."""
+"""The built-in bases ``node`` and ``lifecycle_node``, per client library.
+
+A base is assembled from interface definitions shipped under ``bases/``, so
+that no entity is written twice:
+
+* ``node.nodl.yaml``: what every client library gives a node (rcl, the
+  parameter services); for rclpy that is the whole ``node`` base;
+* ``lifecycle_node.nodl.yaml``: what a lifecycle node adds (rcl_lifecycle);
+* ``<library>/node.nodl.yaml``: what a client library adds to every node
+  (rclcpp: the time source's ``/parameter_events`` subscription).
+
+The rclpy bases are checked against real rclpy nodes by the tests; the
+rclcpp additions are derived from rclcpp's documented behaviour (their
+description says so), as rclcpp cannot run here.
+"""
 
 from __future__ import annotations
 
 import os
 from functools import lru_cache
+from typing import Any
 
 from nodl_schema.composition.layers import Layer
-from nodl_schema.model import Base
+from nodl_schema.diagnostics import Diagnostic, DocPath
+from nodl_schema.model import Base, Interface
 
-__all__ = ['BASES_DIR', 'base_file', 'base_layer']
+__all__ = ['BASES_DIR', 'CLIENT_LIBRARIES', 'DEFAULT_CLIENT_LIBRARY', 'base_file', 'base_files',
+           'base_layer', 'check_client_library']
 
 BASES_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'bases')
 
+#: The client libraries a base can be chosen for; the first is the default.
+CLIENT_LIBRARIES = ('rclpy', 'rclcpp')
+DEFAULT_CLIENT_LIBRARY = CLIENT_LIBRARIES[0]
+
+#: base -> the shared parts it is made of, in order (file stems under ``bases/``).
+_SHARED_PARTS = {Base.NODE: ('node',), Base.LIFECYCLE_NODE: ('node', 'lifecycle_node')}
+#: client library -> what it adds to every base (file stems under ``bases/``).
+_LIBRARY_PARTS: dict[str, tuple[str, ...]] = {'rclpy': (), 'rclcpp': ('rclcpp/node',)}
+
+
+def check_client_library(client_library: str) -> str:
+    """``client_library`` if it is known; ValueError saying what is expected otherwise."""
+    if client_library not in CLIENT_LIBRARIES:
+        raise ValueError(f'unknown client library {client_library!r}; expected one of: '
+                         f'{", ".join(CLIENT_LIBRARIES)}')
+    return client_library
+
+
+def _path(stem: str) -> str:
+    return os.path.join(BASES_DIR, *stem.split('/')) + '.nodl.yaml'
+
 
 def base_file(base: Base | str) -> str:
-    """The file that defines a built-in base."""
-    return os.path.join(BASES_DIR, f'{Base(base).value}.nodl.yaml')
+    """The file holding what ``base`` itself declares (``lifecycle_node``: its additions only)."""
+    return _path(Base(base).value)
+
+
+def base_files(base: Base | str, client_library: str = DEFAULT_CLIENT_LIBRARY) -> list[str]:
+    """Every file a base is assembled from for ``client_library``, in merge order."""
+    parts = _SHARED_PARTS[Base(base)] + _LIBRARY_PARTS[check_client_library(client_library)]
+    return [_path(stem) for stem in parts]
 
 
 @lru_cache(maxsize=None)
-def _report(name: str):  # type: ignore[no-untyped-def]
+def _report(path: str):  # type: ignore[no-untyped-def]
     from nodl_schema.loading import check_source
     from nodl_schema.validation.kinds import Kind
 
-    with open(base_file(name), 'rb') as f:
-        report = check_source(f.read(), kind=Kind.INTERFACE, file=base_file(name))
+    with open(path, 'rb') as f:
+        report = check_source(f.read(), kind=Kind.INTERFACE, file=path)
     if report.has_errors():  # a broken installation, not a user error
-        raise RuntimeError(f'built-in base {name} is invalid: {report.errors}')
+        raise RuntimeError(f'built-in base file {path} is invalid: {report.errors}')
     return report
 
 
-def base_layer(base: Base | str) -> Layer:
-    """The layer a node inherits from ``base``."""
-    name = Base(base).value
-    report = _report(name)
-    return Layer(f'base:{name}', report.model(), report.place, role='base')
+class _Assembled:
+    """Places a diagnostic about the assembled base in the part file that declares the entity."""
+
+    def __init__(self) -> None:
+        #: (section or 'parameters', index or name in the assembled base) -> (report, path in its file)
+        self.origins: dict[tuple[Any, Any], tuple[Any, DocPath]] = {}
+        self.first: Any = None
+
+    def __call__(self, diagnostic: Diagnostic) -> Diagnostic:
+        path = diagnostic.path
+        found = self.origins.get((path[0], path[1])) if len(path) >= 2 else None
+        if found is None:
+            return self.first.place(diagnostic)
+        report, own = found
+        return report.place(diagnostic.replace(path=own + tuple(path[2:])))
+
+
+@lru_cache(maxsize=None)
+def _assemble(base: Base, client_library: str) -> tuple[Interface, _Assembled]:
+    from nodl_schema.model import ENDPOINT_SECTIONS
+
+    placer = _Assembled()
+    result = Interface(nodl_version=2)
+    descriptions = []
+    for path in base_files(base, client_library):
+        report = _report(path)
+        placer.first = placer.first or report
+        part: Interface = report.model()
+        if part.description:
+            descriptions.append(part.description)
+        for name, param in (part.parameters or {}).items():
+            if result.parameters is None:
+                result.parameters = {}
+            result.parameters[name] = param
+            placer.origins[('parameters', name)] = (report, ('parameters', name))
+        for section in ENDPOINT_SECTIONS:
+            entries = getattr(part, section)
+            if not entries:
+                continue
+            merged = getattr(result, section)
+            if merged is None:
+                merged = []
+                setattr(result, section, merged)
+            for index, entity in enumerate(entries):
+                placer.origins[(section, len(merged))] = (report, (section, index))
+                merged.append(entity)
+    result.description = ' '.join(descriptions) or None
+    return result, placer
+
+
+def base_layer(base: Base | str, client_library: str = DEFAULT_CLIENT_LIBRARY) -> Layer:
+    """The layer a node inherits from ``base`` when it is written with ``client_library``.
+
+    Its label is ``base:<base>`` whatever the library; diagnostics about an
+    entity of the base are placed in the part file that declares it.
+    """
+    import copy
+
+    name = Base(base)
+    interface, placer = _assemble(name, check_client_library(client_library))
+    # A copy: callers may stamp or edit what they get, the cache must stay as shipped.
+    return Layer(f'base:{name.value}', copy.deepcopy(interface), placer, role='base')

@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import os
 
-from nodl_schema.composition.bases import base_layer
+from nodl_schema.composition.bases import DEFAULT_CLIENT_LIBRARY, base_layer, check_client_library
 from nodl_schema.composition.layers import MAIN, Layer
-from nodl_schema.composition.merge import merge_layers
+from nodl_schema.composition.merge import Declaration, merge_traced
 from nodl_schema.composition.resolvers import (
     ResolutionError, ResolveContext, Resolver, load_resolvers, package_root, scheme_of)
 from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
@@ -25,12 +25,24 @@ from nodl_schema.validation.kinds import KIND_REASONS, Kind
 
 __all__ = ['ComposedNode', 'compose', 'compose_report']
 
+#: Composition codes (see :mod:`nodl_schema.codes`).
+MIXIN_UNRESOLVED = 'NODL301'
+MIXIN_INVALID = 'NODL302'
+MIXIN_NOT_INTERFACE = 'NODL303'
+NOT_A_NODE = 'NODL305'
+
 
 class ComposedNode:
-    """A node definition with its layers resolved and merged."""
+    """A node definition with its layers resolved and merged.
+
+    Consumers that need each entity's kind, provider or source location ask
+    the resolved node built on it (:func:`nodl_schema.system.resolve_node`).
+    """
 
     def __init__(self, node: Node, file: str, layers: list[Layer], interface: Interface,
-                 diagnostics: list[Diagnostic]) -> None:
+                 diagnostics: list[Diagnostic],
+                 declarations: dict[tuple[str, str], list[Declaration]] | None = None,
+                 client_library: str = DEFAULT_CLIENT_LIBRARY) -> None:
         #: The node definition as written.
         self.node = node
         self.file = file
@@ -38,13 +50,12 @@ class ComposedNode:
         self.layers = layers
         #: The merged interface; each entity's ``origin`` names its layer.
         self.interface = interface
-        #: Info diagnostics (overrides) and warnings found while composing.
+        #: Info diagnostics (overrides), warnings and override errors found while composing.
         self.diagnostics = diagnostics
-
-    def forward(self) -> Interface:
-        """base + main only: what code generation implements (mixins belong to other code)."""
-        merged, _ = merge_layers([l for l in self.layers if l.role in ('base', 'main')])
-        return merged
+        #: (section or ``parameters``, name) -> every layer's declaration, first layer first.
+        self.declarations = declarations if declarations is not None else {}
+        #: The client library whose base the node inherits (``rclpy`` or ``rclcpp``).
+        self.client_library = client_library
 
     def layer(self, label: str) -> Layer:
         """The layer called ``label``."""
@@ -65,8 +76,8 @@ def _mixin_layer(reference: str, index: int, report: Report, context: ResolveCon
                  resolvers: dict[str, Resolver], out: list[Diagnostic]) -> Layer | None:
     path = ('mixins', index)
 
-    def fail(message: str) -> None:
-        out.append(report.place(Diagnostic(Severity.ERROR, message, path)))
+    def fail(message: str, code: str = MIXIN_UNRESOLVED) -> None:
+        out.append(report.place(Diagnostic(Severity.ERROR, message, path, code=code)))
 
     scheme = scheme_of(reference)
     resolver = resolvers.get(scheme)
@@ -88,32 +99,40 @@ def _mixin_layer(reference: str, index: int, report: Report, context: ResolveCon
     sub = check_source(resolved.text, file=resolved.file)
     if sub.has_errors():
         fail(f"mixin '{reference}' ({resolved.file}) is not a valid interface definition: "
-             f'{len(sub.errors)} error(s), listed below')
+             f'{len(sub.errors)} error(s), listed below', MIXIN_INVALID)
         out.extend(sub.diagnostics)
         return None
     if sub.kind is not Kind.INTERFACE:
         assert sub.kind is not None  # a kind is known once there are no errors
         why = KIND_REASONS[sub.kind] + ('; mixins are single-level' if sub.kind is Kind.NODE else '')
         fail(f"mixin '{reference}' ({resolved.file}) is a {sub.kind} definition, not an interface "
-             f'definition: {why}')
+             f'definition: {why}', MIXIN_NOT_INTERFACE)
         return None
     return Layer(reference, sub.model(), sub.place, role='mixin')  # type: ignore[arg-type]
 
 
-def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None
+def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None, *,
+                   client_library: str = DEFAULT_CLIENT_LIBRARY
                    ) -> tuple[ComposedNode | None, list[Diagnostic]]:
-    """Compose a checked node definition; returns the result (None on errors) and all diagnostics."""
+    """Compose a checked node definition; returns the result (None on errors) and all diagnostics.
+
+    The base is the one of ``client_library`` (``rclpy`` or ``rclcpp``; ValueError
+    for another).  An override the policy forbids (see
+    :mod:`nodl_schema.composition.merge`) is an error diagnostic and gives None.
+    """
+    check_client_library(client_library)
     if report.has_errors():
         return None, list(report.diagnostics)
     if report.kind is not Kind.NODE:
         return None, [Diagnostic(Severity.ERROR, f'only a node definition can be composed; '
-                                 f'{report.file} is a {report.kind} definition', (), report.file, 1, 1)]
+                                 f'{report.file} is a {report.kind} definition', (), report.file, 1, 1,
+                                 code=NOT_A_NODE)]
     node: Node = report.model()  # type: ignore[assignment]
     diagnostics = list(report.diagnostics)
     errors: list[Diagnostic] = []
     layers: list[Layer] = []
     if node.base is not None:
-        layers.append(base_layer(node.base))
+        layers.append(base_layer(node.base, client_library))
     if node.mixins:
         context = _context(report)
         available = resolvers if resolvers is not None else load_resolvers()
@@ -128,19 +147,24 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None
     layers.append(Layer(MAIN, node.main, report.place, ('main',), role='main'))
     if errors:
         return None, diagnostics + errors
-    merged, notes = merge_layers(layers)
-    diagnostics += notes
-    return ComposedNode(node, report.file, layers, merged, diagnostics), diagnostics
+    merged = merge_traced(layers)
+    diagnostics += merged.diagnostics
+    if any(d.severity is Severity.ERROR for d in merged.diagnostics):
+        return None, diagnostics
+    return ComposedNode(node, report.file, layers, merged.interface, diagnostics,
+                        merged.declarations, client_library), diagnostics
 
 
 def compose(source: Source, *, file: str | None = None,
-            resolvers: dict[str, Resolver] | None = None) -> ComposedNode:
-    """Load a node definition and compose it: base, then mixins, then main.
+            resolvers: dict[str, Resolver] | None = None,
+            client_library: str = DEFAULT_CLIENT_LIBRARY) -> ComposedNode:
+    """Load a node definition and compose it: base (of ``client_library``), mixins, main.
 
     Raises :class:`~nodl_schema.diagnostics.ValidationError` with every
     diagnostic if the node or any mixin is invalid or cannot be resolved.
     """
-    composed, diagnostics = compose_report(check_source(source, kind=Kind.NODE, file=file), resolvers)
+    composed, diagnostics = compose_report(check_source(source, kind=Kind.NODE, file=file), resolvers,
+                                           client_library=client_library)
     if composed is None:
         raise ValidationError(diagnostics)
     return composed

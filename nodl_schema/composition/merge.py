@@ -1,21 +1,59 @@
 """Merging layers: base, then mixins in order, then main; later layers win.
 
-Every entity of the result records its layer in ``origin``.  An entity that
-replaces one of an earlier layer is reported as an info diagnostic naming
-both layers, placed where the winning entity is declared.
+Every entity of the result records its layer in ``origin``, and every layer
+that declares it is traced (:class:`Declaration`), so that consumers know
+where an entity was first declared (who provides it) and where it was last
+refined.
+
+The override policy: a later layer may refine an entity of an earlier layer
+(its description, a parameter's default or validators) -- an info
+diagnostic naming both layers.  What no real node can do is an error: a
+later layer changing the interface type, the QoS or a parameter's type or
+``read_only`` of an entity of the base (the client library creates those
+entities, the node cannot change them).  A type change between a mixin and
+a later layer is a warning (the mixin's code and the node disagree).  Each
+diagnostic is placed at the overriding declaration and relates the
+overridden one.
 """
 
 from __future__ import annotations
 
 import copy
-from typing import Any, Sequence
+from typing import Any, NamedTuple, Sequence
 
-from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.composition.layers import Layer
 from nodl_schema.model import ENDPOINT_SECTIONS, Interface
 from nodl_schema.validation.interfaces import SECTIONS
 
-__all__ = ['merge_layers']
+__all__ = ['Declaration', 'MergeResult', 'merge_layers', 'merge_traced', 'PARAMETERS']
+
+#: The pseudo-section of parameters in traced declarations.
+PARAMETERS = 'parameters'
+
+#: Override codes (see :mod:`nodl_schema.codes`).
+OVERRIDE = 'NODL304'
+BASE_TYPE_CHANGED = 'NODL307'
+BASE_QOS_CHANGED = 'NODL308'
+BASE_READ_ONLY_CHANGED = 'NODL309'
+MIXIN_TYPE_CHANGED = 'NODL310'
+
+
+class Declaration(NamedTuple):
+    """One layer's declaration of an entity: the layer, its path in the layer, the entity."""
+
+    layer: Layer
+    path: DocPath
+    entity: Any
+
+
+class MergeResult(NamedTuple):
+    """The merged interface, the override diagnostics and every entity's declarations."""
+
+    interface: Interface
+    diagnostics: list[Diagnostic]
+    #: (section or ``parameters``, name) -> every declaration, first layer first.
+    declarations: dict[tuple[str, str], list[Declaration]]
 
 
 def _stamp(entity: Any, label: str) -> Any:
@@ -24,33 +62,94 @@ def _stamp(entity: Any, label: str) -> Any:
     return stamped
 
 
-def merge_layers(layers: Sequence[Layer]) -> tuple[Interface, list[Diagnostic]]:
-    """The merged interface of ``layers`` and the override diagnostics."""
+def _related(earlier: Declaration, anchor: str) -> tuple[str, int, int, str]:
+    placed = earlier.layer.place(Diagnostic(Severity.INFO, '', earlier.path, anchor=anchor))
+    return (placed.file, placed.line, placed.column, f'the declaration in {earlier.layer.label}')
+
+
+def _qos(entity: Any) -> Any:
+    qos = getattr(entity, 'qos', None)
+    return qos.to_dict() if qos is not None else None
+
+
+def _verdicts(word: str, name: str, earlier: Declaration, previous: Declaration, later: Layer,
+              entity: Any, parameter: bool) -> list[tuple[Severity, str, str]]:
+    """(severity, code, message) for each change ``later`` makes to ``earlier``'s entity.
+
+    ``previous`` is the declaration ``later`` replaces (named by a plain override).
+    """
+    old = earlier.entity
+    out: list[tuple[Severity, str, str]] = []
+    was = earlier.layer.label
+    if earlier.layer.role == 'base':
+        if old.type != entity.type:
+            out.append((Severity.ERROR, BASE_TYPE_CHANGED,
+                        f"{word} '{name}' from {later.label} changes the type of the one from {was} "
+                        f'({old.type} -> {entity.type}); the client library creates it, so a node '
+                        'cannot change it: only its description may be refined'))
+        if not parameter and _qos(entity) is not None and _qos(old) != _qos(entity):
+            out.append((Severity.ERROR, BASE_QOS_CHANGED,
+                        f"{word} '{name}' from {later.label} changes the QoS of the one from {was}; "
+                        'the client library creates it with its own QoS: leave qos as in the base '
+                        'or only refine the description'))
+        if parameter and bool(old.read_only) != bool(entity.read_only):
+            out.append((Severity.ERROR, BASE_READ_ONLY_CHANGED,
+                        f"parameter '{name}' from {later.label} changes read_only of the one from "
+                        f'{was} ({old.read_only} -> {entity.read_only}); the client library '
+                        'declares it, so a node cannot change it'))
+    elif old.type != entity.type:
+        out.append((Severity.WARNING, MIXIN_TYPE_CHANGED,
+                    f"{word} '{name}' from {later.label} changes the type of the one from {was} "
+                    f'({old.type} -> {entity.type}); the code behind {was} and this node disagree'))
+    if not out:
+        out.append((Severity.INFO, OVERRIDE,
+                    f"{word} '{name}' from {later.label} overrides the one from "
+                    f'{previous.layer.label}'))
+    return out
+
+
+def merge_traced(layers: Sequence[Layer]) -> MergeResult:
+    """Merge ``layers``; also return every entity's declarations (see :class:`MergeResult`)."""
     notes: list[Diagnostic] = []
-    parameters: dict[str, tuple[Any, Layer]] = {}
-    sections: dict[str, dict[str, tuple[Any, Layer]]] = {s: {} for s in ENDPOINT_SECTIONS}
+    declarations: dict[tuple[str, str], list[Declaration]] = {}
+    parameters: dict[str, Any] = {}
+    sections: dict[str, dict[str, Any]] = {s: {} for s in ENDPOINT_SECTIONS}
+
+    def declare(section: str, name: str, layer: Layer, path: DocPath, entity: Any,
+                merged: dict[str, Any], word: str, anchor: str) -> None:
+        trace = declarations.setdefault((section, name), [])
+        if trace:
+            # What the base declares is judged against the base, whatever refined it since.
+            earlier = trace[0] if trace[0].layer.role == 'base' else trace[-1]
+            for severity, code, message in _verdicts(word, name, earlier, trace[-1], layer,
+                                                     entity, section == PARAMETERS):
+                notes.append(layer.place(Diagnostic(
+                    severity, message, path, anchor=anchor, code=code,
+                    related=[_related(earlier, anchor)])))
+        trace.append(Declaration(layer, path, entity))
+        merged[name] = _stamp(entity, layer.label)
+
     for layer in layers:
         iface = layer.interface
         for name, param in (iface.parameters or {}).items():
-            if name in parameters:
-                notes.append(layer.place(Diagnostic(
-                    Severity.INFO, f"parameter '{name}' from {layer.label} overrides the one from "
-                    f'{parameters[name][1].label}', ('parameters', name), anchor='key')))
-            parameters[name] = (_stamp(param, layer.label), layer)
+            declare(PARAMETERS, name, layer, (PARAMETERS, name), param, parameters, 'parameter',
+                    'key')
         for section, word in SECTIONS.items():
-            merged = sections[section]
             for index, entity in enumerate(getattr(iface, section) or ()):
-                if entity.name in merged:
-                    notes.append(layer.place(Diagnostic(
-                        Severity.INFO, f"{word} '{entity.name}' from {layer.label} overrides the one "
-                        f'from {merged[entity.name][1].label}', (section, index))))
-                merged[entity.name] = (_stamp(entity, layer.label), layer)
+                declare(section, entity.name, layer, (section, index), entity, sections[section],
+                        word, 'value')
     result = Interface(nodl_version=2)
     main = layers[-1].interface if layers else None
     result.description = main.description if main is not None else None
     if parameters:
-        result.parameters = {name: entity for name, (entity, _) in parameters.items()}
+        result.parameters = dict(parameters)
     for section, merged in sections.items():
         if merged:
-            setattr(result, section, [entity for entity, _ in merged.values()])
-    return result, notes
+            setattr(result, section, list(merged.values()))
+    return MergeResult(result, notes, declarations)
+
+
+def merge_layers(layers: Sequence[Layer]) -> tuple[Interface, list[Diagnostic]]:
+    """The merged interface of ``layers`` and the override diagnostics."""
+    merged = merge_traced(layers)
+    return merged.interface, merged.diagnostics

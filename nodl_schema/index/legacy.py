@@ -91,7 +91,8 @@ def _converted(registration: Registration):  # type: ignore[no-untyped-def]
         registration.file)]
 
 
-def compose_legacy(registration: Registration):  # type: ignore[no-untyped-def]
+def compose_legacy(registration: Registration,  # type: ignore[no-untyped-def]
+                   client_library: str = 'rclpy'):
     """The legacy node converted to v2 and composed: ``(composed or None, diagnostics)``."""
     from nodl_schema.composition import compose_report
     from nodl_schema.loading import check_source, dump_nodl
@@ -102,7 +103,7 @@ def compose_legacy(registration: Registration):  # type: ignore[no-untyped-def]
         return None, diagnostics
     report = check_source(dump_nodl(converted.data, 'json'), kind=Kind.NODE,
                           file=f'{registration.file} ({registration.name}, converted)')
-    composed, more = compose_report(report)
+    composed, more = compose_report(report, client_library=client_library)
     if composed is not None:
         composed.file = registration.file
     # Warnings about the in-memory v2 document (no descriptions, ...) say nothing the

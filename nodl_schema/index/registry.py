@@ -108,8 +108,10 @@ def describe_missing(package: str, executable: str, prefixes: list[str] | None =
     return f"package '{package}' registers no node definitions"
 
 
-def compose_registered(package: str, executable: str, prefixes: list[str] | None = None):  # type: ignore[no-untyped-def]
-    """Find and compose the node definition registered for ``package``'s ``executable``.
+def compose_registered(package: str, executable: str, prefixes: list[str] | None = None,  # type: ignore[no-untyped-def]
+                       client_library: str = 'rclpy'):
+    """Find and compose the node definition registered for ``package``'s ``executable``
+    (with the base of ``client_library``).
 
     Returns ``(composed or None, diagnostics, source)``; a legacy node is
     converted to v2 in memory first.  Never raises for a missing or broken
@@ -128,12 +130,13 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
     if registration.kind == 'legacy node':
         from nodl_schema.index.legacy import compose_legacy
 
-        composed, diagnostics = compose_legacy(registration)
+        composed, diagnostics = compose_legacy(registration, client_library)
         return composed, diagnostics, registration.file
     try:
         resolved = read_registration(registration, prefixes)
     except ResolutionError as exc:  # an entry whose file is gone (a partly removed install)
         return None, [Diagnostic(Severity.ERROR, exc.message, (), where)], where
     composed, diagnostics = compose_report(
-        check_source(resolved.text, kind=Kind.NODE, file=resolved.file))
+        check_source(resolved.text, kind=Kind.NODE, file=resolved.file),
+        client_library=client_library)
     return composed, diagnostics, resolved.file

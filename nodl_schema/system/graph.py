@@ -1,0 +1,180 @@
+"""A system: node instances and the connections between them.
+
+A :class:`Connection` is one topic (publishers and subscriptions), one
+service (servers and clients) or one action (servers and clients), keyed by
+its final name.  Entities the client library provides (``/rosout``,
+``/parameter_events``, the parameter services) are included, as policies
+need them; they carry their provider, so an analysis can leave them out.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable, NamedTuple
+
+from nodl_schema.system.entities import Entity, EntityKind, Provider
+from nodl_schema.system.instance import InstanceEntity, NodeInstance, instances_named
+
+__all__ = ['Connection', 'System']
+
+#: communication -> (the offering side's word, the using side's word).
+_SIDES = {'topic': ('publishers', 'subscriptions'), 'service': ('servers', 'clients'),
+          'action': ('servers', 'clients')}
+
+
+class Connection(NamedTuple):
+    """Everything on one topic, service or action of a system."""
+
+    #: ``topic``, ``service`` or ``action``.
+    communication: str
+    #: The final name.
+    name: str
+    #: Publishers (topic) or servers (service, action).
+    offering: tuple[InstanceEntity, ...]
+    #: Subscriptions (topic) or clients (service, action).
+    using: tuple[InstanceEntity, ...]
+
+    @property
+    def publishers(self) -> tuple[InstanceEntity, ...]:
+        """A topic's publishers."""
+        return self.offering if self.communication == 'topic' else ()
+
+    @property
+    def subscriptions(self) -> tuple[InstanceEntity, ...]:
+        """A topic's subscriptions."""
+        return self.using if self.communication == 'topic' else ()
+
+    @property
+    def servers(self) -> tuple[InstanceEntity, ...]:
+        """A service's or action's servers."""
+        return self.offering if self.communication != 'topic' else ()
+
+    @property
+    def clients(self) -> tuple[InstanceEntity, ...]:
+        """A service's or action's clients."""
+        return self.using if self.communication != 'topic' else ()
+
+    @property
+    def endpoints(self) -> tuple[InstanceEntity, ...]:
+        """Both sides."""
+        return self.offering + self.using
+
+    @property
+    def types(self) -> list[str]:
+        """The interface types used on it (more than one is a mismatch), sorted."""
+        return sorted({e.entity.type_name for e in self.endpoints})
+
+    @property
+    def connected(self) -> bool:
+        """True if both sides have at least one endpoint."""
+        return bool(self.offering) and bool(self.using)
+
+    def only_client_library(self) -> bool:
+        """True if every endpoint on it is provided by a client library (``/rosout``, ...)."""
+        return all(e.entity.provider is Provider.CLIENT_LIBRARY for e in self.endpoints)
+
+    def __str__(self) -> str:
+        offer, use = _SIDES[self.communication]
+        return (f'{self.communication} {self.name}: {len(self.offering)} {offer}, '
+                f'{len(self.using)} {use}')
+
+
+class System:
+    """Node instances and the connections between them."""
+
+    def __init__(self, instances: Iterable[NodeInstance]) -> None:
+        #: The instances, in the order given.
+        self.instances: tuple[NodeInstance, ...] = tuple(instances)
+        sides: dict[tuple[str, str], tuple[list[InstanceEntity], list[InstanceEntity]]] = {}
+        for instance in self.instances:
+            for bound in instance.endpoints:
+                communication = bound.entity.kind.communication
+                assert communication is not None
+                offering, using = sides.setdefault((communication, bound.name), ([], []))
+                (offering if bound.entity.kind.offers else using).append(bound)
+        #: (communication, final name) -> its connection, sorted by communication then name.
+        self._connections = {key: Connection(key[0], key[1], tuple(offering), tuple(using))
+                             for key, (offering, using) in sorted(sides.items())}
+
+    def connections(self, communication: str | None = None, *,
+                    include_client_library: bool = True) -> list[Connection]:
+        """Every connection (of one communication: ``topic``, ``service`` or ``action``).
+
+        With ``include_client_library=False``, endpoints the client library
+        provides are left out, and connections left empty are dropped.
+        """
+        out = []
+        for (kind, _), connection in self._connections.items():
+            if communication is not None and kind != communication:
+                continue
+            if not include_client_library:
+                keep = lambda side: tuple(e for e in side  # noqa: E731
+                                          if e.entity.provider is not Provider.CLIENT_LIBRARY)
+                connection = connection._replace(offering=keep(connection.offering),
+                                                 using=keep(connection.using))
+                if not connection.endpoints:
+                    continue
+            out.append(connection)
+        return out
+
+    @property
+    def topics(self) -> list[Connection]:
+        """The topic connections."""
+        return self.connections('topic')
+
+    @property
+    def services(self) -> list[Connection]:
+        """The service connections."""
+        return self.connections('service')
+
+    @property
+    def actions(self) -> list[Connection]:
+        """The action connections."""
+        return self.connections('action')
+
+    def connection(self, communication: str, name: str) -> Connection | None:
+        """The connection of ``communication`` called ``name`` (final name), or None."""
+        return self._connections.get((communication, name))
+
+    def _bound(self, instance: NodeInstance | str, entity: Entity | InstanceEntity
+               | tuple[EntityKind | str, str]) -> InstanceEntity:
+        if isinstance(entity, InstanceEntity):
+            return entity
+        node = instance if isinstance(instance, NodeInstance) else self.instance(instance)
+        if not isinstance(entity, Entity):
+            entity = node.resolved.entity(*entity)
+        for bound in node.entities:
+            if bound.entity is entity:
+                return bound
+        raise KeyError(f'{entity} is not an entity of {node.fqn}')
+
+    def peers(self, instance: NodeInstance | str,
+              entity: Entity | InstanceEntity | tuple[EntityKind | str, str]) -> list[InstanceEntity]:
+        """The endpoints on the other side of ``entity``'s connection.
+
+        ``instance`` is an instance or its fully qualified name; ``entity`` an
+        entity of its resolved node, an :class:`InstanceEntity`, or ``(kind,
+        declared name)``.  A publisher's peers are the subscriptions of its
+        topic, a client's the servers of its service, and so on; a parameter
+        has none.
+        """
+        bound = self._bound(instance, entity)
+        communication = bound.entity.kind.communication
+        if communication is None:
+            return []
+        connection = self._connections[(communication, bound.name)]
+        return list(connection.using if bound.entity.kind.offers else connection.offering)
+
+    def instance(self, fqn: str) -> NodeInstance:
+        """The instance with the fully qualified name ``fqn`` (KeyError if none, or several)."""
+        found = [i for i in self.instances if i.fqn == fqn]
+        if len(found) != 1:
+            raise KeyError(f'{len(found)} instances are called {fqn}')
+        return found[0]
+
+    def name_clashes(self) -> dict[str, list[NodeInstance]]:
+        """Fully qualified names used by more than one instance."""
+        return {fqn: group for fqn, group in instances_named(self.instances).items()
+                if len(group) > 1}
+
+    def __repr__(self) -> str:
+        return f'System({len(self.instances)} instances, {len(self._connections)} connections)'

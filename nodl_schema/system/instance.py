@@ -1,0 +1,134 @@
+"""A node instance: a resolved node given a name, a namespace, remappings and parameters.
+
+Every endpoint's final name is computed exactly as rcl does
+(:mod:`nodl_schema.naming`): expansion of ``~``, ``{node}`` and relative
+names against the node's final name and namespace (after ``__node`` and
+``__ns`` rules), then the first matching remapping rule.  Parameters take
+their default, overridden by the instance's overrides.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterable, Mapping, NamedTuple
+
+from nodl_schema.naming import (
+    RemapArgs, RemapRule, node_fqn, node_name_after_remaps, node_namespace_after_remaps,
+    normalize_namespace, parse_remap_rules, resolve_name)
+from nodl_schema.system.entities import Entity, EntityKind, Location, Provider
+from nodl_schema.system.resolved import ResolvedNode
+
+__all__ = ['NodeInstance', 'InstanceEntity']
+
+
+class InstanceEntity(NamedTuple):
+    """An entity of a node instance with its final (fully qualified, remapped) name."""
+
+    instance: 'NodeInstance'
+    entity: Entity
+    #: The final name (parameters keep their name).
+    name: str
+
+    @property
+    def kind(self) -> EntityKind:
+        """The entity's kind."""
+        return self.entity.kind
+
+    @property
+    def provider(self) -> Provider:
+        """Who provides the entity (client library, other code, the implementation)."""
+        return self.entity.provider
+
+    def __str__(self) -> str:
+        return f'{self.instance.fqn}: {self.entity.kind.word} {self.name} ({self.entity.type_name})'
+
+    def __repr__(self) -> str:
+        return f'InstanceEntity({self.instance.fqn!r}, {self.entity.kind.value}, {self.name!r})'
+
+
+class NodeInstance:
+    """A resolved node running as ``namespace/name`` with remappings and parameter overrides.
+
+    ``name`` and ``namespace`` are those the node is created with; the
+    remapping rules (``from:=to``, ``node:from:=to``, ``__ns:=``, ``__node:=``,
+    or a whole ``--ros-args`` command line) may change both, as in rcl.
+    Raises ``ValueError`` (:class:`~nodl_schema.naming.InvalidNameError` or
+    :class:`~nodl_schema.naming.InvalidRemapRuleError`) for a name or rule
+    rcl would reject.
+    """
+
+    def __init__(self, resolved: ResolvedNode, name: str, namespace: str = '/',
+                 remap_rules: RemapArgs = None,
+                 parameter_overrides: Mapping[str, Any] | None = None,
+                 location: Location | None = None) -> None:
+        #: The resolved node this is an instance of.
+        self.resolved = resolved
+        #: The rules, parsed (in order: the first matching one wins).
+        self.remap_rules: list[RemapRule] = parse_remap_rules(remap_rules)
+        #: The name and namespace the node is created with (before ``__node``/``__ns``).
+        self.created_name = name
+        self.created_namespace = normalize_namespace(namespace)
+        #: The node's final name, namespace and fully qualified name.
+        self.name = node_name_after_remaps(name, self.remap_rules)
+        self.namespace = node_namespace_after_remaps(name, namespace, self.remap_rules)
+        self.fqn = node_fqn(name, namespace, self.remap_rules)
+        #: The parameter values given to the instance (declared or not).
+        self.parameter_overrides: dict[str, Any] = dict(parameter_overrides or {})
+        #: Where the instance is declared (a launch file entry), if known.
+        self.location = location
+        entities = []
+        for entity in resolved.entities:
+            if entity.is_parameter:
+                entities.append(InstanceEntity(self, entity, entity.name))
+                continue
+            final = resolve_name(entity.name, name, namespace, self.remap_rules,
+                                 service=entity.kind.communication == 'service')
+            entities.append(InstanceEntity(self, entity, final))
+        #: Every entity with its final name, in the resolved node's order.
+        self.entities: tuple[InstanceEntity, ...] = tuple(entities)
+
+    @property
+    def endpoints(self) -> list[InstanceEntity]:
+        """The endpoints (no parameters) with their final names."""
+        return [e for e in self.entities if not e.entity.is_parameter]
+
+    def of_kind(self, kind: EntityKind | str) -> list[InstanceEntity]:
+        """The entities of one kind."""
+        wanted = EntityKind(kind)
+        return [e for e in self.entities if e.entity.kind is wanted]
+
+    def final_name(self, entity: Entity | tuple[EntityKind | str, str]) -> str:
+        """The final name of an entity of the resolved node (or of ``(kind, declared name)``)."""
+        if not isinstance(entity, Entity):
+            entity = self.resolved.entity(*entity)
+        for bound in self.entities:
+            if bound.entity is entity:
+                return bound.name
+        raise KeyError(f'{entity} is not an entity of {self.resolved.file}')
+
+    def find(self, kind: EntityKind | str, final_name: str) -> InstanceEntity | None:
+        """The entity of ``kind`` whose final name is ``final_name``, or None."""
+        wanted = EntityKind(kind)
+        return next((e for e in self.entities if e.entity.kind is wanted and e.name == final_name),
+                    None)
+
+    def parameter_values(self) -> dict[str, Any]:
+        """Each declared parameter's value: its default, overridden by the instance's value
+        (None for a parameter without a default that is not given)."""
+        return {e.name: self.parameter_overrides.get(e.name, e.entity.default_value)
+                for e in self.entities if e.entity.is_parameter}
+
+    def undeclared_overrides(self) -> list[str]:
+        """Overrides of parameters the node does not declare (sorted)."""
+        declared = {e.name for e in self.resolved.parameters}
+        return sorted(name for name in self.parameter_overrides if name not in declared)
+
+    def __repr__(self) -> str:
+        return f'NodeInstance({self.fqn!r}, {self.resolved.file!r})'
+
+
+def instances_named(instances: Iterable[NodeInstance]) -> dict[str, list[NodeInstance]]:
+    """Instances grouped by fully qualified name (more than one is a name clash)."""
+    out: dict[str, list[NodeInstance]] = {}
+    for instance in instances:
+        out.setdefault(instance.fqn, []).append(instance)
+    return out
