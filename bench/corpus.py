@@ -71,3 +71,17 @@ def document(seed: int) -> str:
 def corpus(count: int = 40) -> list[str]:
     """``count`` distinct documents."""
     return [document(seed) for seed in range(count)]
+
+
+def block_document(seed: int) -> str:
+    """The same definition written the way ``yaml.safe_dump`` writes it: every list and
+    mapping in block style, one item a line, no comments."""
+    import yaml
+
+    data = yaml.safe_load(document(seed))
+    return yaml.safe_dump(data, default_flow_style=False, sort_keys=False)
+
+
+def block_corpus(count: int = 40) -> list[str]:
+    """``count`` distinct block-style documents."""
+    return [block_document(seed) for seed in range(count)]

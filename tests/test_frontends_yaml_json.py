@@ -85,12 +85,17 @@ def test_yaml_and_json_agree_with_the_reference_loaders() -> None:
     assert parse(json_text).data == json.loads(json_text)
 
 
-def test_format_is_chosen_by_content_not_by_file_name() -> None:
+def test_json_is_chosen_by_a_json_file_name_or_a_leading_brace() -> None:
     json_text = (FRONTENDS / 'same_data.json').read_text(encoding='utf-8')
     yaml_text = (FRONTENDS / 'same_data.yaml').read_text(encoding='utf-8')
+    # JSON text starting with '{' is JSON whatever the file is called.
     assert parse(json_text, 'misnamed.yaml').is_json is True
-    assert parse(yaml_text, 'misnamed.json').is_json is False
-    assert parse(json_text, 'misnamed.yaml').data == parse(yaml_text, 'misnamed.json').data
+    assert parse(json_text, 'misnamed.yaml').data == parse(yaml_text, 'right.yaml').data
+    # A .json file is strict JSON: YAML text in it is a JSON error, not silently YAML.
+    problem = only(parse(yaml_text, 'misnamed.json'))
+    assert problem.message.startswith('JSON syntax error: ')
+    assert (problem.code, problem.line, problem.column) == ('NODL016', 1, 1)
+    assert parse(json_text, 'UPPER.JSON').is_json is True
 
 
 @pytest.mark.parametrize('text, expected', [
@@ -128,10 +133,16 @@ def test_json_with_tabs_for_indentation_is_fine() -> None:
     assert clean(doc) == {'type': 'int', 'default_value': 3}
 
 
-def test_yaml_flow_style_that_is_not_json_is_read_as_yaml() -> None:
+def test_yaml_flow_style_that_is_not_json_is_a_json_error_not_yaml() -> None:
     doc = parse('{type: int, default_value: 0x10}')
-    assert doc.is_json is False
-    assert clean(doc) == {'type': 'int', 'default_value': 16}
+    assert doc.is_json is True and doc.data is None
+    problem = only(doc)
+    assert problem.message.startswith('JSON syntax error: Expecting property name enclosed in '
+                                      'double quotes')
+    assert (problem.line, problem.column) == (1, 2)
+    # The same mapping under a key, or in block style, is YAML.
+    assert clean(parse('x: {type: int, default_value: 0x10}')) == \
+        {'x': {'type': 'int', 'default_value': 16}}
 
 
 # --- duplicate keys --------------------------------------------------------------
@@ -558,10 +569,12 @@ def test_positions_in_json(path: tuple[Any, ...], anchor: str, expected: tuple[i
     assert doc.position(path, anchor) == expected
 
 
-def test_positions_in_json_after_an_error_fallback() -> None:
-    # JSON with a duplicate key is re-read as YAML; positions still work.
+def test_positions_in_json_with_a_duplicate_key() -> None:
+    # JSON with a duplicate key stays JSON (the last value wins); positions still work.
     doc = parse('{"a": {"b": 1},\n "a": {"c": [10, 20]}}')
-    assert doc.is_json is False
+    assert doc.is_json is True
+    assert doc.data == {'a': {'c': [10, 20]}}
+    assert [(d.code, d.line, d.column) for d in doc.diagnostics] == [('NODL006', 2, 2)]
     assert doc.position(('a', 'c', 1)) == (2, 18)
 
 

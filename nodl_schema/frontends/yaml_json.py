@@ -1,16 +1,17 @@
 """The YAML/JSON frontend: text to plain data, with positions on demand.
 
-YAML and JSON are accepted interchangeably; the format is never chosen by
-file extension.  Text that looks like JSON is read with :mod:`json` (fast
-and exact JSON number semantics); anything else, or JSON that does not
-parse, goes through libyaml.
+JSON is strict: a file named ``*.json``, or a document whose first
+non-blank character is ``{``, is read with :mod:`json` only (exact JSON
+number semantics), and text that is not valid JSON there (a comment, a
+trailing comma, single quotes, an unquoted key, ``NaN``) is an error at
+JSON's line and column, never re-read as YAML.  Anything else is YAML.
 
-For YAML the C composer builds the node tree (which carries line and column
-marks) and this module constructs the Python values itself.  That is faster
-than PyYAML's own constructor, lets us reject duplicate keys (which YAML
-loaders silently collapse) and bound alias expansion, and keeps the node
-tree so that a diagnostic's document path can be turned into
-``line:column`` only when there is a diagnostic to place.
+YAML is parsed by libyaml, and :mod:`~nodl_schema.frontends.yaml_events`
+builds the Python values straight from its event stream, rejecting
+duplicate keys (which YAML loaders silently collapse), bounding nesting and
+alias expansion, and refusing tags NoDL has no use for.  No node tree is
+kept: a diagnostic's document path is turned into ``line:column`` by
+composing the tree only when there is a diagnostic to place.
 
 Hostile input is rejected with one clear diagnostic: nesting deeper than
 :data:`MAX_DEPTH`, alias expansion beyond :data:`MAX_ALIAS_NODES`, tabs used
@@ -30,42 +31,27 @@ import yaml
 from yaml.nodes import MappingNode, Node, ScalarNode, SequenceNode
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
+from nodl_schema.frontends import yaml_events
 from nodl_schema.frontends.source import SourceText
+from nodl_schema.frontends.yaml_events import MAX_ALIAS_NODES, MAX_DEPTH
 
-__all__ = ['MAX_DEPTH', 'MAX_ALIAS_NODES', 'ParsedDocument', 'parse_document']
-
-MAX_DEPTH = 100
-MAX_ALIAS_NODES = 10_000
+__all__ = ['MAX_DEPTH', 'MAX_ALIAS_NODES', 'ParsedDocument', 'parse_document', 'is_strict_json']
 
 _Loader = getattr(yaml, 'CSafeLoader', yaml.SafeLoader)
 
-_STR = 'tag:yaml.org,2002:str'
-_INT = 'tag:yaml.org,2002:int'
-_FLOAT = 'tag:yaml.org,2002:float'
-_BOOL = 'tag:yaml.org,2002:bool'
-_NULL = 'tag:yaml.org,2002:null'
-_MAP = 'tag:yaml.org,2002:map'
-_SEQ = 'tag:yaml.org,2002:seq'
 _MERGE = 'tag:yaml.org,2002:merge'
-_TIMESTAMP = 'tag:yaml.org,2002:timestamp'
-
-_BOOLS = {'yes': True, 'no': False, 'true': True, 'false': False, 'on': True, 'off': False}
-_LEADING = re.compile(r'^[ \t?:-]*', re.M)
-_constructor = yaml.constructor.SafeConstructor()
-
-
-def _quote(value: Any) -> str:
-    """A key or value for a one-line message: quoted, escaped and not too long."""
-    text = str(value)
-    if len(text) > 40:
-        text = text[:37] + '...'
-    return repr(text)
+#: The first character that is not JSON whitespace.
+_FIRST = re.compile(r'[ \t\r\n]*(.?)', re.S)
+#: A JSON string, or one of the constants Python's json accepts and JSON does not.
+_CONSTANT = re.compile(r'"(?:[^"\\]|\\.)*"|(-?Infinity|NaN)')
+_JSON_RULES = 'strict JSON: no comments, trailing commas, single quotes, unquoted keys or NaN'
+JSON_SYNTAX = 'NODL016'
 
 
-def _error(file: str, message: str, mark: Any = None, path: DocPath = ()) -> Diagnostic:
+def _error(file: str, message: str, code: str, mark: Any = None, path: DocPath = ()) -> Diagnostic:
     line = mark.line + 1 if mark is not None else 0
     column = mark.column + 1 if mark is not None else 0
-    return Diagnostic(Severity.ERROR, message, path, file, line, column)
+    return Diagnostic(Severity.ERROR, message, path, file, line, column, code=code)
 
 
 class ParsedDocument:
@@ -150,209 +136,6 @@ def _find_pair(mapping: MappingNode, part: Any) -> tuple[Node, Node] | None:
     return found
 
 
-class _Builder:
-    """Constructs Python values from a composed node tree."""
-
-    def __init__(self) -> None:
-        self.problems: list[tuple[str, Any, Node | None]] = []
-        self.memo: dict[int, Any] = {}
-
-    def build(self, node: Node) -> Any:
-        cls = node.__class__
-        if cls is ScalarNode:
-            return self.scalar(node)
-        memo = self.memo
-        key = id(node)
-        if key in memo:
-            return memo[key]
-        if cls is MappingNode:
-            out: dict[Any, Any] = {}
-            memo[key] = out
-            self.mapping(node, out)
-            return out
-        out_list: list[Any] = []
-        memo[key] = out_list
-        if node.tag != _SEQ:
-            self.unsupported(node)
-        build = self.build
-        out_list.extend([build(child) for child in node.value])
-        return out_list
-
-    def mapping(self, node: MappingNode, out: dict[Any, Any]) -> None:
-        if node.tag != _MAP:
-            self.unsupported(node)
-        build = self.build
-        merges: list[Node] | None = None
-        first_keys: dict[Any, Node] | None = None
-        for key_node, value_node in node.value:
-            if key_node.tag == _MERGE:
-                merges = (merges or []) + (
-                    list(value_node.value) if isinstance(value_node, SequenceNode) else [value_node])
-                continue
-            key = build(key_node)
-            try:
-                seen = key in out
-            except TypeError:
-                self.problems.append(('keys must be plain scalars (strings), not collections',
-                                      key_node.start_mark, None))
-                continue
-            if seen:
-                if first_keys is None:
-                    first_keys = {}
-                    for k_node, _ in node.value:
-                        if k_node.tag != _MERGE and isinstance(k_node, ScalarNode):
-                            first_keys.setdefault(build(k_node), k_node)
-                first = first_keys.get(key)
-                where = f' (first defined at line {first.start_mark.line + 1})' if first is not None else ''
-                self.problems.append((
-                    f'duplicate key {_quote(key)}{where}; YAML loaders keep only the last value, '
-                    'so remove or rename one of them', key_node.start_mark, node))
-            out[key] = build(value_node)
-        if merges:
-            merged: dict[Any, Any] = {}
-            for source in reversed(merges):
-                value = build(source)
-                if isinstance(value, dict):
-                    merged.update(value)
-                else:
-                    self.problems.append(('a merge key (<<) must refer to a mapping',
-                                          source.start_mark, None))
-            merged.update(out)
-            out.clear()
-            out.update(merged)
-
-    def scalar(self, node: ScalarNode) -> Any:
-        tag = node.tag
-        value = node.value
-        if tag == _STR:
-            return value
-        if tag == _INT:
-            if value.isascii() and value.isdigit() and (value[0] != '0' or len(value) == 1):
-                return int(value)
-            try:
-                return _constructor.construct_yaml_int(node)
-            except (ValueError, IndexError):
-                return self.invalid(node, 'an integer')
-        if tag == _FLOAT:
-            try:
-                return _constructor.construct_yaml_float(node)
-            except (ValueError, IndexError):
-                return self.invalid(node, 'a number')
-        if tag == _BOOL:
-            try:
-                return _BOOLS[value.lower()]
-            except KeyError:
-                return self.invalid(node, 'a boolean')
-        if tag == _NULL:
-            return None
-        if tag == _TIMESTAMP:
-            return value  # NoDL has no date type: keep the text as written
-        self.unsupported(node)
-        return value
-
-    def invalid(self, node: ScalarNode, kind: str) -> str:
-        """An explicit tag (``!!int abc``) on a value that is not of that type."""
-        self.problems.append((
-            f"{_quote(node.value)} is not {kind}, but it is tagged '{node.tag}'; "
-            'remove the tag or fix the value', node.start_mark, None))
-        return node.value
-
-    def unsupported(self, node: Node) -> None:
-        self.problems.append((
-            f"unsupported YAML tag '{node.tag}'; NoDL documents use plain mappings, lists, "
-            'strings, numbers, booleans and null', node.start_mark, None))
-
-
-def _depth_bound(text: str) -> int:
-    """A cheap upper bound of the nesting depth (exact check only if it is large)."""
-    lead = max(map(len, _LEADING.findall(text)), default=0)
-    return text.count('[') + text.count('{') + 2 * lead + 2
-
-
-def _data_depth(data: Any) -> int:
-    """How deeply lists and mappings nest in loaded data (iteratively)."""
-    deepest = 0
-    stack = [(data, 1)]
-    while stack:
-        item, depth = stack.pop()
-        if isinstance(item, dict):
-            item = item.values()
-        elif not isinstance(item, list):
-            continue
-        deepest = max(deepest, depth)
-        stack.extend((child, depth + 1) for child in item if isinstance(child, (dict, list)))
-    return deepest
-
-
-def _deep_nesting(text: str, file: str) -> Diagnostic | None:
-    depth = 0
-    try:
-        for event in yaml.parse(text, Loader=_Loader):
-            if isinstance(event, yaml.CollectionStartEvent):
-                depth += 1
-                if depth > MAX_DEPTH:
-                    return _error(file, f'document nests deeper than {MAX_DEPTH} levels; '
-                                        'NoDL documents are never this deep', event.start_mark)
-            elif isinstance(event, yaml.CollectionEndEvent):
-                depth -= 1
-    except (yaml.YAMLError, ValueError):
-        return None  # the composer reports syntax errors with better context
-    return None
-
-
-def _alias_problem(root: Node, file: str) -> Diagnostic | None:
-    """Reject recursive aliases, alias expansion beyond MAX_ALIAS_NODES, and
-    aliases that nest the data deeper than MAX_DEPTH collection levels."""
-    sizes: dict[int, int] = {}
-    heights: dict[int, int] = {}  # collection levels in a node's expanded subtree
-    on_stack: set[int] = set()
-    shared: list[Node] = []
-    too_deep: list[Node] = []
-
-    def size(node: Node, depth: int) -> int | None:
-        # ``depth``: collection levels above ``node`` in the expanded data.
-        key = id(node)
-        if key in sizes:
-            shared.append(node)
-            if depth + heights[key] > MAX_DEPTH and not too_deep:
-                too_deep.append(node)
-            return sizes[key]
-        if key in on_stack:
-            return None
-        total = 1
-        height = 0
-        if isinstance(node, (MappingNode, SequenceNode)):
-            on_stack.add(key)
-            children = node.value if isinstance(node, SequenceNode) else [n for pair in node.value for n in pair]
-            for child in children:
-                child_size = size(child, depth + 1)
-                if child_size is None:
-                    return None
-                total += child_size
-                height = max(height, heights.get(id(child), 0))
-                if total > MAX_ALIAS_NODES + len(sizes) + 1:
-                    break
-            on_stack.discard(key)
-            height += 1
-        sizes[key] = total
-        heights[key] = height
-        return total
-
-    expanded = size(root, 0)
-    if expanded is None:
-        return _error(file, 'document contains a recursive YAML alias (an anchor used inside itself)',
-                      root.start_mark)
-    if expanded - len(sizes) > MAX_ALIAS_NODES:
-        worst = max(shared, key=lambda n: sizes[id(n)], default=root)
-        return _error(file, f'document expands to more than {MAX_ALIAS_NODES:,} nodes through YAML '
-                            'aliases ("billion laughs"); write the content out instead of '
-                            'multiplying it with aliases', worst.start_mark)
-    if too_deep:
-        return _error(file, f'document nests deeper than {MAX_DEPTH} levels through YAML aliases; '
-                            'NoDL documents are never this deep', too_deep[0].start_mark)
-    return None
-
-
 def _syntax_problem(exc: yaml.YAMLError, text: str, file: str) -> Diagnostic:
     mark = getattr(exc, 'problem_mark', None)
     problem = getattr(exc, 'problem', None) or str(exc)
@@ -361,23 +144,16 @@ def _syntax_problem(exc: yaml.YAMLError, text: str, file: str) -> Diagnostic:
         line, column = _reader_position(exc, text)
         return Diagnostic(Severity.ERROR, f'document contains a character that is not allowed '
                           f'(#x{exc.character:04x}); NoDL files are UTF-8 text', (), file,
-                          line, column)
+                          line, column, code='NODL002')
     if (mark is not None and ('cannot start any token' in problem or 'tab character' in problem)
             and _char_at(text, mark) == '\t'):
-        return _error(file, 'tab character used for indentation; YAML allows only spaces', mark)
-    if 'duplicate anchor' in context:
-        first = getattr(exc, 'context_mark', None)
-        where = f' (first defined at line {first.line + 1})' if first is not None else ''
-        return _error(file, f'YAML anchor defined twice{where}; give each anchor a name of its own',
+        return _error(file, 'tab character used for indentation; YAML allows only spaces', 'NODL004',
                       mark)
-    if 'expected a single document' in problem + context:
-        return _error(file, 'the file holds more than one YAML document; '
-                            'put each definition in a file of its own', mark)
     message = f'YAML syntax error: {problem}' + (f' ({context})' if context else '')
     context_mark = getattr(exc, 'context_mark', None)
     if context_mark is not None and mark is not None and context_mark.line != mark.line:
         message += f'; it starts at line {context_mark.line + 1}, column {context_mark.column + 1}'
-    return _error(file, message, mark)
+    return _error(file, message, 'NODL003', mark)
 
 
 def _reader_position(exc: Any, text: str) -> tuple[int, int]:
@@ -410,74 +186,127 @@ def _describe_kind(value: Any) -> str:
     return type(value).__name__
 
 
+def is_strict_json(source: SourceText) -> bool:
+    """True if ``source`` is read as strict JSON: a ``.json`` file, or text whose first
+    non-blank character is ``{``."""
+    if source.file.lower().endswith('.json'):
+        return True
+    match = _FIRST.match(source.text)
+    return match is not None and match.group(1) == '{'
+
+
 def parse_document(source: SourceText) -> ParsedDocument:
     """Parse YAML or JSON text into a :class:`ParsedDocument`.
 
     Never raises for bad input: every problem becomes a diagnostic.
     """
-    text = source.text
-    file = source.file
     doc = ParsedDocument(source)
-    head = text.lstrip()[:1]
-    if head in ('{', '['):
-        duplicates: list[bool] = []
-
-        def pairs_hook(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
-            result = dict(pairs)
-            if len(result) != len(pairs):
-                duplicates.append(True)
-            return result
-
-        try:  # the C scanner raises RecursionError, it does not crash, on deep nesting
-            data = json.loads(text, object_pairs_hook=pairs_hook)
-        except (ValueError, RecursionError):
-            pass  # not JSON after all (YAML flow style is a superset), or far too deep
-        else:
-            if not duplicates and _data_depth(data) <= MAX_DEPTH:
-                doc.data = data
-                doc.is_json = True
-                _check_top(doc)
-                return doc
-            # duplicates or deep nesting: the YAML path below places them
-
-    # libyaml's composer recurses in C: nesting must be bounded before it runs.
-    if _depth_bound(text) > MAX_DEPTH:
-        problem = _deep_nesting(text, file)
-        if problem is not None:
-            doc.diagnostics.append(problem)
-            return doc
-
-    try:
-        root = yaml.compose(text, Loader=_Loader)
-    except yaml.YAMLError as exc:
-        doc.diagnostics.append(_syntax_problem(exc, text, file))
-        return doc
-    except RecursionError:
-        doc.diagnostics.append(_error(file, f'document nests deeper than {MAX_DEPTH} levels'))
-        return doc
-    except UnicodeEncodeError:  # a lone surrogate in a str
-        doc.diagnostics.append(_error(file, 'document contains a character that is not valid '
-                                            'Unicode text; NoDL files are UTF-8 text'))
-        return doc
-    doc._root = root
-    doc._composed = True
-    if root is None:
-        _check_top(doc)  # data is None: the document is empty
-        return doc
-    if '*' in text:
-        problem = _alias_problem(root, file)
-        if problem is not None:
-            doc.diagnostics.append(problem)
-            return doc
-    builder = _Builder()
-    doc.data = builder.build(root)
-    if builder.problems:
-        paths = _paths_of(root, {id(m) for _, _, m in builder.problems if m is not None})
-        for message, mark, mapping in builder.problems:
-            path = paths.get(id(mapping), ()) if mapping is not None else ()
-            doc.diagnostics.append(_error(file, message, mark, path))
+    if is_strict_json(source):
+        _parse_json(doc)
+    else:
+        _parse_yaml(doc)
+    if doc.diagnostics and doc.data is None:
+        doc._composed = True  # nothing to place by path; and never compose what was refused
     _check_top(doc)
     return doc
+
+
+def _parse_yaml(doc: ParsedDocument) -> None:
+    text, file = doc.source
+    try:
+        doc.data, problems = yaml_events.build(yaml_events.event_source(text))
+    except yaml_events.Stop as stop:
+        doc.diagnostics.append(_error(file, stop.message, stop.code, stop.mark))
+    except yaml.YAMLError as exc:
+        doc.diagnostics.append(_syntax_problem(exc, text, file))
+    except UnicodeEncodeError:  # a lone surrogate in a str
+        doc.diagnostics.append(_error(file, 'document contains a character that is not valid '
+                                            'Unicode text; NoDL files are UTF-8 text', 'NODL002'))
+    else:
+        for code, message, event, path in problems:
+            doc.diagnostics.append(_error(file, message, code, event.start_mark, path))
+
+
+class _Constant(Exception):
+    """``NaN``, ``Infinity`` or ``-Infinity``: Python's json accepts them, JSON does not."""
+
+
+def _reject_constant(name: str) -> Any:
+    raise _Constant(name)
+
+
+def _parse_json(doc: ParsedDocument) -> None:
+    text, file = doc.source
+    doc.is_json = True
+    duplicates: list[bool] = []
+
+    def pairs(items: list[tuple[str, Any]]) -> dict[str, Any]:
+        result = dict(items)
+        if len(result) != len(items):
+            duplicates.append(True)
+        return result
+
+    try:
+        data = json.loads(text, object_pairs_hook=pairs, parse_constant=_reject_constant)
+    except json.JSONDecodeError as exc:
+        doc.diagnostics.append(Diagnostic(
+            Severity.ERROR, f'JSON syntax error: {exc.msg} ({_JSON_RULES})', (), file,
+            exc.lineno, exc.colno, code=JSON_SYNTAX))
+        return
+    except _Constant as exc:
+        token = str(exc)
+        where = next((m.start(1) for m in _CONSTANT.finditer(text) if m.group(1)), 0)
+        line = text.count('\n', 0, where) + 1
+        column = where - (text.rfind('\n', 0, where) + 1) + 1
+        doc.diagnostics.append(Diagnostic(
+            Severity.ERROR, f'JSON syntax error: {token} is not a JSON value; write a number or '
+            f'null ({_JSON_RULES})', (), file, line, column, code=JSON_SYNTAX))
+        return
+    except RecursionError:  # far deeper than MAX_DEPTH: placed below
+        data = None
+        duplicates.append(True)
+    doc.data = data
+    if duplicates or text.count('[') + text.count('{') > MAX_DEPTH:
+        _json_problems(doc, bool(duplicates))
+
+
+def _json_problems(doc: ParsedDocument, duplicates: bool) -> None:
+    """Duplicate keys and deep nesting in valid JSON, placed by reading it as YAML
+    (JSON is YAML flow syntax; json itself reports neither with a position)."""
+    text, file = doc.source
+    try:
+        _, problems = yaml_events.build(yaml_events.event_source(text))
+    except yaml_events.Stop as stop:
+        doc.diagnostics.append(_error(file, stop.message, stop.code, stop.mark))
+        doc.data = None
+        return
+    except (yaml.YAMLError, UnicodeEncodeError):
+        problems = []
+    for code, message, event, path in problems:
+        doc.diagnostics.append(_error(file, message, code, event.start_mark, path))
+    if doc.data is None and not doc.diagnostics or _depth(doc.data) > MAX_DEPTH:
+        doc.diagnostics.append(_error(file, f'document nests deeper than {MAX_DEPTH} levels; '
+                                            'NoDL documents are never this deep', 'NODL009'))
+        doc.data = None
+    elif duplicates and not doc.diagnostics:
+        doc.diagnostics.append(_error(file, 'duplicate key in a JSON object; JSON readers keep only '
+                                            'the last value, so remove or rename one of them',
+                                      'NODL006'))
+
+
+def _depth(data: Any) -> int:
+    """How deeply lists and mappings nest in loaded data (iteratively)."""
+    deepest = 0
+    stack = [(data, 1)]
+    while stack:
+        item, depth = stack.pop()
+        if isinstance(item, dict):
+            item = item.values()
+        elif not isinstance(item, list):
+            continue
+        deepest = max(deepest, depth)
+        stack.extend((child, depth + 1) for child in item if isinstance(child, (dict, list)))
+    return deepest
 
 
 def _check_top(doc: ParsedDocument) -> None:
@@ -488,32 +317,11 @@ def _check_top(doc: ParsedDocument) -> None:
     if data is None:
         doc.diagnostics.append(Diagnostic(
             Severity.ERROR, 'document is empty; a NoDL document is a mapping that starts with '
-            'nodl_version: 2 (or, for a single parameter definition, type: ...)', (), file, 1, 1))
+            'nodl_version: 2 (or, for a single parameter definition, type: ...)', (), file, 1, 1,
+            code='NODL011'))
     else:
         line, column = doc.position(())
         doc.diagnostics.append(Diagnostic(
             Severity.ERROR, f'document is {_describe_kind(data)}, not a mapping; a NoDL document '
             'is a mapping of keys such as nodl_version, parameters and publishers',
-            (), file, line or 1, column or 1))
-
-
-def _paths_of(root: Node, targets: set[int]) -> dict[int, DocPath]:
-    """The document paths of the nodes in ``targets`` (by id), in one walk of the tree."""
-    keys = _Builder()  # its own: building keys again must not add to the reported problems
-    found: dict[int, DocPath] = {}
-    stack: list[tuple[Node, DocPath]] = [(root, ())]
-    seen: set[int] = set()
-    while stack and len(found) < len(targets):
-        node, path = stack.pop()
-        if id(node) in targets:
-            found.setdefault(id(node), path)
-        if id(node) in seen:
-            continue
-        seen.add(id(node))
-        if isinstance(node, MappingNode):
-            for key, value in node.value:
-                if isinstance(key, ScalarNode):
-                    stack.append((value, path + (keys.scalar(key),)))
-        elif isinstance(node, SequenceNode):
-            stack.extend((child, path + (i,)) for i, child in enumerate(node.value))
-    return found
+            (), file, line or 1, column or 1, code='NODL011'))

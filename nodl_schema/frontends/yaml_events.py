@@ -1,0 +1,369 @@
+"""Python values built straight from libyaml's event stream.
+
+libyaml parses; this module turns its events into dicts, lists and scalars
+in one pass, without composing a node tree first (a tree of node objects,
+each with two position marks, costs more than parsing itself).  The pass
+also enforces what a YAML loader does not:
+
+- duplicate keys are problems (with the first key's line), not silently
+  collapsed;
+- nesting deeper than :data:`MAX_DEPTH` stops the pass at the collection
+  that crosses the limit, so no recursion ever sees a deep document;
+- alias expansion is counted as aliases are met (an anchored node's
+  expanded size and height are known when it ends), so recursive aliases,
+  "billion laughs" and aliases that nest the data too deeply stop the pass
+  at the alias, and documents without anchors pay nothing for it;
+- tags other than YAML's standard scalar, mapping and sequence tags are
+  problems.
+
+Scalars resolve as PyYAML's ``SafeLoader`` resolves them (YAML 1.1, using
+PyYAML's own table of implicit resolvers), except timestamps, which stay
+text.  Positions are not kept: the caller composes the node tree again,
+only if a diagnostic needs a line and column.
+"""
+
+from __future__ import annotations
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any, Callable
+
+import yaml
+from yaml.events import (
+    AliasEvent, DocumentEndEvent, MappingEndEvent, MappingStartEvent, ScalarEvent,
+    SequenceEndEvent, SequenceStartEvent, StreamEndEvent)
+from yaml.nodes import ScalarNode
+
+from nodl_schema.diagnostics import DocPath
+
+try:
+    from yaml._yaml import CParser as _CParser
+except ImportError:  # PyYAML built without libyaml
+    _CParser = None
+
+__all__ = ['MAX_DEPTH', 'MAX_ALIAS_NODES', 'Stop', 'Problem', 'build', 'event_source', 'quote']
+
+MAX_DEPTH = 100
+MAX_ALIAS_NODES = 10_000
+
+_STR = 'tag:yaml.org,2002:str'
+_INT = 'tag:yaml.org,2002:int'
+_FLOAT = 'tag:yaml.org,2002:float'
+_BOOL = 'tag:yaml.org,2002:bool'
+_NULL = 'tag:yaml.org,2002:null'
+_MAP = 'tag:yaml.org,2002:map'
+_SEQ = 'tag:yaml.org,2002:seq'
+_MERGE = 'tag:yaml.org,2002:merge'
+_TIMESTAMP = 'tag:yaml.org,2002:timestamp'
+
+_BOOLS = {'yes': True, 'no': False, 'true': True, 'false': False, 'on': True, 'off': False}
+#: PyYAML's table of implicit resolvers (first character -> [(tag, pattern)]): one table.
+_IMPLICIT = yaml.resolver.Resolver.yaml_implicit_resolvers
+_constructor = yaml.constructor.SafeConstructor()
+
+# Diagnostic codes (see nodl_schema.codes).
+SYNTAX = 'NODL003'
+MULTIPLE_DOCUMENTS = 'NODL005'
+DUPLICATE_KEY = 'NODL006'
+DUPLICATE_ANCHOR = 'NODL007'
+ALIASES = 'NODL008'
+TOO_DEEP = 'NODL009'
+CONSTRUCT = 'NODL010'
+
+#: A problem that does not stop the pass: ``(code, message, event, path)``;
+#: the event's ``start_mark`` places it.
+if TYPE_CHECKING:
+    Problem = tuple[str, str, Any, DocPath]
+else:
+    Problem = tuple
+
+
+class Stop(Exception):
+    """A problem that ends the pass (the document cannot be used at all)."""
+
+    def __init__(self, code: str, message: str, mark: Any) -> None:
+        super().__init__(message)
+        self.code = code
+        self.message = message
+        self.mark = mark
+
+
+class _Marker:
+    __slots__ = ('name',)
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def __repr__(self) -> str:
+        return self.name
+
+
+_NO_KEY = _Marker('<no key>')
+_MERGE_KEY = _Marker('<<')
+_MISS = _Marker('<miss>')
+
+
+def quote(value: Any) -> str:
+    """A key or value for a one-line message: quoted, escaped and not too long."""
+    text = str(value)
+    if len(text) > 40:
+        text = text[:37] + '...'
+    return repr(text)
+
+
+def event_source(text: str) -> Callable[[], Any]:
+    """libyaml's parser for ``text`` (PyYAML's own parser if libyaml is missing): a
+    function that returns the next event.  Raises :class:`UnicodeEncodeError` for
+    text with a lone surrogate."""
+    if _CParser is not None:
+        return _CParser(text).get_event  # type: ignore[no-any-return]
+    return yaml.SafeLoader(text).get_event  # type: ignore[no-any-return]
+
+
+def _plain_tag(text: str) -> str:
+    for tag, pattern in _IMPLICIT.get(text[:1], ()):
+        if pattern.match(text):
+            return tag  # type: ignore[no-any-return]
+    return _STR
+
+
+def _unsupported(tag: str) -> str:
+    return (f"unsupported YAML tag '{tag}'; NoDL documents use plain mappings, lists, "
+            'strings, numbers, booleans and null')
+
+
+def _construct(tag: str, text: str) -> Any:
+    """The value of a scalar with a standard tag; ``_MISS`` if the text cannot be one."""
+    if tag == _STR or tag == _TIMESTAMP:  # NoDL has no date type: keep the text as written
+        return text
+    try:
+        if tag == _INT:
+            if text.isascii() and text.isdigit() and (text[0] != '0' or len(text) == 1):
+                return int(text)
+            return _constructor.construct_yaml_int(ScalarNode(tag, text))
+        if tag == _FLOAT:
+            return _constructor.construct_yaml_float(ScalarNode(tag, text))
+    except (ValueError, IndexError):
+        return _MISS
+    if tag == _BOOL:
+        return _BOOLS.get(text.lower(), _MISS)
+    if tag == _NULL:
+        return None
+    return _MISS
+
+
+_KINDS = {_INT: 'an integer', _FLOAT: 'a number', _BOOL: 'a boolean'}
+
+
+def _tagged(event: Any, problems: list[Problem]) -> Any:
+    """A scalar with an explicit tag (``!!int "12"``, ``!foo x``)."""
+    tag = event.tag
+    if tag == '!':  # the non-specific tag: a string
+        return event.value
+    value = _construct(tag, event.value)
+    if value is _MISS:
+        kind = _KINDS.get(tag)
+        if kind is None:
+            problems.append((CONSTRUCT, _unsupported(tag), event, ()))
+        else:
+            problems.append((CONSTRUCT, f"{quote(event.value)} is not {kind}, but it is tagged "
+                             f"'{tag}'; remove the tag or fix the value", event, ()))
+        return event.value
+    return value
+
+
+def _path(stack: list[tuple[Any, ...]]) -> DocPath:
+    """The document path of the collection being built (for a problem's path)."""
+    path: list[Any] = []
+    for frame in stack[1:]:
+        container, is_map, key = frame[0], frame[1], frame[2]
+        path.append(key if is_map else len(container))
+    return tuple(path)
+
+
+def _merged(out: dict[Any, Any], merges: list[tuple[Any, Any]], problems: list[Problem]) -> None:
+    """Apply merge keys: earlier merged mappings win over later ones, own keys over all."""
+    sources: list[tuple[Any, Any]] = []
+    for value, event in merges:
+        if isinstance(value, list):
+            sources.extend((item, event) for item in value)
+        else:
+            sources.append((value, event))
+    merged: dict[Any, Any] = {}
+    for value, event in reversed(sources):
+        if isinstance(value, dict):
+            merged.update(value)
+        else:
+            problems.append((CONSTRUCT, 'a merge key (<<) must refer to a mapping', event, ()))
+    merged.update(out)
+    out.clear()
+    out.update(merged)
+
+
+def build(get_event: Callable[[], Any]) -> tuple[Any, list[Problem]]:
+    """Read one document's events and return its data and its problems.
+
+    ``get_event`` comes from :func:`event_source`.  Raises :class:`Stop` for
+    a problem that makes the document unusable, and PyYAML's ``YAMLError``
+    for a syntax error.
+    """
+    problems: list[Problem] = []
+    get_event()  # StreamStartEvent
+    event = get_event()
+    if event.__class__ is StreamEndEvent:
+        return None, problems  # no document at all
+    # Parser state of the collection being built.  ``stack`` holds the
+    # enclosing collections' states; the document level is a state with no container.
+    cur: Any = None
+    is_map = False
+    key: Any = _NO_KEY
+    key_event: Any = None
+    key_events: list[Any] | None = None
+    merges: list[tuple[Any, Any]] | None = None
+    start: Any = None
+    anchored: Any = None
+    stack: list[tuple[Any, ...]] = []
+    root: Any = None
+    anchors: dict[str, list[Any]] = {}
+    cache: dict[str, Any] = {}  # plain scalar text -> value
+    count = 0  # nodes seen, aliases counted as the nodes they expand to
+    expanded = 0  # nodes added by aliases
+    deepest = 0
+    while True:
+        event = get_event()
+        cls = event.__class__
+        if cls is ScalarEvent:
+            count += 1
+            text = event.value
+            if event.tag is not None:
+                value = _tagged(event, problems)
+            elif event.style:  # quoted or a block scalar: text
+                value = text
+            else:
+                value = cache.get(text, _MISS)
+                if value is _MISS:
+                    tag = _plain_tag(text)
+                    if tag == _MERGE and is_map and key is _NO_KEY:
+                        value = _MERGE_KEY
+                    else:
+                        value = _construct(tag, text)
+                        if value is _MISS:  # '<<' as a value, '=': tags NoDL has no use for
+                            problems.append((CONSTRUCT, _unsupported(tag), event, ()))
+                            value = text
+                        else:
+                            cache[text] = value
+            if event.anchor is not None:
+                if event.anchor in anchors:
+                    _anchor_twice(anchors[event.anchor][1], event)
+                anchors[event.anchor] = [value, event, 1, 0]
+        elif cls is MappingStartEvent or cls is SequenceStartEvent:
+            count += 1
+            tag = event.tag
+            if cls is MappingStartEvent:
+                new: Any = {}
+                if tag is not None and tag != '!' and tag != _MAP:
+                    problems.append((CONSTRUCT, _unsupported(tag), event, ()))
+            else:
+                new = []
+                if tag is not None and tag != '!' and tag != _SEQ:
+                    problems.append((CONSTRUCT, _unsupported(tag), event, ()))
+            stack.append((cur, is_map, key, key_event, key_events, merges, start, anchored))
+            cur, is_map, key, key_event, merges, start, anchored = (
+                new, cls is MappingStartEvent, _NO_KEY, None, None, event, None)
+            key_events = [] if is_map else None
+            depth = len(stack)
+            if event.anchor is not None:
+                if event.anchor in anchors:
+                    _anchor_twice(anchors[event.anchor][1], event)
+                anchors[event.anchor] = [new, event, None, 0]  # open: an alias to it recurses
+                anchored = (count - 1, deepest)
+                deepest = depth - 1
+            if depth > deepest:
+                deepest = depth
+                if depth > MAX_DEPTH:
+                    raise Stop(TOO_DEEP, f'document nests deeper than {MAX_DEPTH} levels; NoDL '
+                                         'documents are never this deep', event.start_mark)
+            continue
+        elif cls is MappingEndEvent or cls is SequenceEndEvent:
+            value = cur
+            event = start
+            if merges is not None:
+                _merged(value, merges, problems)
+            if anchored is not None:
+                entry = anchors[start.anchor]
+                entry[2] = count - anchored[0]
+                entry[3] = deepest - len(stack) + 1
+                deepest = max(deepest, anchored[1])
+            cur, is_map, key, key_event, key_events, merges, start, anchored = stack.pop()
+        elif cls is AliasEvent:
+            entry = anchors.get(event.anchor)  # type: ignore[assignment]
+            if entry is None:
+                raise Stop(SYNTAX, f"YAML alias '*{event.anchor}' refers to no anchor; define "
+                                   f"'&{event.anchor}' before using it", event.start_mark)
+            value, size, height = entry[0], entry[2], entry[3]
+            if size is None:
+                raise Stop(ALIASES, 'document contains a recursive YAML alias (an anchor used '
+                                    'inside itself)', event.start_mark)
+            count += size
+            expanded += size
+            if expanded > MAX_ALIAS_NODES:
+                raise Stop(ALIASES, f'document expands to more than {MAX_ALIAS_NODES:,} nodes '
+                                    'through YAML aliases ("billion laughs"); write the content '
+                                    'out instead of multiplying it with aliases', event.start_mark)
+            if height:
+                reach = len(stack) + height
+                if reach > MAX_DEPTH:
+                    raise Stop(TOO_DEEP, f'document nests deeper than {MAX_DEPTH} levels through '
+                                         'YAML aliases; NoDL documents are never this deep',
+                               event.start_mark)
+                if reach > deepest:
+                    deepest = reach
+            event = entry[1]  # problems about the value point where it is written
+        else:  # DocumentEndEvent
+            break
+        # Attach ``value`` (whose position is ``event``'s) to the collection being built.
+        if is_map:
+            if key is _NO_KEY:
+                key = value
+                key_event = event
+                continue
+            if key is _MERGE_KEY:
+                if merges is None:
+                    merges = []
+                merges.append((value, event))
+            else:
+                size = len(cur)
+                try:
+                    cur[key] = value
+                except TypeError:
+                    problems.append((CONSTRUCT, 'keys must be plain scalars (strings), not '
+                                                'collections', key_event, ()))
+                else:
+                    if len(cur) == size:
+                        problems.append(_duplicate(cur, key, key_event, key_events, stack))
+                    else:
+                        key_events.append(key_event)  # type: ignore[union-attr]
+            key = _NO_KEY
+        elif cur is not None:
+            cur.append(value)
+        else:
+            root = value
+    event = get_event()
+    if event.__class__ is not StreamEndEvent:
+        raise Stop(MULTIPLE_DOCUMENTS, 'the file holds more than one YAML document; put each '
+                                       'definition in a file of its own', event.start_mark)
+    return root, problems
+
+
+def _anchor_twice(first: Any, event: Any) -> None:
+    raise Stop(DUPLICATE_ANCHOR, f'YAML anchor defined twice (first defined at line '
+                                 f'{first.start_mark.line + 1}); give each anchor a name of its '
+                                 'own', event.start_mark)
+
+
+def _duplicate(mapping: dict[Any, Any], key: Any, key_event: Any, key_events: Any,
+               stack: list[tuple[Any, ...]]) -> Problem:
+    first = key_events[list(mapping).index(key)]
+    return (DUPLICATE_KEY, f'duplicate key {quote(key)} (first defined at line '
+                           f'{first.start_mark.line + 1}); YAML loaders keep only the last value, '
+                           'so remove or rename one of them', key_event, _path(stack))
