@@ -122,7 +122,8 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
     if wanted is not None and wanted is not detected:
         mismatch = Diagnostic(
             Severity.ERROR, f'expected {article(wanted)} definition, but this is '
-            f'{article(detected)} definition ({KIND_REASONS[detected]})', (), text.file, 1, 1)
+            f'{article(detected)} definition ({KIND_REASONS[detected]})', (), text.file, 1, 1,
+            code='NODL108')
         return Report(text.file, wanted, parsed.data, early + [mismatch], parsed)
     return Report(text.file, detected, parsed.data,
                   early + validate_data(parsed.data, detected), parsed)
@@ -163,7 +164,7 @@ def _validate(data: Any, kind: Kind) -> list[Diagnostic]:
     if not isinstance(data, dict):
         raise ValidationError([Diagnostic(
             Severity.ERROR, f'{article(kind)} definition is a mapping, not {kind_of(data)}',
-            (), '<dict>')])
+            (), '<dict>', code='NODL011')])
     diagnostics = [d.at('<dict>', 0, 0) for d in validate_data(data, kind)]
     if has_errors(diagnostics):
         raise ValidationError(diagnostics)

@@ -27,3 +27,76 @@ def test_stdin_and_problems_keep_their_order() -> None:
     assert targets[0] == Target(STDIN)
     assert targets[1] == Target('missing.yaml', 'no such file or directory')
     assert targets[2].path == empty and 'no NoDL files' in (targets[2].problem or '')
+
+
+# -- scanning directories like colcon (issue 8, section 3) ------------------------------------
+
+SCAN = FIXTURES / 'scan'
+
+
+def _workspace(tmp_path) -> str:
+    """A colcon-like tree built from the scan fixtures (links and pipes cannot be checked in)."""
+    import shutil
+
+    src = tmp_path / 'ws' / 'src' / 'pkg'
+    src.mkdir(parents=True)
+    shutil.copy(SCAN / 'valid.nodl.yaml', src / 'a.nodl.yaml')
+    return str(tmp_path / 'ws')
+
+
+def _found(root: str) -> list[str]:
+    return [os.path.relpath(t.path, root) for t in find_nodl_files([root])
+            if t.problem is None and t.skipped is None]
+
+
+def test_a_named_pipe_in_a_directory_is_skipped_with_a_note_not_opened(tmp_path) -> None:
+    ws = _workspace(tmp_path)
+    os.mkfifo(os.path.join(ws, 'src', 'pkg', 'pipe.nodl.yaml'))
+    targets = find_nodl_files([ws])  # would block forever if the pipe were opened
+    pipe = [t for t in targets if t.path.endswith('pipe.nodl.yaml')]
+    assert len(pipe) == 1 and pipe[0].problem is None and 'named pipe' in (pipe[0].skipped or '')
+    assert _found(ws) == [os.path.join('src', 'pkg', 'a.nodl.yaml')]
+
+
+def test_an_explicit_named_pipe_is_a_target_marked_special(tmp_path) -> None:
+    pipe = str(tmp_path / 'p.yaml')
+    os.mkfifo(pipe)
+    assert find_nodl_files([pipe]) == [Target(pipe, None, 'named pipe')]
+
+
+def test_symlinked_directories_are_followed_once_without_looping(tmp_path) -> None:
+    import shutil
+
+    ws = _workspace(tmp_path)
+    repo = tmp_path / 'repo' / 'linked_pkg'
+    repo.mkdir(parents=True)
+    shutil.copy(SCAN / 'valid.nodl.yaml', repo / 'b.nodl.yaml')
+    os.symlink(repo, os.path.join(ws, 'src', 'linked_pkg'))          # a repository linked into src/
+    os.symlink('..', repo / 'up')                                      # a loop back to an ancestor
+    os.symlink(os.path.join(ws, 'src'), os.path.join(ws, 'src', 'pkg', 'again'))  # a loop in the tree
+    assert sorted(_found(ws)) == [os.path.join('src', 'linked_pkg', 'b.nodl.yaml'),
+                                  os.path.join('src', 'pkg', 'a.nodl.yaml')]
+
+
+def test_ignore_markers_hidden_and_colcon_output_directories_are_skipped(tmp_path) -> None:
+    import shutil
+
+    ws = _workspace(tmp_path)
+    for skipped in ('build/pkg', 'install/pkg/share', 'log/latest', '.git/x', 'src/ignored',
+                    'src/ament_ignored'):
+        folder = os.path.join(ws, skipped)
+        os.makedirs(folder)
+        shutil.copy(SCAN / 'valid.nodl.yaml', os.path.join(folder, 'copy.nodl.yaml'))
+    open(os.path.join(ws, 'src', 'ignored', 'COLCON_IGNORE'), 'w').close()
+    open(os.path.join(ws, 'src', 'ament_ignored', 'AMENT_IGNORE'), 'w').close()
+    assert _found(ws) == [os.path.join('src', 'pkg', 'a.nodl.yaml')]
+    # named on the command line, a directory is scanned whatever it holds
+    assert _found(os.path.join(ws, 'install')) == [os.path.join('pkg', 'share', 'copy.nodl.yaml')]
+
+
+def test_a_dangling_link_named_like_a_nodl_file_is_reported(tmp_path) -> None:
+    ws = _workspace(tmp_path)
+    link = os.path.join(ws, 'src', 'pkg', 'gone.nodl.yaml')
+    os.symlink(os.path.join(ws, 'nowhere.yaml'), link)
+    problems = [t for t in find_nodl_files([ws]) if t.problem]
+    assert problems == [Target(link, 'a symbolic link to a file or directory that does not exist')]

@@ -88,7 +88,7 @@ def _converted(registration: Registration):  # type: ignore[no-untyped-def]
             return converted, diagnostics + converted.diagnostics
     return None, diagnostics + [Diagnostic(
         Severity.ERROR, f'no node for {registration.name!r} in this legacy file', (),
-        registration.file)]
+        registration.file, code='NODL306')]
 
 
 def compose_legacy(registration: Registration,  # type: ignore[no-untyped-def]

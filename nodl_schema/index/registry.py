@@ -126,7 +126,7 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
     registration = find_node(package, executable, prefixes)
     if registration is None:
         return None, [Diagnostic(Severity.ERROR, describe_missing(package, executable, prefixes),
-                                 (), where)], where
+                                 (), where, code='NODL306')], where
     if registration.kind == 'legacy node':
         from nodl_schema.index.legacy import compose_legacy
 
@@ -135,7 +135,7 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
     try:
         resolved = read_registration(registration, prefixes)
     except ResolutionError as exc:  # an entry whose file is gone (a partly removed install)
-        return None, [Diagnostic(Severity.ERROR, exc.message, (), where)], where
+        return None, [Diagnostic(Severity.ERROR, exc.message, (), where, code='NODL015')], where
     composed, diagnostics = compose_report(
         check_source(resolved.text, kind=Kind.NODE, file=resolved.file),
         client_library=client_library)

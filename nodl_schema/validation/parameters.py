@@ -49,28 +49,28 @@ _ELEMENT_WORDS = {'bool': 'a boolean', 'int': 'an integer', 'double': 'a number'
                   'string': 'a string', 'byte': 'an integer from 0 to 255'}
 
 
-def _error(message: str, path: DocPath, anchor: str = 'value') -> Diagnostic:
-    return Diagnostic(Severity.ERROR, message, path, anchor=anchor)
+def _error(message: str, path: DocPath, code: str, anchor: str = 'value') -> Diagnostic:
+    return Diagnostic(Severity.ERROR, message, path, anchor=anchor, code=code)
 
 
 def check_parameter_type(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Format check ``nodl-parameter-type``."""
     if not isinstance(value, str):
-        out.append(_error(f"'type' must be a string, not {described(value)}", path))
+        out.append(_error(f"'type' must be a string, not {described(value)}", path, 'NODL103'))
         return
     if parse_type(value) is not None:
         return
     if value.startswith('bool_array_fixed_'):
         out.append(_error(f'{show(value)} is not supported: there are no fixed-size bool arrays '
-                          '(use bool_array)', path))
+                          '(use bool_array)', path, 'NODL206'))
         return
     if re.fullmatch(r'\w+_fixed_0*', value) or re.fullmatch(r'\w+_fixed_0[0-9]+', value):
         out.append(_error(f'{show(value)}: the size of a fixed-size type is a positive number '
-                          'without leading zeros', path))
+                          'without leading zeros', path, 'NODL206'))
         return
     out.append(_error(f'unknown parameter type {show(value)}; expected one of: '
                       f'{", ".join(ALL_TYPE_WORDS)}{did_you_mean(value, SCALAR_TYPES + ARRAY_TYPES)}',
-                      path))
+                      path, 'NODL206'))
 
 
 def check_validator_name(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
@@ -84,7 +84,7 @@ def check_validator_name(value: Any, path: DocPath, out: list[Diagnostic]) -> No
         out.append(_error(
             f'{show(value)} is not a validator name: use a built-in validator '
             f'({", ".join(n + "<>" for n in BUILTIN_VALIDATORS)}) or a C++ function name '
-            '(my_namespace::my_check)', path, 'key'))
+            '(my_namespace::my_check)', path, 'NODL207', 'key'))
         return
     if '::' not in bare:
         # Compare without the '<>' suffix: two shared characters would make
@@ -96,7 +96,7 @@ def check_validator_name(value: Any, path: DocPath, out: list[Diagnostic]) -> No
             out.append(Diagnostic(
                 Severity.WARNING,
                 f'{show(value)} is not a built-in validator and will be called as a custom '
-                f'function{hint.replace(";", ",", 1)}', path, anchor='key'))
+                f'function{hint.replace(";", ",", 1)}', path, anchor='key', code='NODL208'))
 
 
 def _scalar_arg(args: Any) -> Any:
@@ -120,7 +120,8 @@ def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
     if spec.base == 'none':
         if has_default:
             out.append(Diagnostic(Severity.WARNING, "a parameter of type 'none' holds no value; "
-                                  'its default_value is ignored', default_path, anchor='key'))
+                                  'its default_value is ignored', default_path, anchor='key',
+                                  code='NODL214'))
     elif has_default:
         default_ok = _check_default(default, spec, default_path, out)
 
@@ -137,13 +138,13 @@ def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
             continue
         if bare in builtins:
             out.append(_error(f"'{builtins[bare][0]}' and '{key}' are the same validator; keep one",
-                              vpath + (key,), 'key'))
+                              vpath + (key,), 'NODL212', 'key'))
             continue
         builtins[bare] = (key, args)
 
     if spec.base == 'none' and validation:
         out.append(_error("a parameter of type 'none' holds no value, so it takes no validators",
-                          vpath, 'key'))
+                          vpath, 'NODL211', 'key'))
         return
 
     fitting: dict[str, tuple[str, Any]] = {}
@@ -151,7 +152,7 @@ def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
         applies = BUILTIN_VALIDATORS[bare]
         if not _applies(applies, spec):
             out.append(_error(f"'{key}' does not apply to {article(spec.category)} parameter; it is for "
-                              f'{_APPLIES_WORDS[applies]}', vpath + (key,), 'key'))
+                              f'{_APPLIES_WORDS[applies]}', vpath + (key,), 'NODL211', 'key'))
             continue
         fitting[bare] = (key, args)
 
@@ -161,7 +162,8 @@ def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
                 if other in builtins:
                     key = builtins[other][0]
                     out.append(_error(f"'{builtins[first][0]}' conflicts with '{key}': give the range "
-                                      f'with one or the other, not both', vpath + (key,), 'key'))
+                                      f'with one or the other, not both', vpath + (key,), 'NODL212',
+                                      'key'))
 
     args_ok = True
     for bare, (key, args) in fitting.items():
@@ -172,7 +174,7 @@ def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
             problem = _default_breaks(bare, args, default, spec)
             if problem:
                 out.append(_error(f'default_value {show(default)} breaks {key} '
-                                  f'{show(args)}: {problem}', default_path))
+                                  f'{show(args)}: {problem}', default_path, 'NODL210'))
 
 
 def _applies(applies: str, spec: TypeSpec) -> bool:
@@ -191,37 +193,37 @@ def _check_default(value: Any, spec: TypeSpec, path: DocPath, out: list[Diagnost
     if value is None:
         out.append(_error(f'default_value is null; {article(spec.name)} parameter needs '
                           f'{_expected(spec)} (leave default_value out to make the parameter '
-                          'required at start-up)', path))
+                          'required at start-up)', path, 'NODL209'))
         return False
     if spec.is_array:
         if not isinstance(value, list):
             out.append(_error(f'default_value of {article(spec.name)} parameter must be a list of '
-                              f'{spec.element} values, not {described(value)}', path))
+                              f'{spec.element} values, not {described(value)}', path, 'NODL209'))
             return False
         ok = True
         for index, item in enumerate(value):
             if (spec.element == 'byte' and element_fits(item, 'int')
                     and not element_fits(item, 'byte')):
                 out.append(_error(f'element {index} of default_value is {item}; a byte_array holds '
-                                  'integers from 0 to 255', path + (index,)))
+                                  'integers from 0 to 255', path + (index,), 'NODL209'))
                 ok = False
             elif not element_fits(item, spec.element):
                 out.append(_error(f'element {index} of default_value must be '
                                   f'{_ELEMENT_WORDS[spec.element]}, not {described(item)}',
-                                  path + (index,)))
+                                  path + (index,), 'NODL209'))
                 ok = False
         if spec.size is not None and len(value) > spec.size:
             out.append(_error(f'default_value has {len(value)} elements; {spec.name} holds at most '
-                              f'{spec.size}', path))
+                              f'{spec.size}', path, 'NODL209'))
             ok = False
         return ok
     if not element_fits(value, spec.element):
         out.append(_error(f'default_value of {article(spec.name)} parameter must be {_expected(spec)}, '
-                          f'not {described(value)}', path))
+                          f'not {described(value)}', path, 'NODL209'))
         return False
     if spec.size is not None and len(value) > spec.size:
         out.append(_error(f'default_value has {len(value)} characters; {spec.name} holds at most '
-                          f'{spec.size}', path))
+                          f'{spec.size}', path, 'NODL209'))
         return False
     return True
 
@@ -240,7 +242,7 @@ def _check_arguments(bare: str, key: str, args: Any, spec: TypeSpec, path: DocPa
             return False  # the structural check reported the shape
         if args[0] > args[1]:
             out.append(_error(f'{key}: the lower bound {show(args[0])} is greater than the upper '
-                              f'bound {show(args[1])}', path))
+                              f'bound {show(args[1])}', path, 'NODL213'))
             return False
         return _integral(args, key, spec, path, out)
     if bare in ('lt', 'gt', 'lt_eq', 'gt_eq', 'lower_element_bounds', 'upper_element_bounds'):
@@ -259,7 +261,7 @@ def _check_arguments(bare: str, key: str, args: Any, spec: TypeSpec, path: DocPa
                          if bare == 'subset_of' else
                          f'{article(spec.name)} parameter can never equal it')
                 out.append(_error(f'{key} value {show(item)} is not {_ELEMENT_WORDS[spec.element]}, '
-                                  f'so {never}', path + (0, index)))
+                                  f'so {never}', path + (0, index), 'NODL213'))
                 ok = False
         return ok
     return True
@@ -271,7 +273,7 @@ def _integral(values: list[Any], key: str, spec: TypeSpec, path: DocPath,
         for value in values:
             if isinstance(value, float) and not value.is_integer():
                 out.append(_error(f'{key} of an integer parameter must use integers, not '
-                                  f'{show(value)}', path))
+                                  f'{show(value)}', path, 'NODL213'))
                 return False
     return True
 
