@@ -37,6 +37,7 @@ class Severity(str, enum.Enum):
     INFO = 'info'
 
     def __str__(self) -> str:
+        """``FILE:LINE:COL: severity: message [path] [CODE]`` (position, path and code when known)."""
         return self.value
 
 
@@ -136,23 +137,32 @@ class Diagnostic:
         return self.replace(file=file, line=line, column=column)
 
     def __str__(self) -> str:
+        """``FILE:LINE:COL: severity: message [path] [CODE]`` (position, path and code when known)."""
         where = self.file
         if self.line:
             where += f':{self.line}:{self.column}'
         text = f'{where}: {self.severity}: {self.message}'
         if self.path:
             text += f' [{self.path_text}]'
+        if self.code:
+            text += f' [{self.code}]'
         return text
 
     def to_dict(self) -> dict[str, object]:
-        """The diagnostic as a JSON-ready mapping."""
+        """The diagnostic as a JSON-ready mapping.
+
+        ``related`` is a list of ``{file, line, column, message}`` objects.
+        """
         return {
             'file': self.file,
             'line': self.line,
             'column': self.column,
             'path': self.path_text,
             'severity': self.severity.value,
+            'code': self.code,
             'message': self.message,
+            'related': [{'file': f, 'line': li, 'column': c, 'message': m}
+                        for f, li, c, m in self.related],
         }
 
 

@@ -59,7 +59,8 @@ def show_file(path: str) -> Shown:
         return Shown(_stamp_all(report.model(), os.path.basename(path)),  # type: ignore[arg-type]
                      report.diagnostics, path)
     return Shown(None, [Diagnostic(Severity.ERROR, 'a parameter definition has no interface to '
-                                   'show; show a node or interface definition', (), path, 1, 1)], path)
+                                   'show; show a node or interface definition', (), path, 1, 1,
+                                   code='NODL305')], path)
 
 
 def show_registered(package: str, executable: str) -> Shown:

@@ -129,10 +129,10 @@ def test_package_executable_not_found() -> None:
     assert result.returncode == 1
     assert result.stdout == ''
     assert result.stderr == ("alpha/nope: error: package 'alpha' registers no node definition "
-                             "for 'nope' (it has: inline, listener, talker)\n")
+                             "for 'nope' (it has: inline, listener, talker) [NODL306]\n")
     result = nodl('zeta', 'x')
     assert (result.returncode, result.stderr) == (
-        1, "zeta/x: error: package 'zeta' is not in the ament index\n")
+        1, "zeta/x: error: package 'zeta' is not in the ament index [NODL306]\n")
 
 
 def test_package_executable_without_ament_prefix_path() -> None:

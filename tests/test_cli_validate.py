@@ -92,7 +92,7 @@ def test_json_format_lists_diagnostic_objects() -> None:
     assert result.returncode == 1
     diagnostics = json.loads(result.stdout)
     assert [sorted(d) for d in diagnostics] == [
-        ['column', 'file', 'line', 'message', 'path', 'severity']] * 2
+        ['code', 'column', 'file', 'line', 'message', 'path', 'related', 'severity']] * 2
     assert diagnostics[1]['path'] == 'main.parameters.gain.default_value'
     assert (diagnostics[1]['line'], diagnostics[1]['column']) == (7, 48)
     assert diagnostics[0]['severity'] == 'error'

@@ -317,7 +317,7 @@ def test_invalid_utf8_file_is_placed_in_path_stream_and_check_source() -> None:
     with pytest.raises(ValidationError) as info:
         load_nodl(path)
     assert str(info.value) == (f'{path}:2:21: error: document is not valid UTF-8 '
-                               '(byte 0xff cannot be decoded); save the file as UTF-8')
+                               '(byte 0xff cannot be decoded); save the file as UTF-8 [NODL002]')
 
 
 def test_a_text_file_opened_with_the_wrong_encoding_is_the_callers_problem() -> None:
@@ -370,10 +370,10 @@ def test_one_byte_over_the_limit_is_one_clear_error_for_every_input_kind(tmp_pat
 def test_too_large_is_a_single_error_from_the_public_api() -> None:
     data = _payload(MAX_BYTES + 1)
     report = check_source(data)
-    assert [str(d) for d in report.diagnostics] == [f'<bytes>: error: {TOO_LARGE}']
+    assert [str(d) for d in report.diagnostics] == [f'<bytes>: error: {TOO_LARGE} [NODL001]']
     with pytest.raises(ValidationError) as info:
         load_nodl(data.decode('ascii'), file='big.yaml')
-    assert str(info.value) == f'big.yaml: error: {TOO_LARGE}'
+    assert str(info.value) == f'big.yaml: error: {TOO_LARGE} [NODL001]'
 
 
 def test_str_limit_counts_utf8_bytes_not_characters() -> None:

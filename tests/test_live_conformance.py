@@ -488,12 +488,17 @@ def test_difference_text_and_dict() -> None:
                    'declared TRANSIENT_LOCAL, observed VOLATILE', declared='TRANSIENT_LOCAL',
                    observed='VOLATILE', layer='main')
     assert str(d) == ("error: qos: publisher '/base/status' durability: declared TRANSIENT_LOCAL, "
-                      'observed VOLATILE (declared in main)')
-    assert d.to_dict() == {'kind': 'qos', 'severity': 'error', 'section': 'publishers',
+                      'observed VOLATILE (declared in main) [NODL404]')
+    assert d.to_dict() == {'kind': 'qos', 'code': 'NODL404', 'severity': 'error', 'section': 'publishers',
                            'name': '/base/status', 'declared': 'TRANSIENT_LOCAL',
                            'observed': 'VOLATILE', 'layer': 'main', 'message': d.message}
     extra = Difference('extra', 'publishers', '/x', "publisher '/x' is observed but not declared")
-    assert str(extra) == "error: extra: publisher '/x' is observed but not declared"
+    assert str(extra) == "error: extra: publisher '/x' is observed but not declared [NODL402]"
+    # The same difference as a Diagnostic: lossless (kind, message, layer, section, name, code).
+    diagnostic = d.to_diagnostic('robot.nodl.yaml')
+    assert (diagnostic.severity, diagnostic.code, diagnostic.path, diagnostic.file) == (
+        'error', 'NODL404', ('publishers', '/base/status'), 'robot.nodl.yaml')
+    assert diagnostic.message == str(d)[len('error: '):-len(' [NODL404]')]
 
 
 @pytest.mark.parametrize('kinds, expected', [

@@ -202,7 +202,7 @@ def test_validation_error_diagnostic_fields() -> None:
                    if d.path == ('main', 'parameters', 'gain', 'default_value'))
     assert default.to_dict() == {
         'file': '<dict>', 'line': 0, 'column': 0, 'path': 'main.parameters.gain.default_value',
-        'severity': 'error',
+        'severity': 'error', 'code': 'NODL209', 'related': [],
         'message': "default_value of an int parameter must be an integer, not a string ('high')"}
 
 

@@ -20,7 +20,7 @@ def test_text_is_one_compiler_style_line_per_diagnostic() -> None:
 def test_json_objects_have_the_documented_fields() -> None:
     data = json.loads(format_json([D1]))
     assert data == [{'file': 'a.yaml', 'line': 4, 'column': 11, 'path': 'main.publishers[0].type',
-                     'severity': 'error', 'message': 'bad type'}]
+                     'severity': 'error', 'code': '', 'message': 'bad type', 'related': []}]
 
 
 def test_summary_counts_and_plurals() -> None:

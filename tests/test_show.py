@@ -106,7 +106,7 @@ def test_show_registered_not_found(monkeypatch: pytest.MonkeyPatch) -> None:
     assert not result.ok
     [error] = result.diagnostics
     assert str(error) == ("alpha/nope: error: package 'alpha' registers no node definition for "
-                          "'nope' (it has: inline, talker)")
+                          "'nope' (it has: inline, talker) [NODL306]")
 
 
 def test_show_registered_dangling_entry_says_what_is_missing(

@@ -84,7 +84,7 @@ def test_forgotten_nodl_version_in_a_node_is_reported_as_missing() -> None:
     report = check_source('base: node\nmain:\n  nodl_version: 2\n')
     assert report.kind is Kind.NODE
     assert [str(d) for d in report.errors] == [
-        "<string>:1:1: error: missing required key 'nodl_version'"]
+        "<string>:1:1: error: missing required key 'nodl_version' [NODL102]"]
 
 
 def test_parameter_document_is_not_told_about_nodl_version() -> None:

@@ -306,12 +306,12 @@ def _place_attributes(lines: _Lines, line: int, column: int,
     return out
 
 
-def _error(file: str, message: str, line: int = 0, column: int = 0) -> Diagnostic:
-    return Diagnostic(Severity.ERROR, message, (), file, line, column)
+def _error(file: str, message: str, line: int = 0, column: int = 0, *, code: str) -> Diagnostic:
+    return Diagnostic(Severity.ERROR, message, (), file, line, column, code=code)
 
 
-def _warning(file: str, message: str, line: int = 0, column: int = 0) -> Diagnostic:
-    return Diagnostic(Severity.WARNING, message, (), file, line, column)
+def _warning(file: str, message: str, line: int = 0, column: int = 0, *, code: str) -> Diagnostic:
+    return Diagnostic(Severity.WARNING, message, (), file, line, column, code=code)
 
 
 _DTD_MESSAGE = ('document type declarations (<!DOCTYPE ...>) are not allowed in NoDL XML: '
@@ -365,7 +365,7 @@ def _parse_xml(text: str, file: str) -> XmlTree:
         # Point at the start of the declaration, not where expat is inside it.
         start = text.rfind('<!', 0, lines.offset(*here()) + 1)
         line, column = lines.position(start) if start >= 0 else here()
-        diagnostics.append(_error(file, _DTD_MESSAGE, line, column))
+        diagnostics.append(_error(file, _DTD_MESSAGE, line, column, code='NODL013'))
         raise _Rejected
 
     def declaration(version: str | None, encoding: str | None, standalone: int) -> None:
@@ -373,7 +373,7 @@ def _parse_xml(text: str, file: str) -> XmlTree:
             line, column = here()
             diagnostics.append(_warning(
                 file, f"the XML declaration says encoding '{encoding}', but NoDL files are "
-                'UTF-8 and this one was read as UTF-8; change the declaration', line, column))
+                'UTF-8 and this one was read as UTF-8; change the declaration', line, column, code='NODL014'))
 
     parser.StartElementHandler = start
     parser.EndElementHandler = end
@@ -387,7 +387,7 @@ def _parse_xml(text: str, file: str) -> XmlTree:
         pass
     except expat.ExpatError as exc:
         message = expat.ErrorString(exc.code) if exc.code is not None else str(exc)
-        diagnostics.append(_error(file, f'malformed XML: {message}', exc.lineno, exc.offset + 1))
+        diagnostics.append(_error(file, f'malformed XML: {message}', exc.lineno, exc.offset + 1, code='NODL012'))
     return XmlTree(file, roots[0] if roots else None, diagnostics)
 
 
@@ -438,13 +438,14 @@ class _Reader:
 
     # -- helpers ----------------------------------------------------------
 
-    def error(self, message: str, at: XmlElement | XmlAttribute | tuple[int, int]) -> None:
+    def error(self, message: str, at: XmlElement | XmlAttribute | tuple[int, int], *,
+              code: str) -> None:
         line, column = (at.line, at.column) if isinstance(at, (XmlElement, XmlAttribute)) else at
-        self.diagnostics.append(_error(self.file, message, line, column))
+        self.diagnostics.append(_error(self.file, message, line, column, code=code))
         self.errors += 1
 
-    def warning(self, message: str, at: XmlElement | XmlAttribute) -> None:
-        self.diagnostics.append(_warning(self.file, message, at.line, at.column))
+    def warning(self, message: str, at: XmlElement | XmlAttribute, *, code: str) -> None:
+        self.diagnostics.append(_warning(self.file, message, at.line, at.column, code=code))
 
     def error_count(self) -> int:
         # A running count: summing the diagnostics for every element was quadratic.
@@ -466,29 +467,29 @@ class _Reader:
                 else:
                     hint = f'; {hint}'
                 self.error(f"unknown attribute '{attribute.name}' on <{element.tag}>{hint}",
-                           attribute)
+                           attribute, code='NODL801')
         return out
 
     def no_text(self, element: XmlElement) -> None:
         if element.text_at is not None:
             self.error(f'unexpected text inside <{element.tag}>; legacy NoDL elements hold '
-                       'only elements and attributes', element.text_at)
+                       'only elements and attributes', element.text_at, code='NODL801')
 
     def unknown_element(self, element: XmlElement, parent: XmlElement,
                         allowed: Sequence[str]) -> None:
         expected = (f"; <{parent.tag}> holds {', '.join(f'<{t}>' for t in allowed)}"
                     + _did_you_mean(element.tag, allowed)) if allowed else \
             f'; <{parent.tag}> holds no elements'
-        self.error(f'unknown element <{element.tag}> inside <{parent.tag}>{expected}', element)
+        self.error(f'unknown element <{element.tag}> inside <{parent.tag}>{expected}', element, code='NODL801')
 
     def required(self, element: XmlElement, attributes: dict[str, XmlAttribute],
                  name: str) -> str | None:
         attribute = attributes.get(name)
         if attribute is None:
-            self.error(f"<{element.tag}> has no '{name}' attribute", element)
+            self.error(f"<{element.tag}> has no '{name}' attribute", element, code='NODL802')
             return None
         if not attribute.value.strip():
-            self.error(f"'{name}' of <{element.tag}> is empty", attribute)
+            self.error(f"'{name}' of <{element.tag}> is empty", attribute, code='NODL802')
             return None
         return attribute.value
 
@@ -499,7 +500,7 @@ class _Reader:
         if value in _FALSE:
             return False
         self.error(f"invalid value '{attribute.value}' for '{attribute.name}'; "
-                   'expected true or false', attribute)
+                   'expected true or false', attribute, code='NODL803')
         return None
 
     # -- elements ---------------------------------------------------------
@@ -510,22 +511,22 @@ class _Reader:
                              line=root.line if root else 0, column=root.column if root else 0)
         if root is None:
             if not self.tree.diagnostics:
-                self.error('the document has no root element', (1, 1))
+                self.error('the document has no root element', (1, 1), code='NODL806')
             return doc
         if root.tag != 'interface':
             hint = (' (this is a package manifest: convert it as a package.xml, which exports '
                     'interface files)' if root.tag == 'package' else '')
             self.error(f'the root element is <{root.tag}>; a legacy NoDL file has root '
-                       f'<interface version="1">{hint}', root)
+                       f'<interface version="1">{hint}', root, code='NODL806')
             return doc
         attributes = self.attributes(root, ('version',))
         version = attributes.get('version')
         if version is None:
             self.warning(f"<interface> has no 'version' attribute; read as version "
-                         f'{LEGACY_VERSION}', root)
+                         f'{LEGACY_VERSION}', root, code='NODL805')
         elif version.value.strip() != LEGACY_VERSION:
             self.error(f"unsupported legacy NoDL version '{version.value}'; this reader knows "
-                       f'version {LEGACY_VERSION}', version)
+                       f'version {LEGACY_VERSION}', version, code='NODL804')
         doc.version = version.value if version is not None else None
         self.no_text(root)
         for child in root.children:
@@ -536,7 +537,7 @@ class _Reader:
             else:
                 self.unknown_element(child, root, ('node',))
         if not root.children:
-            self.warning('<interface> declares no nodes; there is nothing to convert', root)
+            self.warning('<interface> declares no nodes; there is nothing to convert', root, code='NODL809')
         self.diagnostics.sort(key=lambda d: (d.line, d.column))
         return doc
 
@@ -546,12 +547,12 @@ class _Reader:
         for key in ('name', 'executable'):
             attribute = attributes.get(key)
             if attribute is not None and not attribute.value.strip():
-                self.error(f"'{key}' of <node> is empty", attribute)
+                self.error(f"'{key}' of <node> is empty", attribute, code='NODL802')
             values[key] = attribute.value if attribute is not None and attribute.value.strip() \
                 else None
         if 'name' not in attributes and 'executable' not in attributes:
             self.error("<node> has neither an 'executable' nor a 'name' attribute; one of them "
-                       'says which node this is', element)
+                       'says which node this is', element, code='NODL802')
         node = LegacyNode(name=values['name'], executable=values['executable'], parameters=[],
                           topics=[], services=[], actions=[], line=element.line,
                           column=element.column, positions=_positions(element))
@@ -565,7 +566,7 @@ class _Reader:
                 first = seen_parameters.get(parameter.name)
                 if first is not None:
                     self.error(f"parameter '{parameter.name}' is declared twice in this node "
-                               f'(first at line {first.line})', child)
+                               f'(first at line {first.line})', child, code='NODL807')
                     continue
                 seen_parameters[parameter.name] = parameter
                 node.parameters.append(parameter)
@@ -609,7 +610,7 @@ class _Reader:
                 self.unknown_element(child, element, ('qos',))
             elif first is not None:
                 self.error(f'<{kind}> has more than one <qos> (the first is at line '
-                           f'{first.line})', child)
+                           f'{first.line})', child, code='NODL807')
             else:
                 first = child
                 qos = self.qos(child)
@@ -643,24 +644,24 @@ class _Reader:
                 choices = (*roles, 'both')
                 self.error(f"invalid role '{role.value}' for <{kind}>; expected "
                            f"{', '.join(choices[:-1])} or {choices[-1]}"
-                           + _did_you_mean(role_value, choices), role)
+                           + _did_you_mean(role_value, choices), role, code='NODL803')
                 return ()
         written = [attributes[w] for w in roles if w in attributes]
         if role is not None and from_role is not None and written:
             flag_text = ' '.join(f'{a.name}="{a.value}"' for a in written)
             if set(from_role) == set(from_flags):
                 self.warning(f'<{kind}> gives its role twice, as role="{role.value}" and as '
-                             f'{flag_text}; keep only role="{role.value}"', role)
+                             f'{flag_text}; keep only role="{role.value}"', role, code='NODL815')
             else:
                 self.error(f'role="{role.value}" conflicts with {flag_text} on <{kind}>; '
-                           'use only the role attribute', role)
+                           'use only the role attribute', role, code='NODL808')
                 return ()
         played = from_role if from_role is not None else from_flags
         misplaced = any(a.name in _ROLES_OF_OTHER_KINDS[kind] for a in element.attributes)
         if not played and len(flags) == len(written) and not misplaced:
             label = f" '{name}'" if name else ''
             self.error(f'<{kind}>{label} has no role: give role="{roles[0]}", "{roles[1]}" or '
-                       f'"both" (or {roles[0]}="true" / {roles[1]}="true")', element)
+                       f'"both" (or {roles[0]}="true" / {roles[1]}="true")', element, code='NODL808')
         return played
 
     def qos(self, element: XmlElement) -> LegacyQoS | None:
@@ -681,19 +682,19 @@ class _Reader:
                 else:
                     self.error(f"invalid {key} '{attribute.value}' in <qos>; expected one of: "
                                f"{', '.join(QOS_VALUES[key])}"
-                               + _did_you_mean(lowered, QOS_VALUES[key]), attribute)
+                               + _did_you_mean(lowered, QOS_VALUES[key]), attribute, code='NODL803')
             elif key == 'depth':
                 if _DEPTH.fullmatch(value):
                     qos.depth = int(value)
                 else:
                     self.error(f"invalid depth '{attribute.value}' in <qos>; expected a "
-                               'non-negative integer', attribute)
+                               'non-negative integer', attribute, code='NODL803')
             elif key in _QOS_DURATIONS:
                 if _SECONDS.fullmatch(value):
                     setattr(qos, key, value)
                 else:
                     self.error(f"invalid {key} '{attribute.value}' in <qos>; expected a "
-                               'non-negative number of seconds such as 0.5', attribute)
+                               'non-negative number of seconds such as 0.5', attribute, code='NODL803')
             else:  # avoid_ros_namespace_conventions
                 qos.avoid_ros_namespace_conventions = self.boolean(attribute)
         return qos if self.error_count() == before else None
@@ -732,11 +733,11 @@ def package_exports_from_tree(tree: XmlTree) -> tuple[list[ExportedInterface], l
     root = tree.root
     if root is None:
         if not diagnostics:
-            diagnostics.append(_error(file, 'the document has no root element', 1, 1))
+            diagnostics.append(_error(file, 'the document has no root element', 1, 1, code='NODL806'))
         return [], diagnostics
     if root.tag != 'package':
         diagnostics.append(_error(file, f'the root element is <{root.tag}>; a package manifest '
-                                  'has root <package>', root.line, root.column))
+                                  'has root <package>', root.line, root.column, code='NODL806'))
         return [], diagnostics
     base = os.path.dirname(file)
     exports = [child for child in root.children if child.tag == 'export']
@@ -751,25 +752,25 @@ def package_exports_from_tree(tree: XmlTree) -> tuple[list[ExportedInterface], l
                 if attribute.name != 'path' and not _is_ignored_attribute(attribute.name):
                     diagnostics.append(_error(
                         file, f"unknown attribute '{attribute.name}' on <interface>; "
-                        'expected path', attribute.line, attribute.column))
+                        'expected path', attribute.line, attribute.column, code='NODL801'))
             if path is None:
                 diagnostics.append(_error(file, "<interface> has no 'path' attribute",
-                                          child.line, child.column))
+                                          child.line, child.column, code='NODL802'))
                 continue
             value = path.value.strip()
             if not value:
                 diagnostics.append(_error(file, "'path' of <interface> is empty",
-                                          path.line, path.column))
+                                          path.line, path.column, code='NODL802'))
                 continue
             normal = os.path.normpath(value)
             if os.path.isabs(value) or normal == '..' or normal.startswith('..' + os.sep):
                 diagnostics.append(_error(
                     file, f"interface path '{value}' leaves the package; it must be relative to "
-                    'the directory of package.xml', path.line, path.column))
+                    'the directory of package.xml', path.line, path.column, code='NODL810'))
                 continue
             if normal in seen:
                 diagnostics.append(_warning(file, f"interface path '{value}' is exported twice",
-                                            path.line, path.column))
+                                            path.line, path.column, code='NODL815'))
                 continue
             seen.add(normal)
             found.append(ExportedInterface(os.path.join(base, normal), path.line, path.column))
@@ -777,7 +778,7 @@ def package_exports_from_tree(tree: XmlTree) -> tuple[list[ExportedInterface], l
         where = exports[0] if exports else root
         diagnostics.append(_error(
             file, 'package.xml exports no interface file; add '
-            '<export><interface path="FILE.nodl.xml"/></export>', where.line, where.column))
+            '<export><interface path="FILE.nodl.xml"/></export>', where.line, where.column, code='NODL810'))
     return found, diagnostics
 
 

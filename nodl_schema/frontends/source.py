@@ -34,8 +34,10 @@ class SourceText(namedtuple('SourceText', ['text', 'file'])):
     __slots__ = ()
 
 
-def _problem(file: str, message: str, line: int = 0, column: int = 0) -> Diagnostic:
-    return Diagnostic(Severity.ERROR, message, (), file, line, column)
+def _problem(file: str, message: str, line: int = 0, column: int = 0,
+             code: str = 'NODL002') -> Diagnostic:
+    # Every problem found here is about the encoding (NODL002) except the size limit (NODL001).
+    return Diagnostic(Severity.ERROR, message, (), file, line, column, code=code)
 
 
 def _too_large() -> str:
@@ -60,7 +62,7 @@ def _text_too_large(text: str) -> bool:
 def _check_text(text: str, file: str) -> tuple[SourceText | None, Diagnostic | None]:
     """Apply the limits that :func:`decode` applies to bytes to text given as ``str``."""
     if _text_too_large(text):
-        return None, _problem(file, _too_large())
+        return None, _problem(file, _too_large(), code='NODL001')
     if text.startswith('\ufeff'):
         text = text[1:]
     bad = _SURROGATE.search(text)
@@ -107,7 +109,7 @@ def read_limited(path: str | os.PathLike) -> bytes:
 def decode(data: bytes, file: str) -> tuple[str | None, Diagnostic | None]:
     """Decode UTF-8 (a BOM is allowed); anything else is a clear error."""
     if len(data) > MAX_BYTES:
-        return None, _problem(file, _too_large())
+        return None, _problem(file, _too_large(), code='NODL001')
     if data[:2] in (b'\xff\xfe', b'\xfe\xff'):
         return None, _problem(file, 'document is UTF-16 encoded; NoDL files must be UTF-8', 1, 1)
     try:
@@ -139,7 +141,7 @@ def read_source(source: Source, file: str | None = None) -> tuple[SourceText | N
     if isinstance(source, os.PathLike):
         name = file or os.fspath(source)
         if os.stat(source).st_size > MAX_BYTES:
-            return None, _problem(name, _too_large())
+            return None, _problem(name, _too_large(), code='NODL001')
         text, problem = decode(read_limited(source), name)
         return (SourceText(text, name), None) if text is not None else (None, problem)
     if isinstance(source, str):

@@ -137,15 +137,17 @@ class _NodeConverter:
         #: Paths of the v2 document where the converter found an error.
         self.failed: list[DocPath] = []
 
-    def warn(self, message: str, at: tuple[int, int], path: DocPath = ()) -> None:
+    def warn(self, message: str, at: tuple[int, int], path: DocPath = (), *, code: str) -> None:
         if not self.quiet:
-            self.diagnostics.append(Diagnostic(Severity.WARNING, message, path, self.file, *at))
+            self.diagnostics.append(Diagnostic(Severity.WARNING, message, path, self.file, *at,
+                                               code=code))
 
-    def fail(self, message: str, at: tuple[int, int], path: DocPath = ()) -> None:
+    def fail(self, message: str, at: tuple[int, int], path: DocPath = (), *, code: str) -> None:
         if path:
             self.failed.append(path)
         if not self.quiet:
-            self.diagnostics.append(Diagnostic(Severity.ERROR, message, path, self.file, *at))
+            self.diagnostics.append(Diagnostic(Severity.ERROR, message, path, self.file, *at,
+                                               code=code))
 
     def remember(self, path: DocPath, element: Any) -> None:
         """Record that ``path`` (and its ``name``/``type`` keys) came from ``element``."""
@@ -160,7 +162,8 @@ class _NodeConverter:
             used = '' if node.executable else ' (it only names the converted file)'
             self.warn(f"node name '{node.name}' is not carried over{used}: a NoDL v2 file does "
                       "not declare its node's name (it comes from the package and the launch "
-                      'configuration)', node.positions.get('name', (node.line, node.column)))
+                      'configuration)', node.positions.get('name', (node.line, node.column)),
+                      code='NODL811')
         main: dict[str, Any] = {'nodl_version': 2}
         if node.parameters:
             main['parameters'] = self.parameters()
@@ -192,7 +195,7 @@ class _NodeConverter:
                 v2_type = 'none'
                 self.warn(f"parameter '{parameter.name}' has type '{parameter.type}', which is "
                           "not a ROS 2 parameter type; written as 'none' (a parameter of any "
-                          'type): set the right type', at, path + ('type',))
+                          'type): set the right type', at, path + ('type',), code='NODL812')
             out[parameter.name] = {'type': v2_type}
         return out
 
@@ -208,14 +211,14 @@ class _NodeConverter:
         if endpoint.kind == 'action':
             if qos is not None:
                 self.warn(f"<qos> of action '{endpoint.name}' is dropped: NoDL v2 actions have "
-                          'no QoS profile', (qos.line, qos.column), path)
+                          'no QoS profile', (qos.line, qos.column), path, code='NODL811')
         elif qos is not None:
             out['qos'] = self.qos(qos, endpoint, path + ('qos',))
         elif endpoint.kind == 'topic':
             out['qos'] = {'history': 'SYSTEM_DEFAULT', 'reliability': 'SYSTEM_DEFAULT'}
             self.warn(f"topic '{endpoint.name}' has no <qos>; NoDL v2 requires one: written as "
                       'history SYSTEM_DEFAULT, reliability SYSTEM_DEFAULT (set the real profile)',
-                      (endpoint.line, endpoint.column), path + ('qos',))
+                      (endpoint.line, endpoint.column), path + ('qos',), code='NODL812')
         return out
 
     def interface_type(self, endpoint: LegacyEndpoint, path: DocPath) -> str:
@@ -226,7 +229,7 @@ class _NodeConverter:
         full = f'{short.group(1)}/{_INTERFACE_NAMESPACE[endpoint.kind]}/{short.group(2)}'
         self.warn(f"type '{endpoint.type}' omits the interface namespace; written as '{full}'",
                   endpoint.positions.get('type', (endpoint.line, endpoint.column)),
-                  path + ('type',))
+                  path + ('type',), code='NODL812')
         return full
 
     def qos(self, qos: LegacyQoS, endpoint: LegacyEndpoint, path: DocPath) -> dict[str, Any]:
@@ -235,11 +238,11 @@ class _NodeConverter:
         def attr(key: str) -> tuple[int, int]:
             return qos.positions.get(key, where)
 
-        def warn(message: str, at: tuple[int, int], key: str | None = None) -> None:
-            self.warn(message, at, path + ((key,) if key else ()))
+        def warn(message: str, at: tuple[int, int], key: str | None = None, *, code: str) -> None:
+            self.warn(message, at, path + ((key,) if key else ()), code=code)
 
         def fail(message: str, at: tuple[int, int], key: str | None = None) -> None:
-            self.fail(message, at, path + ((key,) if key else ()))
+            self.fail(message, at, path + ((key,) if key else ()), code='NODL813')
 
         label = f"{endpoint.kind} '{endpoint.name}'"
         out: dict[str, Any] = {}
@@ -250,7 +253,7 @@ class _NodeConverter:
         else:
             out['history'] = 'SYSTEM_DEFAULT'
             warn(f'<qos> of {label} sets neither history nor depth; NoDL v2 requires a history: '
-                 'written as SYSTEM_DEFAULT', where, 'history')
+                 'written as SYSTEM_DEFAULT', where, 'history', code='NODL812')
         if qos.reliability is not None:
             out['reliability'] = qos.reliability.upper()
         else:
@@ -258,7 +261,7 @@ class _NodeConverter:
             warn(f'<qos> of {label} does not set reliability; NoDL v2 requires it: written as '
                  'SYSTEM_DEFAULT (the legacy toolkit, through rclpy, read it as RELIABLE; set '
                  'the real policy)',
-                 attr('reliability'), 'reliability')
+                 attr('reliability'), 'reliability', code='NODL812')
         if qos.depth is not None:
             if qos.depth > 0:
                 out['depth'] = qos.depth
@@ -267,7 +270,7 @@ class _NodeConverter:
                      'a depth of at least 1', attr('depth'), 'depth')
             else:
                 warn(f'depth 0 in <qos> of {label} is dropped: it has no meaning with history '
-                     f"{qos.history or 'unset'}", attr('depth'), 'depth')
+                     f"{qos.history or 'unset'}", attr('depth'), 'depth', code='NODL811')
         elif out['history'] == 'KEEP_LAST':
             fail(f'<qos> of {label} has history keep_last but no depth; NoDL v2 requires a '
                  'depth with KEEP_LAST', attr('history'), 'depth')
@@ -279,14 +282,14 @@ class _NodeConverter:
             if ('liveliness', qos.liveliness) in _QOS_WITHOUT_V2:
                 warn(f"liveliness '{qos.liveliness}' in <qos> of {label} is dropped: NoDL v2 "
                      'has no such policy (use automatic or manual_by_topic)',
-                     attr('liveliness'), 'liveliness')
+                     attr('liveliness'), 'liveliness', code='NODL811')
             else:
                 out['liveliness'] = qos.liveliness.upper()
         self.duration(qos, *_DURATIONS[2], out, label, warn, fail)
         if qos.avoid_ros_namespace_conventions:
             warn(f'avoid_ros_namespace_conventions in <qos> of {label} is dropped: NoDL v2 '
                  'has no equivalent (names always follow the ROS conventions)',
-                 attr('avoid_ros_namespace_conventions'))
+                 attr('avoid_ros_namespace_conventions'), code='NODL811')
         return out
 
     def duration(self, qos: LegacyQoS, legacy: str, v2: str, out: dict[str, Any], label: str,
@@ -307,7 +310,7 @@ class _NodeConverter:
         fraction = text.strip().partition('.')[2]
         if fraction[9:].strip('0'):
             warn(f"{legacy} '{text}' s in <qos> of {label} is finer than a nanosecond; "
-                 f'written as {value} ns', at, v2)
+                 f'written as {value} ns', at, v2, code='NODL811')
         out[v2] = value
 
 
@@ -332,7 +335,6 @@ def _validate(data: dict[str, Any], converter: _NodeConverter) -> None:
     """Validate the v2 document; place what it finds at the legacy element it came from."""
     from nodl_schema.diagnostics import ValidationError
     from nodl_schema.loading import validate_node
-    from nodl_schema.validation.interfaces import NO_DESCRIPTION
 
     try:
         found = validate_node(data)
@@ -342,7 +344,7 @@ def _validate(data: dict[str, Any], converter: _NodeConverter) -> None:
     for d in found:
         if any(p[:len(d.path)] == d.path or d.path[:len(p)] == p for p in converter.failed):
             continue  # the converter already said what is wrong there
-        if d.severity is Severity.WARNING and d.message.endswith(NO_DESCRIPTION):
+        if d.code == 'NODL216':
             continue  # the legacy format has no descriptions: nothing the converter can do
         path = d.path
         while path not in converter.origins:
@@ -377,17 +379,18 @@ def convert_legacy(doc: LegacyDocument) -> list[Converted]:
             key = 'executable' if node.executable else 'name'
             converter.fail(f"{key} '{stem}' cannot be used as a file name (letters, digits, "
                            "'_', '-', '+' and '.' only, not starting with '.'); rename it",
-                           node.positions.get(key, at))
+                           node.positions.get(key, at), code='NODL814')
             file_name = f'node-{node.line}{_SUFFIX}'
         else:
             file_name = stem + _SUFFIX
             if stem != (node.executable or node.name):
                 converter.warn(f"executable '{node.executable}' holds several nodes; this one "
-                               f'is written to {file_name}', at)
+                               f'is written to {file_name}', at, code='NODL816')
         first = taken.get(file_name)
         if first is not None:
             converter.fail(f'another node (line {first.line}) is already converted to '
-                           f'{file_name}; give the nodes different executables or names', at)
+                           f'{file_name}; give the nodes different executables or names', at,
+                           code='NODL814')
         else:
             taken[file_name] = node
         converter.diagnostics.sort(key=lambda d: (d.line, d.column))
@@ -464,7 +467,7 @@ def _gather(path: str) -> tuple[list[Converted], list[Diagnostic]]:
             except OSError as exc:
                 diagnostics.append(Diagnostic(
                     Severity.ERROR, f"cannot read exported interface file '{export.path}': "
-                    f'{_reason(exc)}', (), tree.file, export.line, export.column))
+                    f'{_reason(exc)}', (), tree.file, export.line, export.column, code='NODL015'))
     else:
         trees.append(tree)
     converted: list[Converted] = []
@@ -492,7 +495,8 @@ def _convert(path: str, out_dir: str, taken: dict[str, str]) -> tuple[list[str],
             origin = (f'{other.source}:{other.node.line}' if other is not None else earlier)
             diagnostics.append(Diagnostic(
                 Severity.ERROR, f'{target} would be written twice (also from {origin}); give the '
-                'nodes different executables', (), item.source, item.node.line, item.node.column))
+                'nodes different executables', (), item.source, item.node.line, item.node.column,
+                code='NODL814'))
         else:
             planned[key] = item
     if has_errors(diagnostics):

@@ -85,7 +85,7 @@ class Difference:
 
     def __str__(self) -> str:
         layer = f' (declared in {self.layer})' if self.layer else ''
-        return f'{self.severity}: {self.kind}: {self.message}{layer}'
+        return f'{self.severity}: {self.kind}: {self.message}{layer} [{self.code}]'
 
     def __repr__(self) -> str:
         return f'Difference({self.kind!r}, {self.section!r}, {self.name!r})'

@@ -58,7 +58,7 @@ def _check_node(data: Any, out: list[Diagnostic]) -> None:
         elif isinstance(mixin, str):
             if mixin in seen:
                 out.append(Diagnostic(Severity.WARNING, f"mixin '{mixin}' is listed twice "
-                                      f'(first as mixins[{seen[mixin]}])', path))
+                                      f'(first as mixins[{seen[mixin]}])', path, code='NODL218'))
             else:
                 seen[mixin] = index
 

@@ -37,7 +37,7 @@ def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
             check_parameter(param, path + ('parameters', name), out)
             if isinstance(param, dict) and not param.get('description'):
                 out.append(Diagnostic(Severity.WARNING, f'parameter {show(name)} {NO_DESCRIPTION}',
-                                      path + ('parameters', name), anchor='key'))
+                                      path + ('parameters', name), anchor='key', code='NODL216'))
     for section, word in SECTIONS.items():
         entries = data.get(section)
         if not isinstance(entries, list):
@@ -53,10 +53,10 @@ def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
                     earlier = format_path(path + (section, first_index[name]))
                     out.append(Diagnostic(
                         Severity.ERROR, f'duplicate {word} {show(name)} (already declared at {earlier}); '
-                        'a name appears once per section', entry_path + ('name',)))
+                        'a name appears once per section', entry_path + ('name',), code='NODL215'))
                 else:
                     first_index[name] = index
             if not entry.get('description'):
                 label = f' {show(name)}' if isinstance(name, str) else ''
                 out.append(Diagnostic(Severity.WARNING, f'{word}{label} {NO_DESCRIPTION}',
-                                      entry_path, anchor='key'))
+                                      entry_path, anchor='key', code='NODL216'))

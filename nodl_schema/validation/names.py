@@ -92,11 +92,12 @@ def check_ros_name(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Format check ``nodl-ros-name``."""
     if not isinstance(value, str):
         out.append(Diagnostic(Severity.ERROR, f'{subject(path)} must be a string, not '
-                              f'{described(value)}', path))
+                              f'{described(value)}', path, code='NODL103'))
         return
     problem = ros_name_problem(value)
     if problem:
-        out.append(Diagnostic(Severity.ERROR, f'invalid ROS name {show(value)}: {problem}', path))
+        out.append(Diagnostic(Severity.ERROR, f'invalid ROS name {show(value)}: {problem}', path,
+                              code='NODL201'))
 
 
 def check_parameter_name(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
@@ -105,4 +106,4 @@ def check_parameter_name(value: Any, path: DocPath, out: list[Diagnostic]) -> No
         problem = parameter_name_problem(value)
         if problem:
             out.append(Diagnostic(Severity.ERROR, f'invalid parameter name {show(value)}: {problem}',
-                                  path, anchor='key'))
+                                  path, anchor='key', code='NODL202'))

@@ -54,8 +54,8 @@ def check_reference(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Format check ``nodl-reference``."""
     if not isinstance(value, str):
         out.append(Diagnostic(Severity.ERROR, f'a mixin must be a reference or an interface '
-                              f'definition, not {described(value)}', path))
+                              f'definition, not {described(value)}', path, code='NODL103'))
         return
     problem = reference_problem(value)
     if problem:
-        out.append(Diagnostic(Severity.ERROR, problem, path))
+        out.append(Diagnostic(Severity.ERROR, problem, path, code='NODL217'))

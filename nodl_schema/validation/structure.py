@@ -64,8 +64,8 @@ _ANNOTATIONS = frozenset({
 })
 
 
-def _err(message: str, path: DocPath, anchor: str = 'value') -> Diagnostic:
-    return Diagnostic(Severity.ERROR, message, path, anchor=anchor)
+def _err(message: str, path: DocPath, code: str, anchor: str = 'value') -> Diagnostic:
+    return Diagnostic(Severity.ERROR, message, path, anchor=anchor, code=code)
 
 
 class SchemaCompiler:
@@ -153,13 +153,13 @@ class SchemaCompiler:
             for test in tests:
                 if test(value):
                     return
-            out.append(_err(f'{subject(path)} must be {expected}, not {described(value)}', path))
+            out.append(_err(f'{subject(path)} must be {expected}, not {described(value)}', path, 'NODL103'))
         return check
 
     def _const(self, const: Any) -> Check:
         def check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
             if not (value == const and type(value) is type(const)):
-                out.append(_err(f'{subject(path)} must be {show(const)}, not {show(value)}', path))
+                out.append(_err(f'{subject(path)} must be {show(const)}, not {show(value)}', path, 'NODL104'))
         return check
 
     def _enum(self, options: list[Any]) -> Check:
@@ -172,7 +172,7 @@ class SchemaCompiler:
                     return
             out.append(_err(
                 f'invalid value {show(value)} for {subject(path)}; expected one of: '
-                f'{", ".join(map(str, allowed))}{did_you_mean(value, words)}', path))
+                f'{", ".join(map(str, allowed))}{did_you_mean(value, words)}', path, 'NODL104'))
         return check
 
     def _object(self, schema: dict[str, Any], file_name: str) -> Check:
@@ -195,11 +195,11 @@ class SchemaCompiler:
             for name in required:
                 if name not in value:
                     out.append(_err(f"missing required key '{name}'"
-                                    f"{' in ' + subject(path) if path else ''}", path, 'key'))
+                                    f"{' in ' + subject(path) if path else ''}", path, 'NODL102', 'key'))
             for key, item in value.items():
                 if not isinstance(key, str):
                     out.append(_err(f'key {show(key)} must be a string, not {kind_of(key)}',
-                                    path + (key,), 'key'))
+                                    path + (key,), 'NODL103', 'key'))
                     continue
                 child = path + (key,)
                 if names_check is not None:
@@ -217,12 +217,12 @@ class SchemaCompiler:
                     continue
                 if additional is False:
                     if key in hints:
-                        out.append(_err(f'unknown key {show(key)}: {hints[key]}', child, 'key'))
+                        out.append(_err(f'unknown key {show(key)}: {hints[key]}', child, 'NODL101', 'key'))
                     else:
                         suggestion = did_you_mean(key, known)
                         if not suggestion and known:
                             suggestion = f'; expected one of: {", ".join(known)}'
-                        out.append(_err(f'unknown key {show(key)}{suggestion}', child, 'key'))
+                        out.append(_err(f'unknown key {show(key)}{suggestion}', child, 'NODL101', 'key'))
                 elif additional_check is not None:
                     additional_check(item, child, out)
         return check
@@ -239,10 +239,10 @@ class SchemaCompiler:
             count = len(value)
             if low is not None and count < low:
                 out.append(_err(f'{subject(path)} needs at least {low} item{"s" * (low != 1)}, '
-                                f'got {count}', path))
+                                f'got {count}', path, 'NODL105'))
             if high is not None and count > high:
                 out.append(_err(f'{subject(path)} takes at most {high} item{"s" * (high != 1)}, '
-                                f'got {count}', path))
+                                f'got {count}', path, 'NODL105'))
             if item_check is not None:
                 for index, item in enumerate(value):
                     item_check(item, path + (index,), out)
@@ -251,7 +251,8 @@ class SchemaCompiler:
     def _minimum(self, minimum: float) -> Check:
         def check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
             if _TYPE_TESTS['number'](value) and value < minimum:
-                out.append(_err(f'{subject(path)} must be at least {minimum}, got {show(value)}', path))
+                out.append(_err(f'{subject(path)} must be at least {minimum}, got {show(value)}', path,
+                                'NODL105'))
         return check
 
     def _min_length(self, minimum: int) -> Check:
@@ -260,7 +261,7 @@ class SchemaCompiler:
 
         def check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
             if isinstance(value, str) and len(value) < minimum:
-                out.append(_err(f'{subject(path)} {expected}', path))
+                out.append(_err(f'{subject(path)} {expected}', path, 'NODL105'))
         return check
 
     def _pattern(self, pattern: str) -> Check:
@@ -269,7 +270,7 @@ class SchemaCompiler:
         def check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
             if isinstance(value, str) and not regex.search(value):
                 out.append(_err(f'{show(value)} does not match the pattern {pattern} '
-                                f'required for {subject(path)}', path))
+                                f'required for {subject(path)}', path, 'NODL106'))
         return check
 
     def _any_of(self, branches: list[dict[str, Any]], description: str | None,
@@ -282,7 +283,7 @@ class SchemaCompiler:
             fitting = [c for admits, c in compiled if admits(value)]
             if not fitting:
                 out.append(_err(f'{subject(path)} must be {_lower_first(expected)}; '
-                                f'got {described(value)}', path))
+                                f'got {described(value)}', path, 'NODL107'))
                 return
             first_errors: list[Diagnostic] | None = None
             passed = 0
@@ -299,11 +300,12 @@ class SchemaCompiler:
                 return
             if passed > 1:  # oneOf: exactly one branch may match
                 out.append(_err(f'{subject(path)} fits more than one of the allowed forms '
-                                f'({_lower_first(expected)}); it must fit exactly one', path))
+                                f'({_lower_first(expected)}); it must fit exactly one', path,
+                                'NODL107'))
                 return
             if description:
                 out.append(_err(f'invalid {subject(path)}: expected {_lower_first(expected)}; '
-                                f'got {show(value)}', path))
+                                f'got {show(value)}', path, 'NODL107'))
             else:
                 out.extend(first_errors or ())
         return check
@@ -387,5 +389,6 @@ def _override_message(body: Check, message: str) -> Check:
         errors: list[Diagnostic] = []
         body(value, path, errors)
         if errors:
-            out.append(_err(message, path, errors[0].anchor))
+            # The wording is the schema's; the code is that of the first failure it replaces.
+            out.append(_err(message, path, errors[0].code, errors[0].anchor))
     return check

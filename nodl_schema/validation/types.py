@@ -36,30 +36,30 @@ def split_type(text: str) -> tuple[str, str | None, str] | None:
     return None
 
 
-def type_problem(text: str, namespace: str) -> tuple[Severity, str] | None:
-    """What is wrong with ``text`` used where ``namespace`` types belong."""
+def type_problem(text: str, namespace: str) -> tuple[Severity, str, str] | None:
+    """What is wrong with ``text`` used where ``namespace`` types belong: severity, message, code."""
     example = {'msg': 'std_msgs/msg/String', 'srv': 'std_srvs/srv/Trigger',
                'action': 'test_msgs/action/Fibonacci'}[namespace]
     parts = split_type(text)
     if parts is None or not all(parts[i] for i in (0, 2)) or parts[1] == '':
         return Severity.ERROR, (f'{show(text)} is not an interface type name; '
-                                f'expected package/{namespace}/Type (for example {example})')
+                                f'expected package/{namespace}/Type (for example {example})'), 'NODL203'
     package, middle, name = parts
     if not _PACKAGE.fullmatch(package) or '__' in package or package.endswith('_'):
         return Severity.ERROR, (f'package name {show(package)} in {show(text)} is invalid: package '
-                                "names are lowercase letters, digits and single '_', starting with a letter")
+                                "names are lowercase letters, digits and single '_', starting with a letter"), 'NODL203'
     if middle is not None and middle != namespace:
         if middle in NAMESPACE_WORDS:
             return Severity.ERROR, (f'{show(text)} is {NAMESPACE_WORDS[middle]}, but {_USERS[namespace]} '
-                                    f'(package/{namespace}/Type)')
+                                    f'(package/{namespace}/Type)'), 'NODL204'
         return Severity.ERROR, (f'unknown interface namespace {show(middle)} in {show(text)}; '
-                                f'expected {show(namespace)}')
+                                f'expected {show(namespace)}'), 'NODL203'
     if not _TYPE_NAME.fullmatch(name):
         return Severity.ERROR, (f'type name {show(name)} in {show(text)} must be CamelCase: an uppercase '
-                                'letter followed by letters and digits')
+                                'letter followed by letters and digits'), 'NODL203'
     if middle is None:
         return Severity.WARNING, (f'{show(text)} omits the interface namespace; write '
-                                  f"'{package}/{namespace}/{name}'")
+                                  f"'{package}/{namespace}/{name}'"), 'NODL205'
     return None
 
 
@@ -67,11 +67,11 @@ def _make(namespace: str) -> Any:
     def check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
         if not isinstance(value, str):
             out.append(Diagnostic(Severity.ERROR, f'{subject(path)} must be a string, not '
-                                  f'{described(value)}', path))
+                                  f'{described(value)}', path, code='NODL103'))
             return
         problem = type_problem(value, namespace)
         if problem is not None:
-            out.append(Diagnostic(problem[0], problem[1], path))
+            out.append(Diagnostic(problem[0], problem[1], path, code=problem[2]))
     return check
 
 
