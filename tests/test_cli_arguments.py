@@ -1,0 +1,62 @@
+"""Arguments checked at once, before any ROS start-up (nodl_schema.cli.arguments)."""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+import time
+
+import pytest
+
+from conftest import FIXTURES, REPO
+from nodl_schema.cli.arguments import definition_problem, node_name, seconds
+
+SCAN = FIXTURES / 'scan'
+
+
+def nodl(*args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+                          capture_output=True, timeout=60)
+
+
+def test_seconds() -> None:
+    assert seconds('0') == 0.0 and seconds('2.5') == 2.5
+    for bad in ('-1', 'nan', 'inf', 'soon'):
+        with pytest.raises(argparse.ArgumentTypeError):
+            seconds(bad)
+
+
+def test_node_names() -> None:
+    assert node_name('/robot/driver') == '/robot/driver' and node_name('talker') == 'talker'
+    for bad in ('/robot/1driver', '/a b', '~/x', '/', '/a/', ''):
+        with pytest.raises(argparse.ArgumentTypeError):
+            node_name(bad)
+
+
+def test_definition_targets() -> None:
+    assert definition_problem(['a.nodl.yaml']) is None
+    assert definition_problem(['my_pkg', 'my_node']) is None
+    assert 'is a file' in (definition_problem(['a.nodl.yaml', 'b.nodl.yaml']) or '')
+    assert 'got 3 arguments' in (definition_problem(['a', 'b', 'c']) or '')
+
+
+@pytest.mark.parametrize('args, message', [
+    (['describe', '/robot/1driver'], "is not a node name: token '1driver' starts with a digit"),
+    (['describe', '--timeout', '-1', '/robot/driver'], 'expected a number of seconds, 0 or more'),
+    (['check', '/a b', str(SCAN / 'valid.nodl.yaml')], "'/a b' is not a node name"),
+    (['check', '--timeout', '-3', '/x', str(SCAN / 'valid.nodl.yaml')], 'number of seconds'),
+])
+def test_bad_names_and_timeouts_exit_2_at_once(args: list[str], message: str) -> None:
+    start = time.monotonic()
+    result = nodl(*args)
+    assert result.returncode == 2 and message in result.stderr, result.stderr
+    assert time.monotonic() - start < 15  # rejected before any ROS start-up or waiting
+
+
+@pytest.mark.parametrize('verb', [['show'], ['check', '/x']])
+def test_two_files_say_what_is_accepted(verb: list[str]) -> None:
+    result = nodl(*verb, str(SCAN / 'valid.nodl.yaml'), str(SCAN / 'invalid.nodl.yaml'))
+    assert result.returncode == 2
+    assert 'is a file, so one is expected: give FILE, or PACKAGE EXECUTABLE' in result.stderr
+    assert 'not registered' not in result.stderr

@@ -1,0 +1,65 @@
+"""Shell completion of `nodl` through argcomplete's protocol, in a real process."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+from conftest import REPO
+
+
+def complete(line: str) -> list[str]:
+    """What a shell would get for ``line`` (argcomplete answers on file descriptor 8)."""
+    read, write = os.pipe()
+    saved = os.dup(8) if _is_open(8) else None
+    os.dup2(write, 8)
+    os.close(write)
+    try:
+        env = dict(os.environ, _ARGCOMPLETE='1', _ARGCOMPLETE_IFS='\n',
+                   _ARGCOMPLETE_SUPPRESS_SPACE='1', COMP_LINE=line, COMP_POINT=str(len(line)),
+                   COMP_TYPE='9')
+        result = subprocess.run([sys.executable, '-m', 'nodl_schema'], cwd=REPO, env=env,
+                                pass_fds=(8,), capture_output=True, text=True, timeout=60)
+    finally:
+        os.close(8)
+        if saved is not None:
+            os.dup2(saved, 8)
+            os.close(saved)
+    with os.fdopen(read, 'rb') as stream:
+        words = stream.read().decode()
+    assert result.returncode == 0, result.stderr
+    return words.split('\n') if words else []
+
+
+def _is_open(fd: int) -> bool:
+    try:
+        os.fstat(fd)
+    except OSError:
+        return False
+    return True
+
+
+def test_verbs_options_choices_and_paths_complete() -> None:
+    assert {'validate', 'check', 'describe', 'show', 'schema'} <= set(complete('nodl '))
+    assert complete('nodl valid') == ['validate']
+    assert '--format' in complete('nodl validate --fo')
+    assert set(complete('nodl validate --format ')) == {'text', 'json'}
+    assert complete('nodl validate exampl') == ['examples/']
+
+
+def test_show_offers_registered_packages() -> None:
+    env_prefix = os.environ.get('AMENT_PREFIX_PATH', '')
+    from nodl_schema.index.registry import list_registrations
+
+    packages = {r.package for r in list_registrations()}
+    words = complete('nodl show ')
+    assert packages <= set(words), (env_prefix, words)
+    assert 'examples/' in words
+
+
+def test_the_entry_module_carries_the_argcomplete_marker() -> None:
+    import nodl_schema.cli.main as main
+
+    with open(main.__file__, encoding='utf-8') as f:
+        assert 'PYTHON_ARGCOMPLETE_OK' in f.read(1024)
