@@ -7,7 +7,7 @@ from typing import Iterable
 
 from nodl_schema.composition import ComposedNode, compose
 from nodl_schema.diagnostics import ValidationError
-from nodl_schema.live.conformance import Difference, compare, conforms, parse_remaps
+from nodl_schema.live.conformance import Difference, Remaps, compare, conforms
 from nodl_schema.live.observe import ObservedNode, observe_node
 from nodl_schema.live.session import DuplicateNode, split_node_name
 from nodl_schema.model import ENDPOINT_SECTIONS
@@ -23,10 +23,11 @@ class CheckResult:
 
     def __init__(self, fqn: str, definition: str, differences: list[Difference],
                  composed: ComposedNode, observed: ObservedNode,
-                 remaps: dict[str, str] | None = None) -> None:
+                 remaps: Remaps = None) -> None:
         self.fqn = fqn
-        #: The remapping rules the node was checked with (expanded FROM -> TO).
-        self.remaps = remaps or {}
+        #: How the node's names were resolved: its ``NodeNames`` (final name and remapping
+        #: rules), or a mapping of expanded topic names FROM -> TO.
+        self.remaps = remaps
         #: The definition's file.
         self.definition = definition
         self.differences = differences
@@ -115,9 +116,12 @@ def check_node(fqn: str, definition: str | os.PathLike | tuple[str, str], *,
 
     from nodl_schema.live.session import ros_session
 
+    from nodl_schema.naming import NodeNames, parse_remap_rules
+
     composed = load_definition(definition)
-    namespace, name = split_node_name(fqn)
-    rules = parse_remaps(remaps, name, namespace)
+    # The rules as the node was given them; ``fqn`` is its final name (what ``__node`` and
+    # ``__ns`` rules made it), against which node-scoped rules are matched, as rcl does.
+    rules = tuple(parse_remap_rules(list(remaps)))
     start = time.monotonic()
     with ros_session() as session:
         observed = observe_node(fqn, timeout=timeout, parameters=parameters, session=session)
@@ -126,7 +130,8 @@ def check_node(fqn: str, definition: str | os.PathLike | tuple[str, str], *,
                                 f'{observed.fully_qualified_name}: their endpoints cannot be told '
                                 'apart, so none is checked; give each a unique name (e.g. '
                                 '--ros-args -r __node:=other_name) and check again')
-        differences = compare(composed, observed, rules)
+        names = NodeNames(observed.name, observed.namespace, rules)
+        differences = compare(composed, observed, names)
         late = max(0.0, min(RECHECK, timeout - (time.monotonic() - start)))
         if late and any(d.kind == 'missing' and d.section != 'parameters' for d in differences):
             # Declared endpoints not seen yet may only be late in discovery: look again.
@@ -135,7 +140,7 @@ def check_node(fqn: str, definition: str | os.PathLike | tuple[str, str], *,
                 session.nodl_executor.spin_once(timeout_sec=0.05)
             observed = observe_node(fqn, timeout=max(1.0, timeout - (time.monotonic() - start)),
                                     parameters=parameters, session=session)
-            differences = compare(composed, observed, rules)
+            differences = compare(composed, observed, names)
     return CheckResult(observed.fully_qualified_name, composed.file, differences, composed, observed,
-                       rules)
+                       names)
 

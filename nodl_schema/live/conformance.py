@@ -1,8 +1,8 @@
 """``check``: does a running node conform to its (composed) definition?
 
-Declared names are expanded against the node's namespace and name (and
-remapped with ``FROM:=TO`` rules), then compared with what the graph
-reports.  Each difference has a kind:
+Declared names are resolved as the node resolves them (expanded against its
+name and namespace and remapped with its rules, by :mod:`nodl_schema.naming`),
+then compared with what the graph reports.  Each difference has a kind:
 
 * ``missing`` (declared, not observed) and ``extra`` (observed, not declared);
 * ``type`` (same name, another interface type);
@@ -18,16 +18,17 @@ reference or main).
 
 from __future__ import annotations
 
-from typing import Any, Iterable
+from typing import Any, Iterable, Mapping, Union
 
 from nodl_schema.composition import ComposedNode
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.live.observe import ObservedNode
 from nodl_schema.model import ENDPOINT_SECTIONS, QOS_POLICIES, Interface
-from nodl_schema.naming import expand
+from nodl_schema.naming import InvalidNameError, NodeNames, expand
 from nodl_schema.vocabulary import SECTION_WORDS, SERVICE_SECTIONS, TOPIC_SECTIONS
 
-__all__ = ['Difference', 'DRIFT_KINDS', 'KIND_CODES', 'compare', 'parse_remaps', 'conforms']
+__all__ = ['Difference', 'DRIFT_KINDS', 'KIND_CODES', 'compare', 'parse_remaps', 'conforms',
+           'Remaps', 'final_name']
 
 #: Kinds that make a node non-conforming.
 DRIFT_KINDS = ('missing', 'extra', 'type', 'qos', 'parameter_type', 'read_only')
@@ -91,25 +92,47 @@ class Difference:
         return f'Difference({self.kind!r}, {self.section!r}, {self.name!r})'
 
 
-def parse_remaps(rules: Iterable[str], node_name: str, namespace: str) -> dict[str, str]:
-    """``FROM:=TO`` rules (as given to ``--ros-args -r``), both sides expanded.
+#: How a node's names are remapped: its :class:`~nodl_schema.naming.NodeNames` (exact: what
+#: rcl does, topics and services apart) or a mapping of expanded topic names FROM -> TO.
+Remaps = Union[NodeNames, Mapping[str, str], None]
 
-    As in rcl, the first rule that matches a name wins, and a node-specific
-    rule (``node:FROM:=TO``) only applies to the node of that name.
+
+def parse_remaps(rules: Iterable[str], node_name: str, namespace: str) -> dict[str, str]:
+    """The topic remappings that ``rules`` (as given to ``--ros-args -r``) make for a node.
+
+    The node is created as ``node_name`` in ``namespace``; ``__ns``,
+    ``__node`` and ``__name`` rules change its own name (they are not topic
+    remaps).  The result maps each expanded match side to its expanded
+    replacement, for the rules that apply to topics and to the node (by its
+    final name), the first rule winning.  Rules for services only
+    (``rosservice://``) have no entry: use :class:`~nodl_schema.naming.NodeNames`
+    to resolve topics and services exactly.  Raises ``ValueError`` for a
+    malformed rule or an invalid node name.
     """
+    names = NodeNames.create(node_name, namespace, list(rules))
     remaps: dict[str, str] = {}
-    for rule in rules:
-        source, sep, target = rule.partition(':=')
-        if not sep or not source or not target:
-            raise ValueError(f"invalid remapping {rule!r}; expected FROM:=TO")
-        if ':' in source.split('/')[0] and not source.startswith(('/', '~')):
-            only_for, source = source.split(':', 1)  # node-specific rule (node:from:=to)
-            if not source:
-                raise ValueError(f"invalid remapping {rule!r}; expected [NODE:]FROM:=TO")
-            if only_for != node_name:
-                continue
-        remaps.setdefault(expand(source, node_name, namespace), expand(target, node_name, namespace))
+    for rule in names.rules:
+        if rule.kind in ('name', 'topic') and rule.applies_to(names.name) and rule.match:
+            remaps.setdefault(names.expand(rule.match), names.expand(rule.replacement))
     return remaps
+
+
+def final_name(name: str, section: str, observed: ObservedNode, remaps: Remaps = None) -> str:
+    """The name the observed node uses for the declared endpoint ``name`` of ``section``.
+
+    With :class:`~nodl_schema.naming.NodeNames`, exactly as rcl resolves it
+    (service sections as services; topics and actions as topics); with a
+    mapping, expanded then looked up.  A declared name rcl would refuse once
+    expanded (``/{ns}`` in a namespace) stays as expanded, so it is reported
+    missing rather than failing the check.
+    """
+    if isinstance(remaps, NodeNames):
+        try:
+            return remaps.resolve(name, service=section in SERVICE_SECTIONS)
+        except InvalidNameError:
+            return expand(name, remaps.name, remaps.namespace)
+    full = expand(name, observed.name, observed.namespace)
+    return remaps.get(full, full) if remaps else full
 
 
 def conforms(differences: Iterable[Difference]) -> bool:
@@ -200,18 +223,19 @@ def _compare_parameters(declared: Interface, observed: ObservedNode) -> list[Dif
 
 
 def compare(composed: ComposedNode | Interface, observed: ObservedNode,
-            remaps: dict[str, str] | None = None) -> list[Difference]:
-    """Every difference between a declared interface and an observed node."""
+            remaps: Remaps = None) -> list[Difference]:
+    """Every difference between a declared interface and an observed node.
+
+    ``remaps``: the node's :class:`~nodl_schema.naming.NodeNames` (its final
+    name and rules), or a mapping of expanded topic names (see :func:`final_name`).
+    """
     declared = composed.interface if isinstance(composed, ComposedNode) else composed
-    remaps = remaps or {}
-    name, namespace = observed.name, observed.namespace
     out: list[Difference] = []
     for section in ENDPOINT_SECTIONS:
         word = _word(section)
         wanted: dict[str, Any] = {}
         for entity in declared.endpoints(section):
-            full = expand(entity.name, name, namespace)
-            wanted[remaps.get(full, full)] = entity
+            wanted[final_name(entity.name, section, observed, remaps)] = entity
         seen = {e.name: e for e in getattr(observed, section)}
         for full, entity in wanted.items():
             real = seen.get(full)

@@ -35,9 +35,9 @@ class Description:
 
 def deduce_base(observed: ObservedNode) -> str:
     """``lifecycle_node`` if the node serves the lifecycle services, else ``node``."""
-    own = observed.fully_qualified_name
     served = {e.name for e in observed.service_servers}
-    if all(f'{own}/{s}' in served for s in _LIFECYCLE_SERVICES):
+    if all(expand('~/' + s, observed.name, observed.namespace) in served
+           for s in _LIFECYCLE_SERVICES):
         return 'lifecycle_node'
     return 'node'
 

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from nodl_schema.live.qos import qos_from_rclpy
+from nodl_schema.naming import join_name
 from nodl_schema.live.session import LiveError, NodeNotFound, did_you_mean, ros_session, split_node_name
 from nodl_schema.vocabulary import SERVICE_SECTIONS, TOPIC_SECTIONS
 
@@ -70,7 +71,7 @@ class ObservedNode:
     @property
     def fully_qualified_name(self) -> str:
         """``/namespace/name``."""
-        return (self.namespace.rstrip('/') + '/' + self.name) if self.namespace != '/' else '/' + self.name
+        return join_name(self.namespace, self.name)
 
 
 def list_nodes(node: Any) -> list[str]:
@@ -78,7 +79,7 @@ def list_nodes(node: Any) -> list[str]:
     own = node.get_fully_qualified_name()
     names = []
     for name, namespace in node.get_node_names_and_namespaces():
-        fqn = (namespace.rstrip('/') + '/' + name) if namespace != '/' else '/' + name
+        fqn = join_name(namespace, name)
         if fqn != own:
             names.append(fqn)
     return sorted(set(names))
@@ -93,7 +94,7 @@ def count_nodes(node: Any) -> dict[str, int]:
     own = node.get_fully_qualified_name()
     counts: dict[str, int] = {}
     for name, namespace in node.get_node_names_and_namespaces():
-        fqn = (namespace.rstrip('/') + '/' + name) if namespace != '/' else '/' + name
+        fqn = join_name(namespace, name)
         if fqn != own:
             counts[fqn] = counts.get(fqn, 0) + 1
     return counts
@@ -281,7 +282,7 @@ def observe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
 
 def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float) -> ObservedNode:
     namespace, name = split_node_name(fqn)
-    fqn = (namespace.rstrip('/') + '/' + name) if namespace != '/' else '/' + name
+    fqn = join_name(namespace, name)
     start = time.monotonic()
     wait_for_node(node, fqn, timeout)
     remaining = max(0.5, timeout - (time.monotonic() - start))

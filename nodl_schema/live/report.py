@@ -47,18 +47,16 @@ def format_check_json(result: CheckResult) -> str:
 
 def format_check_junit(result: CheckResult) -> str:
     """A JUnit XML report: one test case per checked entity; drift is a failure."""
-    from nodl_schema.naming import expand
+    from nodl_schema.live.conformance import final_name
 
     cases: dict[tuple[str, str], list[Any]] = {}
     # A difference names the entity as observed (expanded, remapped): find its declaration.
     declared_as: dict[tuple[str, str], tuple[str, str]] = {}
-    node_name, node_namespace = result.observed.name, result.observed.namespace
-    remaps = result.remaps or {}
     for section in SECTION_KEYS:
         for entity in result.composed.interface.endpoints(section):
             cases.setdefault((section, entity.name), [])
-            full = expand(entity.name, node_name, node_namespace)
-            declared_as[(section, remaps.get(full, full))] = (section, entity.name)
+            full = final_name(entity.name, section, result.observed, result.remaps)
+            declared_as[(section, full)] = (section, entity.name)
     for param in result.composed.interface.parameters or {}:
         cases.setdefault(('parameters', param), [])
     for d in result.differences:

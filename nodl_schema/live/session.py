@@ -67,11 +67,9 @@ def require_rclpy() -> Any:
 
 def split_node_name(name: str) -> tuple[str, str]:
     """``/ns/sub/name`` -> ``('/ns/sub', 'name')``; a bare name is in ``/``."""
-    name = name.strip()
-    if not name.startswith('/'):
-        name = '/' + name
-    namespace, _, base = name.rpartition('/')
-    return namespace or '/', base
+    from nodl_schema.naming import split_name
+
+    return split_name(name)
 
 
 @contextmanager
