@@ -51,7 +51,14 @@ _EXPORTS = {
     'bundled_schema': 'nodl_schema.schemas',
 }
 
-__all__ = sorted(_EXPORTS)
+#: The public names, written out for type checkers and readers; a test keeps it equal
+#: to the keys of _EXPORTS.
+__all__ = ['ActionEndpoint', 'Base', 'ComposedNode', 'Diagnostic', 'Document', 'Interface',
+    'Kind', 'Node', 'ParameterDefinition', 'QoSProfile', 'Report', 'ServiceEndpoint',
+    'Severity', 'TopicEndpoint', 'ValidationError', 'bundled_schema', 'check_source',
+    'compose', 'detect_kind', 'dump_nodl', 'load_interface', 'load_node', 'load_nodl',
+    'load_parameter', 'load_schema', 'model_from_data', 'validate_interface', 'validate_node',
+    'validate_parameter']
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from nodl_schema.composition.compose import ComposedNode, compose

@@ -91,7 +91,8 @@ class Report:
         """The typed document (only for a report without errors)."""
         if self.kind is None or self.has_errors():
             raise ValidationError(self.diagnostics)
-        return _model_class(self.kind).from_dict(self.data)
+        document: Document = _model_class(self.kind).from_dict(self.data)
+        return document
 
 
 def check_source(source: Source, *, kind: Kind | str | None = None,
@@ -190,7 +191,8 @@ def model_from_data(data: dict[str, Any]) -> Document:
     """Validate a plain dict of any kind and return its typed model."""
     kind = detect_kind(data)
     _validate(data, kind)
-    return _model_class(kind).from_dict(data)
+    document: Document = _model_class(kind).from_dict(data)
+    return document
 
 
 def dump_nodl(doc: Union[Document, dict[str, Any]], format: str = 'yaml') -> str:

@@ -92,7 +92,7 @@ def section_for_role(kind: str, legacy_role: str) -> str | None:
     """The section of a legacy ``(kind, role)`` pair, or None if there is none."""
     for s in SECTIONS:
         if s.kind == kind and s.legacy_role == legacy_role:
-            return s.key
+            return str(s.key)
     return None
 
 

@@ -33,9 +33,9 @@ def complete_definition(prefix: str = '', parsed_args: Any = None, **_: Any) -> 
         return sorted({r.name for r in registered
                        if r.package == given[0] and r.kind == 'node' and r.name.startswith(prefix)})
     packages = sorted({r.package for r in registered if r.package.startswith(prefix)})
-    import argcomplete
+    from argcomplete.completers import FilesCompleter
 
-    files: list[str] = list(argcomplete.FilesCompleter()(prefix))
+    files: list[str] = list(FilesCompleter()(prefix))
     return packages + files
 
 

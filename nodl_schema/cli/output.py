@@ -123,7 +123,7 @@ class guarded_streams:
         self._saved = (sys.stdout, sys.stderr)
         out = GuardedStream(sys.stdout, 'standard output', colour_enabled(self.mode, sys.stdout))
         err = GuardedStream(sys.stderr, 'standard error', colour_enabled(self.mode, sys.stderr))
-        sys.stdout, sys.stderr = out, err  # type: ignore[assignment]
+        sys.stdout, sys.stderr = out, err
         return out, err
 
     def __exit__(self, *exc: object) -> None:

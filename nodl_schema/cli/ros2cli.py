@@ -26,7 +26,7 @@ except ImportError:  # ros2cli is not on the Python registry; keep the protocol
 __all__ = ['NodlCommand']
 
 
-class NodlCommand(_CommandBase):  # type: ignore[misc, valid-type]
+class NodlCommand(_CommandBase):  # type: ignore[misc]
     """Validate, compose and inspect NoDL node definitions."""
 
     def add_arguments(self, parser: argparse.ArgumentParser, cli_name: str) -> None:

@@ -86,9 +86,11 @@ class _Assembled:
         path = diagnostic.path
         found = self.origins.get((path[0], path[1])) if len(path) >= 2 else None
         if found is None:
-            return self.first.place(diagnostic)
+            placed: Diagnostic = self.first.place(diagnostic)
+            return placed
         report, own = found
-        return report.place(diagnostic.replace(path=own + tuple(path[2:])))
+        placed = report.place(diagnostic.replace(path=own + tuple(path[2:])))
+        return placed
 
 
 @lru_cache(maxsize=None)

@@ -621,7 +621,7 @@ class _Reader:
                               positions=_positions(element))
 
     def roles(self, element: XmlElement, attributes: dict[str, XmlAttribute],
-              roles: tuple[str, str], name: str | None) -> tuple[str, ...]:
+              roles: tuple[str, ...], name: str | None) -> tuple[str, ...]:
         """The roles an endpoint plays, from boolean attributes or a ``role`` attribute."""
         kind = element.tag
         flags: dict[str, bool] = {}

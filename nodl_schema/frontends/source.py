@@ -23,7 +23,7 @@ MAX_BYTES = 10 * 1024 * 1024
 
 #: Everything the loaders accept as a document.
 if TYPE_CHECKING:
-    Source = Union[str, bytes, bytearray, memoryview, IO[str], IO[bytes], os.PathLike]
+    Source = Union[str, bytes, bytearray, memoryview, IO[str], IO[bytes], 'os.PathLike[str]']
 else:
     Source = object
 
@@ -96,7 +96,7 @@ def _read_stream(read: Callable[[int], Any]) -> Any:
     return ''.join(chunks) if isinstance(first, str) else b''.join(bytes(c) for c in chunks)
 
 
-def read_limited(path: str | os.PathLike) -> bytes:
+def read_limited(path: str | os.PathLike[str]) -> bytes:
     """A file's bytes, read only up to the size limit plus one byte.
 
     A FIFO or a device such as /dev/zero reports size 0 and may never end;

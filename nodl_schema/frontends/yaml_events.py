@@ -39,7 +39,7 @@ from nodl_schema.diagnostics import DocPath
 try:
     from yaml._yaml import CParser as _CParser
 except ImportError:  # PyYAML built without libyaml
-    _CParser = None
+    _CParser = None  # type: ignore[misc, assignment]
 
 __all__ = ['MAX_DEPTH', 'MAX_ALIAS_NODES', 'Stop', 'Problem', 'build', 'event_source', 'quote']
 
@@ -116,8 +116,8 @@ def event_source(text: str) -> Callable[[], Any]:
     function that returns the next event.  Raises :class:`UnicodeEncodeError` for
     text with a lone surrogate."""
     if _CParser is not None:
-        return _CParser(text).get_event  # type: ignore[no-any-return]
-    return yaml.SafeLoader(text).get_event  # type: ignore[no-any-return]
+        return _CParser(text).get_event
+    return yaml.SafeLoader(text).get_event
 
 
 def _plain_tag(text: str) -> str:

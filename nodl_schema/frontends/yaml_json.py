@@ -121,7 +121,7 @@ def _walk(root: Node, path: DocPath) -> tuple[Node | None, Node]:
 def _find_pair(mapping: MappingNode, part: Any) -> tuple[Node, Node] | None:
     text = str(part).lower() if isinstance(part, bool) else str(part)
     merged: list[Node] = []
-    found = None
+    found: tuple[Node, Node] | None = None
     for key, value in mapping.value:
         if key.tag == _MERGE:
             merged.extend(value.value if isinstance(value, SequenceNode) else [value])

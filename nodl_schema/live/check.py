@@ -80,7 +80,7 @@ def base_mismatch(composed: ComposedNode, observed: ObservedNode,
     return hint, [d for d in differences if (d.section, d.name) in entities]
 
 
-def load_definition(definition: str | os.PathLike | tuple[str, str]) -> ComposedNode:
+def load_definition(definition: str | os.PathLike[str] | tuple[str, str]) -> ComposedNode:
     """Compose a node definition given as a file or ``(package, executable)``.
 
     Raises :class:`~nodl_schema.diagnostics.ValidationError` with every
@@ -93,14 +93,15 @@ def load_definition(definition: str | os.PathLike | tuple[str, str]) -> Composed
         composed, diagnostics, _ = compose_registered(*definition)
         if composed is None:
             raise ValidationError(diagnostics)
-        return composed
+        found: ComposedNode = composed
+        return found
     from pathlib import Path
 
     path = os.fspath(definition)
     return compose(Path(path), file=path)
 
 
-def check_node(fqn: str, definition: str | os.PathLike | tuple[str, str], *,
+def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *,
                timeout: float = 5.0, remaps: Iterable[str] = (),
                parameters: bool = True) -> CheckResult:
     """Check the running node ``fqn`` against ``definition`` (a file or ``(package, executable)``).

@@ -20,7 +20,11 @@ _EXPORTS = {
     'QOS_POLICIES': 'qos', 'QoSProfile': 'qos',
 }
 
-__all__ = sorted(_EXPORTS)
+#: The public names, written out for type checkers and readers; a test keeps it equal
+#: to the keys of _EXPORTS.
+__all__ = ['ActionEndpoint', 'Base', 'ENDPOINT_SECTIONS', 'Endpoint', 'Interface', 'Mixin',
+    'Node', 'ParameterDefinition', 'QOS_POLICIES', 'QoSProfile', 'ServiceEndpoint',
+    'TopicEndpoint']
 
 if TYPE_CHECKING:  # pragma: no cover
     from nodl_schema.model.interface import (

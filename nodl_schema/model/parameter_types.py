@@ -31,14 +31,14 @@ class TypeSpec(namedtuple('TypeSpec', ['name', 'base', 'size'], defaults=[None])
     @property
     def is_array(self) -> bool:
         """True for every array type (including ``byte_array`` and fixed arrays)."""
-        return self.base.endswith('_array')
+        return bool(self.base.endswith('_array'))
 
     @property
     def element(self) -> str:
         """The scalar kind of the value or of each element: bool, int, double, string, byte, none."""
         if self.base == 'byte_array':
             return 'byte'
-        return self.base[:-len('_array')] if self.is_array else self.base
+        return str(self.base[:-len('_array')] if self.is_array else self.base)
 
     @property
     def numeric(self) -> bool:
@@ -48,7 +48,7 @@ class TypeSpec(namedtuple('TypeSpec', ['name', 'base', 'size'], defaults=[None])
     @property
     def category(self) -> str:
         """Words for messages: 'int', 'string', 'double array', ..."""
-        return self.base.replace('_', ' ')
+        return str(self.base).replace('_', ' ')
 
 
 def parse_type(name: Any) -> TypeSpec | None:

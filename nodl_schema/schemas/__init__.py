@@ -42,7 +42,8 @@ def schema_path(kind: str) -> Path:
 @lru_cache(maxsize=None)
 def _load(file_name: str) -> dict[str, Any]:
     with open(os.path.join(_HERE, file_name), encoding='utf-8') as f:
-        return json.load(f)
+        schema: dict[str, Any] = json.load(f)
+    return schema
 
 
 def load_schema(kind: str) -> dict[str, Any]:

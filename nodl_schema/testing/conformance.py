@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import os
-from typing import Iterable
+from typing import TYPE_CHECKING, Iterable
+
+if TYPE_CHECKING:
+    from nodl_schema.live.check import CheckResult
 
 __all__ = ['NodeDrift', 'assert_conforms']
 
@@ -12,9 +15,9 @@ class NodeDrift(AssertionError):
     """A running node does not conform to its definition; the message lists every difference."""
 
 
-def assert_conforms(node: str, definition: str | os.PathLike | tuple[str, str], *,
+def assert_conforms(node: str, definition: str | os.PathLike[str] | tuple[str, str], *,
                     timeout: float = 10.0, remaps: Iterable[str] = (),
-                    parameters: bool = True):  # type: ignore[no-untyped-def]
+                    parameters: bool = True) -> CheckResult:
     """Check the running ``node`` against ``definition`` and fail with every difference.
 
     ``definition`` is a file or ``(package, executable)`` registered in the

@@ -56,7 +56,7 @@ class ValidateVerb(Verb):
         progress = Progress('nodl validate')
         for stream in (sys.stdout, sys.stderr):  # the progress line is erased before any output
             if hasattr(stream, 'before_write'):
-                stream.before_write = progress.clear  # type: ignore[union-attr]
+                stream.before_write = progress.clear
         if '-' in args.paths and sys.stdin.isatty():
             print('nodl validate: note: reading standard input (end it with Ctrl-D)', file=sys.stderr)
         results = iter_check_paths(args.paths, Kind(args.kind) if args.kind else None, args.resolve)
