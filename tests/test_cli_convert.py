@@ -142,3 +142,60 @@ def test_convert_is_a_registered_verb() -> None:
     assert result.returncode == 0
     assert 'convert' in result.stdout
     assert 'Convert legacy NoDL XML' in result.stdout
+
+
+# -- dialects: the include dialect and generate_parameter_library ---------------------------
+
+DIALECTS = FIXTURES / 'dialects'
+
+
+def test_converts_an_include_document_to_base_mixins_and_main(tmp_path: Path) -> None:
+    import shutil
+
+    import yaml
+
+    package = tmp_path / 'arm_driver'
+    shutil.copytree(DIALECTS / 'include' / 'arm_driver', package)
+    out_dir = package / 'nodl' / 'v2'
+    result = nodl('convert', str(package / 'nodl' / 'arm_driver.nodl.yaml'), '-o', str(out_dir))
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert result.stdout.rstrip().endswith('1 file read, 1 node definition written, 0 errors, '
+                                           '0 warnings')
+    data = yaml.safe_load((out_dir / 'arm_driver.nodl.yaml').read_text())
+    assert data['base'] == 'node'
+    # local:// paths stay correct relative to where the file is written.
+    assert data['mixins'] == ['nodl://arm_common/heartbeat', '../shared/joint_limits.nodl.yaml']
+    assert 'include' not in data and 'codegen' not in data
+    env = dict(os.environ, AMENT_PREFIX_PATH=str(DIALECTS / 'include' / 'prefix'))
+    again = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve',
+                            str(out_dir / 'arm_driver.nodl.yaml')], cwd=REPO, text=True,
+                           capture_output=True, timeout=60, env=env)
+    assert again.returncode == 0, again.stdout + again.stderr
+    assert 'warning:' not in again.stdout  # no dialect warning any more
+
+
+def test_converts_a_genparamlib_file_by_content_and_with_from(tmp_path: Path) -> None:
+    source = rel(DIALECTS / 'genparamlib' / 'gripper_controller.yaml')
+    for extra in ((), ('--from', 'genparamlib')):
+        result = nodl('convert', source, '-o', str(tmp_path), *extra)
+        assert result.returncode == 0, result.stdout + result.stderr
+        assert 'warning: 2 parameter(s) under __map_ segments' in result.stdout
+        assert result.stdout.count('warning:') == 1
+        assert '1 interface definition written' in result.stdout
+    text = (tmp_path / 'gripper_controller.nodl.yaml').read_text()
+    assert text.startswith('# Converted by nodl convert from gripper_controller.yaml')
+    assert 'malformed XML' not in text
+
+
+def test_convert_with_a_wrong_from_says_what_the_file_is(tmp_path: Path) -> None:
+    result = nodl('convert', rel(DIALECTS / 'genparamlib' / 'gripper_controller.yaml'),
+                  '--from', 'include', '-o', str(tmp_path))
+    assert result.returncode == 1
+    assert 'looks like a generate_parameter_library parameter file' in result.stdout
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_convert_refuses_a_v2_file_politely(tmp_path: Path) -> None:
+    result = nodl('convert', 'examples/laser_driver.nodl.yaml', '-o', str(tmp_path))
+    assert result.returncode == 1
+    assert 'already a NoDL v2 node definition' in result.stdout

@@ -1,0 +1,135 @@
+"""The reference implementation's include dialect, read as a NoDL v2 node definition."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from conftest import FIXTURES, REPO
+
+import nodl_schema
+from nodl_schema import compose
+from nodl_schema.dialects import INCLUDE, recognise
+from nodl_schema.dialects.include import read_include
+from nodl_schema.loading import check_source
+from nodl_schema.model import Base, Node
+from nodl_schema.show import show_file
+from nodl_schema.validation.kinds import Kind
+
+PKG = FIXTURES / 'dialects' / 'include' / 'arm_driver' / 'nodl'
+PREFIX = FIXTURES / 'dialects' / 'include' / 'prefix'
+
+
+@pytest.fixture
+def prefix(monkeypatch: pytest.MonkeyPatch) -> Path:
+    monkeypatch.setenv('AMENT_PREFIX_PATH', str(PREFIX))
+    return PREFIX
+
+
+def test_an_include_document_loads_as_a_node_definition() -> None:
+    node = nodl_schema.load_nodl(PKG / 'arm_driver.nodl.yaml')
+    assert isinstance(node, Node)
+    assert node.base is Base.NODE  # nodl://rclcpp/node is the built-in base description
+    assert node.mixins == ['nodl://arm_common/heartbeat', 'shared/joint_limits.nodl.yaml']
+    assert set(node.main.parameters) == {'joint_count'}
+    assert [p.name for p in node.main.publishers] == ['~/joint_states']
+    assert node.main.description.startswith('Commands the joints')
+
+
+def test_one_warning_names_the_dialect_at_the_include_key() -> None:
+    report = check_source(PKG / 'arm_driver.nodl.yaml', file='arm_driver.nodl.yaml')
+    assert report.kind is Kind.NODE
+    assert not report.errors
+    [warning] = report.warnings
+    assert warning.code == 'NODL851'
+    assert (warning.line, warning.column) == (5, 1)
+    assert "'include' dialect" in warning.message and 'codegen is ignored' in warning.message
+    assert warning.path == ('include',)
+
+
+def test_the_codegen_block_is_kept_and_ignored() -> None:
+    import yaml
+
+    data = yaml.safe_load((PKG / 'arm_driver.nodl.yaml').read_text())
+    reading = read_include(data)
+    assert reading.codegen == {'cpp': {'class': 'ArmDriverBase',
+                                       'header': 'arm_driver/arm_driver_base.hpp'}}
+    assert 'codegen' not in reading.data and 'codegen' not in reading.data['main']
+
+
+def test_includes_spelling_and_the_lifecycle_base_description() -> None:
+    node = nodl_schema.load_node(PKG / 'gripper_lifecycle.nodl.yaml')
+    # Both base descriptions are included: lifecycle_node's holds node's, so it is the base.
+    assert node.base is Base.LIFECYCLE_NODE
+    assert not node.mixins
+    assert [s.name for s in node.main.service_servers] == ['~/grip']
+
+
+def test_include_and_includes_together_is_an_error() -> None:
+    text = ('nodl_version: 2\ninclude:\n  - ref: nodl://a_pkg/one\n'
+            'includes:\n  - ref: nodl://a_pkg/two\n')
+    report = check_source(text)
+    [error] = report.errors
+    assert error.code == 'NODL853' and (error.line, error.column) == (4, 1)
+
+
+def test_diagnostics_land_on_the_original_lines_and_paths() -> None:
+    report = check_source(PKG / 'broken.nodl.yaml', file='broken.nodl.yaml')
+    found = {(d.line, d.column, d.path_text, d.code) for d in report.errors}
+    assert (4, 5, 'include[1]', 'NODL852') in found          # a bare string, not {ref: ...}
+    assert (6, 5, 'include[2].prefix', 'NODL852') in found   # an unknown key in an entry
+    # An error in the flat interface (main, once converted) is reported at its own line.
+    type_errors = [d for d in report.errors if d.path_text == 'publishers[0].type']
+    assert [(d.line, d.column) for d in type_errors] == [(9, 11)]
+
+
+def test_a_reference_error_points_at_the_ref(tmp_path: Path) -> None:
+    report = check_source('nodl_version: 2\ninclude:\n  - ref: local://\n')
+    assert any(d.path_text == 'include[0].ref' and d.line == 3 for d in report.errors), \
+        report.diagnostics
+
+
+def test_compose_resolves_nodl_and_local_includes(prefix: Path) -> None:
+    composed = compose(PKG / 'arm_driver.nodl.yaml')
+    params = composed.interface.parameters
+    assert {'use_sim_time', 'heartbeat.period', 'limits.max_velocity', 'joint_count'} <= set(params)
+    assert [l.label for l in composed.layers][1:] == [
+        'nodl://arm_common/heartbeat', 'shared/joint_limits.nodl.yaml', 'main']
+    assert any(p.name == '/heartbeat' for p in composed.interface.publishers)
+
+
+def test_an_unresolvable_local_include_is_placed_at_its_ref(prefix: Path) -> None:
+    with pytest.raises(nodl_schema.ValidationError) as caught:
+        compose(PKG / 'missing_local.nodl.yaml', file='missing_local.nodl.yaml')
+    [error] = caught.value.errors
+    assert (error.line, error.column) == (3, 10)
+    assert 'no_such_file.nodl.yaml' in error.message
+
+
+def test_show_composes_an_include_document(prefix: Path) -> None:
+    shown = show_file(str(PKG / 'arm_driver.nodl.yaml'))
+    assert shown.interface is not None
+    assert 'limits.max_velocity' in shown.interface.parameters
+
+
+def test_recognise() -> None:
+    assert recognise({'nodl_version': 2, 'include': []}) == INCLUDE
+    assert recognise({'nodl_version': 2, 'includes': []}) == INCLUDE
+    # A v2 node with a stray include key stays a v2 node (and gets 'unknown key').
+    assert recognise({'nodl_version': 2, 'main': {}, 'include': []}) is None
+    assert recognise({'nodl_version': 2, 'publishers': []}) is None
+
+
+def test_validate_resolve_accepts_the_dialect_in_a_real_process() -> None:
+    env = dict(os.environ, AMENT_PREFIX_PATH=str(PREFIX))
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve',
+                             os.path.relpath(PKG / 'arm_driver.nodl.yaml', REPO)],
+                            cwd=REPO, text=True, capture_output=True, timeout=60, env=env)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert result.stdout.count('warning:') == 1
+    assert "arm_driver.nodl.yaml:5:1: warning: this file is written in the reference " \
+        "implementation's 'include' dialect" in result.stdout
