@@ -20,26 +20,15 @@ if TYPE_CHECKING:
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.model.parameter_types import (
     ALL_TYPE_WORDS, ARRAY_TYPES, SCALAR_TYPES, TypeSpec, element_fits, parse_type)
-from nodl_schema.validation.messages import article, described, did_you_mean, one_of, show
+from nodl_schema.validation.messages import article, described, did_you_mean, show
+from nodl_schema.validation.validators import APPLICABILITY, VALIDATORS
 
 __all__ = ['BUILTIN_VALIDATORS', 'check_parameter_type', 'check_validator_name', 'check_parameter']
 
-#: Built-in validators of generate_parameter_library and what they apply to.
-BUILTIN_VALIDATORS: dict[str, str] = {
-    'bounds': 'numeric', 'lt': 'numeric', 'gt': 'numeric', 'lt_eq': 'numeric', 'gt_eq': 'numeric',
-    'one_of': 'scalar',
-    'not_empty': 'sized', 'fixed_size': 'sized', 'size_gt': 'sized', 'size_lt': 'sized',
-    'unique': 'array', 'subset_of': 'array',
-    'element_bounds': 'numeric_array', 'lower_element_bounds': 'numeric_array',
-    'upper_element_bounds': 'numeric_array',
-}
-_APPLIES_WORDS = {
-    'numeric': 'int and double parameters',
-    'scalar': 'bool, int, double and string parameters',
-    'sized': 'string and array parameters',
-    'array': 'array parameters',
-    'numeric_array': 'int, double and byte arrays',
-}
+#: Built-in validators of generate_parameter_library and what they apply to (from the table in
+#: :mod:`nodl_schema.validation.validators`).
+BUILTIN_VALIDATORS: dict[str, str] = {name: rule.applies for name, rule in VALIDATORS.items()}
+_APPLIES_WORDS = {name: applicability.words for name, applicability in APPLICABILITY.items()}
 _CONFLICTS = [
     ('bounds', ('lt', 'gt', 'lt_eq', 'gt_eq')),
     ('element_bounds', ('lower_element_bounds', 'upper_element_bounds')),
@@ -178,15 +167,7 @@ def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
 
 
 def _applies(applies: str, spec: TypeSpec) -> bool:
-    if applies == 'numeric':
-        return not spec.is_array and spec.element in ('int', 'double')
-    if applies == 'scalar':
-        return not spec.is_array
-    if applies == 'sized':
-        return spec.is_array or spec.element == 'string'
-    if applies == 'array':
-        return spec.is_array
-    return spec.is_array and spec.numeric
+    return APPLICABILITY[applies](spec)
 
 
 def _check_default(value: Any, spec: TypeSpec, path: DocPath, out: list[Diagnostic]) -> bool:
@@ -279,47 +260,8 @@ def _integral(values: list[Any], key: str, spec: TypeSpec, path: DocPath,
 
 
 def _default_breaks(bare: str, args: Any, value: Any, spec: TypeSpec) -> str | None:
-    """Why ``value`` fails the validator, or None (None too for unknowable cases)."""
-    arg = _scalar_arg(args)
-    if bare == 'bounds':
-        return None if args[0] <= value <= args[1] else f'it is outside [{args[0]}, {args[1]}]'
-    if bare == 'lt':
-        return None if value < arg else f'it must be less than {arg}'
-    if bare == 'gt':
-        return None if value > arg else f'it must be greater than {arg}'
-    if bare == 'lt_eq':
-        return None if value <= arg else f'it must be at most {arg}'
-    if bare == 'gt_eq':
-        return None if value >= arg else f'it must be at least {arg}'
-    if bare == 'one_of':
-        return None if any(value == v and type(value) is type(v) or
-                           (element_fits(value, 'double') and element_fits(v, 'double') and value == v)
-                           for v in args[0]) else f'it must be one of {one_of(map(show, args[0]))}'
-    if bare == 'not_empty':
-        return None if len(value) else 'it must not be empty'
-    if bare == 'fixed_size':
-        return None if len(value) == arg else f'its size must be exactly {arg}'
-    if bare == 'size_gt':
-        return None if len(value) > arg else f'its size must be greater than {arg}'
-    if bare == 'size_lt':
-        return None if len(value) < arg else f'its size must be less than {arg}'
-    if bare == 'unique':
-        seen: list[Any] = []
-        for item in value:
-            if item in seen:
-                return f'{show(item)} appears more than once'
-            seen.append(item)
+    """Why ``value`` fails the validator, or None (None too for unusable arguments)."""
+    rule = VALIDATORS.get(bare)
+    if rule is None or not rule.accepts(args):
         return None
-    if bare == 'subset_of':
-        extra = [item for item in value if item not in args[0]]
-        return f'{show(extra[0])} is not one of the allowed values' if extra else None
-    if bare == 'element_bounds':
-        bad = [item for item in value if not args[0] <= item <= args[1]]
-        return f'element {show(bad[0])} is outside [{args[0]}, {args[1]}]' if bad else None
-    if bare == 'lower_element_bounds':
-        bad = [item for item in value if item < arg]
-        return f'element {show(bad[0])} is below {arg}' if bad else None
-    if bare == 'upper_element_bounds':
-        bad = [item for item in value if item > arg]
-        return f'element {show(bad[0])} is above {arg}' if bad else None
-    return None
+    return rule.check(value, args)
