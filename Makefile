@@ -1,14 +1,19 @@
 # The two commands of the README: `make demo` and `make test`.
-# Both create .venv (with every extra) on first use; only Python, pip and make are needed.
+# Both create .venv (with the `test` extra: ROS 2 wheels, colcon, test tools) on first
+# use; only Python 3.11, pip and make are needed.
 
-PYTHON ?= python3
-VENV := .venv
+# The ROS 2 wheels on the Python registry are built for CPython 3.11 only.
+ROS_WHEELS_PYTHON := 3.11
+comma := ,
+PYTHON ?= $(shell command -v python$(ROS_WHEELS_PYTHON) 2>/dev/null || command -v python3)
+VENV ?= .venv
 BIN := $(VENV)/bin
 DEPS := $(VENV)/.deps
 STAMP := $(VENV)/.installed
+CONSTRAINTS := constraints.txt
 # The project is installed for real (not editable: editable installs skip the CMake
 # files that `find_package(ament_nodl)` needs), and reinstalled when a source changes.
-SOURCES := $(shell find nodl_schema cmake -type f -not -name '*.pyc') pyproject.toml setup.py package.xml
+SOURCES := $(shell find nodl_schema ros -type f -not -name '*.pyc') pyproject.toml
 
 # Anything that starts ROS stays on loopback, in its own domain.
 export ROS_AUTOMATIC_DISCOVERY_RANGE := LOCALHOST
@@ -18,18 +23,37 @@ export AMENT_PREFIX_PATH := $(abspath $(VENV))
 export CMAKE_PREFIX_PATH := $(abspath $(VENV))
 export PATH := $(abspath $(BIN)):$(PATH)
 
-.PHONY: demo test bench install clean
+.PHONY: demo test bench install clean FORCE
 
 install: $(STAMP)
 
-$(DEPS): pyproject.toml
+# A .venv made by another interpreter (another Python version, or one since removed)
+# cannot load the ROS 2 wheels: it is rebuilt, saying why.
+VENV_MADE_WITH := $(shell sed -n 's/^version\(_info\)\{0,1\} *= *\([0-9]*\.[0-9]*\).*/\2/p' $(VENV)/pyvenv.cfg 2>/dev/null | head -n 1)
+ifneq ($(wildcard $(VENV)/pyvenv.cfg),)
+ifneq ($(VENV_MADE_WITH)-$(shell $(BIN)/python -S -c 'print(1)' 2>/dev/null),$(ROS_WHEELS_PYTHON)-1)
+STALE_VENV := yes
+endif
+endif
+
+$(DEPS): pyproject.toml $(CONSTRAINTS) $(if $(STALE_VENV),FORCE)
+	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info[:2] != ($(subst .,$(comma),$(ROS_WHEELS_PYTHON))))' 2>/dev/null || { \
+	  echo "make: '$(PYTHON)' is not Python $(ROS_WHEELS_PYTHON), which the ROS 2 wheels need."; \
+	  echo "      Install python$(ROS_WHEELS_PYTHON), or run: make PYTHON=/path/to/python$(ROS_WHEELS_PYTHON) $(MAKECMDGOALS)"; \
+	  echo "      (With a system ROS instead, see 'Set-ups' in the README.)"; exit 2; }
+	@if [ -n "$(STALE_VENV)" ]; then \
+	  echo "make: $(VENV) was made with Python $(or $(VENV_MADE_WITH),?) or its interpreter is gone; rebuilding it with $(PYTHON)"; \
+	  rm -rf $(VENV); fi
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip 'setuptools>=77,<80' wheel
-	$(BIN)/python -m pip install --quiet '.[ros,test]'
+	@echo "Installing the dependencies into $(VENV) (the first time: about 100 packages, ROS 2 included)"
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check --upgrade pip 'setuptools>=77,<80' wheel -c $(CONSTRAINTS)
+	$(BIN)/python tools/pip_install.py -c $(CONSTRAINTS) '.[test]'
 	touch $(DEPS)
 
+FORCE:
+
 $(STAMP): $(DEPS) $(SOURCES)
-	$(BIN)/python -m pip install --quiet --no-deps --no-build-isolation --force-reinstall .
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation --force-reinstall .
 	touch $(STAMP)
 
 demo: $(STAMP)

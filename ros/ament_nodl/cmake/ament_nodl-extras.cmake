@@ -4,7 +4,8 @@
 #   ament_nodl_register_interface(<name> FILE <file>)     # nodl://<package>/<name>
 #   ament_nodl_register_node(<executable> FILE <file>)
 #
-# Installed by the NoDL toolkit (pip install nodl-toolkit) into <prefix>/share/ament_nodl/cmake.
+# Included by ament_nodlConfig.cmake: the one ament_package() generates when colcon builds
+# the ament_nodl package (CONFIG_EXTRAS), or the one `pip install nodl-toolkit` installs.
 
 if(_AMENT_NODL_CONFIG_INCLUDED)
   return()
@@ -12,7 +13,9 @@ endif()
 set(_AMENT_NODL_CONFIG_INCLUDED TRUE)
 
 get_filename_component(_ament_nodl_prefix "${CMAKE_CURRENT_LIST_DIR}/../../.." ABSOLUTE)
-# The `nodl` command installed next to this file wins over one found on PATH.
+# The `nodl` command installed next to this file (pip, or a merged colcon install) wins
+# over one found on PATH (an isolated colcon install: the nodl_toolkit package's bin/,
+# which colcon puts on PATH for every package that depends on ament_nodl).
 find_program(AMENT_NODL_EXECUTABLE nodl HINTS "${_ament_nodl_prefix}/bin" NO_DEFAULT_PATH)
 if(NOT AMENT_NODL_EXECUTABLE)
   find_program(AMENT_NODL_EXECUTABLE nodl)
@@ -20,8 +23,8 @@ endif()
 if(NOT AMENT_NODL_EXECUTABLE)
   message(FATAL_ERROR
     "ament_nodl: the 'nodl' command was not found (looked in ${_ament_nodl_prefix}/bin and on "
-    "PATH). Install the NoDL toolkit into the environment that builds this package.")
+    "PATH). Build the nodl_toolkit package in the same workspace, or install the NoDL toolkit "
+    "into the environment that builds this package (pip install nodl-toolkit).")
 endif()
 
 include("${CMAKE_CURRENT_LIST_DIR}/ament_nodl_register.cmake")
-set(ament_nodl_FOUND TRUE)
