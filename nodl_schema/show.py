@@ -1,8 +1,10 @@
 """``show``: a node's whole interface, resolved, as an interface definition.
 
 The entry points are :func:`show_file` and :func:`show_registered`; both
-return the merged interface (or diagnostics), and :func:`render` prints it
-as YAML or JSON, optionally with each entity's layer.
+return the resolved node (:class:`~nodl_schema.system.ResolvedNode`) and its
+merged interface (or diagnostics), and :func:`render` prints it as YAML or
+JSON, optionally with each entity's layer, stating the client library whose
+base was used.
 """
 
 from __future__ import annotations
@@ -11,29 +13,43 @@ import json
 import os
 from typing import Any
 
-from nodl_schema.composition import compose_report
+from nodl_schema.composition.client_library import ClientLibraryChoice
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.loading import check_source
 from nodl_schema.model import ENDPOINT_SECTIONS, Interface
 from nodl_schema.validation.kinds import Kind
 
-__all__ = ['Shown', 'show_file', 'show_registered', 'render']
+__all__ = ['Shown', 'show_file', 'show_registered', 'show_reference', 'render']
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from nodl_schema.system.resolved import ResolvedNode
 
 
 class Shown:
     """What ``show`` found: the interface (None on errors) and the diagnostics."""
 
     def __init__(self, interface: Interface | None, diagnostics: list[Diagnostic],
-                 source: str) -> None:
+                 source: str, resolved: ResolvedNode | None = None) -> None:
         self.interface = interface
         self.diagnostics = diagnostics
         #: The file the definition was read from.
         self.source = source
+        #: The resolved node (None for an interface definition, or on errors).
+        self.resolved = resolved
 
     @property
     def ok(self) -> bool:
         """True if there is an interface to show."""
         return self.interface is not None
+
+    @property
+    def client_library(self) -> ClientLibraryChoice | None:
+        """The client library whose base was used, and why (None when there is no base)."""
+        if self.resolved is None or self.resolved.base is None:
+            return None
+        return ClientLibraryChoice(self.resolved.client_library,
+                                   self.resolved.client_library_reason)
 
 
 def _stamp_all(iface: Interface, label: str) -> Interface:
@@ -45,16 +61,24 @@ def _stamp_all(iface: Interface, label: str) -> Interface:
     return iface
 
 
-def show_file(path: str) -> Shown:
-    """The resolved interface of the definition in ``path`` (a node is composed)."""
+def _from_resolved(resolved: ResolvedNode | None, diagnostics: list[Diagnostic],
+                   source: str) -> Shown:
+    return Shown(resolved.interface if resolved is not None else None, diagnostics, source, resolved)
+
+
+def show_file(path: str, client_library: str | None = None) -> Shown:
+    """The resolved interface of the definition in ``path`` (a node is composed with the
+    base of ``client_library``, rclpy by default; ValueError for an unknown library)."""
     from pathlib import Path
+
+    from nodl_schema.system.resolved import resolve_report
 
     report = check_source(Path(path), file=path)
     if report.has_errors():
         return Shown(None, report.diagnostics, path)
     if report.kind is Kind.NODE:
-        composed, diagnostics = compose_report(report)
-        return Shown(composed.interface if composed else None, diagnostics, path)
+        resolved, diagnostics = resolve_report(report, client_library=client_library)
+        return _from_resolved(resolved, diagnostics, path)
     if report.kind is Kind.INTERFACE:
         return Shown(_stamp_all(report.model(), os.path.basename(path)),  # type: ignore[arg-type]
                      report.diagnostics, path)
@@ -63,12 +87,32 @@ def show_file(path: str) -> Shown:
                                    code='NODL305')], path)
 
 
-def show_registered(package: str, executable: str) -> Shown:
-    """The resolved interface of the node definition registered for ``package``'s ``executable``."""
-    from nodl_schema.index.registry import compose_registered
+def show_registered(package: str, executable: str, client_library: str | None = None) -> Shown:
+    """The resolved interface of the node definition registered for ``package``'s ``executable``
+    (the client library defaults to the one of the package's build type)."""
+    from nodl_schema.system.resolved import resolve_registered
 
-    composed, diagnostics, source = compose_registered(package, executable)
-    return Shown(composed.interface if composed is not None else None, diagnostics, source)
+    resolved, diagnostics, source = resolve_registered(package, executable,
+                                                       client_library=client_library)
+    return _from_resolved(resolved, diagnostics, source)
+
+
+def show_reference(reference: str) -> Shown:
+    """The registered interface definition ``nodl://<package>/<name>``, as ``show`` prints it."""
+    from nodl_schema.composition.ament_resolver import AmentIndexResolver
+    from nodl_schema.composition.resolvers import ResolutionError, ResolveContext
+
+    try:
+        resolved = AmentIndexResolver().resolve(reference, ResolveContext(None, None))
+    except ResolutionError as exc:
+        searched = f' (searched: {", ".join(exc.searched)})' if exc.searched else ''
+        return Shown(None, [Diagnostic(Severity.ERROR, f"cannot resolve '{reference}': "
+                                       f'{exc.message}{searched}', (), reference)], reference)
+    report = check_source(resolved.text, kind=Kind.INTERFACE, file=resolved.file)
+    if report.has_errors():
+        return Shown(None, report.diagnostics, resolved.file)
+    return Shown(_stamp_all(report.model(), reference),  # type: ignore[arg-type]
+                 report.diagnostics, resolved.file)
 
 
 def _entity_blocks(iface: Interface) -> list[tuple[str, list[tuple[str | None, Any]]]]:
@@ -91,12 +135,16 @@ def _yaml(data: Any) -> str:
                      allow_unicode=True, width=100)
 
 
-def render(iface: Interface, format: str = 'yaml', layers: bool = False) -> str:
+def render(iface: Interface, format: str = 'yaml', layers: bool = False,
+           client_library: ClientLibraryChoice | None = None) -> str:
     """The interface as YAML or JSON; with ``layers``, each entity's layer too.
 
     In YAML the layer is a comment above the entity, so the output stays a
-    valid interface definition.  In JSON (which has no comments) the output
-    becomes ``{"interface": ..., "layers": [...]}``.
+    valid interface definition; so is the ``client_library`` line (the base's
+    client library and why it was chosen).  In JSON (which has no comments),
+    ``layers`` makes the output ``{"interface": ..., "layers": [...],
+    "client_library": {"name": ..., "reason": ...}}``; plain JSON is the
+    interface alone.
     """
     from nodl_schema.loading import dump_nodl
 
@@ -106,16 +154,21 @@ def render(iface: Interface, format: str = 'yaml', layers: bool = False) -> str:
         origins = [{'section': section, 'name': next(iter(item)) if isinstance(item, dict)
                     else item[0]['name'], 'layer': origin}
                    for section, items in _entity_blocks(iface) for origin, item in items]
-        return json.dumps({'interface': iface.to_dict(), 'layers': origins}, indent=2,
-                          ensure_ascii=False) + '\n'
+        out: dict[str, Any] = {'interface': iface.to_dict(), 'layers': origins}
+        if client_library is not None:
+            out['client_library'] = client_library._asdict()
+        return json.dumps(out, indent=2, ensure_ascii=False) + '\n'
     if format != 'yaml':
         raise ValueError(f"unsupported format {format!r}; expected 'yaml' or 'json'")
+    # One line, whatever the reason says (it may name a package): a comment cannot break out.
+    stated = (f'# client library: {client_library}'.replace('\n', ' ').replace('\r', ' ') + '\n'
+              if client_library is not None else '')
     if not layers:
-        return dump_nodl(iface, 'yaml')
+        return stated + dump_nodl(iface, 'yaml')
     head: dict[str, Any] = {'nodl_version': iface.nodl_version}
     if iface.description is not None:
         head['description'] = iface.description
-    lines = [_yaml(head).rstrip('\n')]
+    lines = ([stated.rstrip('\n')] if stated else []) + [_yaml(head).rstrip('\n')]
     for section, items in _entity_blocks(iface):
         lines.append(f'{section}:')
         for origin, item in items:

@@ -146,3 +146,45 @@ def test_package_executable_with_a_dangling_entry() -> None:
     assert result.returncode == 1
     assert result.stderr.startswith('delta/dangling: error: the index entry ')
     assert 'gone.nodl.yaml, which does not exist' in result.stderr
+
+
+# --- client libraries ---------------------------------------------------------------------------
+
+SYSTEM_PREFIX = str(FIXTURES / 'system' / 'prefix')
+
+
+def test_a_registered_node_takes_the_client_library_of_its_package_build_type() -> None:
+    cpp = nodl('cpp_pkg', 'driver', prefixes=SYSTEM_PREFIX)
+    assert cpp.returncode == 0, cpp.stderr
+    assert cpp.stdout.splitlines()[0] == (
+        "# client library: rclcpp (package 'cpp_pkg' is built with ament_cmake)")
+    assert 'subscriptions:\n- name: /parameter_events\n' in cpp.stdout  # rclcpp's time source
+    py = nodl('py_pkg', 'driver', prefixes=SYSTEM_PREFIX)
+    assert py.stdout.splitlines()[0] == (
+        "# client library: rclpy (package 'py_pkg' is built with ament_python)")
+    assert 'subscriptions:' not in py.stdout
+    plain = nodl('plain_pkg', 'driver', prefixes=SYSTEM_PREFIX)
+    assert plain.stdout.splitlines()[0] == (
+        "# client library: rclpy (package 'plain_pkg' has no build type; rclpy by default)")
+
+
+def test_client_library_option_wins_and_is_stated_in_json() -> None:
+    result = nodl('cpp_pkg', 'driver', '--client-library', 'rclpy', '--layers', '--format', 'json',
+                  prefixes=SYSTEM_PREFIX)
+    assert result.returncode == 0, result.stderr
+    data = json.loads(result.stdout)
+    assert data['client_library'] == {'name': 'rclpy', 'reason': 'as requested'}
+    assert 'subscriptions' not in data['interface']
+    plain = nodl('examples/laser_driver.nodl.yaml', '--format', 'json', '--client-library', 'rclcpp')
+    assert plain.returncode == 0, plain.stderr
+    assert plain.stderr == 'nodl show: note: client library rclcpp (as requested)\n'
+    assert json.loads(plain.stdout)['subscriptions'][0]['name'] == '/parameter_events'
+    bad = nodl('examples/laser_driver.nodl.yaml', '--client-library', 'rclc')
+    assert bad.returncode == 2 and 'Traceback' not in bad.stderr
+
+
+def test_a_node_that_redefines_its_base_cannot_be_shown() -> None:
+    result = nodl('tests/fixtures/composition/overrides/base_redefined.nodl.yaml')
+    assert result.returncode == 1
+    assert result.stdout == ''
+    assert 'NODL307' in result.stderr and 'Traceback' not in result.stderr

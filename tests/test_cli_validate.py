@@ -124,3 +124,34 @@ def test_examples_are_valid() -> None:
     result = nodl('validate', '--strict', 'examples/')
     assert result.returncode == 0, result.stdout
     assert result.stdout.rstrip().endswith('7 files, 0 errors, 0 warnings')
+
+
+def test_resolve_strict_refuses_a_node_that_redefines_its_base() -> None:
+    # The measured defect of issue 7: main redefined use_sim_time as a string and /rosout as
+    # std_msgs/msg/String, and validate --resolve --strict printed two info lines and passed.
+    fixture = 'tests/fixtures/composition/overrides/base_redefined.nodl.yaml'
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', '--strict',
+                             fixture], cwd=REPO, text=True, capture_output=True, timeout=60)
+    assert result.returncode == 1, result.stdout + result.stderr
+    errors = [line for line in result.stdout.splitlines() if ': error: ' in line]
+    assert errors == [
+        f"{fixture}:7:5: error: parameter 'use_sim_time' from main changes the type of the one from "
+        'base:node (bool -> string); the client library creates it, so a node cannot change it: '
+        'only its description may be refined [main.parameters.use_sim_time] [NODL307]',
+        f"{fixture}:12:7: error: publisher '/rosout' from main changes the type of the one from "
+        'base:node (rcl_interfaces/msg/Log -> std_msgs/msg/String); the client library creates it, '
+        'so a node cannot change it: only its description may be refined [main.publishers[0]] '
+        '[NODL307]']
+    # a mixin's type changed by main is a warning: it fails only with --strict
+    mixin = 'tests/fixtures/composition/overrides/mixin_type_changed.nodl.yaml'
+    lenient = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', mixin],
+                             cwd=REPO, text=True, capture_output=True, timeout=60)
+    strict = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', '--strict',
+                             mixin], cwd=REPO, text=True, capture_output=True, timeout=60)
+    assert (lenient.returncode, strict.returncode) == (0, 1), lenient.stdout + strict.stdout
+    assert '[NODL310]' in strict.stdout
+    # refining a base entity's description is allowed
+    refined = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', '--strict',
+                              'tests/fixtures/composition/overrides/base_refined.nodl.yaml'],
+                             cwd=REPO, text=True, capture_output=True, timeout=60)
+    assert refined.returncode == 0, refined.stdout + refined.stderr

@@ -123,19 +123,22 @@ def test_show_registered_dangling_entry_says_what_is_missing(
 
 @pytest.mark.parametrize('example', ['laser_driver', 'camera_lifecycle'])
 def test_render_yaml_with_layers_golden(example: str, golden) -> None:
-    iface = shown(EXAMPLES / f'{example}.nodl.yaml').interface
-    golden.check(render(iface, 'yaml', layers=True), GOLDEN / f'{example}.layers.yaml')
+    result = shown(EXAMPLES / f'{example}.nodl.yaml')
+    golden.check(render(result.interface, 'yaml', layers=True, client_library=result.client_library),
+                 GOLDEN / f'{example}.layers.yaml')
 
 
 @pytest.mark.parametrize('example', ['laser_driver', 'camera_lifecycle'])
 def test_render_yaml_golden(example: str, golden) -> None:
-    iface = shown(EXAMPLES / f'{example}.nodl.yaml').interface
-    golden.check(render(iface, 'yaml'), GOLDEN / f'{example}.yaml')
+    result = shown(EXAMPLES / f'{example}.nodl.yaml')
+    golden.check(render(result.interface, 'yaml', client_library=result.client_library),
+                 GOLDEN / f'{example}.yaml')
 
 
 def test_render_json_with_layers_golden(golden) -> None:
-    iface = shown(EXAMPLES / 'camera_lifecycle.nodl.yaml').interface
-    golden.check(render(iface, 'json', layers=True), GOLDEN / 'camera_lifecycle.layers.json')
+    result = shown(EXAMPLES / 'camera_lifecycle.nodl.yaml')
+    golden.check(render(result.interface, 'json', layers=True, client_library=result.client_library),
+                 GOLDEN / 'camera_lifecycle.layers.json')
 
 
 @pytest.mark.parametrize('example', ['laser_driver', 'camera_lifecycle', 'diagnostics'])
@@ -196,3 +199,42 @@ def test_render_of_an_empty_interface() -> None:
     assert render(Interface(nodl_version=2), 'yaml', layers=True) == 'nodl_version: 2\n'
     assert json.loads(render(Interface(nodl_version=2), 'json', layers=True)) == {
         'interface': {'nodl_version': 2}, 'layers': []}
+
+
+# --- client libraries and the resolved node ----------------------------------------------------
+
+def test_show_file_states_the_client_library_and_uses_its_base() -> None:
+    default = shown(EXAMPLES / 'laser_driver.nodl.yaml')
+    assert default.client_library == ('rclpy', 'the default; choose with --client-library')
+    assert default.resolved is not None and default.resolved.client_library == 'rclpy'
+    assert not default.interface.subscriptions or all(
+        s.name != '/parameter_events' for s in default.interface.subscriptions)
+    rclcpp = show_file('examples/laser_driver.nodl.yaml', 'rclcpp')
+    assert rclcpp.client_library == ('rclcpp', 'as requested')
+    subscription = {s.name: s for s in rclcpp.interface.subscriptions}['/parameter_events']
+    assert subscription.origin == 'base:node'
+    text = render(rclcpp.interface, 'yaml', client_library=rclcpp.client_library)
+    assert text.startswith('# client library: rclcpp (as requested)\n')
+    load_interface(text, strict=True)  # the statement is a comment: still a valid definition
+    with pytest.raises(ValueError, match='unknown client library'):
+        show_file('examples/laser_driver.nodl.yaml', 'rclc')
+
+
+def test_an_interface_or_a_node_without_base_states_no_client_library() -> None:
+    assert shown(EXAMPLES / 'diagnostics.nodl.yaml').client_library is None
+
+
+def test_show_refuses_a_node_that_redefines_its_base() -> None:
+    result = show_file(str(FIXTURES / 'composition' / 'overrides' / 'base_redefined.nodl.yaml'))
+    assert not result.ok
+    assert [d.code for d in result.diagnostics if d.severity is Severity.ERROR] == [
+        'NODL307', 'NODL307']
+
+
+def test_a_statement_cannot_break_out_of_its_comment() -> None:
+    from nodl_schema.composition.client_library import ClientLibraryChoice
+
+    text = render(Interface(nodl_version=2), 'yaml',
+                  client_library=ClientLibraryChoice('rclpy', "package 'x\nnodl_version: 3' ..."))
+    assert text.splitlines()[0].startswith('# client library: rclpy')
+    assert load_interface(text).nodl_version == 2

@@ -30,6 +30,10 @@ class ShowVerb(Verb):
                             help='output format (default: yaml)')
         parser.add_argument('--layers', action='store_true',
                             help="show the layer each entity comes from (base, mixin or main)")
+        parser.add_argument('--client-library', choices=('rclpy', 'rclcpp'), default=None,
+                            help="the client library whose base the node inherits (default: "
+                                 "from the package's build type, ament_python -> rclpy, "
+                                 "ament_cmake -> rclcpp; else rclpy)")
 
     failure = 'the definition is invalid, or cannot be composed'
 
@@ -50,9 +54,9 @@ class ShowVerb(Verb):
                 print(f'nodl show: error: {args.target[0]}: {what} (to look up an installed '
                       'node, give PACKAGE EXECUTABLE)', file=sys.stderr)
                 return EXIT_USAGE
-            shown = show_file(args.target[0])
+            shown = show_file(args.target[0], args.client_library)
         elif len(args.target) == 2:
-            shown = show_registered(*args.target)
+            shown = show_registered(*args.target, client_library=args.client_library)
         else:
             print('nodl show: error: expected FILE or PACKAGE EXECUTABLE', file=sys.stderr)
             return EXIT_USAGE
@@ -60,5 +64,9 @@ class ShowVerb(Verb):
         sys.stderr.write(format_text(problems))
         if shown.interface is None:
             return EXIT_FAILURE
-        sys.stdout.write(render(shown.interface, args.format, args.layers))
+        library = shown.client_library
+        if library is not None and args.format == 'json' and not args.layers:
+            # plain JSON is the interface alone; say which base it has where it cannot break it
+            print(f'nodl show: note: client library {library}', file=sys.stderr)
+        sys.stdout.write(render(shown.interface, args.format, args.layers, library))
         return EXIT_OK
