@@ -92,3 +92,20 @@ def test_nothing_registered_says_so_on_stderr_and_exits_0() -> None:
 def test_bad_arguments_are_usage_errors() -> None:
     assert nodl('--format', 'xml').returncode == 2
     assert nodl('a', 'b').returncode == 2
+
+
+def test_kind_keeps_one_kind_of_definition() -> None:
+    interfaces = nodl('--kind', 'interface')
+    assert interfaces.returncode == 0, interfaces.stderr
+    assert {(r[0], r[1], r[2]) for r in rows(interfaces.stdout)} == {
+        ('alpha', 'interface', 'chatter'), ('beta', 'interface', 'status')}
+    nodes = nodl('--kind', 'node', '--format', 'json')
+    assert nodes.returncode == 0, nodes.stderr
+    kinds = {entry['kind'] for entry in json.loads(nodes.stdout)}
+    assert kinds and 'interface' not in kinds and kinds <= {'node', 'legacy node'}
+
+
+def test_kind_with_nothing_to_list_says_which_kind() -> None:
+    result = nodl('--kind', 'interface', 'delta')
+    assert result.returncode == 0 and result.stdout == ''
+    assert "no interface definitions registered for package 'delta'" in result.stderr

@@ -53,15 +53,24 @@ def _v2(resource_type: str, prefixes: list[str], package: str | None) -> list[Re
     return found
 
 
-def list_registrations(package: str | None = None,
-                       prefixes: list[str] | None = None) -> list[Registration]:
-    """Every registered definition (of ``package`` only, if given), sorted."""
-    prefixes = prefixes if prefixes is not None else ament.prefix_paths()
-    found = _v2(NODE_RESOURCE, prefixes, package) + _v2(INTERFACE_RESOURCE, prefixes, package)
-    from nodl_schema.index.legacy import legacy_registrations
+def list_registrations(package: str | None = None, prefixes: list[str] | None = None,
+                       kind: str | None = None) -> list[Registration]:
+    """Every registered definition (of ``package`` only, if given), sorted.
 
-    v2_nodes = {(r.package, r.name) for r in found if r.kind == 'node'}
-    found += [r for r in legacy_registrations(package, prefixes) if (r.package, r.name) not in v2_nodes]
+    ``kind`` keeps one kind: ``node`` (v2 and legacy node definitions) or ``interface``.
+    """
+    prefixes = prefixes if prefixes is not None else ament.prefix_paths()
+    found: list[Registration] = []
+    if kind in (None, 'node'):
+        found += _v2(NODE_RESOURCE, prefixes, package)
+    if kind in (None, 'interface'):
+        found += _v2(INTERFACE_RESOURCE, prefixes, package)
+    if kind in (None, 'node'):
+        from nodl_schema.index.legacy import legacy_registrations
+
+        v2_nodes = {(r.package, r.name) for r in found if r.kind == 'node'}
+        found += [r for r in legacy_registrations(package, prefixes)
+                  if (r.package, r.name) not in v2_nodes]
     return sorted(found)
 
 

@@ -17,6 +17,9 @@ class ListVerb(Verb):
         parser.add_argument('package', nargs='?', help='only this package')
         parser.add_argument('--format', choices=('text', 'json'), default='text',
                             help='output format (default: text)')
+        parser.add_argument('--kind', choices=('node', 'interface'),
+                            help='only node definitions (legacy ones included) or only interface '
+                                 'definitions (default: both)')
 
     def main(self, args: argparse.Namespace) -> int:
         import json
@@ -24,7 +27,7 @@ class ListVerb(Verb):
 
         from nodl_schema.index.registry import list_registrations
 
-        found = list_registrations(args.package)
+        found = list_registrations(args.package, kind=args.kind)
         if args.format == 'json':
             sys.stdout.write(json.dumps([r._asdict() for r in found], indent=2) + '\n')
             return EXIT_OK
@@ -32,7 +35,8 @@ class ListVerb(Verb):
             sys.stdout.write(f'{r.package:<24} {r.kind:<12} {r.name:<28} {r.file}\n')
         if not found:
             where = f" for package '{args.package}'" if args.package else ''
+            what = f'{args.kind} definitions' if args.kind else 'NoDL definitions'
             prefixes = os.environ.get('AMENT_PREFIX_PATH', '') or 'empty'
-            print(f'no NoDL definitions registered{where} (AMENT_PREFIX_PATH: {prefixes})',
+            print(f'no {what} registered{where} (AMENT_PREFIX_PATH: {prefixes})',
                   file=sys.stderr)
         return EXIT_OK

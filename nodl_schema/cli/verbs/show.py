@@ -22,9 +22,9 @@ class ShowVerb(Verb):
     """Print a node's whole interface (base + mixins + main resolved) as an interface definition."""
 
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
-        parser.add_argument('target', nargs='+', metavar='FILE | PACKAGE EXECUTABLE',
-                            help='a NoDL file, or a package and one of its executables '
-                                 '(looked up in the ament index)'
+        parser.add_argument('target', nargs='+', metavar='FILE | PACKAGE EXECUTABLE | nodl://PACKAGE/NAME',
+                            help='a NoDL file, a package and one of its executables, or a '
+                                 'registered interface definition (looked up in the ament index)'
                             ).completer = _complete_definition  # type: ignore[attr-defined]
         parser.add_argument('--format', choices=('yaml', 'json'), default='yaml',
                             help='output format (default: yaml)')
@@ -48,7 +48,11 @@ class ShowVerb(Verb):
         if problem is not None:
             print(f'nodl show: error: {problem}', file=sys.stderr)
             return EXIT_USAGE
-        if len(args.target) == 1:
+        if len(args.target) == 1 and args.target[0].startswith('nodl://'):
+            from nodl_schema.show import show_reference
+
+            shown = show_reference(args.target[0])
+        elif len(args.target) == 1:
             if not os.path.isfile(args.target[0]):
                 what = 'is a directory' if os.path.isdir(args.target[0]) else 'no such file'
                 print(f'nodl show: error: {args.target[0]}: {what} (to look up an installed '
