@@ -115,24 +115,6 @@ def show_reference(reference: str) -> Shown:
                  report.diagnostics, resolved.file)
 
 
-def show_reference(reference: str) -> Shown:
-    """The registered interface definition ``nodl://<package>/<name>``, as ``show`` prints it."""
-    from nodl_schema.composition.ament_resolver import AmentIndexResolver
-    from nodl_schema.composition.resolvers import ResolutionError, ResolveContext
-
-    try:
-        resolved = AmentIndexResolver().resolve(reference, ResolveContext(None, None))
-    except ResolutionError as exc:
-        searched = f' (searched: {", ".join(exc.searched)})' if exc.searched else ''
-        return Shown(None, [Diagnostic(Severity.ERROR, f"cannot resolve '{reference}': "
-                                       f'{exc.message}{searched}', (), reference)], reference)
-    report = check_source(resolved.text, kind=Kind.INTERFACE, file=resolved.file)
-    if report.has_errors():
-        return Shown(None, report.diagnostics, resolved.file)
-    return Shown(_stamp_all(report.model(), reference),  # type: ignore[arg-type]
-                 report.diagnostics, resolved.file)
-
-
 def _entity_blocks(iface: Interface) -> list[tuple[str, list[tuple[str | None, Any]]]]:
     blocks: list[tuple[str, list[tuple[str | None, Any]]]] = []
     if iface.parameters:
