@@ -49,6 +49,15 @@ _EXPORTS = {
     'ComposedNode': 'nodl_schema.composition',
     'load_schema': 'nodl_schema.schemas',
     'bundled_schema': 'nodl_schema.schemas',
+    'expand_name': 'nodl_schema.naming',
+    'resolve_name': 'nodl_schema.naming',
+    'node_fqn': 'nodl_schema.naming',
+    'parse_remap_rules': 'nodl_schema.naming',
+    'RemapRule': 'nodl_schema.naming',
+    'NodeNames': 'nodl_schema.naming',
+    'InvalidNameError': 'nodl_schema.naming',
+    'InvalidRemapRuleError': 'nodl_schema.naming',
+    'check_qos_compatible': 'nodl_schema.qos_compat',
 }
 
 #: The public names, written out for type checkers and readers; a test keeps it equal
@@ -58,7 +67,9 @@ __all__ = ['ActionEndpoint', 'Base', 'ComposedNode', 'Diagnostic', 'Document', '
     'Severity', 'TopicEndpoint', 'ValidationError', 'bundled_schema', 'check_source',
     'compose', 'detect_kind', 'dump_nodl', 'load_interface', 'load_node', 'load_nodl',
     'load_parameter', 'load_schema', 'model_from_data', 'validate_interface', 'validate_node',
-    'validate_parameter']
+    'validate_parameter',
+    'InvalidNameError', 'InvalidRemapRuleError', 'NodeNames', 'RemapRule', 'check_qos_compatible',
+    'expand_name', 'node_fqn', 'parse_remap_rules', 'resolve_name']
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from nodl_schema.composition.compose import ComposedNode, compose
@@ -69,6 +80,9 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from nodl_schema.model import (
         ActionEndpoint, Base, Interface, Node, ParameterDefinition, QoSProfile, ServiceEndpoint,
         TopicEndpoint)
+    from nodl_schema.naming import (InvalidNameError, InvalidRemapRuleError, NodeNames, RemapRule,
+                                    expand_name, node_fqn, parse_remap_rules, resolve_name)
+    from nodl_schema.qos_compat import check_qos_compatible
     from nodl_schema.schemas import bundled_schema, load_schema
     from nodl_schema.validation.kinds import Kind, detect_kind
 
