@@ -105,3 +105,216 @@ def test_relativize_then_expand_gives_the_name_back(name: str, namespace: str) -
     short = relativize(name, 'driver', namespace)
     assert expand(short, 'driver', namespace) == name
     assert len(short) <= len(name)
+
+
+# -- expand_name: rcl's expansion with rcl's validation --------------------------------------
+
+from nodl_schema.naming import (  # noqa: E402
+    InvalidNameError, InvalidRemapRuleError, NodeNames, RemapRule, expand_name, full_name_error,
+    join_name, namespace_error, node_fqn, node_name_after_remaps, node_name_error,
+    node_namespace_after_remaps, parse_remap_rule, parse_remap_rules, resolve_name, split_name,
+    topic_name_error)
+
+
+@pytest.mark.parametrize('name, namespace', list(itertools.product(_NAMES, _NAMESPACES)))
+def test_expand_name_agrees_with_rcl(name: str, namespace: str) -> None:
+    from rclpy.expand_topic_name import expand_topic_name
+
+    assert expand_name(name, 'drv', namespace) == expand_topic_name(name, 'drv', namespace)
+
+
+@pytest.mark.parametrize('name, node_name, namespace', [
+    ('', 'drv', '/'), ('a b', 'drv', '/'), ('x/', 'drv', '/'), ('1x', 'drv', '/'),
+    ('a/1b', 'drv', '/'), ('~xy', 'drv', '/'), ('a/~', 'drv', '/'), ('{foo}', 'drv', '/'),
+    ('{1a}', 'drv', '/'), ('{a', 'drv', '/'), ('a}', 'drv', '/'), ('{a/b}', 'drv', '/'),
+    ('{}', 'drv', '/'), ('{a{b}}', 'drv', '/'), ('x', '1drv', '/'), ('x', 'd-rv', '/'),
+    ('x', '', '/'), ('x', 'drv', '/a/'), ('x', 'drv', '/a//b'), ('x', 'drv', '/1a'),
+    ('x', 'drv', '/a b'),
+])
+def test_expand_name_refuses_what_rcl_refuses_with_its_reason(name: str, node_name: str,
+                                                              namespace: str) -> None:
+    from rclpy.expand_topic_name import expand_topic_name
+
+    with pytest.raises(ValueError) as by_rcl:
+        expand_topic_name(name, node_name, namespace)
+    with pytest.raises(InvalidNameError) as ours:
+        expand_name(name, node_name, namespace)
+    assert ours.value.reason in str(by_rcl.value)
+    assert str(ours.value).startswith(f"{ours.value.what} '{ours.value.name}' is invalid: ")
+
+
+def test_expand_name_takes_the_namespace_as_a_node_does() -> None:
+    # rcl_node_init: '' is '/', a relative namespace gets its leading '/'
+    assert expand_name('x', 'drv', '') == '/x'
+    assert expand_name('~/x', 'drv', 'a/b') == '/a/b/drv/x'
+
+
+@pytest.mark.parametrize('name', ['/x', '/a/b_c/d', '/_x', '/x1/y2'])
+def test_full_names_that_rmw_accepts(name: str) -> None:
+    from rclpy.validate_full_topic_name import validate_full_topic_name
+
+    assert validate_full_topic_name(name) and full_name_error(name) is None
+
+
+@pytest.mark.parametrize('name', ['', 'x', '/x/', '//x', '/a//b', '/1a', '/a/1b', '/a-b', '/~',
+                                  '/{x}', '/' + 'x' * 300])
+def test_full_names_that_rmw_refuses(name: str) -> None:
+    from rclpy.exceptions import InvalidTopicNameException
+    from rclpy.validate_full_topic_name import validate_full_topic_name
+
+    with pytest.raises(InvalidTopicNameException) as by_rmw:
+        validate_full_topic_name(name)
+    problem = full_name_error(name)
+    # the same rule (rmw prints its length limit as the macro's text, '255U - 8U')
+    assert problem is not None and problem.split(',')[0].split("'")[0] in str(by_rmw.value)
+
+
+@pytest.mark.parametrize('namespace', ['/', '/a', '/a/b', '', 'a', '/a/', '//', '/1', '/a b'])
+def test_namespaces_as_rmw_validates_them(namespace: str) -> None:
+    from rclpy.exceptions import InvalidNamespaceException
+    from rclpy.validate_namespace import validate_namespace
+
+    try:
+        validate_namespace(namespace)
+    except InvalidNamespaceException as exc:
+        problem = namespace_error(namespace)
+        assert problem is not None and problem.split(',')[0] in str(exc)
+    else:
+        assert namespace_error(namespace) is None
+
+
+@pytest.mark.parametrize('node_name', ['drv', '_d', 'd1', '', '1d', 'd-x', 'd/x', 'x' * 256])
+def test_node_names_as_rmw_validates_them(node_name: str) -> None:
+    from rclpy.exceptions import InvalidNodeNameException
+    from rclpy.validate_node_name import validate_node_name
+
+    try:
+        validate_node_name(node_name)
+    except InvalidNodeNameException as exc:
+        problem = node_name_error(node_name)
+        assert problem is not None and problem.split("'")[0] in str(exc)
+    else:
+        assert node_name_error(node_name) is None
+
+
+def test_tilde_quirk_of_rcl_is_kept() -> None:
+    # rcl's check skips the last character, so '~x' passes (and expands oddly); '~xy' does not
+    assert topic_name_error('~x') is None
+    assert expand_name('~x', 'drv', '/ns') == '/ns/drvx'
+    assert topic_name_error('~xy') is not None
+
+
+# -- remapping rules ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize('text, rule', [
+    ('a:=b', RemapRule('name', 'a', 'b', None, 'a:=b')),
+    ('/a/b:=~/c', RemapRule('name', '/a/b', '~/c', None, '/a/b:=~/c')),
+    ('~/x:=/y', RemapRule('name', '~/x', '/y', None, '~/x:=/y')),
+    ('drv:a:=b', RemapRule('name', 'a', 'b', 'drv', 'drv:a:=b')),
+    ('rostopic://a:=b', RemapRule('topic', 'a', 'b', None, 'rostopic://a:=b')),
+    ('drv:rosservice://a:=b', RemapRule('service', 'a', 'b', 'drv', 'drv:rosservice://a:=b')),
+    ('__ns:=/x/y', RemapRule('namespace', None, '/x/y', None, '__ns:=/x/y')),
+    ('__ns:=/', RemapRule('namespace', None, '/', None, '__ns:=/')),
+    ('drv:__node:=n', RemapRule('node', None, 'n', 'drv', 'drv:__node:=n')),
+    ('__name:=n', RemapRule('node', None, 'n', None, '__name:=n')),
+    ('ros:a:=b', RemapRule('name', 'a', 'b', 'ros', 'ros:a:=b')),
+    ('rostopic:a:=b', RemapRule('name', 'a', 'b', 'rostopic', 'rostopic:a:=b')),
+    ('a_b/_c:=d_', RemapRule('name', 'a_b/_c', 'd_', None, 'a_b/_c:=d_')),
+])
+def test_parse_remap_rule(text: str, rule: RemapRule) -> None:
+    assert parse_remap_rule(text) == rule
+    assert str(rule) == text
+
+
+def test_a_rule_built_in_code_prints_as_a_rule() -> None:
+    assert str(RemapRule('service', 'a', 'b', 'drv')) == 'drv:rosservice://a:=b'
+    assert str(RemapRule('namespace', None, '/x')) == '__ns:=/x'
+    assert str(RemapRule('node', None, 'n', 'drv')) == 'drv:__node:=n'
+    assert RemapRule('name', 'a', 'b', 'drv').applies_to('drv')
+    assert not RemapRule('name', 'a', 'b', 'drv').applies_to('other')
+    assert RemapRule('name', 'a', 'b').applies_to('anyone')
+
+
+def test_parse_remap_rules_from_a_command_line() -> None:
+    argv = ['prog', 'x:=old', '--ros-args', '-p', 'p:=1', '--params-file', 'f.yaml', '-r', 'a:=b',
+            '--log-level', 'debug', '--enable-rosout-logs', '--remap', '__ns:=/n', '-e', '/e',
+            '--', 'not_a_rule', 'y:=old', '--ros-args', '-r', 'c:=d']
+    assert [str(r) for r in parse_remap_rules(argv)] == ['x:=old', 'a:=b', '__ns:=/n', 'y:=old',
+                                                          'c:=d']
+    # a parameter value that looks like a rule is not one
+    assert parse_remap_rules(['--ros-args', '-p', 'a:=b']) == []
+
+
+def test_parse_remap_rules_passes_rules_through_and_takes_none() -> None:
+    rule = RemapRule('name', 'a', 'b')
+    assert parse_remap_rules([rule, 'c:=d']) == [rule, parse_remap_rule('c:=d')]
+    assert parse_remap_rules(None) == [] and parse_remap_rules([]) == []
+
+
+@pytest.mark.parametrize('args, message', [
+    (['--ros-args', '-r'], '-r at the end of the arguments has no rule'),
+    (['--ros-args', '--remap', 'a'], "invalid remapping rule 'a'"),
+    (['a'], "invalid remapping rule 'a'"),
+    (['a*:=b'], 'wildcards are not implemented'),
+    (['a:=\\1'], 'backreferences are not implemented'),
+    (['__ns:=x'], 'must be fully qualified'),
+    (['__x:=y'], 'only __ns, __node and __name'),
+])
+def test_malformed_rules_say_what_is_expected(args: list[str], message: str) -> None:
+    with pytest.raises(InvalidRemapRuleError, match=message.replace('\\', '\\\\')) as info:
+        parse_remap_rules(args)
+    assert isinstance(info.value, ValueError)
+    assert 'expected [NODE:]FROM:=TO' in str(info.value)
+
+
+# -- the node's own name and resolution --------------------------------------------------------
+
+
+def test_the_issue_example() -> None:
+    """__ns and __node change the node's own name; they are not topic remaps."""
+    rules = ['__ns:=/robot', '__node:=foo']
+    assert node_fqn('driver', '/ns', rules) == '/robot/foo'
+    assert resolve_name('scan', 'driver', '/ns', rules) == '/robot/scan'
+    assert resolve_name('~/scan', 'driver', '/ns', rules) == '/robot/foo/scan'
+    assert resolve_name('__ns', 'driver', '/ns', rules) == '/robot/__ns'
+
+
+def test_ns_rule_scope_is_the_renamed_node() -> None:
+    rules = ['drv:__node:=foo', 'drv:__ns:=/not_me', 'foo:__ns:=/me']
+    assert node_name_after_remaps('drv', rules) == 'foo'
+    assert node_namespace_after_remaps('drv', '/ns', rules) == '/me'
+    assert node_namespace_after_remaps('other', '', rules) == '/'
+
+
+def test_node_names_from_a_running_node_resolve_without_renaming_again() -> None:
+    # a:__node:=b, b:__node:=c makes node 'a' into 'b' (one rule applies); the running 'b'
+    # resolves with its final name
+    rules = tuple(parse_remap_rules(['a:__node:=b', 'b:__node:=c', 'b:x:=y']))
+    assert node_fqn('a', '/', rules) == '/b'
+    running = NodeNames('b', '/', rules)
+    assert running.fqn == '/b' and running.resolve('x') == '/y'
+    assert NodeNames.create('a', '/', rules) == running
+
+
+def test_rule_for_names_the_rule_that_applies() -> None:
+    names = NodeNames.create('drv', '/ns', ['rostopic://a:=t', 'a:=both'])
+    rule = names.rule_for('a')
+    assert rule is not None and str(rule) == 'rostopic://a:=t'
+    rule = names.rule_for('a', service=True)
+    assert rule is not None and str(rule) == 'a:=both'
+    assert names.rule_for('b') is None
+
+
+def test_resolve_name_refuses_a_name_rmw_would_refuse() -> None:
+    with pytest.raises(InvalidNameError, match="resolved name '//x' is invalid: .*repeated '/'"):
+        resolve_name('{ns}/x', 'drv', '/')
+    with pytest.raises(InvalidNameError, match="node namespace '/a/' is invalid"):
+        node_fqn('drv', '/ns', ['__ns:=/a/'])
+
+
+@pytest.mark.parametrize('namespace, name, fqn', [('/', 'n', '/n'), ('/a', 'n', '/a/n'),
+                                                   ('/a/b', 'n', '/a/b/n'), ('', 'n', '/n')])
+def test_join_and_split(namespace: str, name: str, fqn: str) -> None:
+    assert join_name(namespace, name) == fqn
+    assert split_name(fqn) == (namespace or '/', name)
