@@ -605,3 +605,28 @@ def test_reports_of_a_synthetic_check_match_golden(composed, golden) -> None:
     golden.check(format_check_text(result, verbose=True), expected / 'drive_check_verbose.txt')
     golden.check(format_check_json(result), expected / 'drive_check.json')
     golden.check(format_check_junit(result), expected / 'drive_check.junit.xml')
+
+
+# -- remaps through the naming module (rcl's rules) ------------------------------------------
+
+
+def test_parse_remaps_node_rules_are_not_topic_remaps() -> None:
+    """The issue's example: __ns and __node change the node's own name."""
+    assert parse_remaps(['__ns:=/robot', '__node:=foo'], 'driver', '/ns') == {}
+    # the other rules then apply to the renamed node, in its new namespace
+    assert parse_remaps(['__ns:=/robot', '__node:=foo', 'foo:~/x:=y', 'driver:a:=b'],
+                        'driver', '/ns') == {'/robot/foo/x': '/robot/y'}
+
+
+def test_compare_with_node_names_keeps_topic_and_service_rules_apart(composed) -> None:
+    from nodl_schema.naming import NodeNames, parse_remap_rules
+
+    observed = conforming()
+    _endpoint(observed, 'service_servers', '/base/drive/reset_odometry').name = '/base/reset'
+    _endpoint(observed, 'action_servers', '/base/drive/dock').name = '/base/docking'
+    rules = tuple(parse_remap_rules(['rostopic://~/reset_odometry:=not_for_services',
+                                     'rosservice://~/reset_odometry:=reset', '~/dock:=docking']))
+    assert conforms(compare(composed, observed, NodeNames(NAME, NAMESPACE, rules)))
+    # the same rules as a plain mapping cannot tell services from topics
+    assert not conforms(compare(composed, observed, parse_remaps([str(r) for r in rules],
+                                                                 NAME, NAMESPACE)))
