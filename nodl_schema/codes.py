@@ -78,6 +78,7 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL216': ('warning', 'a parameter or endpoint has no description'),
     'NODL217': ('error', 'invalid mixin reference'),
     'NODL218': ('warning', 'a mixin is listed twice'),
+    'NODL230': ('warning', 'QoS history KEEP_ALL with a depth: the middleware ignores the depth'),
     # -- NODL3xx: composition ----------------------------------------------
     'NODL301': ('error', 'a mixin reference cannot be resolved'),
     'NODL302': ('error', 'a mixin is not a valid interface definition'),

@@ -130,9 +130,30 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
                   early + validate_data(parsed.data, detected), parsed)
 
 
+_PATH_SUFFIXES = ('.yaml', '.yml', '.json', '.xml')
+
+
+def _looks_like_a_path(source: Source) -> bool:
+    """A one-line str that names a file (a str is read as document text, never as a path)."""
+    if not isinstance(source, str):
+        return False
+    text = source.strip()
+    if not text or '\n' in text or ': ' in text or text.startswith(('{', '[')):
+        return False
+    import os
+
+    return text.lower().endswith(_PATH_SUFFIXES) or os.path.isfile(text)
+
+
 def _load(source: Source, kind: Kind | None, strict: bool, file: str | None) -> Document:
     report = check_source(source, kind=kind, file=file)
     if report.has_errors(strict):
+        if _looks_like_a_path(source):
+            text = str(source).strip()
+            raise ValidationError([Diagnostic(
+                Severity.ERROR, f'{text!r} was given as a str, which is read as the document '
+                f'text itself; to load the file, pass a path: pathlib.Path({text!r})', (),
+                file or '<string>', 1, 1, code='NODL011')])
         raise ValidationError(report.diagnostics)
     return report.model()
 
@@ -195,9 +216,20 @@ def model_from_data(data: dict[str, Any]) -> Document:
     return document
 
 
-def dump_nodl(doc: Union[Document, dict[str, Any]], format: str = 'yaml') -> str:
-    """Serialize a document (model or plain dict) as ``yaml`` or ``json`` text."""
+def dump_nodl(doc: Union[Document, dict[str, Any]], format: str = 'yaml', *,
+              validate: bool = True) -> str:
+    """Serialize a document (model or plain dict) as ``yaml`` or ``json`` text.
+
+    The document is validated first: one with errors is refused with
+    :class:`ValidationError` (what is written always loads again).
+    ``validate=False`` skips that, for callers that report the errors of
+    the text themselves.
+    """
+    if format not in ('yaml', 'json'):
+        raise ValueError(f"unsupported format {format!r}; expected 'yaml' or 'json'")
     data = doc if isinstance(doc, dict) else doc.to_dict()
+    if validate:
+        _validate(data, detect_kind(data))
     if format == 'json':
         import json
 

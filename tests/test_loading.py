@@ -505,3 +505,17 @@ def test_public_names() -> None:
         assert getattr(nodl_schema, name) is not None
     with pytest.raises(AttributeError):
         nodl_schema.no_such_name  # noqa: B018
+
+
+def test_dump_refuses_an_invalid_document() -> None:
+    with pytest.raises(ValidationError) as caught:
+        dump_nodl(ParameterDefinition('int', default_value='three'))
+    assert 'must be an integer' in str(caught.value)
+    assert dump_nodl({'type': 'int', 'default_value': 'x'}, validate=False)
+
+
+def test_a_path_given_as_str_says_to_pass_a_path() -> None:
+    with pytest.raises(ValidationError) as caught:
+        load_nodl('examples/laser_driver.nodl.yaml')
+    [error] = caught.value.diagnostics
+    assert "pathlib.Path('examples/laser_driver.nodl.yaml')" in error.message

@@ -166,3 +166,14 @@ def test_check_interface_prefixes_paths() -> None:
                     ('mixins', 3), out)
     assert [d.path for d in out] == [('mixins', 3, 'publishers', 1, 'name')]
     assert 'already declared at mixins[3].publishers[0]' in out[0].message
+
+
+def test_keep_all_with_a_depth_is_a_warning() -> None:
+    qos = {'history': 'KEEP_ALL', 'depth': 5, 'reliability': 'RELIABLE'}
+    data = {'nodl_version': 2, 'publishers': [
+        {'name': 'a', 'type': 'std_msgs/msg/String', 'description': 'x', 'qos': qos}]}
+    found = [d for d in validate_data(data, Kind.INTERFACE) if d.code == 'NODL230']
+    assert [(d.severity, d.path) for d in found] == [
+        (Severity.WARNING, ('publishers', 0, 'qos', 'depth'))]
+    del qos['depth']
+    assert not [d for d in validate_data(data, Kind.INTERFACE) if d.code == 'NODL230']

@@ -654,3 +654,22 @@ def test_all_problems_of_a_parameter_are_reported_at_once() -> None:
     assert paths == sorted(str(p) for p in [
         ('default_value',), ('read_only',), ('validation', 'bounds<>'),
         ('validation', 'not_empty<>'), ('validation', 'bad-name'), ('validation', 'gt')])
+
+
+@pytest.mark.parametrize('param', [
+    {'type': 'int', 'default_value': 2**63},
+    {'type': 'int', 'default_value': -2**63 - 1},
+    {'type': 'int_array', 'default_value': [0, 2**63]},
+])
+def test_int_defaults_outside_int64_are_errors(param: dict) -> None:
+    from nodl_schema.validation import Kind, validate_data
+
+    errors = [d for d in validate_data(param, Kind.PARAMETER) if d.severity == 'error']
+    assert len(errors) == 1 and 'int64' in errors[0].message
+
+
+def test_int64_limits_are_accepted() -> None:
+    from nodl_schema.validation import Kind, validate_data
+
+    for value in (2**63 - 1, -2**63):
+        assert not validate_data({'type': 'int', 'default_value': value}, Kind.PARAMETER)

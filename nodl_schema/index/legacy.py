@@ -101,7 +101,7 @@ def compose_legacy(registration: Registration,  # type: ignore[no-untyped-def]
     converted, diagnostics = _converted(registration)
     if converted is None or not converted.ok:
         return None, diagnostics
-    report = check_source(dump_nodl(converted.data, 'json'), kind=Kind.NODE,
+    report = check_source(dump_nodl(converted.data, 'json', validate=False), kind=Kind.NODE,
                           file=f'{registration.file} ({registration.name}, converted)')
     composed, more = compose_report(report, client_library=client_library)
     if composed is not None:

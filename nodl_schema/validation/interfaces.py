@@ -48,6 +48,7 @@ def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
                 continue
             name = entry.get('name')
             entry_path = path + (section, index)
+            _check_qos(entry.get('qos'), entry_path + ('qos',), out)
             if isinstance(name, str):
                 if name in first_index:
                     earlier = format_path(path + (section, first_index[name]))
@@ -60,3 +61,11 @@ def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
                 label = f' {show(name)}' if isinstance(name, str) else ''
                 out.append(Diagnostic(Severity.WARNING, f'{word}{label} {NO_DESCRIPTION}',
                                       entry_path, anchor='key', code='NODL216'))
+
+
+def _check_qos(qos: Any, path: DocPath, out: list[Diagnostic]) -> None:
+    """QoS settings that are valid but do not do what they say."""
+    if isinstance(qos, dict) and qos.get('history') == 'KEEP_ALL' and 'depth' in qos:
+        out.append(Diagnostic(Severity.WARNING, 'depth has no effect with history KEEP_ALL (the '
+                              'middleware keeps every sample); remove it, or use KEEP_LAST',
+                              path + ('depth',), anchor='key', code='NODL230'))

@@ -20,7 +20,7 @@ INCLUDE_KEYS = ('include', 'includes')
 KIND_REASONS = {
     Kind.PARAMETER: 'it has no nodl_version',
     Kind.INTERFACE: 'it has nodl_version and no base, main or mixins',
-    Kind.NODE: 'it has base, main or mixins (or include, in the reference dialect)',
+    Kind.NODE: 'it has base, main or mixins',
 }
 
 

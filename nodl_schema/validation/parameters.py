@@ -193,6 +193,11 @@ def _check_default(value: Any, spec: TypeSpec, path: DocPath, out: list[Diagnost
                                   f'{_ELEMENT_WORDS[spec.element]}, not {described(item)}',
                                   path + (index,), 'NODL209'))
                 ok = False
+            elif spec.element == 'int' and not _in_int64(item):
+                out.append(_error(f'element {index} of default_value is {item}, outside the int64 '
+                                  f'range [{INT64_MIN}, {INT64_MAX}] a ROS 2 integer parameter holds',
+                                  path + (index,), 'NODL209'))
+                ok = False
         if spec.size is not None and len(value) > spec.size:
             out.append(_error(f'default_value has {len(value)} elements; {spec.name} holds at most '
                               f'{spec.size}', path, 'NODL209'))
@@ -202,11 +207,24 @@ def _check_default(value: Any, spec: TypeSpec, path: DocPath, out: list[Diagnost
         out.append(_error(f'default_value of {article(spec.name)} parameter must be {_expected(spec)}, '
                           f'not {described(value)}', path, 'NODL209'))
         return False
+    if spec.element == 'int' and not _in_int64(value):
+        out.append(_error(f'default_value {value} is outside the int64 range [{INT64_MIN}, '
+                          f'{INT64_MAX}] a ROS 2 integer parameter holds', path, 'NODL209'))
+        return False
     if spec.size is not None and len(value) > spec.size:
         out.append(_error(f'default_value has {len(value)} characters; {spec.name} holds at most '
                           f'{spec.size}', path, 'NODL209'))
         return False
     return True
+
+
+#: The range of a ROS 2 integer parameter (rcl_interfaces ParameterValue.integer_value is int64).
+INT64_MIN = -2**63
+INT64_MAX = 2**63 - 1
+
+
+def _in_int64(value: Any) -> bool:
+    return INT64_MIN <= value <= INT64_MAX
 
 
 def _expected(spec: TypeSpec) -> str:
