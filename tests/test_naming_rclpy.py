@@ -135,3 +135,37 @@ def test_nodes_rclpy_refuses_are_refused(node_name: str, namespace: str, args: l
         _with_node(node_name, namespace, _argv(args), lambda node: None)
     with pytest.raises(InvalidNameError, match=' is invalid: '):
         node_fqn(node_name, namespace, args)
+
+
+@pytest.mark.parametrize('rules, expected', [
+    (['plan:=moved'], '/ns/moved'),
+    (['rostopic://plan:=t'], '/ns/t'),
+    (['rosservice://plan:=s'], '/ns/plan'),
+    (['rosservice://plan:=s', 'rostopic://plan:=t'], '/ns/t'),
+    (['__node:=renamed', '~/plan:=x'], '/ns/plan'),
+])
+def test_an_action_name_resolves_as_a_topic_name(rules: list[str], expected: str) -> None:
+    """rcl_action resolves the action's name as a topic; NodeNames.resolve does the same."""
+    import os
+    import time
+
+    from rclpy.action import ActionServer
+    from test_msgs.action import Fibonacci
+
+    node_name = f'act_{os.getpid()}_{abs(hash(tuple(rules))) % 10**6}'
+
+    def served(node: Any) -> list[str]:
+        ActionServer(node, Fibonacci, 'plan', lambda goal: None)
+        final = node.get_name()
+        deadline = time.monotonic() + 10.0
+        while time.monotonic() < deadline:
+            names = [n for n, _ in node.get_service_names_and_types_by_node(final, '/ns')
+                     if '/_action/' in n]
+            if len(names) == 3:
+                return names
+            time.sleep(0.02)
+        raise AssertionError('the action server did not appear in the graph within 10 s')
+
+    names = _with_node(node_name, '/ns', _argv(rules), served)
+    assert {n.partition('/_action/')[0] for n in names} == {expected}
+    assert resolve_name('plan', node_name, '/ns', rules) == expected
