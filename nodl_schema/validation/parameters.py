@@ -224,7 +224,7 @@ INT64_MAX = 2**63 - 1
 
 
 def _in_int64(value: Any) -> bool:
-    return INT64_MIN <= value <= INT64_MAX
+    return bool(INT64_MIN <= value <= INT64_MAX)
 
 
 def _expected(spec: TypeSpec) -> str:
