@@ -28,6 +28,7 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Any, Mapping
 
+    from nodl_schema.dialects import Adapted
     from nodl_schema.model import ParameterDefinition
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
@@ -93,7 +94,7 @@ class GenParamReading:
     def original_path(self, path: DocPath) -> DocPath:
         """Where ``path`` of the interface definition is in the original file."""
         if len(path) >= 2 and path[0] == 'parameters' and path[1] in self._origins:
-            return self._origins[path[1]] + path[2:]  # type: ignore[index]
+            return self._origins[path[1]] + path[2:]
         return (self.namespace,) if self.namespace else ()
 
 
@@ -191,7 +192,7 @@ def remapped(parsed: ParsedDocument, reading: GenParamReading) -> ParsedDocument
     return _RemappedDocument(parsed, reading)
 
 
-def adapt_genparamlib(parsed: ParsedDocument):  # type: ignore[no-untyped-def]
+def adapt_genparamlib(parsed: ParsedDocument) -> Adapted:
     """The loader's view: not a NoDL document, with one error that says what it is."""
     from nodl_schema.dialects import GENPARAMLIB, Adapted
 

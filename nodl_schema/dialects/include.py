@@ -24,6 +24,8 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Any
 
+    from nodl_schema.dialects import Adapted
+
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.frontends.yaml_json import ParsedDocument
 from nodl_schema.validation.kinds import INCLUDE_KEYS, NODE_KEYS
@@ -200,7 +202,7 @@ def remapped(parsed: ParsedDocument, reading: IncludeReading) -> ParsedDocument:
     return _RemappedDocument(parsed, reading)
 
 
-def adapt_include(parsed: ParsedDocument):  # type: ignore[no-untyped-def]
+def adapt_include(parsed: ParsedDocument) -> Adapted:
     """The loader's view of an include-dialect document (an :class:`~nodl_schema.dialects.Adapted`)."""
     from nodl_schema.dialects import INCLUDE, Adapted
 

@@ -52,7 +52,8 @@ class ExportVerb(Verb):
                 print(f'nodl export: error: {path}: {exc.strerror or exc}', file=sys.stderr)
                 return EXIT_USAGE
         elif len(args.definition) == 2:
-            source = parameters_of_registered(*args.definition, with_mixins=args.with_mixins)
+            package, executable = args.definition
+            source = parameters_of_registered(package, executable, with_mixins=args.with_mixins)
         else:
             print('nodl export: error: expected FILE or PACKAGE EXECUTABLE', file=sys.stderr)
             return EXIT_USAGE
