@@ -26,7 +26,20 @@ code listed here is used).
 
 from __future__ import annotations
 
-__all__ = ['CODES', 'explain', 'default_severity', 'is_code']
+__all__ = ['CODES', 'RANGES', 'explain', 'default_severity', 'is_code', 'close_codes', 'catalogue_markdown']
+
+#: The stage of each range of codes (``'1'`` covers NODL100-NODL199).
+RANGES: dict[str, str] = {
+    '0': 'Reading files: I/O, encodings, YAML/JSON/XML syntax, limits',
+    '1': 'Structure (the JSON Schemas): keys, types, required values',
+    '2': 'Semantic rules: ROS names, interface types, parameters, validators, duplicates, descriptions',
+    '3': 'Composition: bases, mixins, overrides, client libraries',
+    '4': 'Live: drift between a definition and a running node',
+    '5': 'System analysis: launch files, instances, connections',
+    '6': 'SROS 2 policies',
+    '7': 'Parameter files and code generation',
+    '8': 'Dialects and conversion: legacy XML, include, generate_parameter_library',
+}
 
 #: code -> (default severity, one-line explanation).
 CODES: dict[str, tuple[str, str]] = {
@@ -144,3 +157,50 @@ def default_severity(code: str) -> str:
 def is_code(text: str) -> bool:
     """True if ``text`` is a catalogued code."""
     return text in CODES
+
+
+def close_codes(text: str) -> list[str]:
+    """Catalogued codes that look like ``text`` (for a "did you mean" hint)."""
+    import difflib
+
+    return difflib.get_close_matches(text.upper(), list(CODES), n=3, cutoff=0.6)
+
+
+def catalogue_markdown() -> str:
+    """The user documentation of every code (``docs/diagnostics.md`` is this text)."""
+    out = [
+        '# Diagnostic codes',
+        '',
+        '<!-- Generated from nodl_schema/codes.py; tests/test_codes.py keeps them equal. -->',
+        '',
+        'Every problem the toolkit reports carries a stable code, printed at the end of the',
+        'line (`file:4:7: error: ... [base] [NODL104]`) and in the `code` field of the JSON and',
+        'SARIF output. A code keeps its meaning from release to release.',
+        '',
+        'Silence a code with `--ignore CODE` or make it fail with `--error CODE` (both',
+        'repeatable, also comma-separated), or for a whole tree in a `nodl.toml`, or a',
+        '`[tool.nodl]` table of `pyproject.toml`, found upward from the checked file:',
+        '',
+        '```toml',
+        '[tool.nodl]            # in nodl.toml, the same keys at the top level',
+        'ignore = ["NODL216"]   # no warning for missing descriptions',
+        'error = ["NODL205"]    # short type names fail',
+        '```',
+        '',
+        'Options on the command line win over the files. A file can also silence warnings for',
+        'itself with a first-line comment `# nodl: ignore=NODL216` (what `nodl describe` and',
+        '`nodl convert` write, as they cannot know descriptions); the comment never silences',
+        'an error.',
+        '',
+        'The severity shown is the default one.',
+    ]
+    current = None
+    for code, (severity, explanation) in CODES.items():
+        stage = code[4]
+        if stage != current:
+            current = stage
+            out += ['', f'## NODL{stage}xx: {RANGES[stage]}', '', '| code | severity | meaning |',
+                    '| --- | --- | --- |']
+        escaped = explanation.replace('|', '\\|')
+        out.append(f'| {code} | {severity} | {escaped} |')
+    return '\n'.join(out) + '\n'

@@ -126,8 +126,14 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
             f'{article(detected)} definition ({KIND_REASONS[detected]})', (), text.file, 1, 1,
             code='NODL108')
         return Report(text.file, wanted, parsed.data, early + [mismatch], parsed)
-    return Report(text.file, detected, parsed.data,
-                  early + validate_data(parsed.data, detected), parsed)
+    diagnostics = early + validate_data(parsed.data, detected)
+    if diagnostics and text.text.startswith('#'):
+        # A leading '# nodl: ignore=CODE' comment silences warnings of those codes for this
+        # file (what describe and convert write for the descriptions they cannot know).
+        from nodl_schema.overrides import apply_directives
+
+        diagnostics = apply_directives(text.text, diagnostics)
+    return Report(text.file, detected, parsed.data, diagnostics, parsed)
 
 
 _PATH_SUFFIXES = ('.yaml', '.yml', '.json', '.xml')

@@ -51,6 +51,10 @@ def test_describe_node_to_a_file(nodes, tmp_path: Path) -> None:
     assert node.base == 'node'
     assert set(node.main.parameters) == {'frame_id', 'gain', 'joints', 'rate', 'verbose'}
     assert {p.name for p in node.main.publishers} == {'~/status', 'measurement', '/global_chatter'}
+    # A described file passes even --strict: its header silences 'has no description'.
+    check = nodl('validate', '--strict', str(out))
+    assert check.returncode == 0, check.stdout
+    assert check.stdout.endswith('1 file, 0 errors, 0 warnings\n'), check.stdout
 
 
 def test_describe_to_stdout_as_json_without_parameters(nodes) -> None:

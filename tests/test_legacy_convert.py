@@ -395,6 +395,12 @@ def test_render_converted_has_a_header() -> None:
         f'# Converted from {LEGACY / "role_attributes.nodl.xml"} by `nodl convert`',
         "# (legacy NoDL XML: node 'node_2', executable 'second', line 7)."]
     assert nodl_schema.load_node(text).main.action_servers[0].name == '/example_action'  # type: ignore[index]
+    # Legacy files have no descriptions: the header silences that warning, even with strict,
+    # but not the warnings that remain (a file without the directive has them).
+    assert text.splitlines()[2].startswith('# nodl: ignore=NODL216 ')
+    assert nodl_schema.check_source(text).diagnostics == []
+    assert any(d.code == 'NODL216' for d in nodl_schema.check_source(
+        text.replace('# nodl: ignore=NODL216', '# no directive')).diagnostics)
 
 
 def test_a_failed_write_names_the_output_and_keeps_what_was_written(tmp_path: Path) -> None:
@@ -404,3 +410,11 @@ def test_a_failed_write_names_the_output_and_keeps_what_was_written(tmp_path: Pa
     assert result.problem.startswith(f'cannot write {tmp_path / "second.nodl.yaml"}: ')
     assert result.written == [str(tmp_path / 'first.nodl.yaml')]
     assert (tmp_path / 'first.nodl.yaml').is_file()
+
+
+def test_convert_file_raises_the_documented_oserror_when_it_cannot_write(tmp_path: Path) -> None:
+    blocker = tmp_path / 'a_file'
+    blocker.write_text('not a directory', encoding='utf-8')
+    with pytest.raises(OSError) as info:  # not a private exception type
+        convert_file(LEGACY / 'role_attributes.nodl.xml', blocker / 'out')
+    assert type(info.value).__module__ == 'builtins'

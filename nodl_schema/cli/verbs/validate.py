@@ -23,8 +23,9 @@ class ValidateVerb(Verb):
                                  '*.nodl.yml, *.nodl.json) or - for standard input')
         parser.add_argument('--kind', choices=('parameter', 'interface', 'node'),
                             help='require this kind of document (default: detect it)')
-        parser.add_argument('--format', choices=('text', 'json'), default='text',
-                            help='how to print diagnostics (default: text)')
+        parser.add_argument('--format', choices=('text', 'json', 'sarif'), default='text',
+                            help='how to print diagnostics (default: text; sarif: SARIF 2.1.0 '
+                                 'for code scanning)')
         parser.add_argument('--strict', action='store_true',
                             help='treat warnings as errors')
         parser.add_argument('--resolve', action='store_true',
@@ -37,17 +38,26 @@ class ValidateVerb(Verb):
         parser.add_argument('-v', '--verbose', action='store_true',
                             help='also print informational diagnostics (e.g. which layer '
                                  'overrides which, with --resolve)')
+        from nodl_schema.cli.diagnostic_options import add_diagnostic_options
+
+        add_diagnostic_options(parser)
         parser.add_argument('--stderr', action='store_true',
                             help='print everything to standard error (for build systems, which '
                                  'show a failed step\'s stderr)')
 
     def main(self, args: argparse.Namespace) -> int:
         from nodl_schema.checking import failed, iter_check_paths
+        from nodl_schema.cli.diagnostic_options import DiagnosticPolicy, PolicyError
         from nodl_schema.cli.output import Progress
         from nodl_schema.diagnostics import Diagnostic, Severity
         from nodl_schema.reporting import Tally, format_json, format_text, plural, summary_line, without_info
         from nodl_schema.validation.kinds import Kind
 
+        try:
+            policy = DiagnosticPolicy(args, 'nodl validate')
+        except PolicyError as exc:
+            print(exc, file=sys.stderr)
+            return EXIT_USAGE
         tally = Tally()
         unreadable: list[Diagnostic] = []
         invalid = False
@@ -72,6 +82,12 @@ class ValidateVerb(Verb):
                 print(problem, file=sys.stderr)
                 sys.stderr.flush()
                 continue
+            try:  # --ignore / --error and the nodl.toml or [tool.nodl] found upward from the file
+                result.diagnostics = policy.apply(result.path, result.diagnostics)
+            except PolicyError as exc:
+                progress.clear()
+                print(exc, file=sys.stderr)
+                return EXIT_USAGE
             tally.files += 1
             tally.add(result.diagnostics)
             if failed(result, args.strict):
@@ -88,7 +104,12 @@ class ValidateVerb(Verb):
         summary = summary_line(tally)
         if unreadable:
             summary += ', ' + plural(len(unreadable), 'unreadable path')
-        if not text:
+        if args.format == 'sarif':
+            from nodl_schema.reporting.sarif import format_sarif
+
+            out.write(format_sarif(tally.diagnostics + unreadable))
+            print(summary, file=sys.stderr)
+        elif not text:
             out.write(format_json(tally.diagnostics + unreadable))
             print(summary, file=sys.stderr)
         elif not (args.quiet and tally.errors + tally.warnings == 0 and not unreadable):

@@ -1,0 +1,81 @@
+"""The code catalogue (nodl_schema.codes) and the code that reports diagnostics stay in step."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from nodl_schema.codes import CODES, RANGES, catalogue_markdown, close_codes, default_severity, explain
+
+REPO = Path(__file__).resolve().parent.parent
+LIBRARY = REPO / 'nodl_schema'
+CODE = re.compile(r'NODL[0-9]{3}')
+
+
+def _used() -> dict[str, list[str]]:
+    used: dict[str, list[str]] = {}
+    for path in sorted(LIBRARY.rglob('*.py')):
+        if path.name == 'codes.py' and path.parent == LIBRARY:
+            continue
+        for code in CODE.findall(path.read_text(encoding='utf-8')):
+            used.setdefault(code, []).append(str(path.relative_to(REPO)))
+    return used
+
+
+def test_every_code_used_in_the_library_is_catalogued() -> None:
+    unknown = {code: files for code, files in _used().items() if code not in CODES}
+    assert not unknown, f'add these codes to nodl_schema/codes.py: {unknown}'
+
+
+def test_every_catalogued_code_is_used_somewhere() -> None:
+    unused = sorted(set(CODES) - set(_used()))
+    assert not unused, f'catalogued but never reported (remove them, or report them): {unused}'
+
+
+def test_entries_are_well_formed_and_in_order() -> None:
+    assert list(CODES) == sorted(CODES)
+    for code, (severity, explanation) in CODES.items():
+        assert CODE.fullmatch(code), code
+        assert code[4] in RANGES, code
+        assert severity in ('error', 'warning', 'info'), code
+        assert explanation and '\n' not in explanation and not explanation.endswith('.'), code
+    assert len({e for _, e in CODES.values()}) == len(CODES), 'two codes share an explanation'
+
+
+def test_lookups() -> None:
+    assert default_severity('NODL216') == 'warning'
+    assert explain('NODL101') == 'unknown key'
+    assert close_codes('nodl21') and close_codes('nodl21')[0].startswith('NODL21')
+    assert close_codes('completely different') == []
+
+
+def test_docs_catalogue_is_the_generated_one() -> None:
+    docs = REPO / 'docs' / 'diagnostics.md'
+    assert docs.read_text(encoding='utf-8') == catalogue_markdown(), (
+        'docs/diagnostics.md is out of date: regenerate it with '
+        "python -c 'from nodl_schema.codes import catalogue_markdown as m; "
+        "open(\"docs/diagnostics.md\", \"w\").write(m())'")
+    listed = re.findall(r'^\| (NODL[0-9]{3}) \|', docs.read_text(encoding='utf-8'), re.M)
+    assert listed == list(CODES)
+
+
+def test_readme_links_the_catalogue() -> None:
+    assert '(docs/diagnostics.md)' in (REPO / 'README.md').read_text(encoding='utf-8')
+
+
+def test_library_never_prints_or_exits() -> None:
+    """Outside the command line, the library returns diagnostics or raises documented errors."""
+    # Boundaries that report on stderr by design: a setup.py helper stops the build with
+    # SystemExit (setuptools' convention), and plugin discovery's default reporter.
+    allowed = {'packaging.py', 'plugins.py'}
+    forbidden = re.compile(r'(?<![\w.])print\(|sys\.exit\(|SystemExit|sys\.std(?:out|err)\.write\(')
+    offenders = []
+    for path in sorted(LIBRARY.rglob('*.py')):
+        relative = path.relative_to(LIBRARY)
+        if relative.parts[0] == 'cli' or relative.name in ('__main__.py', *allowed):
+            continue
+        for number, line in enumerate(path.read_text(encoding='utf-8').splitlines(), 1):
+            code = line.split('#', 1)[0]
+            if forbidden.search(code):
+                offenders.append(f'{relative}:{number}: {line.strip()}')
+    assert not offenders, '\n'.join(offenders)
