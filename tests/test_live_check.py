@@ -291,3 +291,19 @@ def test_endpoint_created_after_start_up_is_found(ros_node, tmp_path: Path) -> N
     node = ros_node(str(script), 'late', '/chk')
     result = check_node(node.fqn, definition, timeout=15)
     assert result.conforms, format_check_text(result)
+
+
+def test_node_renamed_by_its_rules_conforms_with_them(described) -> None:
+    """__node/__ns rules made NODE what it is; node-scoped rules match that final name (rcl)."""
+    rules = ['__node:=renamed', '__ns:=/chk2', 'renamed:commands:=cmd_in',
+             'full:commands:=not_this_node']
+    node = NodeProcess('full_node.py', 'full', '/chk', '--ros-args',
+                       *[part for rule in rules for part in ('-r', rule)])
+    try:
+        path, _ = described
+        result = check_node('/chk2/renamed', path, timeout=15, remaps=rules)
+        assert result.conforms, format_check_text(result)
+        assert '/chk2/cmd_in' in {e.name for e in result.observed.subscriptions}
+        assert result.fqn == '/chk2/renamed'
+    finally:
+        node.stop()
