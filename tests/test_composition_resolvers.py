@@ -89,11 +89,13 @@ def test_third_party_resolvers_load_and_broken_ones_are_reported(
     resolvers = load_resolvers(on_error=errors.append)
     assert {'nodl', 'file', 'mem'} <= set(resolvers)
     assert 'broken_factory' not in resolvers and 'missing_module' not in resolvers
-    assert [(e.name, e.distribution) for e in errors] == [('missing_module',
-                                                            'third-party-resolvers')]
+    assert [(e.name, e.distribution) for e in errors] == [
+        ('missing_module', 'third-party-resolvers'), ('broken_factory', 'third-party-resolvers')]
     assert 'ModuleNotFoundError' in errors[0].error
+    assert errors[1].error == 'RuntimeError: cannot construct'
+    load_resolvers()  # without on_error: one warning line per broken plugin on stderr
     err = capsys.readouterr().err
-    assert "warning: skipped resolver 'broken_factory': RuntimeError: cannot construct" in err
+    assert "warning: skipped plugin 'broken_factory' of group 'nodl.resolvers'" in err
 
 
 def test_a_third_party_scheme_is_used_by_compose(resolver_site: None) -> None:
@@ -125,7 +127,7 @@ def test_validate_resolve_uses_plugin_resolvers_in_a_real_process() -> None:
     assert f"{node}:5:5: error: cannot resolve mixin 'mem://nope'" in result.stdout
     assert ':4:5:' not in result.stdout  # mem://gain resolved
     assert "skipped plugin 'missing_module'" in result.stderr
-    assert "skipped resolver 'broken_factory'" in result.stderr
+    assert "skipped plugin 'broken_factory'" in result.stderr
 
 
 def test_resolution_error_carries_what_was_searched() -> None:

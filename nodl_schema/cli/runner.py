@@ -25,7 +25,7 @@ def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb',
     a verb, only that verb is loaded and given a parser (what ros2cli does
     too); otherwise, for help or a mistyped verb, every verb is.
     """
-    from nodl_schema.plugins import iter_entry_points, load_plugins
+    from nodl_schema.plugins import instantiate_extensions, iter_entry_points
 
     wanted = None
     if argv:
@@ -36,9 +36,8 @@ def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb',
     # An explicit prog spares argparse building a help formatter on every run.
     subparsers = parser.add_subparsers(title='verbs', metavar='VERB', dest=dest,
                                        prog=parser.prog)
-    for name, factory in sorted(load_plugins(VERB_GROUP, names=wanted).items()):
+    for name, verb in sorted(instantiate_extensions(VERB_GROUP, names=wanted).items()):
         try:
-            verb = factory()
             text = help_text(verb)
             sub = subparsers.add_parser(name, help=text, description=text,
                                         epilog=exit_status_epilog(verb),

@@ -1,15 +1,18 @@
-"""The verb protocol shared by ``nodl`` and ``ros2 nodl``.
+"""The verb extension point shared by ``nodl`` and ``ros2 nodl``.
 
-A verb is a class registered in the ``nodl.verbs`` entry point group.  The
-first line of its docstring is its help text.  It must not import heavy
-modules at import time: the library is imported inside :meth:`Verb.main`.
+A verb is a class registered in the ``nodl.verbs`` entry point group,
+normally a subclass of :class:`VerbExtension`.  The first line of its
+docstring is its help text.  It must not import heavy modules at import
+time: the library is imported inside :meth:`VerbExtension.main`.
 """
 
 from __future__ import annotations
 
 import argparse
 
-__all__ = ['Verb', 'EXIT_OK', 'EXIT_FAILURE', 'EXIT_USAGE', 'EXIT_INTERNAL', 'EXIT_INTERRUPTED',
+from nodl_schema.plugins import EXTENSION_POINTS, ExtensionPoint
+
+__all__ = ['VerbExtension', 'Verb', 'EXIT_OK', 'EXIT_FAILURE', 'EXIT_USAGE', 'EXIT_INTERNAL', 'EXIT_INTERRUPTED',
            'EXIT_BROKEN_PIPE', 'EXIT_STATUSES', 'help_text', 'exit_status_epilog']
 
 EXIT_OK = 0
@@ -38,8 +41,15 @@ EXIT_STATUSES = (
 )
 
 
-class Verb:
-    """Base class of verbs (subclassing it is optional; the protocol is what counts)."""
+class VerbExtension(ExtensionPoint):
+    """Base class of verbs (the ``nodl.verbs`` extension point).
+
+    Subclassing it is optional (the protocol is what counts), but it gives a
+    verb its extension point version and priority.
+    """
+
+    #: Version 1.0: ``add_arguments(parser)``, ``main(args) -> int``, ``failure``.
+    EXTENSION_POINT_VERSION = EXTENSION_POINTS['nodl.verbs'].version
 
     #: What exit status 1 means for this verb (None: it never exits 1); shown in ``--help``.
     failure: str | None = 'the check found a problem'
@@ -50,6 +60,10 @@ class Verb:
     def main(self, args: argparse.Namespace) -> int:
         """Run the verb; return the exit code."""
         raise NotImplementedError
+
+
+#: The name verbs were written with before extension points had versions.
+Verb = VerbExtension
 
 
 def help_text(verb: object) -> str:

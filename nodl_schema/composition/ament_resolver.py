@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import os
 
-from nodl_schema.composition.resolvers import ResolutionError, ResolveContext, Resolved
+from nodl_schema.composition.resolvers import (
+    ResolutionError, ResolveContext, Resolved, ResolverExtension)
 from nodl_schema.frontends.source import read_limited
 from nodl_schema.index import ament
 from nodl_schema.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, resource_name
@@ -38,7 +39,7 @@ def read_registered(resource: ament.Resource, package: str) -> Resolved:
     return Resolved(resource.content, resource.path)
 
 
-class AmentIndexResolver:
+class AmentIndexResolver(ResolverExtension):
     """Resolves ``nodl://<package>/<name>`` to a registered interface definition."""
 
     def resolve(self, reference: str, context: ResolveContext) -> Resolved:

@@ -9,13 +9,14 @@ from __future__ import annotations
 
 import os
 
-from nodl_schema.composition.resolvers import ResolutionError, ResolveContext, Resolved
+from nodl_schema.composition.resolvers import (
+    ResolutionError, ResolveContext, Resolved, ResolverExtension)
 from nodl_schema.frontends.source import read_limited
 
 __all__ = ['PathResolver']
 
 
-class PathResolver:
+class PathResolver(ResolverExtension):
     """Resolves ``some/file.nodl.yaml`` and ``file://some/file.nodl.yaml``."""
 
     def resolve(self, reference: str, context: ResolveContext) -> Resolved:

@@ -13,10 +13,12 @@ from __future__ import annotations
 
 import os
 import re
-import sys
 from typing import Callable, NamedTuple, Protocol
 
+from nodl_schema.plugins import EXTENSION_POINTS, ExtensionPoint, PluginError, instantiate_extensions
+
 __all__ = ['RESOLVER_GROUP', 'ResolveContext', 'Resolved', 'ResolutionError', 'Resolver',
+           'ResolverExtension',
            'scheme_of', 'load_resolvers']
 
 RESOLVER_GROUP = 'nodl.resolvers'
@@ -53,11 +55,26 @@ class ResolutionError(Exception):
 
 
 class Resolver(Protocol):
-    """The protocol of a resolver plugin."""
+    """The protocol of a resolver plugin (what :func:`compose` calls)."""
 
     def resolve(self, reference: str, context: ResolveContext) -> Resolved:
         """Return the referenced document, or raise ResolutionError."""
         ...  # pragma: no cover
+
+
+class ResolverExtension(ExtensionPoint):
+    """Base class of resolvers (the ``nodl.resolvers`` extension point).
+
+    Registered under the URI scheme it resolves (``nodl``, ``file``, ...);
+    instantiated without arguments.
+    """
+
+    #: Version 1.0: ``resolve(reference, context) -> Resolved``.
+    EXTENSION_POINT_VERSION = EXTENSION_POINTS[RESOLVER_GROUP].version
+
+    def resolve(self, reference: str, context: ResolveContext) -> Resolved:
+        """Return the referenced document, or raise ResolutionError saying what was searched."""
+        raise NotImplementedError
 
 
 def scheme_of(reference: str) -> str:
@@ -66,17 +83,9 @@ def scheme_of(reference: str) -> str:
     return match.group(1).lower() if match else 'file'
 
 
-def load_resolvers(on_error: Callable[[object], None] | None = None) -> dict[str, Resolver]:
+def load_resolvers(on_error: Callable[[PluginError], None] | None = None) -> dict[str, Resolver]:
     """Instantiate every resolver plugin, keyed by scheme (a broken one is reported and skipped)."""
-    from nodl_schema.plugins import load_plugins
-
-    resolvers: dict[str, Resolver] = {}
-    for scheme, factory in load_plugins(RESOLVER_GROUP, on_error=on_error).items():
-        try:
-            resolvers[scheme] = factory()
-        except Exception as exc:  # noqa: BLE001 - a broken plugin must not break the tool
-            print(f"warning: skipped resolver '{scheme}': {type(exc).__name__}: {exc}",
-                  file=sys.stderr)
+    resolvers: dict[str, Resolver] = instantiate_extensions(RESOLVER_GROUP, on_error=on_error)
     return resolvers
 
 
