@@ -39,3 +39,13 @@ def test_validation_error_carries_all_diagnostics_and_prints_errors() -> None:
     assert exc.errors == [err]
     assert str(exc) == 'f:1:1: error: e1'
     assert isinstance(exc, ValueError)
+
+
+def test_code_ends_the_line_and_related_locations_are_in_the_dict() -> None:
+    d = Diagnostic(Severity.INFO, 'overrides', ('a',), 'f.yaml', 3, 7, code='NODL304',
+                   related=[('g.yaml', 1, 2, 'the overridden one')])
+    assert str(d) == 'f.yaml:3:7: info: overrides [a] [NODL304]'
+    assert d.to_dict()['code'] == 'NODL304'
+    assert d.to_dict()['related'] == [{'file': 'g.yaml', 'line': 1, 'column': 2,
+                                       'message': 'the overridden one'}]
+    assert d.replace(code='NODL101') != d

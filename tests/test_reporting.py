@@ -29,3 +29,57 @@ def test_summary_counts_and_plurals() -> None:
     tally.add([D1, D2, D2])
     assert summary_line(tally) == '1 file, 1 error, 2 warnings'
     assert summary_line(Tally()) == '0 files, 0 errors, 0 warnings'
+
+
+def test_sarif_is_a_2_1_0_log_with_one_rule_per_code(tmp_path, monkeypatch) -> None:
+    from nodl_schema.codes import CODES
+    from nodl_schema.reporting.sarif import sarif_log
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / 'a b.yaml').write_text('x: 1\n', encoding='utf-8')
+    first = Diagnostic(Severity.ERROR, 'bad', ('main', 'x'), 'a b.yaml', 4, 11, code='NODL101',
+                       related=[('a b.yaml', 2, 3, 'the earlier one')])
+    second = Diagnostic(Severity.INFO, 'note', (), 'a b.yaml', 0, 0, code='NODL304')
+    third = Diagnostic(Severity.WARNING, 'again', (), '<stdin>', 1, 1, code='NODL101')
+    log = sarif_log([first, second, third])
+    assert log['version'] == '2.1.0' and log['$schema'].endswith('sarif-2.1.0.json')
+    [run] = log['runs']
+    driver = run['tool']['driver']
+    assert driver['name'] == 'nodl' and driver['version'] and driver['informationUri']
+    assert [r['id'] for r in driver['rules']] == ['NODL101', 'NODL304']
+    assert driver['rules'][1] == {'id': 'NODL304', 'shortDescription': {'text': CODES['NODL304'][1]},
+                                  'defaultConfiguration': {'level': 'note'}}
+    assert run['originalUriBaseIds']['SRCROOT']['uri'].startswith('file:///')
+    assert run['originalUriBaseIds']['SRCROOT']['uri'].endswith('/')
+    one, two, three = run['results']
+    assert (one['ruleId'], one['ruleIndex'], one['level'], one['message']) == (
+        'NODL101', 0, 'error', {'text': 'bad'})
+    physical = one['locations'][0]['physicalLocation']
+    assert physical == {'artifactLocation': {'uri': 'a%20b.yaml', 'uriBaseId': 'SRCROOT'},
+                        'region': {'startLine': 4, 'startColumn': 11}}
+    assert one['locations'][0]['logicalLocations'] == [{'fullyQualifiedName': 'main.x'}]
+    assert one['relatedLocations'][0]['physicalLocation']['region'] == {'startLine': 2,
+                                                                        'startColumn': 3}
+    assert one['relatedLocations'][0]['message'] == {'text': 'the earlier one'}
+    # an unknown position has no region (SARIF positions start at 1); <stdin> is not a file
+    assert 'region' not in two['locations'][0]['physicalLocation'] and two['level'] == 'note'
+    assert 'locations' not in three and three['level'] == 'warning'
+    for result in run['results']:
+        assert set(result) <= {'ruleId', 'ruleIndex', 'level', 'message', 'locations',
+                               'relatedLocations'}
+
+
+def test_sarif_from_the_command_line_is_json_with_a_summary_on_stderr() -> None:
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    repo = Path(__file__).resolve().parent.parent
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--format', 'sarif',
+                             'examples/mistakes/typos.yaml'], cwd=repo, capture_output=True,
+                            text=True, timeout=60)
+    assert result.returncode == 1
+    log = json.loads(result.stdout)
+    results = log['runs'][0]['results']
+    assert len(results) == 7 and all(r['ruleId'].startswith('NODL') for r in results)
+    assert result.stderr == '1 file, 7 errors, 0 warnings\n'
