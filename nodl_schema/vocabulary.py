@@ -22,6 +22,10 @@ from __future__ import annotations
 import enum
 from collections import namedtuple
 
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import NamedTuple
+
 __all__ = [
     # endpoint sections
     'Section', 'SECTIONS', 'SECTION_KEYS', 'SECTION_BY_KEY', 'SECTION_WORDS',
@@ -36,14 +40,29 @@ __all__ = [
     'SCALAR_TYPES', 'ARRAY_TYPES', 'FIXED_BASES', 'PARAMETER_TYPES', 'ALL_TYPE_WORDS',
     # QoS
     'QOS_KEYS', 'QOS_REQUIRED', 'QOS_ENUMS', 'QOS_DURATIONS', 'QOS_DEFAULT_VALUE',
+    # client libraries
+    'CLIENT_LIBRARIES', 'BUILD_TYPE_LIBRARIES',
 ]
 
 
 # --------------------------------------------------------------------------
 # Endpoint sections
 
-class Section(namedtuple('Section', ['key', 'word', 'kind', 'role', 'legacy_role', 'namespace',
-                                     'permission'])):
+if TYPE_CHECKING:
+    class _SectionFields(NamedTuple):
+        key: str
+        word: str
+        kind: str
+        role: str
+        legacy_role: str
+        namespace: str
+        permission: str
+else:
+    _SectionFields = namedtuple('Section', ['key', 'word', 'kind', 'role', 'legacy_role',
+                                            'namespace', 'permission'])
+
+
+class Section(_SectionFields):
     """One endpoint section of an interface definition.
 
     * ``key``: the key in a NoDL file (``publishers``);
@@ -92,7 +111,7 @@ def section_for_role(kind: str, legacy_role: str) -> str | None:
     """The section of a legacy ``(kind, role)`` pair, or None if there is none."""
     for s in SECTIONS:
         if s.kind == kind and s.legacy_role == legacy_role:
-            return str(s.key)
+            return s.key
     return None
 
 
@@ -186,3 +205,12 @@ QOS_DURATIONS: dict[str, str] = {
 }
 #: The value that claims nothing about a policy.
 QOS_DEFAULT_VALUE = 'SYSTEM_DEFAULT'
+
+
+# --------------------------------------------------------------------------
+# Client libraries
+
+#: The client libraries a built-in base has a variant for; the first is the default.
+CLIENT_LIBRARIES: tuple[str, ...] = ('rclpy', 'rclcpp')
+#: Package build type (``<export><build_type>``) -> the client library its nodes use.
+BUILD_TYPE_LIBRARIES: dict[str, str] = {'ament_python': 'rclpy', 'ament_cmake': 'rclcpp'}

@@ -107,8 +107,9 @@ class System:
             if communication is not None and kind != communication:
                 continue
             if not include_client_library:
-                keep = lambda side: tuple(e for e in side  # noqa: E731
-                                          if e.entity.provider is not Provider.CLIENT_LIBRARY)
+                def keep(side: tuple[InstanceEntity, ...]) -> tuple[InstanceEntity, ...]:
+                    return tuple(e for e in side if e.entity.provider is not Provider.CLIENT_LIBRARY)
+
                 connection = connection._replace(offering=keep(connection.offering),
                                                  using=keep(connection.using))
                 if not connection.endpoints:
