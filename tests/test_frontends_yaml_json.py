@@ -9,8 +9,11 @@ the right 1-based line and column.
 
 from __future__ import annotations
 
+import io
 import json
 import math
+import subprocess
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -22,6 +25,7 @@ from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.frontends.source import SourceText, read_source
 from nodl_schema.frontends.yaml_json import MAX_ALIAS_NODES, MAX_DEPTH, ParsedDocument, parse_document
 
+REPO = Path(__file__).resolve().parent.parent
 FRONTENDS = Path(__file__).parent / 'fixtures' / 'frontends'
 
 EMPTY = ('document is empty; a NoDL document is a mapping that starts with nodl_version: 2 '
@@ -143,6 +147,89 @@ def test_yaml_flow_style_that_is_not_json_is_a_json_error_not_yaml() -> None:
     # The same mapping under a key, or in block style, is YAML.
     assert clean(parse('x: {type: int, default_value: 0x10}')) == \
         {'x': {'type': 'int', 'default_value': 16}}
+
+
+# --- strict JSON -----------------------------------------------------------------
+
+NOT_JSON = FRONTENDS / 'not_json'
+
+#: fixture -> (line, column, what the message says): JSON's own line and column.
+NOT_JSON_CASES = {
+    'trailing_comma.json': (5, 3, 'JSON allows no trailing comma'),
+    'comment.json': (3, 3, 'JSON has no comments'),
+    'single_quotes.json': (3, 18, 'JSON strings and keys take double quotes'),
+    'unquoted_key.json': (4, 5, 'JSON keys and strings are quoted'),
+    'nan.json': (4, 49, 'NaN is not a JSON value'),
+    'infinity.json': (1, 80, '-Infinity is not a JSON value'),
+}
+
+
+def assert_json_error(doc: ParsedDocument, case: str) -> Diagnostic:
+    line, column, says = NOT_JSON_CASES[case]
+    problem = only(doc)
+    assert doc.is_json is True and doc.data is None
+    assert problem.message.startswith('JSON syntax error: ')
+    assert says in problem.message and 'strict JSON' in problem.message
+    assert (problem.code, problem.line, problem.column) == ('NODL016', line, column)
+    return problem
+
+
+def test_every_not_json_fixture_is_a_case() -> None:
+    assert sorted(p.name for p in NOT_JSON.iterdir()) == sorted(NOT_JSON_CASES)
+
+
+@pytest.mark.parametrize('case', sorted(NOT_JSON_CASES))
+def test_a_json_file_that_is_not_strict_json_is_a_json_error(case: str) -> None:
+    problem = assert_json_error(parse_file(f'not_json/{case}'), case)
+    assert problem.file == str(NOT_JSON / case)
+    # YAML would have read every one of them: the error is not a silent fallback.
+    assert isinstance(safe_load((NOT_JSON / case).read_text(encoding='utf-8').replace(
+        '//', '#')), dict)
+
+
+@pytest.mark.parametrize('case', sorted(NOT_JSON_CASES))
+def test_text_starting_with_a_brace_is_strict_json_from_stdin_too(case: str) -> None:
+    text = (NOT_JSON / case).read_text(encoding='utf-8')
+    assert_json_error(parse(text, '<stdin>'), case)
+    assert_json_error(parse(text, '-'), case)
+    report = check_source(io.StringIO(text), file='<stdin>')
+    assert [(d.code, d.line, d.column) for d in report.diagnostics] == \
+        [('NODL016',) + NOT_JSON_CASES[case][:2]]
+
+
+@pytest.mark.parametrize('case', ['trailing_comma.json', 'nan.json'])
+def test_the_command_line_reports_json_errors_at_json_positions(case: str) -> None:
+    line, column, says = NOT_JSON_CASES[case]
+    text = (NOT_JSON / case).read_text(encoding='utf-8')
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '-'], input=text,
+                            cwd=REPO, capture_output=True, text=True, timeout=60)
+    assert result.returncode == 1, result.stdout + result.stderr
+    assert f'<stdin>:{line}:{column}: error: JSON syntax error: ' in result.stdout
+    assert says in result.stdout and 'Traceback' not in result.stderr
+
+
+def test_leading_json_whitespace_does_not_hide_the_brace() -> None:
+    doc = parse(' \r\n\t\n{"a": 1,}\n', 'doc')
+    problem = only(doc)
+    assert (problem.code, problem.line, problem.column) == ('NODL016', 3, 9)
+    # A comment first makes it YAML: its first character is not '{'.
+    assert clean(parse('# c\n{a: 1}\n')) == {'a': 1}
+
+
+def test_a_json_file_is_strict_whatever_its_first_character() -> None:
+    problem = only(parse('nodl_version: 2\n', 'node.JSON'))
+    assert (problem.code, problem.line, problem.column) == ('NODL016', 1, 1)
+    assert only(parse('', 'empty.json')).code == 'NODL016'
+
+
+def test_a_list_document_is_still_yaml() -> None:
+    doc = parse('[1, 2,]\n')
+    assert doc.is_json is False
+    assert only(doc).message.startswith('document is a list, not a mapping')
+
+
+def test_valid_json_with_a_nan_inside_a_string_is_fine() -> None:
+    assert clean(parse('{"a": "NaN \\" Infinity", "b": 1}')) == {'a': 'NaN " Infinity', 'b': 1}
 
 
 # --- duplicate keys --------------------------------------------------------------

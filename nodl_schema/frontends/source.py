@@ -7,7 +7,6 @@ size limit and the UTF-8 requirement.
 from __future__ import annotations
 
 import os
-import re
 from collections import namedtuple
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
@@ -45,10 +44,6 @@ def _too_large() -> str:
             'split it into smaller definitions')
 
 
-#: Lone surrogates: a Python ``str`` can hold them, UTF-8 text cannot.
-_SURROGATE = re.compile('[\ud800-\udfff]')
-
-
 def _text_too_large(text: str) -> bool:
     """True if ``text`` is more than :data:`MAX_BYTES` bytes once encoded as UTF-8."""
     size = len(text)
@@ -65,17 +60,28 @@ def _check_text(text: str, file: str) -> tuple[SourceText | None, Diagnostic | N
         return None, _problem(file, _too_large(), code='NODL001')
     if text.startswith('\ufeff'):
         text = text[1:]
-    bad = _SURROGATE.search(text)
-    if bad is not None:
-        start = bad.start()
+    start = _lone_surrogate(text)
+    if start >= 0:
         line = text.count('\n', 0, start) + 1
         column = start - (text.rfind('\n', 0, start) + 1) + 1
         return None, _problem(
             file,
-            f'document contains a lone surrogate (U+{ord(bad.group()):04X}), which is not '
+            f'document contains a lone surrogate (U+{ord(text[start]):04X}), which is not '
             'valid Unicode text; NoDL files are UTF-8',
             line, column)
     return SourceText(text, file), None
+
+
+def _lone_surrogate(text: str) -> int:
+    """The index of the first lone surrogate in ``text`` (a Python ``str`` can hold
+    them, UTF-8 text cannot), or -1."""
+    if text.isascii():
+        return -1
+    try:
+        text.encode('utf-8')  # only a surrogate cannot be encoded
+    except UnicodeEncodeError as exc:
+        return exc.start
+    return -1
 
 
 def _read_stream(read: Callable[[int], Any]) -> Any:

@@ -20,9 +20,6 @@ for indentation, empty documents and documents that are not a mapping.
 
 from __future__ import annotations
 
-import json
-import re
-
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from typing import Any
@@ -40,11 +37,10 @@ __all__ = ['MAX_DEPTH', 'MAX_ALIAS_NODES', 'ParsedDocument', 'parse_document', '
 _Loader = getattr(yaml, 'CSafeLoader', yaml.SafeLoader)
 
 _MERGE = 'tag:yaml.org,2002:merge'
-#: The first character that is not JSON whitespace.
-_FIRST = re.compile(r'[ \t\r\n]*(.?)', re.S)
 #: A JSON string, or one of the constants Python's json accepts and JSON does not.
-_CONSTANT = re.compile(r'"(?:[^"\\]|\\.)*"|(-?Infinity|NaN)')
-_JSON_RULES = 'strict JSON: no comments, trailing commas, single quotes, unquoted keys or NaN'
+_CONSTANT = r'"(?:[^"\\]|\\.)*"|(-?Infinity|NaN)'
+_JSON_RULES = ('this is read as strict JSON: no comments, trailing commas, single quotes, '
+               'unquoted keys or NaN')
 JSON_SYNTAX = 'NODL016'
 
 
@@ -189,10 +185,14 @@ def _describe_kind(value: Any) -> str:
 def is_strict_json(source: SourceText) -> bool:
     """True if ``source`` is read as strict JSON: a ``.json`` file, or text whose first
     non-blank character is ``{``."""
-    if source.file.lower().endswith('.json'):
+    file: str = source.file
+    if file.lower().endswith('.json'):
         return True
-    match = _FIRST.match(source.text)
-    return match is not None and match.group(1) == '{'
+    text: str = source.text
+    for char in text:
+        if char not in ' \t\r\n':  # JSON's whitespace
+            return char == '{'
+    return False
 
 
 def parse_document(source: SourceText) -> ParsedDocument:
@@ -236,6 +236,8 @@ def _reject_constant(name: str) -> Any:
 
 
 def _parse_json(doc: ParsedDocument) -> None:
+    import json  # not on the command line's start-up path for YAML files
+
     text, file = doc.source
     doc.is_json = True
     duplicates: list[bool] = []
@@ -250,17 +252,19 @@ def _parse_json(doc: ParsedDocument) -> None:
         data = json.loads(text, object_pairs_hook=pairs, parse_constant=_reject_constant)
     except json.JSONDecodeError as exc:
         doc.diagnostics.append(Diagnostic(
-            Severity.ERROR, f'JSON syntax error: {exc.msg} ({_JSON_RULES})', (), file,
+            Severity.ERROR, f'JSON syntax error: {exc.msg}; {_json_hint(text, exc.pos)}', (), file,
             exc.lineno, exc.colno, code=JSON_SYNTAX))
         return
     except _Constant as exc:
         token = str(exc)
-        where = next((m.start(1) for m in _CONSTANT.finditer(text) if m.group(1)), 0)
+        import re
+
+        where = next((m.start(1) for m in re.finditer(_CONSTANT, text) if m.group(1)), 0)
         line = text.count('\n', 0, where) + 1
         column = where - (text.rfind('\n', 0, where) + 1) + 1
         doc.diagnostics.append(Diagnostic(
             Severity.ERROR, f'JSON syntax error: {token} is not a JSON value; write a number or '
-            f'null ({_JSON_RULES})', (), file, line, column, code=JSON_SYNTAX))
+            'null (this is read as strict JSON)', (), file, line, column, code=JSON_SYNTAX))
         return
     except RecursionError:  # far deeper than MAX_DEPTH: placed below
         data = None
@@ -268,6 +272,20 @@ def _parse_json(doc: ParsedDocument) -> None:
     doc.data = data
     if duplicates or text.count('[') + text.count('{') > MAX_DEPTH:
         _json_problems(doc, bool(duplicates))
+
+
+def _json_hint(text: str, pos: int) -> str:
+    """What is probably wrong at ``pos``, for the YAML habits JSON does not allow."""
+    char = text[pos:pos + 1]
+    if char == '/' or char == '#':
+        return 'JSON has no comments (this is read as strict JSON)'
+    if char == "'":
+        return 'JSON strings and keys take double quotes (this is read as strict JSON)'
+    if char in ('}', ']') and text[:pos].rstrip().endswith(','):
+        return 'JSON allows no trailing comma (this is read as strict JSON)'
+    if char.isalpha() or char == '_':
+        return 'JSON keys and strings are quoted (this is read as strict JSON)'
+    return _JSON_RULES
 
 
 def _json_problems(doc: ParsedDocument, duplicates: bool) -> None:
