@@ -34,6 +34,7 @@ in the README, which needs nothing at build time.
 from __future__ import annotations
 
 import os
+import posixpath
 import re
 import shutil
 import sys
@@ -41,7 +42,7 @@ from typing import Mapping
 
 from nodl_schema.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, resource_name
 
-__all__ = ['nodl_data_files', 'NODE_RESOURCE', 'INTERFACE_RESOURCE']
+__all__ = ['nodl_data_files', 'relative_mixins', 'NODE_RESOURCE', 'INTERFACE_RESOURCE']
 
 _KEY = re.compile(r'[A-Za-z0-9_][A-Za-z0-9_.-]*')
 _INDEX = 'share/ament_index/resource_index'
@@ -85,6 +86,30 @@ def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
                 f.write(f'nodl/{os.path.basename(file)}')
             entries.setdefault(f'{_INDEX}/{resource_type}', []).append(marker)
     entries[f'share/{package}/nodl'] = sorted(set(installed.values()))
+    # What the build validates is what gets installed: the node files' relative mixins,
+    # at the same place relative to the installed node file.
+    destinations = {f'share/{package}/nodl/{name}': file for name, file in installed.items()}
+    for file in dict.fromkeys(nodes.values()):
+        for reference in relative_mixins(file):
+            source = os.path.normpath(os.path.join(os.path.dirname(file), reference))
+            target = posixpath.normpath(f'share/{package}/nodl/{reference}')
+            if not target.startswith(f'share/{package}/'):
+                problems.append(f"nodl_data_files: {file}: mixin '{reference}' would be installed "
+                                f'outside share/{package}; keep relative mixins in or below '
+                                f'the folder above the node file, or register the mixin as an '
+                                f'interface and use nodl://{package}/<name>')
+                continue
+            if not os.path.isfile(source):
+                continue  # validation reports it with its position
+            other = destinations.setdefault(target, source)
+            if os.path.normpath(other) != source:
+                problems.append(f'nodl_data_files: {other} and {source} would both be installed '
+                                f'as {target}; rename one')
+                continue
+            if source not in entries.setdefault(posixpath.dirname(target), []):
+                entries[posixpath.dirname(target)].append(source)
+    if problems:
+        raise SystemExit('\n'.join(problems))
     if validate:
         _validate(package, nodes, interfaces, staging_dir)
     return sorted(entries.items())
@@ -130,3 +155,37 @@ def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, s
             os.environ['AMENT_PREFIX_PATH'] = previous
     if failures:
         raise SystemExit(f'{package}: invalid NoDL definitions: {", ".join(failures)}')
+
+
+def relative_mixins(node_file: str | os.PathLike[str]) -> list[str]:
+    """The mixins of a node definition that are files of its own package.
+
+    Each is the reference as written, without ``file://``, normalised, with ``/``
+    separators: a path relative to the node file's folder. An installed copy of
+    the node file resolves them only if they are installed at the same place
+    relative to it, which ``nodl_data_files`` and ``ament_nodl_register_node`` do.
+    In the order written, each once. A file that cannot be read or parsed, or
+    that has no mixins, has none (validation says what is wrong with it).
+    """
+    from pathlib import Path
+
+    from nodl_schema.composition.resolvers import scheme_of
+    from nodl_schema.loading import check_source
+
+    try:
+        report = check_source(Path(node_file))
+    except OSError:
+        return []
+    data = report.data
+    mixins = data.get('mixins') if isinstance(data, dict) else None
+    found: list[str] = []
+    for mixin in mixins if isinstance(mixins, list) else ():
+        if not isinstance(mixin, str) or scheme_of(mixin) != 'file':
+            continue
+        path = mixin[len('file://'):] if mixin.startswith('file://') else mixin
+        if not path or os.path.isabs(path) or posixpath.isabs(path):
+            continue
+        normal = posixpath.normpath(path.replace(os.sep, '/'))
+        if normal not in found:
+            found.append(normal)
+    return found

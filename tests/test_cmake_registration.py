@@ -52,8 +52,8 @@ def build(tmp_path_factory: pytest.TempPathFactory) -> Build:
     src.mkdir()
     for package in sorted((REPO / 'examples' / 'workspace' / 'src').iterdir()):
         shutil.copytree(package, src / package.name)
-    for broken in ('broken_nodl', 'broken_config'):
-        shutil.copytree(FIXTURES / 'colcon' / broken, src / broken)
+    for fixture in ('broken_nodl', 'broken_config', 'relative_mixins'):
+        shutil.copytree(FIXTURES / 'colcon' / fixture, src / fixture)
     result = subprocess.run([str(VENV / 'bin' / 'colcon'), 'build', '--continue-on-error'],
                             cwd=root, env=build_env(), text=True, capture_output=True,
                             timeout=300)
@@ -72,9 +72,10 @@ def test_the_examples_build_and_the_broken_packages_fail(build: Build) -> None:
     assert build.result.returncode != 0, out
     assert 'Finished <<< robot_interfaces_nodl' in out, out
     assert 'Finished <<< laser_driver' in out, out
+    assert 'Finished <<< relative_mixins' in out, out
     assert 'Failed   <<< broken_nodl' in out, out
     assert 'Failed   <<< broken_config' in out, out
-    assert '2 packages finished' in out, out
+    assert '3 packages finished' in out, out
 
 
 @pytest.mark.parametrize('package, files', [
@@ -186,6 +187,46 @@ def test_installed_definitions_validate_against_the_installed_index(build: Build
     assert alone.returncode == 1
     assert f'{node}:4:5: error: cannot resolve mixin ' \
            "'nodl://robot_interfaces_nodl/diagnostics'" in alone.stdout
+
+
+# --- relative mixins: installed where the installed node file looks for them -------------
+
+RELATIVE = FIXTURES / 'colcon' / 'relative_mixins'
+
+
+@pytest.mark.parametrize('source, installed', [
+    ('nodl/sensor_node.nodl.yaml', 'nodl/sensor_node.nodl.yaml'),
+    ('nodl/diagnostics.yaml', 'nodl/diagnostics.yaml'),
+    ('nodl/common/limits.nodl.yaml', 'nodl/common/limits.nodl.yaml'),
+    ('shared/heartbeat.nodl.yaml', 'shared/heartbeat.nodl.yaml'),
+])
+def test_relative_mixins_are_installed_keeping_their_layout(build: Build, source: str,
+                                                             installed: str) -> None:
+    target = build.prefix('relative_mixins') / 'share' / 'relative_mixins' / installed
+    assert target.read_bytes() == (RELATIVE / source).read_bytes()
+
+
+def test_relative_mixins_are_not_registered(build: Build) -> None:
+    index = build.prefix('relative_mixins') / INDEX
+    assert sorted(str(p.relative_to(index)) for p in index.glob('nodl_*/*')) == [
+        'nodl_nodes/relative_mixins__sensor_node']
+
+
+def test_show_an_installed_node_with_relative_mixins(build: Build) -> None:
+    result = subprocess.run([str(VENV / 'bin' / 'nodl'), 'show', 'relative_mixins', 'sensor_node',
+                             '--layers'], cwd=build.root, env=build.env('relative_mixins'),
+                            text=True, capture_output=True, timeout=60)
+    assert result.returncode == 0, result.stdout + result.stderr
+    layers = {line.strip() for line in result.stdout.splitlines() if '# layer:' in line}
+    assert layers == {'# layer: base:node', '# layer: diagnostics.yaml',
+                      '# layer: file://common/limits.nodl.yaml',
+                      '# layer: ../shared/heartbeat.nodl.yaml', '# layer: main'}
+    # the installed copy, not the source tree, was read
+    node = build.prefix('relative_mixins') / 'share' / 'relative_mixins' / 'nodl' / 'sensor_node.nodl.yaml'
+    check = subprocess.run([str(VENV / 'bin' / 'nodl'), 'validate', '--resolve', str(node)],
+                           cwd=build.root, env=build.env('relative_mixins'), text=True,
+                           capture_output=True, timeout=60)
+    assert check.returncode == 0, check.stdout + check.stderr
 
 
 # Last: this test rebuilds a package of the shared workspace.

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema.packaging import INTERFACE_RESOURCE, NODE_RESOURCE, nodl_data_files
+from nodl_schema.packaging import INTERFACE_RESOURCE, NODE_RESOURCE, nodl_data_files, relative_mixins
 
 PACKAGES = FIXTURES / 'python_packages'
 INDEX = Path('share') / 'ament_index' / 'resource_index'
@@ -112,6 +112,87 @@ def test_an_invalid_definition_fails_the_pip_install(tmp_path: Path) -> None:
     assert "nodl/chatter.nodl.yaml:4:5: error: missing required key 'qos'" in out, out
     assert 'py_talker: invalid NoDL definitions: nodl/chatter.nodl.yaml, nodl/talker.nodl.yaml' in out
     assert not (prefix / INDEX).exists()
+
+
+def test_relative_mixins_are_installed_and_resolve(tmp_path: Path) -> None:
+    package = tmp_path / 'py_relative'
+    shutil.copytree(PACKAGES / 'py_relative', package)
+    prefix = tmp_path / 'prefix'
+    result = pip_install(package, prefix)
+    assert result.returncode == 0, result.stdout + result.stderr
+    share = prefix / 'share' / 'py_relative'
+    for path in ('nodl/sensor_node.nodl.yaml', 'nodl/diagnostics.yaml',
+                 'nodl/common/limits.nodl.yaml', 'shared/heartbeat.nodl.yaml'):
+        assert (share / path).read_bytes() == (PACKAGES / 'py_relative' / path).read_bytes(), path
+    # only the node is registered; its mixins are files next to it
+    assert sorted(str(p.relative_to(prefix / INDEX)) for p in (prefix / INDEX).glob('nodl_*/*')) == [
+        'nodl_nodes/py_relative__sensor_node']
+    shown = nodl(prefix, 'show', 'py_relative', 'sensor_node', '--layers')
+    assert shown.returncode == 0, shown.stderr
+    assert {line.strip() for line in shown.stdout.splitlines() if '# layer:' in line} == {
+        '# layer: base:node', '# layer: diagnostics.yaml', '# layer: file://common/limits.nodl.yaml',
+        '# layer: ../shared/heartbeat.nodl.yaml', '# layer: main'}
+
+
+# --- relative_mixins() and nodl_data_files() directly ----------------------------------------
+
+def test_relative_mixins_lists_files_of_the_package_only(tmp_path: Path) -> None:
+    node = tmp_path / 'n.nodl.yaml'
+    node.write_text('nodl_version: 2\nbase: node\nmixins:\n'
+                    '  - nodl://other/thing\n  - ./a.yaml\n  - file://sub/../b.yaml\n'
+                    '  - a.yaml\n  - {nodl_version: 2}\n  - ../up/c.yaml\n'
+                    'main: {nodl_version: 2}\n')
+    assert relative_mixins(node) == ['a.yaml', 'b.yaml', '../up/c.yaml']
+    assert relative_mixins(str(node)) == ['a.yaml', 'b.yaml', '../up/c.yaml']
+
+
+@pytest.mark.parametrize('text', ['nodl_version: 2\npublishers: []\n', 'not: [valid\n', ''])
+def test_relative_mixins_of_other_documents_are_none(tmp_path: Path, text: str) -> None:
+    path = tmp_path / 'x.yaml'
+    path.write_text(text)
+    assert relative_mixins(path) == []
+    assert relative_mixins(tmp_path / 'missing.yaml') == []
+
+
+def test_relative_mixins_get_data_files_entries(tmp_path: Path,
+                                                monkeypatch: pytest.MonkeyPatch) -> None:
+    root = tmp_path / 'pkg'
+    shutil.copytree(PACKAGES / 'py_relative', root)
+    monkeypatch.chdir(root)
+    entries = dict(nodl_data_files('py_relative', nodes={'sensor_node': 'nodl/sensor_node.nodl.yaml'}))
+    assert entries['share/py_relative/nodl'] == ['nodl/sensor_node.nodl.yaml', 'nodl/diagnostics.yaml']
+    assert entries['share/py_relative/nodl/common'] == ['nodl/common/limits.nodl.yaml']
+    assert entries['share/py_relative/shared'] == ['shared/heartbeat.nodl.yaml']
+
+
+def test_a_relative_mixin_that_would_leave_the_share_folder_is_refused(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    root = tmp_path / 'pkg'
+    (root / 'a' / 'b').mkdir(parents=True)
+    (root / 'package.xml').write_text('<package/>')
+    (root / 'top.yaml').write_text('nodl_version: 2\n')
+    (root / 'a' / 'b' / 'n.nodl.yaml').write_text(
+        'nodl_version: 2\nbase: node\nmixins: [../../top.yaml]\nmain: {nodl_version: 2}\n')
+    monkeypatch.chdir(root)
+    with pytest.raises(SystemExit) as exc:
+        nodl_data_files('p', nodes={'n': 'a/b/n.nodl.yaml'})
+    assert str(exc.value).startswith("nodl_data_files: a/b/n.nodl.yaml: mixin '../../top.yaml' "
+                                     'would be installed outside share/p;')
+
+
+def test_a_relative_mixin_colliding_with_a_registered_file_is_refused(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    root = tmp_path / 'pkg'
+    shutil.copytree(PACKAGES / 'py_relative', root)
+    (root / 'other').mkdir()
+    (root / 'other' / 'diagnostics.yaml').write_text('nodl_version: 2\n')
+    monkeypatch.chdir(root)
+    with pytest.raises(SystemExit) as exc:
+        nodl_data_files('py_relative', nodes={'sensor_node': 'nodl/sensor_node.nodl.yaml'},
+                        interfaces={'diag': 'other/diagnostics.yaml'})
+    assert str(exc.value) == ('nodl_data_files: other/diagnostics.yaml and nodl/diagnostics.yaml '
+                              'would both be installed as share/py_relative/nodl/diagnostics.yaml; '
+                              'rename one')
 
 
 # --- nodl_data_files() directly ------------------------------------------------------------

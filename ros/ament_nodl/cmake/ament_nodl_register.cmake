@@ -51,17 +51,7 @@ function(_ament_nodl_register kind resource_type key)
     message(FATAL_ERROR "${_what}: '${key}' is already registered in this package")
   endif()
   set_property(GLOBAL APPEND PROPERTY _AMENT_NODL_KEYS_${resource_type} "${key}")
-  get_property(_installed GLOBAL PROPERTY _AMENT_NODL_INSTALLED)
-  foreach(_entry IN LISTS _installed)
-    string(REPLACE "|" ";" _pair "${_entry}")
-    list(GET _pair 0 _other_name)
-    list(GET _pair 1 _other_file)
-    if(_other_name STREQUAL _name AND NOT _other_file STREQUAL _file)
-      message(FATAL_ERROR "${_what}: '${_file}' and '${_other_file}' would both be installed "
-        "as share/${PROJECT_NAME}/nodl/${_name}; rename one")
-    endif()
-  endforeach()
-  set_property(GLOBAL APPEND PROPERTY _AMENT_NODL_INSTALLED "${_name}|${_file}")
+  _ament_nodl_claim("${_what}" "nodl/${_name}" "${_file}" _claimed)
 
   # A staging index in the build folder lets build-time validation resolve
   # nodl://<this package>/<name> before the package is installed.
@@ -95,9 +85,73 @@ function(_ament_nodl_register kind resource_type key)
   endif()
 
   install(FILES "${_file}" DESTINATION "share/${PROJECT_NAME}/nodl")
+  if(kind STREQUAL "node")
+    _ament_nodl_install_relative_mixins("${_what}" "${_file}")
+  endif()
   ament_index_register_resource(${resource_type}
     PACKAGE_NAME "${PROJECT_NAME}__${key}"
     CONTENT "nodl/${_name}")
+endfunction()
+
+# Record that <file> is installed as share/<package>/<target>; fail if another file
+# already is. <claimed_var> is set to TRUE when <file> was already recorded there.
+function(_ament_nodl_claim what target file claimed_var)
+  set(${claimed_var} FALSE PARENT_SCOPE)
+  get_property(_installed GLOBAL PROPERTY _AMENT_NODL_INSTALLED)
+  foreach(_entry IN LISTS _installed)
+    string(REPLACE "|" ";" _pair "${_entry}")
+    list(GET _pair 0 _other_target)
+    list(GET _pair 1 _other_file)
+    if(_other_target STREQUAL target)
+      if(NOT _other_file STREQUAL file)
+        message(FATAL_ERROR "${what}: '${file}' and '${_other_file}' would both be installed "
+          "as share/${PROJECT_NAME}/${target}; rename one")
+      endif()
+      set(${claimed_var} TRUE PARENT_SCOPE)
+      return()
+    endif()
+  endforeach()
+  set_property(GLOBAL APPEND PROPERTY _AMENT_NODL_INSTALLED "${target}|${file}")
+endfunction()
+
+# Install the mixins of a node file that are files of this package (relative paths) at
+# the same place relative to the installed node file, so that the installed copy
+# resolves them as the build-time validation did. `nodl deps` lists them.
+function(_ament_nodl_install_relative_mixins what file)
+  # The file's mixins decide what is installed: reconfigure when it changes.
+  set_property(DIRECTORY "${CMAKE_CURRENT_SOURCE_DIR}" APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+    "${file}")
+  execute_process(COMMAND "${AMENT_NODL_EXECUTABLE}" deps "${file}"
+    OUTPUT_VARIABLE _out ERROR_VARIABLE _err RESULT_VARIABLE _rc)
+  if(NOT _rc EQUAL 0)
+    message(FATAL_ERROR "${what}: '${AMENT_NODL_EXECUTABLE} deps ${file}' failed (${_rc}): ${_err}")
+  endif()
+  get_filename_component(_dir "${file}" DIRECTORY)
+  string(REPLACE "\n" ";" _references "${_out}")
+  foreach(_reference IN LISTS _references)
+    if(_reference STREQUAL "")
+      continue()
+    endif()
+    # The node file is installed in share/<package>/nodl: its mixin goes to nodl/<reference>.
+    if(_reference MATCHES "^\\.\\./\\.\\.(/|$)")
+      message(FATAL_ERROR "${what}: mixin '${_reference}' of '${file}' would be installed outside "
+        "share/${PROJECT_NAME}; keep relative mixins in or below the folder above the node "
+        "file, or register the mixin as an interface and use nodl://${PROJECT_NAME}/<name>")
+    elseif(_reference MATCHES "^\\.\\./(.*)$")
+      set(_target "${CMAKE_MATCH_1}")
+    else()
+      set(_target "nodl/${_reference}")
+    endif()
+    get_filename_component(_source "${_reference}" ABSOLUTE BASE_DIR "${_dir}")
+    if(NOT EXISTS "${_source}")
+      continue()  # the build-time validation reports it, with its position
+    endif()
+    _ament_nodl_claim("${what}" "${_target}" "${_source}" _claimed)
+    if(NOT _claimed)
+      get_filename_component(_target_dir "${_target}" DIRECTORY)
+      install(FILES "${_source}" DESTINATION "share/${PROJECT_NAME}/${_target_dir}")
+    endif()
+  endforeach()
 endfunction()
 
 function(_ament_nodl_add_deferred_validation)
