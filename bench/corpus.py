@@ -1,4 +1,4 @@
-"""A corpus of realistic node definitions (about 6 KB each), generated deterministically.
+"""Corpora of realistic node definitions (about 8 KB each), generated deterministically.
 
 Each document has 25 parameters with validators, 10 publishers, 10
 subscriptions, service servers and clients, and action servers and clients,
