@@ -88,13 +88,6 @@ def check_validator_name(value: Any, path: DocPath, out: list[Diagnostic]) -> No
                 f'function{hint.replace(";", ",", 1)}', path, anchor='key', code='NODL208'))
 
 
-def _scalar_arg(args: Any) -> Any:
-    """``[x]`` or ``x`` -> x (the two spellings generate_parameter_library accepts)."""
-    if isinstance(args, list) and len(args) == 1:
-        return args[0]
-    return args
-
-
 def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Semantic checks of one parameter definition found at ``path``."""
     if not isinstance(param, dict):
@@ -236,25 +229,21 @@ def _expected(spec: TypeSpec) -> str:
 def _check_arguments(bare: str, key: str, args: Any, spec: TypeSpec, path: DocPath,
                      out: list[Diagnostic]) -> bool:
     """Arguments of the parameter's kind; False if they are unusable."""
-    if bare in ('bounds', 'element_bounds'):
-        if not (isinstance(args, list) and len(args) == 2 and all(element_fits(a, 'double') for a in args)):
-            return False  # the structural check reported the shape
-        if args[0] > args[1]:
-            out.append(_error(f'{key}: the lower bound {show(args[0])} is greater than the upper '
-                              f'bound {show(args[1])}', path, 'NODL213'))
+    rule = VALIDATORS[bare]
+    if not rule.accepts(args):
+        return False  # the structural check reported the shape
+    argument = rule.argument(args)
+    if rule.shape == 'bounds':
+        if argument[0] > argument[1]:
+            out.append(_error(f'{key}: the lower bound {show(argument[0])} is greater than the upper '
+                              f'bound {show(argument[1])}', path, 'NODL213'))
             return False
-        return _integral(args, key, spec, path, out)
-    if bare in ('lt', 'gt', 'lt_eq', 'gt_eq', 'lower_element_bounds', 'upper_element_bounds'):
-        value = _scalar_arg(args)
-        return element_fits(value, 'double') and _integral([value], key, spec, path, out)
-    if bare in ('fixed_size', 'size_gt', 'size_lt'):
-        value = _scalar_arg(args)
-        return isinstance(value, int) and not isinstance(value, bool) and value >= 0
-    if bare in ('one_of', 'subset_of'):
-        if not (isinstance(args, list) and len(args) == 1 and isinstance(args[0], list)):
-            return False
+        return _integral(list(argument), key, spec, path, out)
+    if rule.shape == 'comparison':
+        return _integral([argument], key, spec, path, out)
+    if rule.shape in ('one_of', 'subset_of'):
         ok = True
-        for index, item in enumerate(args[0]):
+        for index, item in enumerate(argument):
             if not element_fits(item, spec.element):
                 never = (f'no element of {article(spec.name)} parameter can equal it'
                          if bare == 'subset_of' else
