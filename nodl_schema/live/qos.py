@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from nodl_schema.vocabulary import QOS_DURATIONS, QOS_ENUMS
+
 __all__ = ['qos_from_rclpy', 'INFINITE_NS']
 
 #: Durations at or above this are "infinite" (rmw's INT64_MAX-ish values).
@@ -38,14 +40,13 @@ def qos_from_rclpy(profile: Any) -> tuple[dict[str, Any], list[str]]:
         qos['history'] = history
         if history == 'KEEP_LAST' and profile.depth > 0:
             qos['depth'] = int(profile.depth)
-    for field in ('reliability', 'durability', 'liveliness'):
+    for field in (policy for policy in QOS_ENUMS if policy != 'history'):
         value = _policy(getattr(profile, field))
         if value == _UNKNOWN:
             unobserved.append(field)
         else:
             qos[field] = value
-    for field, attribute in (('deadline_ns', 'deadline'), ('lifespan_ns', 'lifespan'),
-                             ('liveliness_lease_duration_ns', 'liveliness_lease_duration')):
+    for field, attribute in QOS_DURATIONS.items():
         ns = _duration_ns(getattr(profile, attribute))
         if ns is not None:
             qos[field] = ns
