@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from nodl_schema.cli.runner import add_verbs, run_verb
+from nodl_schema.cli.runner import HelpFormatter, add_verbs, run_verb
 
 __all__ = ['main', 'build_parser']
 
@@ -14,7 +14,7 @@ __all__ = ['main', 'build_parser']
 def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
     """The ``nodl`` argument parser (with only the verb ``argv`` names, if it names one)."""
     parser = argparse.ArgumentParser(
-        prog='nodl',
+        prog='nodl', formatter_class=HelpFormatter,
         description='NoDL toolkit: validate, compose and inspect ROS 2 node definitions.')
     from nodl_schema import __version__
     parser.add_argument('--version', action='version', version=f'%(prog)s {__version__}')
