@@ -307,3 +307,38 @@ def test_node_renamed_by_its_rules_conforms_with_them(described) -> None:
         assert result.fqn == '/chk2/renamed'
     finally:
         node.stop()
+
+
+# -- client libraries and the resolved node ----------------------------------------------------
+
+
+def test_the_rclcpp_base_is_checked_when_asked_for(full: NodeProcess, described) -> None:
+    # full_node is an rclpy node: checked as rclcpp, it lacks the time source's subscription
+    path, _ = described
+    result = check_node(full.fqn, path, timeout=15, client_library='rclcpp')
+    assert not result.conforms
+    assert [(d.kind, d.section, d.name, d.layer) for d in result.drift] == [
+        ('missing', 'subscriptions', '/parameter_events', 'base:node')]
+    assert result.client_library == ('rclcpp', 'as requested')
+    assert format_check_text(result).splitlines()[0] == (
+        '/chk/full: client library: rclcpp (as requested)')
+    assert json.loads(format_check_json(result))['client_library'] == {
+        'name': 'rclcpp', 'reason': 'as requested'}
+    # the difference points at the declaration, in the rclcpp part of the base
+    location = result.drift[0].location
+    assert location is not None and location.file.endswith(os.path.join('rclcpp', 'node.nodl.yaml'))
+    assert result.drift[0].to_diagnostic().file == location.file
+    default = check_node(full.fqn, path, timeout=15)
+    assert default.conforms
+    assert default.client_library == ('rclpy', 'the default; choose with --client-library')
+
+
+def test_load_definition_returns_the_resolved_node(described) -> None:
+    from nodl_schema.system import EntityKind, Provider, ResolvedNode
+
+    path, _ = described
+    resolved = load_definition(path)
+    assert isinstance(resolved, ResolvedNode)
+    rosout = resolved.entity(EntityKind.PUBLISHER, '/rosout')
+    assert rosout.provider is Provider.CLIENT_LIBRARY
+    assert all(e.layer == 'main' for e in resolved.implementation_entities())

@@ -201,8 +201,10 @@ def test_header_lists_every_note() -> None:
     description = describe_observed(synthetic_lifecycle_camera())
     header = [line for line in render_description(description).splitlines() if line.startswith('#')]
     assert header[0] == '# Described from the running node /robot/camera by `nodl describe`.'
-    assert header[1] == '# Not observable, so not stated here:'
-    assert header[2:-1] == [f'#   - {note}' for note in description.notes]
+    assert header[1] == ('# Left out: what the base gives an rclpy node (the node does not '
+                         'subscribe to /parameter_events, as rclcpp nodes do).')
+    assert header[2] == '# Not observable, so not stated here:'
+    assert header[3:-1] == [f'#   - {note}' for note in description.notes]
     # The last line silences 'has no description' (describe cannot know them), even with strict.
     assert header[-1].startswith('# nodl: ignore=NODL216 ')
     assert load_node(render_description(description), strict=True)
@@ -307,3 +309,50 @@ def test_described_definition_that_is_broken_would_be_reported() -> None:
     definition['main']['publishers'][0]['qos'] = {'depth': 'ten'}
     with pytest.raises(ValidationError):
         validate_node(definition)
+
+
+# --- client libraries --------------------------------------------------------------------------
+
+def _rclcpp_like(observed: ObservedNode) -> ObservedNode:
+    """``observed`` as an rclcpp node would show it: its time source subscribes /parameter_events."""
+    observed.subscriptions.append(ObservedEndpoint(
+        '/parameter_events', 'rcl_interfaces/msg/ParameterEvent',
+        {'history': 'KEEP_LAST', 'depth': 1000, 'reliability': 'RELIABLE', 'durability': 'VOLATILE'}))
+    return observed
+
+
+def test_the_client_library_is_deduced_and_its_base_left_out() -> None:
+    from nodl_schema.live.describe import deduce_client_library
+
+    plain = synthetic_lifecycle_camera()
+    assert deduce_client_library(plain).name == 'rclpy'
+    cpp = _rclcpp_like(synthetic_lifecycle_camera())
+    choice = deduce_client_library(cpp)
+    assert choice == ('rclcpp', "the node subscribes to /parameter_events, as rclcpp's time "
+                                'source does')
+    description = describe_observed(cpp)
+    assert description.client_library == choice
+    # the subscription is rclcpp's base, not the node's own: left out, as with rclpy
+    assert description.node.main.subscriptions == describe_observed(plain).node.main.subscriptions
+    assert render_description(description).splitlines()[1] == (
+        "# Left out: what the base gives an rclcpp node (the node subscribes to /parameter_events, "
+        "as rclcpp's time source does).")
+
+
+def test_a_requested_client_library_wins() -> None:
+    cpp = _rclcpp_like(synthetic_lifecycle_camera())
+    description = describe_observed(cpp, 'rclpy')
+    assert description.client_library == ('rclpy', 'as requested')
+    assert '/parameter_events' in {s.name for s in description.node.main.subscriptions or ()}
+    with pytest.raises(ValueError, match='unknown client library'):
+        describe_observed(cpp, 'rclc')
+
+
+def test_the_description_is_built_as_a_typed_node() -> None:
+    from nodl_schema.model import Node, TopicEndpoint
+
+    description = describe_observed(synthetic_lifecycle_camera())
+    assert isinstance(description.node, Node)
+    assert all(isinstance(p, TopicEndpoint) for p in description.node.main.publishers or ())
+    assert description.definition == description.node.to_dict()
+    assert validate_node(description.definition) is not None

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 
-__all__ = ['seconds', 'node_name', 'definition_problem']
+__all__ = ['seconds', 'node_name', 'definition_problem', 'add_client_library_argument']
 
 
 def seconds(text: str) -> float:
@@ -42,3 +42,16 @@ def definition_problem(targets: list[str]) -> str | None:
         return (f"'{targets[0]}' is a file, so one is expected: give FILE, or PACKAGE EXECUTABLE "
                 '(a package name and one of its executables, looked up in the ament index)')
     return None
+
+
+def add_client_library_argument(parser: argparse.ArgumentParser, default: str | None = None) -> None:
+    """``--client-library``: whose base a node inherits (show, check, describe).
+
+    ``default`` says, for the help, what happens without the option.
+    """
+    from nodl_schema.vocabulary import CLIENT_LIBRARIES
+
+    default = default or ("from the package's build type for a registered node, ament_python -> "
+                          f'rclpy, ament_cmake -> rclcpp; else {CLIENT_LIBRARIES[0]}')
+    parser.add_argument('--client-library', choices=CLIENT_LIBRARIES, default=None,
+                        help=f'the client library whose base the node inherits (default: {default})')

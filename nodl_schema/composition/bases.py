@@ -23,14 +23,14 @@ from typing import Any
 from nodl_schema.composition.layers import Layer
 from nodl_schema.diagnostics import Diagnostic, DocPath
 from nodl_schema.model import Base, Interface
+from nodl_schema.vocabulary import CLIENT_LIBRARIES
 
 __all__ = ['BASES_DIR', 'CLIENT_LIBRARIES', 'DEFAULT_CLIENT_LIBRARY', 'base_file', 'base_files',
            'base_layer', 'check_client_library']
 
 BASES_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'bases')
 
-#: The client libraries a base can be chosen for; the first is the default.
-CLIENT_LIBRARIES = ('rclpy', 'rclcpp')
+#: The default client library (the one the bases are verified against).
 DEFAULT_CLIENT_LIBRARY = CLIENT_LIBRARIES[0]
 
 #: base -> the shared parts it is made of, in order (file stems under ``bases/``).

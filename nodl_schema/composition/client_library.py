@@ -13,12 +13,11 @@ import os
 from typing import NamedTuple
 
 from nodl_schema.composition.bases import DEFAULT_CLIENT_LIBRARY, check_client_library
+from nodl_schema.vocabulary import BUILD_TYPE_LIBRARIES
 
 __all__ = ['ClientLibraryChoice', 'BUILD_TYPE_LIBRARIES', 'choose_client_library',
            'package_build_type']
 
-#: Package build type -> the client library its nodes are written with.
-BUILD_TYPE_LIBRARIES = {'ament_python': 'rclpy', 'ament_cmake': 'rclcpp'}
 
 
 class ClientLibraryChoice(NamedTuple):

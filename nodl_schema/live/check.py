@@ -5,12 +5,14 @@ from __future__ import annotations
 import os
 from typing import Iterable
 
-from nodl_schema.composition import ComposedNode, compose
+from nodl_schema.composition import ComposedNode
+from nodl_schema.composition.client_library import ClientLibraryChoice
 from nodl_schema.diagnostics import ValidationError
 from nodl_schema.live.conformance import Difference, Remaps, compare, conforms
 from nodl_schema.live.observe import ObservedNode, observe_node
 from nodl_schema.live.session import DuplicateNode, split_node_name
 from nodl_schema.model import ENDPOINT_SECTIONS
+from nodl_schema.system.resolved import ResolvedNode
 
 __all__ = ['CheckResult', 'load_definition', 'check_node', 'base_mismatch', 'RECHECK']
 
@@ -22,8 +24,12 @@ class CheckResult:
     """The outcome of one check."""
 
     def __init__(self, fqn: str, definition: str, differences: list[Difference],
-                 composed: ComposedNode, observed: ObservedNode,
+                 composed: ResolvedNode | ComposedNode, observed: ObservedNode,
                  remaps: Remaps = None) -> None:
+        resolved = composed if isinstance(composed, ResolvedNode) else ResolvedNode(composed)
+        #: The declared node, resolved (entities with their layers, providers and locations).
+        self.resolved = resolved
+        composed = resolved.composed
         self.fqn = fqn
         #: How the node's names were resolved: its ``NodeNames`` (final name and remapping
         #: rules), or a mapping of expanded topic names FROM -> TO.
@@ -36,6 +42,14 @@ class CheckResult:
         #: One line when the node's base is not the declared one (``use `base: lifecycle_node```),
         #: and the differences that mismatch explains (the other base's own entities).
         self.base_hint, self.base_differences = base_mismatch(composed, observed, differences)
+
+    @property
+    def client_library(self) -> ClientLibraryChoice | None:
+        """The client library whose base was checked, and why (None for a node without base)."""
+        if self.resolved.base is None:
+            return None
+        return ClientLibraryChoice(self.resolved.client_library,
+                                   self.resolved.client_library_reason)
 
     @property
     def conforms(self) -> bool:
@@ -80,36 +94,39 @@ def base_mismatch(composed: ComposedNode, observed: ObservedNode,
     return hint, [d for d in differences if (d.section, d.name) in entities]
 
 
-def load_definition(definition: str | os.PathLike[str] | tuple[str, str]) -> ComposedNode:
-    """Compose a node definition given as a file or ``(package, executable)``.
+def load_definition(definition: str | os.PathLike[str] | tuple[str, str],
+                    client_library: str | None = None) -> ResolvedNode:
+    """Resolve a node definition given as a file or ``(package, executable)``.
 
+    ``client_library`` (``rclpy`` or ``rclcpp``) chooses the base; by default
+    the one of the package's build type for a registered node, else rclpy.
     Raises :class:`~nodl_schema.diagnostics.ValidationError` with every
     diagnostic if it cannot be found, read or composed (OSError for an
-    unreadable file).
+    unreadable file, ValueError for an unknown client library).
     """
-    if isinstance(definition, tuple):
-        from nodl_schema.index.registry import compose_registered
+    from nodl_schema.system.resolved import resolve_node, resolve_registered
 
-        composed, diagnostics, _ = compose_registered(*definition)
-        if composed is None:
+    if isinstance(definition, tuple):
+        resolved, diagnostics, _ = resolve_registered(*definition, client_library=client_library)
+        if resolved is None:
             raise ValidationError(diagnostics)
-        found: ComposedNode = composed
-        return found
+        return resolved
     from pathlib import Path
 
     path = os.fspath(definition)
-    return compose(Path(path), file=path)
+    return resolve_node(Path(path), file=path, client_library=client_library)
 
 
 def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *,
                timeout: float = 5.0, remaps: Iterable[str] = (),
-               parameters: bool = True) -> CheckResult:
+               parameters: bool = True, client_library: str | None = None) -> CheckResult:
     """Check the running node ``fqn`` against ``definition`` (a file or ``(package, executable)``).
 
     Raises ValidationError for a bad definition, LiveError when the node
     cannot be observed (NodeNotFound if it never appears within ``timeout``,
     DuplicateNode if several nodes share its name), and ValueError for a
-    malformed remapping rule.  Declared endpoints that are missing are
+    malformed remapping rule or an unknown ``client_library`` (whose base is
+    checked: see :func:`load_definition`).  Declared endpoints that are missing are
     looked for once more after ``RECHECK`` seconds (if the timeout leaves
     that much), as discovery may only be late.
     """
@@ -119,7 +136,7 @@ def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *
 
     from nodl_schema.naming import NodeNames, parse_remap_rules
 
-    composed = load_definition(definition)
+    composed = load_definition(definition, client_library)
     # The rules as the node was given them; ``fqn`` is its final name (what ``__node`` and
     # ``__ns`` rules made it), against which node-scoped rules are matched, as rcl does.
     rules = tuple(parse_remap_rules(list(remaps)))

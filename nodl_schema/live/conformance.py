@@ -21,6 +21,11 @@ from __future__ import annotations
 from typing import Any, Iterable, Mapping, Union
 
 from nodl_schema.composition import ComposedNode
+from nodl_schema.system.entities import Location
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from nodl_schema.system.resolved import ResolvedNode
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.live.observe import ObservedNode
 from nodl_schema.model import ENDPOINT_SECTIONS, QOS_POLICIES, Interface
@@ -44,10 +49,11 @@ KIND_CODES = {
 class Difference:
     """One difference between the declared and the observed interface."""
 
-    __slots__ = ('kind', 'section', 'name', 'declared', 'observed', 'layer', 'message')
+    __slots__ = ('kind', 'section', 'name', 'declared', 'observed', 'layer', 'message', 'location')
 
     def __init__(self, kind: str, section: str, name: str, message: str, *,
-                 declared: Any = None, observed: Any = None, layer: str | None = None) -> None:
+                 declared: Any = None, observed: Any = None, layer: str | None = None,
+                 location: Location | None = None) -> None:
         self.kind = kind
         self.section = section
         self.name = name
@@ -55,6 +61,9 @@ class Difference:
         self.observed = observed
         self.layer = layer
         self.message = message
+        #: Where the entity is declared (file, line, column), when checked against a
+        #: resolved node; None for what is observed but not declared.
+        self.location = location
 
     @property
     def severity(self) -> str:
@@ -68,12 +77,17 @@ class Difference:
         """The stable diagnostic code of this kind of difference (``NODL401`` ...)."""
         return KIND_CODES[self.kind]
 
-    def to_diagnostic(self, file: str, line: int = 0, column: int = 0) -> Diagnostic:
+    def to_diagnostic(self, file: str | None = None, line: int = 0, column: int = 0) -> Diagnostic:
         """The same difference as a :class:`~nodl_schema.diagnostics.Diagnostic`.
 
-        ``file`` (and a position, when known) is the definition; the path is
-        ``(section, name)``; the layer, if any, is in the message as in the text output.
+        ``file`` (and a position, when known) is the definition; without one,
+        the difference's ``location`` (the entity's declaration) is used, else
+        ``<definition>``.  The path is ``(section, name)``; the layer, if any, is
+        in the message as in the text output.
         """
+        if file is None:
+            file, line, column = self.location if self.location is not None else (
+                '<definition>', 0, 0)
         layer = f' (declared in {self.layer})' if self.layer else ''
         return Diagnostic(Severity(self.severity), f'{self.kind}: {self.message}{layer}',
                           (self.section, self.name), file, line, column, code=self.code)
@@ -222,14 +236,24 @@ def _compare_parameters(declared: Interface, observed: ObservedNode) -> list[Dif
     return out
 
 
-def compare(composed: ComposedNode | Interface, observed: ObservedNode,
+def compare(composed: ResolvedNode | ComposedNode | Interface, observed: ObservedNode,
             remaps: Remaps = None) -> list[Difference]:
     """Every difference between a declared interface and an observed node.
 
-    ``remaps``: the node's :class:`~nodl_schema.naming.NodeNames` (its final
-    name and rules), or a mapping of expanded topic names (see :func:`final_name`).
+    ``composed``: the resolved node (then each difference about a declared
+    entity carries the ``location`` of its declaration), a composition, or a
+    plain interface.  ``remaps``: the node's :class:`~nodl_schema.naming.NodeNames`
+    (its final name and rules), or a mapping of expanded topic names (see
+    :func:`final_name`).
     """
-    declared = composed.interface if isinstance(composed, ComposedNode) else composed
+    from nodl_schema.system.resolved import ResolvedNode
+
+    if isinstance(composed, ComposedNode):
+        composed = ResolvedNode(composed)
+    declared = composed.interface if isinstance(composed, ResolvedNode) else composed
+    # declaration (the merged model object) -> where it is written
+    where = ({id(e.definition): e.location for e in composed.entities}
+             if isinstance(composed, ResolvedNode) else {})
     out: list[Difference] = []
     for section in ENDPOINT_SECTIONS:
         word = _word(section)
@@ -238,25 +262,37 @@ def compare(composed: ComposedNode | Interface, observed: ObservedNode,
             wanted[final_name(entity.name, section, observed, remaps)] = entity
         seen = {e.name: e for e in getattr(observed, section)}
         for full, entity in wanted.items():
-            real = seen.get(full)
-            if real is None:
-                out.append(Difference('missing', section, full, f"{word} '{full}' ({entity.type}) is "
-                                      'declared but not observed', declared=entity.type,
-                                      layer=entity.origin))
-                continue
-            if real.type != entity.type:
-                out.append(Difference('type', section, full, f"{word} '{full}': declared type "
-                                      f'{entity.type}, observed {real.type}', declared=entity.type,
-                                      observed=real.type, layer=entity.origin))
-                continue
-            if section in TOPIC_SECTIONS:
-                out += _compare_qos(section, full, entity.qos, real.qos, real.unobserved, entity.origin)
-            elif section in SERVICE_SECTIONS and entity.qos is not None:
-                out.append(Difference('unverifiable', section, full, f"{word} '{full}' QoS: the "
-                                      'middleware does not report service QoS',
-                                      declared=entity.qos.to_dict(), layer=entity.origin))
+            first = len(out)
+            _compare_endpoint(section, word, full, entity, seen.get(full), out)
+            for difference in out[first:]:
+                difference.location = where.get(id(entity))
         for full in sorted(set(seen) - set(wanted)):
             out.append(Difference('extra', section, full, f"{word} '{full}' ({seen[full].type}) is "
                                   'observed but not declared', observed=seen[full].type))
+    first = len(out)
     out += _compare_parameters(declared, observed)
+    for difference in out[first:]:
+        param = (declared.parameters or {}).get(difference.name)
+        difference.location = where.get(id(param)) if param is not None else None
     return out
+
+
+def _compare_endpoint(section: str, word: str, full: str, entity: Any, real: Any,
+                      out: list[Difference]) -> None:
+    """The differences between one declared endpoint and what is observed under its name."""
+    if real is None:
+        out.append(Difference('missing', section, full, f"{word} '{full}' ({entity.type}) is "
+                              'declared but not observed', declared=entity.type,
+                              layer=entity.origin))
+        return
+    if real.type != entity.type:
+        out.append(Difference('type', section, full, f"{word} '{full}': declared type "
+                              f'{entity.type}, observed {real.type}', declared=entity.type,
+                              observed=real.type, layer=entity.origin))
+        return
+    if section in TOPIC_SECTIONS:
+        out += _compare_qos(section, full, entity.qos, real.qos, real.unobserved, entity.origin)
+    elif section in SERVICE_SECTIONS and entity.qos is not None:
+        out.append(Difference('unverifiable', section, full, f"{word} '{full}' QoS: the "
+                              'middleware does not report service QoS',
+                              declared=entity.qos.to_dict(), layer=entity.origin))

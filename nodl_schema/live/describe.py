@@ -13,24 +13,36 @@ from __future__ import annotations
 from typing import Any
 
 from nodl_schema.composition.bases import base_layer
+from nodl_schema.composition.client_library import ClientLibraryChoice
 from nodl_schema.live.observe import ObservedNode, ObservedParameter, observe_node
-from nodl_schema.model import ENDPOINT_SECTIONS
+from nodl_schema.model import (
+    ENDPOINT_SECTIONS, Base, Interface, Node, ParameterDefinition, QoSProfile)
 from nodl_schema.naming import expand, relativize
 from nodl_schema.vocabulary import QOS_KEYS, TOPIC_SECTIONS
 
-__all__ = ['Description', 'deduce_base', 'describe_observed', 'describe_node', 'render_description']
+__all__ = ['Description', 'deduce_base', 'deduce_client_library', 'describe_observed',
+           'describe_node', 'render_description']
 
 _LIFECYCLE_SERVICES = ('change_state', 'get_state', 'get_available_states',
                        'get_available_transitions', 'get_transition_graph')
 
 
 class Description:
-    """A described node: the definition (a plain dict) and what could not be observed."""
+    """A described node: the definition (a typed :class:`~nodl_schema.model.Node`), what
+    could not be observed, and the client library whose base entities were left out."""
 
-    def __init__(self, fqn: str, definition: dict[str, Any], notes: list[str]) -> None:
+    def __init__(self, fqn: str, node: Node, notes: list[str],
+                 client_library: ClientLibraryChoice | None = None) -> None:
         self.fqn = fqn
-        self.definition = definition
+        #: The node definition, typed.
+        self.node = node
         self.notes = notes
+        self.client_library = client_library or ClientLibraryChoice('rclpy', 'the default')
+
+    @property
+    def definition(self) -> dict[str, Any]:
+        """The node definition as the mapping a file holds (made from :attr:`node`)."""
+        return self.node.to_dict()
 
 
 def deduce_base(observed: ObservedNode) -> str:
@@ -42,56 +54,79 @@ def deduce_base(observed: ObservedNode) -> str:
     return 'node'
 
 
-def _parameter(param: ObservedParameter) -> dict[str, Any]:
-    out: dict[str, Any] = {'type': param.type}
-    if param.value is not None and param.type != 'none':
-        out['default_value'] = param.value
-    if param.description:
-        out['description'] = param.description
-    if param.read_only:
-        out['read_only'] = True
-    if param.range is not None:
-        low, high = param.range
-        out['validation'] = {'bounds<>': [low, high]}
-    return out
+#: What only an rclcpp node has: its time source's subscription (see the rclcpp base additions).
+_RCLCPP_MARK = ('subscriptions', '/parameter_events', 'rcl_interfaces/msg/ParameterEvent')
 
 
-def describe_observed(observed: ObservedNode) -> Description:
-    """Turn an observation into a node definition (as a plain, valid dict)."""
+def deduce_client_library(observed: ObservedNode,
+                          requested: str | None = None) -> ClientLibraryChoice:
+    """The client library the node is written with: ``requested``, else rclcpp if the node
+    subscribes to /parameter_events (as rclcpp's time source does), else rclpy."""
+    from nodl_schema.composition.client_library import choose_client_library
+
+    if requested is not None:
+        return choose_client_library(requested)
+    section, topic, type_ = _RCLCPP_MARK
+    if any(e.name == topic and e.type == type_ for e in getattr(observed, section)):
+        return ClientLibraryChoice('rclcpp', f'the node subscribes to {topic}, as rclcpp\'s time '
+                                   'source does')
+    return ClientLibraryChoice('rclpy', f'the node does not subscribe to {topic}, as rclcpp '
+                               'nodes do')
+
+
+def _parameter(param: ObservedParameter) -> ParameterDefinition:
+    return ParameterDefinition(
+        param.type,
+        param.value if param.value is not None and param.type != 'none' else None,
+        param.description or '',
+        bool(param.read_only),
+        validation={'bounds<>': list(param.range)} if param.range is not None else None)
+
+
+def describe_observed(observed: ObservedNode, client_library: str | None = None) -> Description:
+    """Turn an observation into a node definition (a typed, valid :class:`Node`).
+
+    The entities of the base of ``client_library`` are left out of ``main``;
+    by default the library is deduced from the node (:func:`deduce_client_library`).
+    ValueError for an unknown client library.
+    """
+    library = deduce_client_library(observed, client_library)
     base = deduce_base(observed)
-    base_iface = base_layer(base).interface
+    base_iface = base_layer(base, library.name).interface
     name, namespace = observed.name, observed.namespace
     notes = list(observed.notes)
-    main: dict[str, Any] = {'nodl_version': 2}
+    main = Interface(nodl_version=2)
 
     if observed.parameters:
         inherited = base_iface.parameters or {}
         params = {k: _parameter(p) for k, p in sorted(observed.parameters.items())
                   if k not in inherited and not k.startswith('qos_overrides.')}
         if params:
-            main['parameters'] = params
+            main.parameters = params
 
     unobserved: set[str] = set()
     for section in ENDPOINT_SECTIONS:
         from_base = {(expand(e.name, name, namespace), e.type) for e in base_iface.endpoints(section)}
+        make = ENDPOINT_SECTIONS[section]
         entries = []
         for endpoint in getattr(observed, section):
             if (endpoint.name, endpoint.type) in from_base:
                 continue
-            entry: dict[str, Any] = {'name': relativize(endpoint.name, name, namespace),
-                                     'type': endpoint.type}
-            if section in TOPIC_SECTIONS:
-                qos = dict(endpoint.qos or {})
-                unobserved.update(endpoint.unobserved)
-                if 'history' not in qos:
-                    # The schema needs a history; SYSTEM_DEFAULT claims nothing about it.
-                    qos['history'] = 'SYSTEM_DEFAULT'
-                if 'reliability' not in qos:
-                    qos['reliability'] = 'SYSTEM_DEFAULT'
-                entry['qos'] = {k: qos[k] for k in QOS_KEYS if k in qos}
-            entries.append(entry)
+            short = relativize(endpoint.name, name, namespace)
+            if section not in TOPIC_SECTIONS:
+                entries.append(make(short, endpoint.type))
+                continue
+            qos = dict(endpoint.qos or {})
+            unobserved.update(endpoint.unobserved)
+            if 'history' not in qos:
+                # The schema needs a history; SYSTEM_DEFAULT claims nothing about it.
+                qos['history'] = 'SYSTEM_DEFAULT'
+            if 'reliability' not in qos:
+                qos['reliability'] = 'SYSTEM_DEFAULT'
+            entries.append(make(short, endpoint.type,
+                                QoSProfile.from_dict({k: qos[k] for k in QOS_KEYS if k in qos})))
         if entries:
-            main[section] = entries
+            setattr(main, section, entries)
 
     if unobserved & {'history', 'depth'}:
         notes.append('topic history and depth are not reported by the middleware: written as '
@@ -100,20 +135,21 @@ def describe_observed(observed: ObservedNode) -> Description:
         notes.append(f'topic {field} was not reported by the middleware for some endpoints')
     if 'qos' in unobserved:
         notes.append('the QoS of some topic endpoints could not be read')
-    if main.get('service_servers') or main.get('service_clients'):
+    if main.service_servers or main.service_clients:
         notes.append('service QoS cannot be observed (no graph API reports it): left out')
-    definition = {'nodl_version': 2, 'base': base, 'main': main}
-    return Description(observed.fully_qualified_name, definition, notes)
+    definition = Node(main, 2, Base(base))
+    return Description(observed.fully_qualified_name, definition, notes, library)
 
 
 def describe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
-                  session: Any = None) -> Description:
+                  session: Any = None, client_library: str | None = None) -> Description:
     """Observe the running node ``fqn`` and describe it (raises LiveError for the user).
 
-    ``session``: an observer node of :func:`~nodl_schema.live.session.ros_session` to reuse.
+    ``session``: an observer node of :func:`~nodl_schema.live.session.ros_session` to reuse;
+    ``client_library``: see :func:`describe_observed`.
     """
     return describe_observed(observe_node(fqn, timeout=timeout, parameters=parameters,
-                                          session=session))
+                                          session=session), client_library)
 
 
 def render_description(description: Description, format: str = 'yaml') -> str:
@@ -121,8 +157,11 @@ def render_description(description: Description, format: str = 'yaml') -> str:
     from nodl_schema.loading import dump_nodl
 
     if format == 'json':
-        return dump_nodl(description.definition, 'json')
-    header = [f'# Described from the running node {description.fqn} by `nodl describe`.']
+        return dump_nodl(description.node, 'json')
+    header = [f'# Described from the running node {description.fqn} by `nodl describe`.',
+              # one line whatever the reason holds: a comment cannot break out
+              f'# Left out: what the base gives an {description.client_library.name} node '
+              f'({description.client_library.reason}).'.replace('\n', ' ').replace('\r', ' ')]
     if description.notes:
         header.append('# Not observable, so not stated here:')
         header += [f'#   - {note}' for note in description.notes]
@@ -130,4 +169,4 @@ def render_description(description: Description, format: str = 'yaml') -> str:
     # warning, even with --strict, until someone writes the descriptions.
     header.append('# nodl: ignore=NODL216 (a running node has no descriptions: write them, '
                   'then remove this line)')
-    return '\n'.join(header) + '\n' + dump_nodl(description.definition, 'yaml')
+    return '\n'.join(header) + '\n' + dump_nodl(description.node, 'yaml')

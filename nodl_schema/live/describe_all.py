@@ -42,12 +42,14 @@ def _discover(node: Any, timeout: float, settle: float, quiet: float = 0.5) -> l
 
 
 def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = True,
-                 format: str = 'yaml', settle: float = 3.5) -> list[tuple[str, str, list[str]]]:
+                 format: str = 'yaml', settle: float = 3.5,
+                 client_library: str | None = None) -> list[tuple[str, str, list[str]]]:
     """Describe every node in the graph into ``directory``; returns (node, file, notes) per node.
 
     Discovery is given up to ``timeout`` seconds (see :func:`_discover`); every
     node is then observed in the same session.  A node that vanishes while it
-    is described is reported in its notes and skipped.
+    is described is reported in its notes and skipped.  ``client_library``: see
+    :func:`~nodl_schema.live.describe.describe_observed` (by default deduced per node).
     """
     with ros_session() as node:
         names = _discover(node, timeout, settle)
@@ -56,7 +58,7 @@ def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = Tru
         for fqn in names:
             try:
                 description = describe_node(fqn, timeout=timeout, parameters=parameters,
-                                            session=node)
+                                            session=node, client_library=client_library)
             except LiveError as exc:
                 written.append((fqn, '(skipped)', [str(exc)]))
                 continue

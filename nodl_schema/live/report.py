@@ -15,6 +15,8 @@ __all__ = ['format_check_text', 'format_check_json', 'format_check_junit']
 def format_check_text(result: CheckResult, verbose: bool = False) -> str:
     """One line per difference, then a verdict."""
     lines = []
+    if result.client_library is not None:
+        lines.append(f'{result.fqn}: client library: {result.client_library}')
     folded = result.base_differences if not verbose else []
     if result.base_hint:
         more = (f' ({len(folded)} differences of the base, listed with -v)' if folded else '')
@@ -41,6 +43,8 @@ def format_check_json(result: CheckResult) -> str:
     data: dict[str, Any] = {'node': result.fqn, 'definition': result.definition,
                             'conforms': result.conforms,
                             'base_hint': result.base_hint,
+                            'client_library': (result.client_library._asdict()
+                                               if result.client_library is not None else None),
                             'differences': [d.to_dict() for d in result.differences]}
     return json.dumps(data, indent=2, default=str) + '\n'
 

@@ -37,6 +37,9 @@ class CheckVerb(Verb):
                             help='seconds to wait for the node (default: 5)')
         parser.add_argument('--no-parameters', action='store_true',
                             help='do not check parameters')
+        from nodl_schema.cli.arguments import add_client_library_argument
+
+        add_client_library_argument(parser)
         parser.add_argument('--format', choices=('text', 'json'), default='text',
                             help='output format (default: text)')
         parser.add_argument('--junit', metavar='FILE', help='also write a JUnit XML report')
@@ -58,7 +61,8 @@ class CheckVerb(Verb):
         definition = args.definition[0] if len(args.definition) == 1 else tuple(args.definition)
         try:
             result = check_node(args.node, definition, timeout=args.timeout, remaps=args.remap,
-                                parameters=not args.no_parameters)
+                                parameters=not args.no_parameters,
+                                client_library=args.client_library)
         except ValidationError as exc:
             sys.stderr.write(format_text(exc.diagnostics))
             return EXIT_USAGE

@@ -27,6 +27,10 @@ class DescribeVerb(Verb):
                             help="do not read the node's parameters")
         parser.add_argument('--format', choices=('yaml', 'json'), default='yaml',
                             help='output format (default: yaml)')
+        from nodl_schema.cli.arguments import add_client_library_argument
+
+        add_client_library_argument(parser, 'deduced from the node: rclcpp if it subscribes to '
+                                            '/parameter_events, else rclpy')
 
     def main(self, args: argparse.Namespace) -> int:
         import os
@@ -51,7 +55,8 @@ class DescribeVerb(Verb):
 
                 try:
                     written = describe_all(args.output, timeout=args.timeout,
-                                           parameters=not args.no_parameters, format=args.format)
+                                           parameters=not args.no_parameters, format=args.format,
+                                           client_library=args.client_library)
                 except OSError as exc:
                     raise OutputError(f'cannot write {exc.filename or args.output}: '
                                       f'{exc.strerror or exc}') from None
@@ -66,11 +71,15 @@ class DescribeVerb(Verb):
                         print(f'  note: {note}', file=sys.stderr)
                 return EXIT_OK
             description = describe_node(args.node, timeout=args.timeout,
-                                        parameters=not args.no_parameters)
+                                        parameters=not args.no_parameters,
+                                        client_library=args.client_library)
         except LiveError as exc:
             print(f'nodl describe: error: {exc}', file=sys.stderr)
             return EXIT_USAGE
         text = render_description(description, args.format)
+        if args.format == 'json':  # YAML says it in its header; JSON has no comments
+            print(f'nodl describe: note: client library {description.client_library}',
+                  file=sys.stderr)
         for note in description.notes:
             print(f'nodl describe: warning: {note}', file=sys.stderr)
         if not args.output:

@@ -30,10 +30,9 @@ class ShowVerb(Verb):
                             help='output format (default: yaml)')
         parser.add_argument('--layers', action='store_true',
                             help="show the layer each entity comes from (base, mixin or main)")
-        parser.add_argument('--client-library', choices=('rclpy', 'rclcpp'), default=None,
-                            help="the client library whose base the node inherits (default: "
-                                 "from the package's build type, ament_python -> rclpy, "
-                                 "ament_cmake -> rclcpp; else rclpy)")
+        from nodl_schema.cli.arguments import add_client_library_argument
+
+        add_client_library_argument(parser)
 
     failure = 'the definition is invalid, or cannot be composed'
 
@@ -60,7 +59,8 @@ class ShowVerb(Verb):
                 return EXIT_USAGE
             shown = show_file(args.target[0], args.client_library)
         elif len(args.target) == 2:
-            shown = show_registered(*args.target, client_library=args.client_library)
+            shown = show_registered(args.target[0], args.target[1],
+                                    client_library=args.client_library)
         else:
             print('nodl show: error: expected FILE or PACKAGE EXECUTABLE', file=sys.stderr)
             return EXIT_USAGE
