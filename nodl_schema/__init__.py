@@ -58,6 +58,16 @@ _EXPORTS = {
     'InvalidNameError': 'nodl_schema.naming',
     'InvalidRemapRuleError': 'nodl_schema.naming',
     'check_qos_compatible': 'nodl_schema.qos_compat',
+    'ResolvedNode': 'nodl_schema.system',
+    'resolve_node': 'nodl_schema.system',
+    'Entity': 'nodl_schema.system',
+    'EntityKind': 'nodl_schema.system',
+    'Provider': 'nodl_schema.system',
+    'InterfaceType': 'nodl_schema.system',
+    'Location': 'nodl_schema.system',
+    'NodeInstance': 'nodl_schema.system',
+    'System': 'nodl_schema.system',
+    'Connection': 'nodl_schema.system',
 }
 
 #: The public names, written out for type checkers and readers; a test keeps it equal
@@ -69,7 +79,9 @@ __all__ = ['ActionEndpoint', 'Base', 'ComposedNode', 'Diagnostic', 'Document', '
     'load_parameter', 'load_schema', 'model_from_data', 'validate_interface', 'validate_node',
     'validate_parameter',
     'InvalidNameError', 'InvalidRemapRuleError', 'NodeNames', 'RemapRule', 'check_qos_compatible',
-    'expand_name', 'node_fqn', 'parse_remap_rules', 'resolve_name']
+    'expand_name', 'node_fqn', 'parse_remap_rules', 'resolve_name',
+    'Connection', 'Entity', 'EntityKind', 'InterfaceType', 'Location', 'NodeInstance', 'Provider',
+    'ResolvedNode', 'System', 'resolve_node']
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from nodl_schema.composition.compose import ComposedNode, compose
@@ -84,6 +96,9 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
                                     expand_name, node_fqn, parse_remap_rules, resolve_name)
     from nodl_schema.qos_compat import check_qos_compatible
     from nodl_schema.schemas import bundled_schema, load_schema
+    from nodl_schema.system import (
+        Connection, Entity, EntityKind, InterfaceType, Location, NodeInstance, Provider,
+        ResolvedNode, System, resolve_node)
     from nodl_schema.validation.kinds import Kind, detect_kind
 
 

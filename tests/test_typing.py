@@ -60,7 +60,7 @@ def _literal_all(path: Path) -> list[str]:
     raise AssertionError(f'{path} has no __all__')
 
 
-@pytest.mark.parametrize('package', ['nodl_schema', 'nodl_schema.model'])
+@pytest.mark.parametrize('package', ['nodl_schema', 'nodl_schema.model', 'nodl_schema.system'])
 def test_all_is_a_literal_list_equal_to_the_lazy_exports(package: str) -> None:
     import importlib
 

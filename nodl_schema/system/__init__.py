@@ -31,7 +31,10 @@ _EXPORTS = {
     'choose_client_library': '..composition.client_library',
 }
 
-__all__ = sorted(_EXPORTS)
+#: The public names (a test keeps this list equal to the keys of _EXPORTS).
+__all__ = ['ClientLibraryChoice', 'Connection', 'Entity', 'EntityKind', 'InstanceEntity',
+           'InterfaceType', 'Location', 'NodeInstance', 'Provider', 'ResolvedNode', 'System',
+           'choose_client_library', 'resolve_node', 'resolve_registered', 'resolve_report']
 
 if TYPE_CHECKING:  # pragma: no cover
     from nodl_schema.composition.client_library import ClientLibraryChoice, choose_client_library
