@@ -418,3 +418,21 @@ def test_convert_file_raises_the_documented_oserror_when_it_cannot_write(tmp_pat
     with pytest.raises(OSError) as info:  # not a private exception type
         convert_file(LEGACY / 'role_attributes.nodl.xml', blocker / 'out')
     assert type(info.value).__module__ == 'builtins'
+
+
+def test_a_valid_conversion_is_written_from_the_typed_model() -> None:
+    from nodl_schema.frontends.legacy_xml import parse_legacy_xml
+    from nodl_schema.legacy.convert import convert_legacy
+    from nodl_schema.model import Node
+
+    checked = 0
+    for path in sorted((FIXTURES / 'legacy').rglob('*.xml')):
+        for converted in convert_legacy(parse_legacy_xml(path.read_bytes(), str(path))):
+            document = converted.document
+            if not converted.ok:
+                assert document is None
+                continue
+            assert isinstance(document, Node)
+            assert document.to_dict() == converted.data  # the same document, typed
+            checked += 1
+    assert checked >= 5

@@ -38,6 +38,8 @@ from nodl_schema.vocabulary import SECTIONS as _VOCABULARY_SECTIONS
 if TYPE_CHECKING:  # pragma: no cover
     from pathlib import Path
 
+    from nodl_schema.model import Node
+
 __all__ = ['Converted', 'FileConversion', 'convert_legacy', 'render_converted', 'convert_file',
            'convert_files', 'seconds_to_ns']
 
@@ -103,6 +105,20 @@ class Converted:
     def ok(self) -> bool:
         """True if the node converted into a valid v2 node definition."""
         return not self.errors
+
+    @property
+    def document(self) -> Node | None:
+        """The converted node definition as the typed model (None if it is not valid).
+
+        The converter keeps a mapping while it works, so that whatever the v2
+        schema refuses can be placed at the legacy element it came from; what
+        is written is built from this model.
+        """
+        if not self.ok:
+            return None
+        from nodl_schema.model import Node
+
+        return Node.from_dict(self.data)
 
     def __repr__(self) -> str:
         return (f'Converted(file_name={self.file_name!r}, source={self.source!r}, '
@@ -411,7 +427,8 @@ def render_converted(converted: Converted) -> str:
               f'# (legacy NoDL XML: {identity}, line {node.line}).\n'
               '# nodl: ignore=NODL216 (legacy NoDL has no descriptions: write them, then remove '
               'this line)\n')
-    return header + dump_nodl(converted.data)
+    document = converted.document
+    return header + dump_nodl(document if document is not None else converted.data)
 
 
 class FileConversion:
