@@ -56,3 +56,20 @@ def test_observed_topic_qos_agrees_with_the_base(ros_node) -> None:
         qos = declared[endpoint.name]
         for field, value in (endpoint.qos or {}).items():
             assert getattr(qos, field) == value, (endpoint.name, field)
+
+
+@pytest.mark.parametrize('base, script', [('node', 'plain_node.py'),
+                                          ('lifecycle_node', 'lifecycle_node.py')])
+def test_the_rclcpp_base_is_the_observed_rclpy_node_plus_rclcpp_documented_additions(
+        ros_node, base: str, script: str) -> None:
+    # rclcpp cannot run here: its base is derived from rclcpp's documented behaviour. What can be
+    # checked is that it differs from a real rclpy node by exactly those additions.
+    node = ros_node(script, f'cpp_{base}', '/bases')
+    observed = _observed(observe_node(node.fqn, timeout=15, parameters=False))
+    iface = base_layer(base, 'rclcpp').interface
+    declared = {section: {(expand(e.name, node.name, node.namespace), e.type)
+                          for e in iface.endpoints(section)} for section in observed}
+    extra = {(section, name) for section in declared for name, _ in declared[section] - observed[section]}
+    assert extra == {('subscriptions', '/parameter_events')}
+    for section in observed:
+        assert observed[section] - declared[section] == set(), section
