@@ -254,8 +254,8 @@ def test_parse_remap_rules_passes_rules_through_and_takes_none() -> None:
 
 @pytest.mark.parametrize('args, message', [
     (['--ros-args', '-r'], '-r at the end of the arguments has no rule'),
-    (['--ros-args', '--remap', 'a'], "invalid remapping rule 'a'"),
-    (['a'], "invalid remapping rule 'a'"),
+    (['--ros-args', '--remap', 'a'], "invalid remapping 'a'"),
+    (['a'], "invalid remapping 'a'"),
     (['a*:=b'], 'wildcards are not implemented'),
     (['a:=\\1'], 'backreferences are not implemented'),
     (['__ns:=x'], 'must be fully qualified'),

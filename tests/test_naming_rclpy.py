@@ -123,7 +123,7 @@ def test_rules_rclpy_refuses_are_refused(rule: str) -> None:
 
     with pytest.raises(RCLInvalidROSArgsError):
         _with_node('drv', '/ns', ['--ros-args', '-r', rule], lambda node: None)
-    with pytest.raises(InvalidRemapRuleError, match='invalid remapping rule'):
+    with pytest.raises(InvalidRemapRuleError, match='invalid remapping '):
         parse_remap_rules([rule])
     with pytest.raises(InvalidRemapRuleError):
         parse_remap_rules(['--ros-args', '-r', rule])

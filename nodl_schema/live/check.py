@@ -9,6 +9,7 @@ from nodl_schema.composition import ComposedNode
 from nodl_schema.composition.client_library import ClientLibraryChoice
 from nodl_schema.diagnostics import ValidationError
 from nodl_schema.live.conformance import Difference, Remaps, compare, conforms
+from nodl_schema.naming import NodeNames
 from nodl_schema.live.observe import ObservedNode, observe_node
 from nodl_schema.live.session import DuplicateNode, split_node_name
 from nodl_schema.model import ENDPOINT_SECTIONS
@@ -31,9 +32,12 @@ class CheckResult:
         self.resolved = resolved
         composed = resolved.composed
         self.fqn = fqn
-        #: How the node's names were resolved: its ``NodeNames`` (final name and remapping
-        #: rules), or a mapping of expanded topic names FROM -> TO.
-        self.remaps = remaps
+        #: The topic remappings the node was checked with (expanded FROM -> TO).
+        self.remaps: dict[str, str] = (remaps.topic_remaps() if isinstance(remaps, NodeNames)
+                                       else dict(remaps or {}))
+        #: The node's final name, namespace and rules, when checked with them: how every
+        #: declared name was resolved (topics and services apart, as rcl does).
+        self.names: NodeNames | None = remaps if isinstance(remaps, NodeNames) else None
         #: The definition's file.
         self.definition = definition
         self.differences = differences
@@ -134,7 +138,7 @@ def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *
 
     from nodl_schema.live.session import ros_session
 
-    from nodl_schema.naming import NodeNames, parse_remap_rules
+    from nodl_schema.naming import parse_remap_rules
 
     composed = load_definition(definition, client_library)
     # The rules as the node was given them; ``fqn`` is its final name (what ``__node`` and

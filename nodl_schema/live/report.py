@@ -59,7 +59,7 @@ def format_check_junit(result: CheckResult) -> str:
     for section in SECTION_KEYS:
         for entity in result.composed.interface.endpoints(section):
             cases.setdefault((section, entity.name), [])
-            full = final_name(entity.name, section, result.observed, result.remaps)
+            full = final_name(entity.name, section, result.observed, result.names or result.remaps)
             declared_as[(section, full)] = (section, entity.name)
     for param in result.composed.interface.parameters or {}:
         cases.setdefault(('parameters', param), [])

@@ -22,7 +22,7 @@ class InvalidRemapRuleError(ValueError):
     """A remapping rule that rcl cannot parse."""
 
     def __init__(self, rule: str, reason: str) -> None:
-        super().__init__(f'invalid remapping rule {rule!r}: {reason}; expected [NODE:]FROM:=TO, '
+        super().__init__(f'invalid remapping {rule!r}: {reason}; expected [NODE:]FROM:=TO, '
                          '[NODE:]__ns:=/NAMESPACE or [NODE:]__node:=NAME')
         self.rule = rule
         self.reason = reason

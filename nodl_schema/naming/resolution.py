@@ -132,6 +132,18 @@ class NodeNames:
                     return rule
         return None
 
+    def topic_remaps(self) -> dict[str, str]:
+        """The topic rules that apply to this node, as expanded FROM -> TO (first rule wins).
+
+        Rules for services only (``rosservice://``) and ``__node``/``__ns`` rules have no entry.
+        """
+        out: dict[str, str] = {}
+        for rule in self.rules:
+            if rule.kind in ('name', 'topic') and rule.applies_to(self.name) and rule.match:
+                out.setdefault(_expand(rule.match, self.name, self.namespace),
+                               _expand(rule.replacement, self.name, self.namespace))
+        return out
+
     def resolve(self, name: str, *, service: bool = False) -> str:
         """The final name of the topic (or service) ``name``; see :func:`resolve_name`.
 
