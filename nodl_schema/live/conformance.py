@@ -123,12 +123,7 @@ def parse_remaps(rules: Iterable[str], node_name: str, namespace: str) -> dict[s
     to resolve topics and services exactly.  Raises ``ValueError`` for a
     malformed rule or an invalid node name.
     """
-    names = NodeNames.create(node_name, namespace, list(rules))
-    remaps: dict[str, str] = {}
-    for rule in names.rules:
-        if rule.kind in ('name', 'topic') and rule.applies_to(names.name) and rule.match:
-            remaps.setdefault(names.expand(rule.match), names.expand(rule.replacement))
-    return remaps
+    return NodeNames.create(node_name, namespace, list(rules)).topic_remaps()
 
 
 def final_name(name: str, section: str, observed: ObservedNode, remaps: Remaps = None) -> str:
