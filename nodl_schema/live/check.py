@@ -11,7 +11,7 @@ from nodl_schema.diagnostics import ValidationError
 from nodl_schema.live.conformance import Difference, Remaps, compare, conforms
 from nodl_schema.naming import NodeNames
 from nodl_schema.live.observe import ObservedNode, observe_node
-from nodl_schema.live.session import DuplicateNode, split_node_name
+from nodl_schema.live.session import DuplicateNode
 from nodl_schema.model import ENDPOINT_SECTIONS
 from nodl_schema.system.resolved import ResolvedNode
 
