@@ -153,3 +153,17 @@ def test_missing_definition_file_is_an_io_error_not_a_crash(tmp_path: Path) -> N
     assert 'cannot read the definition' in result.stderr
     assert 'missing.nodl.yaml' in result.stderr
     assert 'internal error' not in result.stderr and 'Traceback' not in result.stderr
+
+
+def test_client_library_option_and_statement(files: dict[str, Path]) -> None:
+    default = nodl('check', '/cli_c/full', str(files['good']), '--timeout', '15')
+    assert default.stdout.splitlines()[0] == (
+        '/cli_c/full: client library: rclpy (the default; choose with --client-library)')
+    # full_node is an rclpy node: as rclcpp it lacks the time source's subscription
+    cpp = nodl('check', '/cli_c/full', str(files['good']), '--timeout', '15',
+               '--client-library', 'rclcpp', '--format', 'json')
+    assert cpp.returncode == 1, cpp.stdout + cpp.stderr
+    data = json.loads(cpp.stdout)
+    assert data['client_library'] == {'name': 'rclcpp', 'reason': 'as requested'}
+    assert [(d['kind'], d['name'], d['layer']) for d in data['differences']
+            if d['severity'] == 'error'] == [('missing', '/parameter_events', 'base:node')]

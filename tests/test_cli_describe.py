@@ -110,3 +110,19 @@ def test_usage_errors_exit_2(args: list[str], message: str) -> None:
     result = nodl('describe', *args)
     assert result.returncode == 2
     assert message in result.stderr
+
+
+def test_describe_states_the_client_library_and_takes_the_option(nodes) -> None:
+    deduced = nodl('describe', '/cli_d/full', '--no-parameters', '--timeout', '15')
+    assert deduced.returncode == 0, deduced.stderr
+    assert deduced.stdout.splitlines()[1] == (
+        '# Left out: what the base gives an rclpy node (the node does not subscribe to '
+        '/parameter_events, as rclcpp nodes do).')
+    # as rclcpp, nothing is left out that the node has not got: the same main
+    asked = nodl('describe', '/cli_d/full', '--no-parameters', '--timeout', '15', '--format', 'json',
+                 '--client-library', 'rclcpp')
+    assert asked.returncode == 0, asked.stderr
+    assert 'nodl describe: note: client library rclcpp (as requested)\n' in asked.stderr
+    assert json.loads(asked.stdout)['main'] == load_node(deduced.stdout).main.to_dict()
+    bad = nodl('describe', '/cli_d/full', '--client-library', 'rclc')
+    assert bad.returncode == 2
