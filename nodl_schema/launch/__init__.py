@@ -1,0 +1,19 @@
+"""Launch files read faithfully (XML, YAML, Python) into launched-node records.
+
+``load_launch(path, {'name': 'value'})`` returns a :class:`LaunchResult`: every node
+``ros2 launch`` would start (or load into a container) with its final namespace, remaps
+in rcl's order, parameter sources in application order and source location, the
+declared arguments, and coded diagnostics (NODL5xx) for every problem.  Nothing is started.
+"""
+
+from __future__ import annotations
+
+from nodl_schema.launch.evaluate import load_launch
+from nodl_schema.launch.model import (LaunchArgument, LaunchedNode, LaunchResult, ParameterSource,
+                                      SourceLocation)
+from nodl_schema.launch.params import (load_parameter_file, match_composable_parameter_keys,
+                                       match_parameter_file_nodes)
+
+__all__ = ['load_launch', 'LaunchResult', 'LaunchedNode', 'LaunchArgument', 'ParameterSource',
+           'SourceLocation', 'load_parameter_file', 'match_parameter_file_nodes',
+           'match_composable_parameter_keys']

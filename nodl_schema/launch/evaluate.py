@@ -1,0 +1,197 @@
+"""The walk: a launch file (and everything it includes) to launched-node records.
+
+:func:`load_launch` does what ``ros2 launch FILE name:=value`` does before it starts
+processes: the file is included with the arguments, and every entity is visited
+depth-first in a :class:`~nodl_schema.launch.context.LaunchContext`.  A problem stops
+the entity it is found in (reported as a diagnostic) and the walk goes on.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.launch.actions import Action, DeclareLaunchArgument, GroupAction, LaunchDescription
+from nodl_schema.launch.context import LaunchContext
+from nodl_schema.launch.errors import MAX_INCLUDE_DEPTH, LaunchProblem
+from nodl_schema.launch.model import LaunchResult, SourceLocation
+from nodl_schema.launch.substitutions import perform
+
+__all__ = ['load_launch', 'include', 'read_launch_file', 'launch_format']
+
+_PYTHON = ('.py',)
+_XML = ('.xml',)
+_YAML = ('.yaml', '.yml')
+
+
+def launch_format(path: str) -> str:
+    """``python``, ``xml``, ``yaml`` or ``unknown`` (``.launch``: read by content), by the name."""
+    lower = path.lower()
+    if lower.endswith(_PYTHON):
+        return 'python'
+    if lower.endswith(_XML):
+        return 'xml'
+    if lower.endswith(_YAML):
+        return 'yaml'
+    return 'unknown'
+
+
+def read_launch_file(path: str, context: LaunchContext) -> LaunchDescription | None:
+    """Read one launch file into a :class:`LaunchDescription` (None, reported, if it cannot be)."""
+    kind = launch_format(path)
+    if kind == 'unknown':
+        try:
+            with open(path, 'rb') as stream:
+                head = stream.read(512).lstrip()
+        except OSError:
+            head = b''
+        kind = 'xml' if head.startswith(b'<') else 'yaml'
+    if kind == 'python':
+        from nodl_schema.launch.python_frontend import read_python_launch
+
+        return read_python_launch(path, context)
+    if kind == 'xml':
+        from nodl_schema.launch.xml_frontend import read_xml_launch
+
+        description, problems = read_xml_launch(path)
+    else:
+        from nodl_schema.launch.yaml_frontend import read_yaml_launch
+
+        description, problems = read_yaml_launch(path)
+    for problem in problems:
+        context.report(problem)
+    return description
+
+
+def _required_arguments(description: LaunchDescription) -> list[DeclareLaunchArgument]:
+    """Arguments without default declared unconditionally (through groups), as launch checks them."""
+    out: list[DeclareLaunchArgument] = []
+    stack: list[Any] = list(reversed(description.entities))
+    while stack:
+        entity = stack.pop()
+        if getattr(entity, 'condition', None) is not None:
+            continue
+        if isinstance(entity, DeclareLaunchArgument) and entity.default_value is None:
+            out.append(entity)
+        elif isinstance(entity, (GroupAction,)):
+            stack.extend(reversed(entity.actions))
+        elif isinstance(entity, LaunchDescription):
+            stack.extend(reversed(entity.entities))
+    return out
+
+
+class _Leave(Action):
+    """Restores the current file and include chain after an included file."""
+
+    def __init__(self, file: str, chain: tuple[SourceLocation, ...]) -> None:
+        self.file, self.chain = file, chain
+
+    def execute(self, context: LaunchContext) -> list[Action] | None:
+        context.current_file = self.file
+        context.include_chain = self.chain
+        context.file_stack.pop()
+        return None
+
+
+def include(context: LaunchContext, action: Any) -> list[Action] | None:
+    """Execute an include: read the file, check cycles and required arguments, set its arguments."""
+    path = perform(context, action.path)
+    if not os.path.isabs(path):
+        path = os.path.abspath(path)
+    real = os.path.realpath(path)
+    where = action.location
+    if real in context.file_stack:
+        start = context.file_stack.index(real)
+        chain = ' -> '.join([*context.file_stack[start:], real])
+        raise LaunchProblem('NODL507', f'include cycle: {chain}; a launch file includes itself '
+                                       'through this chain')
+    if len(context.file_stack) >= MAX_INCLUDE_DEPTH:
+        raise LaunchProblem('NODL508', f'includes nest deeper than {MAX_INCLUDE_DEPTH} files; '
+                                       f"not following '{path}'")
+    if not os.path.isfile(path):
+        raise LaunchProblem('NODL515', f"included launch file '{path}' does not exist"
+                            + (' (or is not a file)' if os.path.exists(path) else ''))
+    arguments = [(perform(context, k), v) for k, v in action.launch_arguments]
+    saved = (context.current_file, context.include_chain)
+    description = read_launch_file(path, context)
+    if path not in context.result.files:
+        context.result.files.append(path)
+    if description is None:
+        return None
+    given = [name for name, _ in arguments]
+    for declared in _required_arguments(description):
+        if declared.name not in given and declared.name not in context.configurations:
+            raise LaunchProblem('NODL506', f"included launch file '{path}' needs argument "
+                                           f"'{declared.name}', which is not given (given: "
+                                           f"{', '.join(given) or 'none'}); add "
+                                           f'<arg name="{declared.name}" value="..."/> to the include',
+                                declared.location.file, declared.location.line, declared.location.column)
+    values = [(name, perform(context, value)) for name, value in arguments]
+    for name, value in values:
+        context.configurations[name] = value
+    context.current_file = path
+    if where.line:
+        context.include_chain = (*context.include_chain, where)
+    context.file_stack.append(real)
+    return [description, _Leave(*saved)]
+
+
+def _visit(context: LaunchContext, root: Action) -> None:
+    """Depth-first, as launch visits entities (iterative: deep nesting cannot overflow)."""
+    stack: list[Any] = [root]
+    while stack:
+        entity = stack.pop()
+        if not isinstance(entity, Action):
+            context.report(Diagnostic(Severity.WARNING, f'a launch description holds {type(entity).__name__}, '
+                                      'not an action; ignored', (), context.current_file, code='NODL512'))
+            continue
+        try:
+            context.count_entity()
+        except LaunchProblem as problem:
+            context.problem(problem, entity.location)
+            return
+        try:
+            if entity.condition is not None and not entity.condition.evaluate(context):
+                continue
+            children = entity.execute(context)
+        except LaunchProblem as problem:
+            context.problem(problem, entity.location)
+            continue
+        except RecursionError:
+            context.problem(LaunchProblem('NODL508', 'the launch nests too deeply'), entity.location)
+            continue
+        if children:
+            stack.extend(reversed(children))
+
+
+def load_launch(path: str | os.PathLike[str], arguments: dict[str, str] | None = None, *,
+                environment: dict[str, str] | None = None,
+                prefixes: list[str] | None = None) -> LaunchResult:
+    """Read a launch file (XML, YAML or Python) as ``ros2 launch PATH name:=value...`` would.
+
+    ``arguments`` are the launch arguments; ``environment`` (default ``os.environ``) is what
+    ``$(env)`` reads and where ``AMENT_PREFIX_PATH`` is taken from unless ``prefixes`` is given.
+    Never raises for a problem in a launch file: see :attr:`LaunchResult.diagnostics`.
+    """
+    from nodl_schema.launch.actions import IncludeLaunchDescription
+
+    name = os.path.abspath(os.fspath(path))
+    result = LaunchResult(name)
+    context = LaunchContext(result, environment, prefixes)
+    context.current_file = name
+    given = dict(arguments or {})
+    root = IncludeLaunchDescription(name, launch_arguments=list(given.items()))
+    root.location = SourceLocation(name, 0, 0)
+    _visit(context, LaunchDescription([root]))
+    declared = set(result.arguments)
+    for argument in given:
+        if argument not in declared:
+            from nodl_schema.validation.messages import did_you_mean
+
+            result.diagnostics.append(Diagnostic(
+                Severity.WARNING, f"launch argument '{argument}' is given but no launch file declares "
+                f'it{did_you_mean(argument, declared)}', (), name, code='NODL520'))
+    return result
+
+

@@ -1,0 +1,370 @@
+"""Frontend entities (XML elements, YAML mappings) to launch actions: one table of tags.
+
+:data:`TAGS` lists, for every launch tag the toolkit reads, its attributes (``*`` marks a
+required one) and its nested entity lists; anything else is an error with "did you mean".
+Both markup frontends build :class:`Entity` objects and call :func:`build_description`.
+"""
+
+from __future__ import annotations
+
+from typing import Any, NamedTuple
+
+from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.launch import actions as A
+from nodl_schema.launch.errors import LaunchProblem
+from nodl_schema.launch.model import SourceLocation
+from nodl_schema.launch.params import ParameterValue, get_typed_value, type_from_identifier
+from nodl_schema.launch.substitutions import parse_if_substitutions, parse_substitution
+
+__all__ = ['Attribute', 'Entity', 'TAGS', 'build_description']
+
+_PROCESS = ('cwd', 'shell', 'emulate_tty', 'additional_env', 'launch-prefix', 'output', 'respawn',
+            'respawn_delay', 'sigterm_timeout', 'sigkill_timeout', 'exec_name', 'log_cmd')
+_NODE = ('pkg', 'exec*', 'name', 'namespace', 'args', 'ros_args', 'node-name', *_PROCESS)
+_NODE_LISTS = ('param', 'remap', 'env')
+_CONDITION = ('if', 'unless')
+
+#: tag -> (attributes, nested entity lists, has child actions).
+TAGS: dict[str, tuple[tuple[str, ...], tuple[str, ...], bool]] = {
+    'arg': (('name*', 'default', 'description', *_CONDITION), ('choice',), False),
+    'let': (('name*', 'value*', *_CONDITION), (), False),
+    'include': (('file*', *_CONDITION), ('arg',), False),
+    'group': (('scoped', 'forwarding', *_CONDITION), ('keep',), True),
+    'push-ros-namespace': (('namespace*', *_CONDITION), (), False),
+    'push_ros_namespace': (('namespace*', *_CONDITION), (), False),
+    'set_remap': (('from*', 'to*', *_CONDITION), (), False),
+    'set_parameter': (('name*', 'value*', *_CONDITION), (), False),
+    'set_parameters_from_file': (('filename*', *_CONDITION), (), False),
+    'set_env': (('name*', 'value*', *_CONDITION), (), False),
+    'unset_env': (('name*', *_CONDITION), (), False),
+    'append_env': (('name*', 'value*', 'prepend', 'separator', *_CONDITION), (), False),
+    'node': ((*_NODE, *_CONDITION), _NODE_LISTS, False),
+    'node_container': ((*_NODE, *_CONDITION), (*_NODE_LISTS, 'composable_node'), False),
+    'load_composable_node': (('target*', *_CONDITION), ('composable_node',), False),
+    'executable': (('cmd*', 'name', *_PROCESS, *_CONDITION), ('env',), False),
+    'log': (('message*', 'level', *_CONDITION), (), False),
+    'timer': (('period*', *_CONDITION), (), True),
+    'shutdown': (('reason', *_CONDITION), (), False),
+    'set_use_sim_time': (('value*', *_CONDITION), (), False),
+    'set_ros_log_dir': (('new_log_dir*', *_CONDITION), (), False),
+}
+#: Nested entities: tag -> (attributes, nested lists).
+NESTED: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
+    'choice': (('value*',), ()),
+    'keep': (('name*', 'value*'), ()),
+    'env': (('name*', 'value*'), ()),
+    'remap': (('from*', 'to*'), ()),
+    'extra_arg': (('name*', 'value*'), ()),
+    'param': (('name', 'value', 'type', 'value-sep', 'from', 'allow_substs', 'sep'), ('param',)),
+    'composable_node': (('pkg*', 'plugin*', 'name*', 'namespace', *_CONDITION),
+                        ('param', 'remap', 'extra_arg')),
+}
+
+
+class Attribute(NamedTuple):
+    """An attribute's value as written (text in XML; any YAML scalar or list) and position."""
+
+    value: Any
+    line: int
+    column: int
+
+
+class Entity:
+    """A frontend entity: its tag, attributes, nested entity lists and child actions."""
+
+    def __init__(self, tag: str, file: str, line: int, column: int) -> None:
+        self.tag = tag
+        self.location = SourceLocation(file, line, column)
+        self.attributes: dict[str, Attribute] = {}
+        self.nested: dict[str, list[Entity]] = {}
+        self.children: list[Entity] = []
+        #: Where unexpected content is (a YAML child list for a tag without children...).
+        self.stray: list[tuple[str, int, int]] = []
+
+    def text(self, name: str) -> str | None:
+        """An attribute as text (YAML scalars other than text are written as YAML writes them)."""
+        attribute = self.attributes.get(name)
+        if attribute is None:
+            return None
+        value = attribute.value
+        if isinstance(value, bool):
+            return str(value).lower()
+        if isinstance(value, (list, dict)):
+            raise LaunchProblem('NODL504', f"attribute '{name}' of <{self.tag}> must be text, not a "
+                                           f'{type(value).__name__}', self.location.file,
+                                attribute.line, attribute.column)
+        return None if value is None else str(value)
+
+    def subs(self, name: str) -> Any:
+        """An attribute parsed for substitutions (None when absent)."""
+        text = self.text(name)
+        if text is None:
+            return None
+        try:
+            return parse_substitution(text)
+        except LaunchProblem as problem:
+            attribute = self.attributes[name]
+            raise LaunchProblem(problem.code, problem.message, self.location.file, attribute.line,
+                                attribute.column)
+
+    def boolean(self, name: str) -> bool | None:
+        """A boolean attribute (``true``/``false``/``1``/``0``)."""
+        value = self.attributes.get(name)
+        if value is None:
+            return None
+        if isinstance(value.value, bool):
+            return value.value
+        text = str(value.value).strip().lower()
+        if text in ('true', '1'):
+            return True
+        if text in ('false', '0'):
+            return False
+        raise LaunchProblem('NODL504', f"attribute '{name}' of <{self.tag}> must be true or false, not "
+                                       f"'{value.value}'", self.location.file, value.line, value.column)
+
+
+def _check(entity: Entity, attributes: tuple[str, ...], lists: tuple[str, ...], children: bool,
+           problems: list[Diagnostic]) -> bool:
+    from nodl_schema.validation.messages import did_you_mean
+
+    allowed = {a.rstrip('*') for a in attributes}
+    ok = True
+    for name, attribute in entity.attributes.items():
+        if name not in allowed and not name.startswith(('xmlns', 'xsi:')):
+            problems.append(Diagnostic(Severity.ERROR, f"unknown attribute '{name}' of <{entity.tag}>"
+                                       f'{did_you_mean(name, allowed | set(lists))}; expected '
+                                       f'{", ".join(sorted(allowed))}', (), entity.location.file,
+                                       attribute.line, attribute.column, code='NODL502'))
+            ok = False
+    for name in [a[:-1] for a in attributes if a.endswith('*')]:
+        if name not in entity.attributes:
+            problems.append(Diagnostic(Severity.ERROR, f"<{entity.tag}> needs the attribute '{name}'",
+                                       (), *entity.location, code='NODL503'))
+            ok = False
+    for name, items in entity.nested.items():
+        if name not in lists:
+            known = set(lists) | (set(TAGS) if children else set())
+            for item in items:
+                problems.append(Diagnostic(Severity.ERROR, f"unexpected <{name}> in <{entity.tag}>"
+                                           f'{did_you_mean(name, known)}', (), *item.location,
+                                           code='NODL501'))
+            ok = False
+    if entity.children and not children:
+        for child in entity.children:
+            problems.append(Diagnostic(Severity.ERROR, f"unexpected <{child.tag}> in <{entity.tag}>"
+                                       f'{did_you_mean(child.tag, lists)}; it holds no actions', (),
+                                       *child.location, code='NODL501'))
+        ok = False
+    if 'if' in entity.attributes and 'unless' in entity.attributes:
+        problems.append(Diagnostic(Severity.ERROR, f"<{entity.tag}> has both 'if' and 'unless'; use one",
+                                   (), *entity.location, code='NODL504'))
+        ok = False
+    return ok
+
+
+def _nested_ok(entity: Entity, problems: list[Diagnostic]) -> bool:
+    ok = True
+    for name, items in entity.nested.items():
+        spec = NESTED.get(name)
+        if spec is None:
+            continue
+        for item in items:
+            ok = _check(item, spec[0], spec[1], False, problems) and ok
+            ok = _nested_ok(item, problems) and ok
+    return ok
+
+
+def _condition(entity: Entity) -> A.Condition | None:
+    if_ = entity.subs('if')
+    if if_ is not None:
+        return A.IfCondition(if_)
+    unless = entity.subs('unless')
+    return A.UnlessCondition(unless) if unless is not None else None
+
+
+def _parameters(entity: Entity) -> list[Any]:
+    out: list[Any] = []
+    for param in entity.nested.get('param', []):
+        source = param.subs('from')
+        if source is not None:
+            if param.text('name') is not None:
+                raise LaunchProblem('NODL504', "<param> takes 'from' or 'name', not both", *param.location)
+            out.append(A.ParameterFileEntry(source, param.boolean('allow_substs') or False))
+        elif param.text('name') is not None:
+            out.append(_named(param, []))
+        else:
+            raise LaunchProblem('NODL503', "<param> needs 'name' (with 'value' or nested <param>) or 'from'",
+                                *param.location)
+    return out
+
+
+def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
+    from nodl_schema.launch.substitutions import TextSubstitution
+
+    name = [*prefix, *([TextSubstitution('.')] if prefix else []), *param.subs('name')]
+    nested = param.nested.get('param', [])
+    value = param.attributes.get('value')
+    identifier = param.text('type')
+    if value is not None and nested:
+        raise LaunchProblem('NODL504', "<param> takes a 'value' or nested <param>, not both", *param.location)
+    if nested:
+        if identifier is not None:
+            raise LaunchProblem('NODL504', "<param> with nested <param> takes no 'type'", *param.location)
+        out: list[tuple[Any, Any]] = []
+        for child in nested:
+            out.extend(_named(child, name))
+        return out
+    if value is None:
+        raise LaunchProblem('NODL503', f"<param name=\"{param.text('name')}\"> needs a 'value' or nested "
+                                       '<param>', *param.location)
+    data_type = type_from_identifier(identifier) if identifier is not None else None
+    raw = value.value
+    separator = param.text('value-sep') or param.text('sep')
+    try:
+        if isinstance(raw, str):
+            typed = get_typed_value(raw.split(separator) if separator else raw, data_type)
+        else:
+            typed = raw
+        return [(name, ParameterValue(parse_if_substitutions(typed), data_type))]
+    except LaunchProblem as problem:
+        raise LaunchProblem(problem.code, problem.message, param.location.file, value.line, value.column)
+
+
+def _remaps(entity: Entity) -> list[tuple[Any, Any]]:
+    return [(r.subs('from'), r.subs('to')) for r in entity.nested.get('remap', [])]
+
+
+def _composable(entity: Entity) -> A.ComposableNode:
+    node = A.ComposableNode(package=entity.subs('pkg'), plugin=entity.subs('plugin'), name=entity.subs('name'),
+                            namespace=entity.subs('namespace'), parameters=_parameters(entity),
+                            remappings=_remaps(entity), condition=_condition(entity))
+    node.location = entity.location
+    return node
+
+
+def _node_kwargs(entity: Entity) -> dict[str, Any]:
+    from nodl_schema.launch.substitutions import TextSubstitution
+
+    def cmdline(name: str) -> list[Any] | None:
+        parts = entity.subs(name)
+        if parts is None:
+            return None
+        import shlex
+
+        words: list[Any] = []
+        current: list[Any] = []
+        for part in parts:
+            if isinstance(part, TextSubstitution):
+                text = part.text
+                tokens = shlex.split(text)
+                if text[:1].isspace() and current:
+                    words.append(current)
+                    current = []
+                for index, token in enumerate(tokens):
+                    if index:
+                        words.append(current)
+                        current = []
+                    current.append(TextSubstitution(token))
+                if text[-1:].isspace() and current:
+                    words.append(current)
+                    current = []
+            else:
+                current.append(part)
+        if current:
+            words.append(current)
+        return words
+
+    return dict(executable=entity.subs('exec'), package=entity.subs('pkg'), name=entity.subs('name'),
+                namespace=entity.subs('namespace'), parameters=_parameters(entity),
+                remappings=_remaps(entity), arguments=cmdline('args'), ros_arguments=cmdline('ros_args'))
+
+
+def build_action(entity: Entity, problems: list[Diagnostic]) -> A.Action | None:
+    """One entity to its action (None, reported, when it is not valid)."""
+    from nodl_schema.validation.messages import did_you_mean
+
+    spec = TAGS.get(entity.tag)
+    if spec is None:
+        problems.append(Diagnostic(Severity.ERROR, f'unknown launch tag <{entity.tag}>'
+                                   f'{did_you_mean(entity.tag, TAGS)}', (), *entity.location, code='NODL501'))
+        return None
+    if not (_check(entity, *spec, problems) and _nested_ok(entity, problems)):
+        return None
+    tag = entity.tag
+    try:
+        action = _make(entity, tag, problems)
+        action.condition = _condition(entity)
+    except LaunchProblem as problem:
+        problems.append(problem.diagnostic(*entity.location))
+        return None
+    action.location = entity.location
+    return action
+
+
+def _children(entity: Entity, problems: list[Diagnostic]) -> list[A.Action]:
+    out = []
+    for child in entity.children:
+        action = build_action(child, problems)
+        if action is not None:
+            out.append(action)
+    return out
+
+
+def _make(entity: Entity, tag: str, problems: list[Diagnostic]) -> A.Action:
+    s = entity.subs
+    if tag == 'arg':
+        choices = [c.text('value') for c in entity.nested.get('choice', [])]
+        return A.DeclareLaunchArgument(entity.text('name') or '', default_value=s('default'),
+                                       description=entity.text('description') or '',
+                                       choices=choices or None)
+    if tag == 'let':
+        return A.SetLaunchConfiguration(s('name'), s('value'))
+    if tag == 'include':
+        return A.IncludeLaunchDescription(s('file'), launch_arguments=[
+            (a.subs('name'), a.subs('value')) for a in entity.nested.get('arg', [])])
+    if tag == 'group':
+        keep = {tuple(k.subs('name')): k.subs('value') for k in entity.nested.get('keep', [])}
+        scoped, forwarding = entity.boolean('scoped'), entity.boolean('forwarding')
+        return A.GroupAction(_children(entity, problems), scoped=True if scoped is None else scoped,
+                             forwarding=True if forwarding is None else forwarding,
+                             launch_configurations={k: v for k, v in keep.items()})
+    if tag in ('push-ros-namespace', 'push_ros_namespace'):
+        return A.PushRosNamespace(s('namespace'))
+    if tag == 'set_remap':
+        return A.SetRemap(s('from'), s('to'))
+    if tag == 'set_parameter':
+        return A.SetParameter(s('name'), s('value'))
+    if tag == 'set_parameters_from_file':
+        return A.SetParametersFromFile(s('filename'))
+    if tag == 'set_env':
+        return A.SetEnvironmentVariable(s('name'), s('value'))
+    if tag == 'unset_env':
+        return A.UnsetEnvironmentVariable(s('name'))
+    if tag == 'append_env':
+        return A.AppendEnvironmentVariable(s('name'), s('value'), prepend=bool(entity.boolean('prepend')),
+                                           separator=entity.text('separator') or ':')
+    if tag == 'node':
+        return A.Node(**_node_kwargs(entity))
+    if tag == 'node_container':
+        return A.ComposableNodeContainer(
+            composable_node_descriptions=[_composable(c) for c in entity.nested.get('composable_node', [])],
+            **_node_kwargs(entity))
+    if tag == 'load_composable_node':
+        return A.LoadComposableNodes(
+            composable_node_descriptions=[_composable(c) for c in entity.nested.get('composable_node', [])],
+            target_container=s('target'))
+    if tag == 'timer':
+        return A.Ignored(actions=_children(entity, problems))
+    return A.Ignored()
+
+
+def build_description(root: Entity, problems: list[Diagnostic]) -> A.LaunchDescription | None:
+    """The root ``launch`` entity to a :class:`LaunchDescription`."""
+    if root.tag != 'launch':
+        problems.append(Diagnostic(Severity.ERROR, f"the root is <{root.tag}>; a launch file's root is "
+                                   '<launch>', (), *root.location, code='NODL501'))
+        return None
+    _check(root, ('deprecated', 'version'), (), True, problems)
+    description = A.LaunchDescription(_children(root, problems))
+    description.location = root.location
+    return description

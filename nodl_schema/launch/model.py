@@ -1,0 +1,170 @@
+"""What reading a launch file produces: launched-node records, arguments, the result.
+
+These records say what ``ros2 launch`` would start, without starting it: for
+every node (plain, container or composable) its package and executable (or
+plugin and container), the name as given, the final namespace, the remapping
+rules in the order rcl applies them, the parameter sources in the order they
+apply, the extra arguments, and where in which launch file it was written
+(with the chain of includes that led there).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, NamedTuple
+
+from nodl_schema.diagnostics import Diagnostic, Severity
+
+__all__ = ['SourceLocation', 'ParameterSource', 'LaunchedNode', 'LaunchArgument', 'LaunchResult',
+           'NODE_KINDS', 'PARAMETER_ORIGINS']
+
+#: ``node`` (a process), ``container`` (a process that hosts composable nodes), ``composable``.
+NODE_KINDS = ('node', 'container', 'composable')
+#: Where a parameter source comes from: the node's ``args``/``ros_args`` (``-p``,
+#: ``--params-file``), ``set_parameter``/``set_parameters_from_file`` in scope (``global``),
+#: or the node's own ``param`` entries / ``parameters=[...]`` (``node``).
+PARAMETER_ORIGINS = ('arguments', 'global', 'node')
+
+
+class SourceLocation(NamedTuple):
+    """A place in a launch file: 1-based line and column (0 when unknown)."""
+
+    file: str
+    line: int
+    column: int
+
+    def __str__(self) -> str:
+        return f'{self.file}:{self.line}:{self.column}' if self.line else self.file
+
+
+@dataclass
+class ParameterSource:
+    """One parameter source of a node, in application order.
+
+    ``kind`` is ``file`` (``path`` is the parameter file; which of its node keys
+    apply is the consumer's question: :func:`nodl_schema.launch.params.match_parameter_file_nodes`
+    for plain nodes, :func:`~nodl_schema.launch.params.match_composable_parameter_keys`
+    for composable nodes) or ``values`` (``values`` maps parameter names, nested
+    names joined with ``.``, to values typed as launch types them; ``node_key`` is
+    the key launch writes them under: the node's full name, or ``/**``).
+    """
+
+    kind: str
+    origin: str
+    source: SourceLocation
+    path: str | None = None
+    values: dict[str, Any] = field(default_factory=dict)
+    node_key: str = '/**'
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready mapping."""
+        out: dict[str, Any] = {'kind': self.kind, 'origin': self.origin}
+        if self.kind == 'file':
+            out['path'] = self.path
+        else:
+            out['values'] = dict(self.values)
+            out['node_key'] = self.node_key
+        out['source'] = {'file': self.source.file, 'line': self.source.line,
+                         'column': self.source.column}
+        return out
+
+
+@dataclass
+class LaunchedNode:
+    """A node ``ros2 launch`` would start (or load into a container)."""
+
+    #: One of :data:`NODE_KINDS`.
+    kind: str
+    package: str | None
+    #: The executable (plain nodes and containers); ``None`` for composable nodes.
+    executable: str | None
+    #: The name as given in the launch file, or ``None`` (the node picks its own).
+    name: str | None
+    #: The final namespace (absolute; ``/`` when none is given or pushed).
+    namespace: str
+    source: SourceLocation
+    #: Remapping rules ``(from, to)`` in the order rcl applies them (the first match
+    #: wins): those of ``args``/``ros_args``, then ``set_remap`` in scope, then the node's own.
+    remaps: list[tuple[str, str]] = field(default_factory=list)
+    parameters: list[ParameterSource] = field(default_factory=list)
+    #: The plugin class of a composable node (``pkg::Class``).
+    plugin: str | None = None
+    #: The container a composable node is loaded into (its full name as launch computes it).
+    container: str | None = None
+    #: ROS arguments after ``--ros-args`` other than ``-r``/``-p``/``--params-file``
+    #: (``--log-level``, ``-e``...), as written.
+    ros_arguments: list[str] = field(default_factory=list)
+    #: Arguments for the program itself (before ``--ros-args``).
+    arguments: list[str] = field(default_factory=list)
+    #: The include entries that led to this node, outermost first.
+    include_chain: tuple[SourceLocation, ...] = ()
+    #: True when ``namespace`` was given or pushed (launch passes ``__ns``); False when the
+    #: node keeps the namespace it creates itself with (``/`` for nodes created without one).
+    namespace_given: bool = False
+
+    @property
+    def fqn(self) -> str | None:
+        """``namespace/name`` when the name is known, else None."""
+        if self.name is None:
+            return None
+        return ('' if self.namespace == '/' else self.namespace) + '/' + self.name
+
+    @property
+    def remap_rules(self) -> list[str]:
+        """The remapping rules as ``from:=to`` strings, in order."""
+        return [f'{a}:={b}' for a, b in self.remaps]
+
+    @property
+    def launch_file(self) -> str:
+        """The launch file the entry is written in."""
+        return self.source.file
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready mapping."""
+        return {
+            'kind': self.kind, 'package': self.package, 'executable': self.executable,
+            'plugin': self.plugin, 'container': self.container, 'name': self.name,
+            'namespace': self.namespace, 'remaps': [list(r) for r in self.remaps],
+            'parameters': [p.to_dict() for p in self.parameters],
+            'ros_arguments': list(self.ros_arguments), 'arguments': list(self.arguments),
+            'source': {'file': self.source.file, 'line': self.source.line,
+                       'column': self.source.column},
+            'include_chain': [{'file': s.file, 'line': s.line, 'column': s.column}
+                              for s in self.include_chain],
+        }
+
+
+@dataclass
+class LaunchArgument:
+    """A declared launch argument (``arg``/``DeclareLaunchArgument``) and its final value."""
+
+    name: str
+    source: SourceLocation
+    default: str | None = None
+    description: str = ''
+    choices: tuple[str, ...] | None = None
+    #: The value it had when declared (given or default); None if it had none.
+    value: str | None = None
+
+
+@dataclass
+class LaunchResult:
+    """Everything read from a launch file and the files it includes."""
+
+    file: str
+    nodes: list[LaunchedNode] = field(default_factory=list)
+    #: Declared arguments by name (the first declaration of a name).
+    arguments: dict[str, LaunchArgument] = field(default_factory=dict)
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    #: Every launch file read, in the order first read.
+    files: list[str] = field(default_factory=list)
+
+    @property
+    def errors(self) -> list[Diagnostic]:
+        """The diagnostics of severity error."""
+        return [d for d in self.diagnostics if d.severity is Severity.ERROR]
+
+    @property
+    def ok(self) -> bool:
+        """True if no error was found."""
+        return not self.errors

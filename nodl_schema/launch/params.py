@@ -1,0 +1,389 @@
+"""Parameters as launch types them, and parameter files as rcl and launch_ros match them.
+
+* Values: a value written in a frontend (``value="1"``) or built from substitutions is
+  typed by YAML rules exactly as launch does (``coerce_to_type``, ``evaluate_parameter_dict``):
+  ``1`` is an int, ``1.0`` a float, ``true`` a bool, ``'1'`` a string, lists must be uniform.
+* Files: :func:`load_parameter_file` keeps the data and the line of every node key and
+  parameter, so that a later check can point into the file.
+* Matching: :func:`match_parameter_file_nodes` is rcl's (rclcpp's) rule for a node started as a
+  process: a key matches the node's full name exactly, or as a pattern where ``/*`` is one
+  name token and ``/**`` any number of them (``/**``, ``/*/camera``, ``/**/camera``).
+  :func:`match_composable_parameter_keys` is launch_ros's narrower rule for composable nodes:
+  only ``/**`` and the node's exact ``namespace/name`` apply (in that order).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from typing import Any, Iterable, NamedTuple
+
+from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.launch.errors import LaunchProblem
+
+__all__ = ['ParameterValue', 'coerce_to_type', 'get_typed_value', 'evaluate_value',
+           'ParameterFileNode', 'ParameterFile', 'load_parameter_file',
+           'match_parameter_file_nodes', 'match_composable_parameter_keys', 'flatten_parameters',
+           'SCALAR_TYPES']
+
+SCALAR_TYPES = (bool, int, float, str)
+_TYPE_NAMES = {'str': str, 'int': int, 'float': float, 'bool': bool,
+               'list_of_str': ('list', str), 'list_of_int': ('list', int),
+               'list_of_float': ('list', float), 'list_of_bool': ('list', bool)}
+
+
+def _uniform(values: list[Any], can_be_str: bool = False) -> bool:
+    if not values:
+        return True
+    member = next((type(x) for x in values if type(x) is not str), str)
+    if member not in SCALAR_TYPES:
+        return False
+    allowed: tuple[type, ...] = (member, str) if can_be_str else (member,)
+    return all(isinstance(x, allowed) and (type(x) is not bool or member is bool or member is str)
+               for x in values)
+
+
+def _yaml(text: str, can_be_str: bool) -> Any:
+    import yaml
+
+    if not text:
+        return text
+    try:
+        out = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        if can_be_str:
+            return text
+        raise LaunchProblem('NODL518', f'cannot read {text!r} as a YAML value: {exc}'.split('\n')[0])
+    valid = isinstance(out, SCALAR_TYPES) or (isinstance(out, list) and _uniform(out, can_be_str))
+    if not valid:
+        raise LaunchProblem('NODL518', f'the value {text!r} is {type(out).__name__} in YAML; a '
+                                       'parameter is a bool, int, float, string or a uniform list '
+                                       'of them (quote it to make it a string)')
+    return out
+
+
+def coerce_to_type(text: str, data_type: Any = None, *, can_be_str: bool = False) -> Any:
+    """``launch.utilities.type_utils.coerce_to_type``: YAML rules, or the given type."""
+    if data_type is None:
+        return _yaml(text, can_be_str)
+    if isinstance(data_type, tuple):
+        item_type = data_type[1]
+        out = _yaml(text, can_be_str)
+        if not isinstance(out, list) or not all(isinstance(x, (item_type, str) if can_be_str else item_type)
+                                                for x in out):
+            raise LaunchProblem('NODL518', f'cannot convert {text!r} to a list of {item_type.__name__}')
+        return out
+    if data_type is str:
+        return text
+    if data_type in (int, float):
+        try:
+            return data_type(text)
+        except ValueError:
+            if can_be_str:
+                return text
+            raise LaunchProblem('NODL518', f'cannot convert {text!r} to {data_type.__name__}')
+    value = {'1': 'true', '0': 'false'}.get(text, text)
+    out = _yaml(value, can_be_str)
+    if isinstance(out, bool) or (can_be_str and isinstance(out, str)):
+        return out
+    raise LaunchProblem('NODL518', f'cannot convert {text!r} to bool')
+
+
+def get_typed_value(value: str | list[str], data_type: Any, *, can_be_str: bool = True) -> Any:
+    """``get_typed_value``: a frontend attribute (text, or a list split by ``value-sep``)."""
+    if isinstance(value, list):
+        item_type = data_type[1] if isinstance(data_type, tuple) else None
+        if data_type is not None and not isinstance(data_type, tuple):
+            raise LaunchProblem('NODL518', f'a list {value!r} cannot be converted to {data_type.__name__}')
+        out = [coerce_to_type(v, item_type, can_be_str=can_be_str) for v in value]
+        if not _uniform(out, can_be_str):
+            raise LaunchProblem('NODL518', f'the list {value!r} mixes types; a parameter list is uniform')
+        return out
+    return coerce_to_type(value, data_type, can_be_str=can_be_str)
+
+
+def type_from_identifier(identifier: str) -> Any:
+    """The ``type`` attribute of a frontend ``param`` (``str``, ``list_of_int``...)."""
+    try:
+        return _TYPE_NAMES[identifier]
+    except KeyError:
+        from nodl_schema.validation.messages import did_you_mean
+
+        raise LaunchProblem('NODL504', f"unknown parameter type '{identifier}'"
+                                       f'{did_you_mean(identifier, _TYPE_NAMES)}; expected one of '
+                                       f'{", ".join(_TYPE_NAMES)}')
+
+
+class ParameterValue:
+    """A value to compute: a scalar, substitutions, or a list of those; with an optional type.
+
+    ``yaml_typed`` values (what ``normalize_parameter_dict`` makes of substitutions) are read
+    by YAML after substitution; ``data_type`` values (``ParameterValue(v, value_type=...)``,
+    frontend ``param``) are coerced as ``perform_typed_substitution`` does.
+    """
+
+    def __init__(self, value: Any, value_type: Any = None, *, dict_rules: bool = False) -> None:
+        self.value = value
+        self.value_type = value_type
+        self.dict_rules = dict_rules
+
+
+def _is_subs(value: Any) -> bool:
+    from nodl_schema.launch.substitutions import Substitution
+
+    return isinstance(value, Substitution) or (
+        isinstance(value, (list, tuple)) and bool(value)
+        and all(isinstance(v, (Substitution, str)) for v in value)
+        and any(isinstance(v, Substitution) for v in value))
+
+
+def evaluate_value(context: Any, spec: Any, name: str = '') -> Any:
+    """Compute a parameter value in ``context`` as launch_ros does."""
+    from nodl_schema.launch.substitutions import perform
+
+    if isinstance(spec, ParameterValue):
+        value, data_type = spec.value, spec.value_type
+        if spec.dict_rules:  # evaluate_parameter_dict: substitutions are read as YAML, '' is ''
+            if _is_subs(value):
+                text = perform(context, value)
+                return _dict_yaml(text or "''", name)
+            if isinstance(value, list) and value and all(isinstance(v, list) for v in value):
+                items = [_dict_yaml(perform(context, v) or "''", name) for v in value]
+                if not _uniform(items) or not items:
+                    raise LaunchProblem('NODL518', f"parameter '{name}': a list of items of one "
+                                                   'type (bool, int, float or str) was expected')
+                return items
+            return value
+        if isinstance(value, SCALAR_TYPES):
+            return value
+        if _is_subs(value):
+            return coerce_to_type(perform(context, value), data_type)
+        if isinstance(value, list):
+            item_type = data_type[1] if isinstance(data_type, tuple) else None
+            out = [coerce_to_type(perform(context, v), item_type) if _is_subs(v) else v for v in value]
+            if not _uniform(out):
+                raise LaunchProblem('NODL518', f"parameter '{name}': the list is not uniform")
+            return out
+        return value
+    return spec
+
+
+def _dict_yaml(text: str, name: str) -> Any:
+    import yaml
+
+    try:
+        out = yaml.safe_load(text)
+    except yaml.YAMLError:
+        raise LaunchProblem('NODL518', f"parameter '{name}': the value {text!r} is not valid YAML; "
+                                       'for a string, wrap it in ParameterValue(value, value_type=str)')
+    if isinstance(out, SCALAR_TYPES):
+        return out
+    if isinstance(out, list) and out and _uniform(out):
+        return out
+    raise LaunchProblem('NODL518', f"parameter '{name}': the value {text!r} is {type(out).__name__} "
+                                   'in YAML; allowed are bool, int, float, str and uniform lists')
+
+
+def normalize_python_dict(parameters: Any, prefix: str = '') -> list[tuple[Any, Any]]:
+    """A Python ``parameters=[{...}]`` dict as ``normalize_parameter_dict`` makes it:
+    nested dicts flattened with ``.``; strings stay strings; substitutions are read as YAML."""
+    from nodl_schema.launch.substitutions import Substitution, normalize
+
+    out: list[tuple[Any, Any]] = []
+    for key, value in parameters.items():
+        name = normalize(key)
+        if prefix:
+            from nodl_schema.launch.substitutions import TextSubstitution
+
+            name = [TextSubstitution(prefix), TextSubstitution('.'), *name]
+        if isinstance(value, dict):
+            from nodl_schema.launch.substitutions import TextSubstitution
+
+            joined = ''.join(s.text for s in name if isinstance(s, TextSubstitution))
+            out.extend(normalize_python_dict(value, joined))
+        elif isinstance(value, ParameterValue):
+            out.append((name, value))
+        elif isinstance(value, Substitution):
+            out.append((name, ParameterValue(normalize(value), dict_rules=True)))
+        elif isinstance(value, (list, tuple)):
+            items = list(value)
+            kinds = {type(v) for v in items}
+            if any(isinstance(v, Substitution) for v in items) and all(
+                    isinstance(v, (str, Substitution)) for v in items):
+                out.append((name, ParameterValue(normalize(items), dict_rules=True)))
+            elif kinds == {int}:
+                out.append((name, ParameterValue(items, dict_rules=True)))
+            elif kinds <= {int, float} and kinds:
+                out.append((name, ParameterValue([float(v) for v in items], dict_rules=True)))
+            elif kinds == {bool}:
+                out.append((name, ParameterValue(items, dict_rules=True)))
+            else:
+                import yaml
+
+                parts = [normalize(v) if not isinstance(v, (bool, int, float, str))
+                         else normalize(yaml.dump(v)) for v in items]
+                out.append((name, ParameterValue(parts, dict_rules=True)))
+        else:
+            out.append((name, ParameterValue(value, dict_rules=True)))
+    return out
+
+
+# -- parameter files -------------------------------------------------------------------------
+
+class ParameterFileNode(NamedTuple):
+    """One node key of a parameter file and its parameters (nested names joined with ``.``)."""
+
+    key: str
+    parameters: dict[str, Any]
+    #: Parameter name -> (line, column) of its key in the file.
+    positions: dict[str, tuple[int, int]]
+    line: int
+    column: int
+
+
+class ParameterFile:
+    """A parameter file: its node keys in file order, and the problems found reading it."""
+
+    def __init__(self, path: str, nodes: list[ParameterFileNode], diagnostics: list[Diagnostic]) -> None:
+        self.path = path
+        self.nodes = nodes
+        self.diagnostics = diagnostics
+
+    @property
+    def keys(self) -> list[str]:
+        """The node keys, in file order."""
+        return [n.key for n in self.nodes]
+
+
+_CACHE: dict[tuple[str, float, int], ParameterFile] = {}
+
+
+def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
+    """Read a ROS parameter file (``node: {ros__parameters: {...}}``), keeping positions."""
+    import yaml
+    from yaml.nodes import MappingNode, ScalarNode
+
+    name = os.fspath(path)
+    try:
+        stat = os.stat(name)
+    except OSError as exc:
+        return ParameterFile(name, [], [Diagnostic(Severity.ERROR, f'cannot read the parameter file: '
+                                                   f'{exc.strerror}', (), name, code='NODL517')])
+    key = (os.path.realpath(name), stat.st_mtime, stat.st_size)
+    if key in _CACHE:
+        return _CACHE[key]
+    from nodl_schema.frontends.source import SourceText, decode, read_limited
+    from nodl_schema.frontends.yaml_json import parse_document
+
+    text, problem = decode(read_limited(name), name)
+    if text is None:
+        assert problem is not None
+        result = ParameterFile(name, [], [problem])
+        _CACHE[key] = result
+        return result
+    doc = parse_document(SourceText(text, name))
+    if doc.diagnostics:
+        result = ParameterFile(name, [], [d.replace(code=d.code if d.code != 'NODL011' else 'NODL517')
+                                          for d in doc.diagnostics])
+        _CACHE[key] = result
+        return result
+    root = doc._node_tree()  # composed once: safe, the data was built within the limits
+    nodes: list[ParameterFileNode] = []
+    problems: list[Diagnostic] = []
+
+    def params_of(mapping: Any, prefix: str, params: dict[str, Any], positions: dict[str, tuple[int, int]],
+                  data: Any) -> None:
+        for key_node, value_node in mapping.value:
+            pname = f'{prefix}{key_node.value}'
+            value = data.get(key_node.value) if isinstance(data, dict) else None
+            if isinstance(value_node, MappingNode):
+                params_of(value_node, pname + '.', params, positions, value)
+            else:
+                params[pname] = value
+                positions[pname] = (key_node.start_mark.line + 1, key_node.start_mark.column + 1)
+
+    def walk(mapping: Any, path: list[str], data: Any) -> None:
+        for key_node, value_node in mapping.value:
+            if not isinstance(key_node, ScalarNode):
+                continue
+            value = data.get(key_node.value) if isinstance(data, dict) else None
+            if key_node.value == 'ros__parameters':
+                node_key = '/'.join(path)
+                params: dict[str, Any] = {}
+                positions: dict[str, tuple[int, int]] = {}
+                if isinstance(value_node, MappingNode):
+                    params_of(value_node, '', params, positions, value)
+                nodes.append(ParameterFileNode(node_key, params, positions,
+                                               key_node.start_mark.line + 1,
+                                               key_node.start_mark.column + 1))
+            elif isinstance(value_node, MappingNode):
+                walk(value_node, path + [key_node.value], value)
+            else:
+                problems.append(Diagnostic(
+                    Severity.ERROR, f"'{key_node.value}' is not a node key with ros__parameters "
+                    'under it; a parameter file is NODE: {ros__parameters: {NAME: VALUE}}', (), name,
+                    key_node.start_mark.line + 1, key_node.start_mark.column + 1, code='NODL517'))
+
+    if isinstance(root, MappingNode):
+        walk(root, [], doc.data)
+    result = ParameterFile(name, nodes, problems)
+    if len(_CACHE) > 1024:
+        _CACHE.clear()
+    _CACHE[key] = result
+    return result
+
+
+_PATTERNS: dict[str, re.Pattern[str]] = {}
+
+
+def _pattern(key: str) -> re.Pattern[str]:
+    pattern = _PATTERNS.get(key)
+    if pattern is None:
+        name = key if key.startswith('/') else '/' + key
+        # rclcpp: every "/*" becomes "(/\w+)", so "/**" is "(/\w+)*"; the rest is literal.
+        pieces = name.split('/*')
+        regex = r'(/\w+)'.join(re.escape(p).replace(r'\*', '*') for p in pieces)
+        try:
+            pattern = re.compile(regex, re.ASCII)
+        except re.error:
+            pattern = re.compile(re.escape(name))
+        _PATTERNS[key] = pattern
+    return pattern
+
+
+def match_parameter_file_nodes(keys: Iterable[str], node_fqn: str) -> list[str]:
+    """The node keys of a parameter file that apply to the node ``node_fqn``, in file order.
+
+    rcl reads every key; rclcpp and rclpy apply a key when the node's full name matches it
+    entirely, where ``/*`` stands for one name token and ``/**`` for any number of them
+    (``/**``, ``/*``, ``/**/name``, ``/ns/*``); a key without a leading ``/`` gets one.
+    """
+    return [key for key in keys if _pattern(key).fullmatch(node_fqn) is not None]
+
+
+def match_composable_parameter_keys(keys: Iterable[str], node_name: str, namespace: str) -> list[str]:
+    """The keys launch_ros applies to a composable node: ``/**`` first, then its exact name.
+
+    launch_ros reads the file itself (``to_parameters_list``): it joins nested keys with
+    ``/``, strips the leading ``/``, and takes only ``**`` and ``namespace/name``.
+    """
+    wanted = node_name.lstrip('/')
+    if namespace and namespace != '/':
+        wanted = f"{namespace.strip('/')}/{wanted}"
+    keys = list(keys)
+    normalized = {k: '/'.join(part.lstrip('/') for part in k.split('/') if part) for k in keys}
+    out = [k for k in keys if normalized[k] == '**']
+    out += [k for k in keys if normalized[k] == wanted and wanted != '**']
+    return out
+
+
+def flatten_parameters(values: dict[str, Any], prefix: str = '') -> dict[str, Any]:
+    """Nested parameter dicts with names joined by ``.``."""
+    out: dict[str, Any] = {}
+    for key, value in values.items():
+        name = f'{prefix}{key}'
+        if isinstance(value, dict):
+            out.update(flatten_parameters(value, name + '.'))
+        else:
+            out[name] = value
+    return out

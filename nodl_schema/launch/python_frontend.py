@@ -1,0 +1,315 @@
+"""Python launch files: ``generate_launch_description()`` run against a stand-in for the
+``launch``/``launch_ros`` API, which starts nothing.
+
+While a Python launch file is evaluated (and only then) the modules ``launch``,
+``launch.actions``, ``launch.substitutions``, ``launch.conditions``,
+``launch.launch_description_sources``, ``launch.event_handlers``, ``launch_ros``,
+``launch_ros.actions``, ``launch_ros.descriptions``, ``launch_ros.parameter_descriptions``,
+``launch_ros.substitutions`` and ``ament_index_python(.packages)`` are the toolkit's
+stand-ins (``sys.modules`` is restored afterwards).  Their classes are the actions the
+XML and YAML frontends build, so the three formats resolve alike.  An action the stand-in
+does not know (and an ``OpaqueFunction``) becomes a warning at its line saying which
+nodes may be missing.  Running a Python launch file is running its code, as
+``ros2 launch`` does: analyse only launch files you would launch.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import types
+from typing import Any
+
+from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.launch import actions as A
+from nodl_schema.launch import params as P
+from nodl_schema.launch import substitutions as S
+from nodl_schema.launch.errors import LaunchProblem
+from nodl_schema.launch.model import SourceLocation
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from nodl_schema.launch.context import LaunchContext
+
+__all__ = ['read_python_launch', 'shim_modules']
+
+_CURRENT: list[Any] = []  # [(context, path)] while a file is evaluated
+
+
+def _caller() -> SourceLocation:
+    path = _CURRENT[-1][1] if _CURRENT else ''
+    frame = sys._getframe(2)
+    while frame is not None:
+        if frame.f_code.co_filename == path:
+            column = 1
+            try:
+                positions = list(frame.f_code.co_positions())[frame.f_lasti // 2]
+                column = (positions[2] or 0) + 1
+            except (AttributeError, IndexError):
+                pass
+            return SourceLocation(path, frame.f_lineno, column)
+        frame = frame.f_back  # type: ignore[assignment]
+    return SourceLocation(path, 0, 0)
+
+
+def _located(cls: type, name: str | None = None) -> type:
+    """A subclass whose instances remember the launch-file line that created them."""
+    def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
+        condition = kwargs.pop('condition', None)
+        init: Any = getattr(cls, '__init__')
+        init(self, *args, **kwargs)
+        self.location = _caller()
+        if isinstance(self, A.Action):
+            self.condition = condition
+        elif condition is not None:
+            self.condition = condition
+    return type(name or cls.__name__, (cls,), {'__init__': __init__})
+
+
+def _unknown(module: str) -> Any:
+    def factory(name: str) -> Any:
+        if name.startswith('__'):
+            raise AttributeError(name)
+
+        class Unknown(A.Unevaluated):
+            def __init__(self, *args: Any, **kwargs: Any) -> None:
+                super().__init__(f'{module}.{name}')
+                self.location = _caller()
+        Unknown.__name__ = name
+        return Unknown
+    return factory
+
+
+class _Source:
+    def __init__(self, launch_file_path: Any, *args: Any, **kwargs: Any) -> None:
+        self.location = launch_file_path
+
+
+class _Handler:
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        found: list[Any] = []
+        for key in ('on_exit', 'on_start', 'on_completion', 'on_shutdown', 'on_stdout', 'on_stderr',
+                    'entities', 'on_state_transition'):
+            value = kwargs.get(key)
+            if value is None:
+                continue
+            if callable(value) and not isinstance(value, (list, tuple, A.Action)):
+                found.append(A.Unevaluated(f'an event handler function ({key})'))
+                found[-1].location = _caller()
+            else:
+                found.extend(value if isinstance(value, (list, tuple)) else [value])
+        self.actions = found
+
+
+class _RegisterEventHandler(A.Ignored):
+    def __init__(self, event_handler: Any, **_: Any) -> None:
+        super().__init__(actions=getattr(event_handler, 'actions', []))
+
+
+class _Timer(A.Ignored):
+    def __init__(self, *, period: Any = None, actions: Any = (), **_: Any) -> None:
+        super().__init__(actions=list(actions))
+
+
+class _Opaque(A.Unevaluated):
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        function = kwargs.get('function', args[0] if args else None)
+        super().__init__(f"OpaqueFunction({getattr(function, '__name__', '?')})")
+
+
+class _ParameterFile(A.ParameterFileEntry):
+    pass
+
+
+class _Parameter:
+    def __init__(self, name: Any, value: Any, *, value_type: Any = None) -> None:
+        self.nodl_parameter = (S.normalize(name), _parameter_value(value, value_type))
+
+
+def _type(value_type: Any) -> Any:
+    import typing
+
+    if getattr(value_type, '__origin__', None) in (list, typing.List):
+        return ('list', value_type.__args__[0])
+    return value_type
+
+
+def _parameter_value(value: Any, value_type: Any = None) -> P.ParameterValue:
+    data_type = _type(value_type)
+    if isinstance(value, (S.Substitution,)) or (isinstance(value, (list, tuple)) and value and all(
+            isinstance(v, (str, S.Substitution)) for v in value) and any(isinstance(v, S.Substitution)
+                                                                          for v in value)):
+        return P.ParameterValue(S.normalize(value), data_type)
+    if isinstance(value, (list, tuple)):
+        return P.ParameterValue([S.normalize(v) if isinstance(v, S.Substitution) else v for v in value],
+                                data_type)
+    return P.ParameterValue(value, data_type)
+
+
+def _package_share(package: str) -> str:
+    return os.path.join(_package_prefix(package), 'share', package)
+
+
+def _package_prefix(package: str) -> str:
+    context = _CURRENT[-1][0] if _CURRENT else None
+    if context is None:
+        raise LookupError(package)
+    try:
+        return str(context.package_prefix(package))
+    except LaunchProblem as problem:
+        raise _PackageNotFoundError(problem.message)
+
+
+class _PackageNotFoundError(KeyError):
+    pass
+
+
+def _module(name: str, members: dict[str, Any], unknown: bool = False) -> types.ModuleType:
+    module = types.ModuleType(name)
+    module.__dict__.update(members)
+    module.__path__ = []  # a package: submodules import
+    if unknown:
+        setattr(module, '__getattr__', _unknown(name))
+    return module
+
+
+def shim_modules() -> dict[str, types.ModuleType]:
+    """The stand-in modules by name (fresh objects: each evaluation gets its own)."""
+    L = _located
+    subs = {name: getattr(S, name) for name in S.__all__ if isinstance(getattr(S, name), type)}
+    subs.update(AnonName=S.AnonName, PythonExpression=S.PythonExpression,
+                ThisLaunchFileDir=S.ThisLaunchFileDir, ThisLaunchFile=S.ThisLaunchFile)
+    actions = dict(
+        DeclareLaunchArgument=L(A.DeclareLaunchArgument), IncludeLaunchDescription=L(A.IncludeLaunchDescription),
+        GroupAction=L(A.GroupAction), SetLaunchConfiguration=L(A.SetLaunchConfiguration),
+        UnsetLaunchConfiguration=L(A.UnsetLaunchConfiguration),
+        SetEnvironmentVariable=L(A.SetEnvironmentVariable),
+        UnsetEnvironmentVariable=L(A.UnsetEnvironmentVariable),
+        AppendEnvironmentVariable=L(A.AppendEnvironmentVariable),
+        LogInfo=L(A.Ignored, 'LogInfo'), ExecuteProcess=L(A.Ignored, 'ExecuteProcess'),
+        ExecuteLocal=L(A.Ignored, 'ExecuteLocal'), EmitEvent=L(A.Ignored, 'EmitEvent'),
+        Shutdown=L(A.Ignored, 'Shutdown'), TimerAction=L(_Timer, 'TimerAction'),
+        RegisterEventHandler=L(_RegisterEventHandler, 'RegisterEventHandler'),
+        OpaqueFunction=L(_Opaque, 'OpaqueFunction'), OpaqueCoroutine=L(_Opaque, 'OpaqueCoroutine'),
+        PushLaunchConfigurations=L(A.Ignored, 'PushLaunchConfigurations'),
+        PopLaunchConfigurations=L(A.Ignored, 'PopLaunchConfigurations'),
+    )
+    conditions = dict(IfCondition=A.IfCondition, UnlessCondition=A.UnlessCondition,
+                      LaunchConfigurationEquals=A.LaunchConfigurationEquals,
+                      LaunchConfigurationNotEquals=A.LaunchConfigurationNotEquals)
+    sources = {n: _Source for n in ('PythonLaunchDescriptionSource', 'XMLLaunchDescriptionSource',
+                                    'YAMLLaunchDescriptionSource', 'AnyLaunchDescriptionSource',
+                                    'FrontendLaunchDescriptionSource')}
+    handlers = {n: _Handler for n in ('OnProcessExit', 'OnProcessStart', 'OnExecutionComplete',
+                                      'OnShutdown', 'OnProcessIO', 'OnIncludeLaunchDescription',
+                                      'OnStateTransition')}
+    descriptions = dict(ComposableNode=L(A.ComposableNode), ParameterValue=_parameter_value,
+                        ParameterFile=_ParameterFile, Parameter=_Parameter)
+    ros_actions = dict(
+        Node=L(A.Node), ComposableNodeContainer=L(A.ComposableNodeContainer),
+        LoadComposableNodes=L(A.LoadComposableNodes), PushRosNamespace=L(A.PushRosNamespace),
+        PushROSNamespace=L(A.PushRosNamespace), SetRemap=L(A.SetRemap), SetParameter=L(A.SetParameter),
+        SetParametersFromFile=L(A.SetParametersFromFile), LifecycleNode=L(A.Node, 'LifecycleNode'),
+        SetUseSimTime=L(A.SetParameter, 'SetUseSimTime'), RosTimer=L(_Timer, 'RosTimer'),
+    )
+    set_parameter: Any = ros_actions['SetParameter']
+
+    def set_use_sim_time(self: Any, value: Any, **kwargs: Any) -> None:
+        set_parameter.__init__(self, 'use_sim_time', value, **kwargs)
+    ros_actions['SetUseSimTime'] = type('SetUseSimTime', (set_parameter,), {'__init__': set_use_sim_time})
+    ros_subs = dict(FindPackageShare=S.FindPackageShare, FindPackagePrefix=S.FindPackagePrefix,
+                    ExecutableInPackage=S.ExecutableInPackage, Parameter=S.ParameterSubstitution)
+    ament = dict(get_package_share_directory=_package_share, get_package_prefix=_package_prefix,
+                 PackageNotFoundError=_PackageNotFoundError)
+    launch = dict(LaunchDescription=A.LaunchDescription, Action=A.Action, Substitution=S.Substitution,
+                  Condition=A.Condition, LaunchContext=object, SomeSubstitutionsType=object)
+    modules = {
+        'launch': _module('launch', launch),
+        'launch.actions': _module('launch.actions', actions, unknown=True),
+        'launch.substitutions': _module('launch.substitutions', subs, unknown=True),
+        'launch.conditions': _module('launch.conditions', conditions),
+        'launch.launch_description_sources': _module('launch.launch_description_sources', sources),
+        'launch.event_handlers': _module('launch.event_handlers', handlers),
+        'launch.events': _module('launch.events', {}, unknown=True),
+        'launch_ros': _module('launch_ros', {}),
+        'launch_ros.actions': _module('launch_ros.actions', ros_actions, unknown=True),
+        'launch_ros.descriptions': _module('launch_ros.descriptions', descriptions),
+        'launch_ros.parameter_descriptions': _module('launch_ros.parameter_descriptions', descriptions),
+        'launch_ros.substitutions': _module('launch_ros.substitutions', ros_subs, unknown=True),
+        'ament_index_python': _module('ament_index_python', ament),
+        'ament_index_python.packages': _module('ament_index_python.packages', ament),
+    }
+    for name, module in modules.items():
+        parent, _, child = name.rpartition('.')
+        if parent:
+            setattr(modules[parent], child, module)
+    return modules
+
+
+def _problem(path: str, exc: BaseException) -> Diagnostic:
+    import traceback
+
+    line = 0
+    for frame in traceback.extract_tb(exc.__traceback__):
+        if frame.filename == path:
+            line = frame.lineno or 0
+    return Diagnostic(Severity.ERROR, f'the Python launch file raised {type(exc).__name__}: {exc}'
+                      .split('\n')[0], (), path, line, 1 if line else 0, code='NODL516')
+
+
+def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription | None:
+    """Evaluate ``generate_launch_description()`` of a Python launch file with the stand-ins."""
+    from nodl_schema.frontends.source import decode, read_limited
+
+    try:
+        text, problem = decode(read_limited(path), path)
+    except OSError as exc:
+        context.report(Diagnostic(Severity.ERROR, f'cannot read the launch file: {exc.strerror}', (), path,
+                                  code='NODL515'))
+        return None
+    if text is None:
+        assert problem is not None
+        context.report(problem)
+        return None
+    shims = shim_modules()
+    saved = {name: sys.modules.get(name) for name in shims}
+    sys.modules.update(shims)
+    _CURRENT.append((context, path))
+    namespace: dict[str, Any] = {'__file__': path, '__name__': '__nodl_launch__'}
+    try:
+        code = compile(text, path, 'exec')
+        exec(code, namespace)  # noqa: S102 - running the launch file, as ros2 launch does
+        generate = namespace.get('generate_launch_description')
+        if not callable(generate):
+            context.report(Diagnostic(Severity.ERROR, 'the Python launch file has no '
+                                      'generate_launch_description() function', (), path, 1, 1,
+                                      code='NODL516'))
+            return None
+        description = generate()
+    except SyntaxError as exc:
+        context.report(Diagnostic(Severity.ERROR, f'Python syntax error: {exc.msg}', (), path,
+                                  exc.lineno or 0, exc.offset or 0, code='NODL516'))
+        return None
+    except LaunchProblem as exc:
+        context.report(exc.diagnostic(path, 0, 0))
+        return None
+    except RecursionError as exc:
+        context.report(_problem(path, exc))
+        return None
+    except Exception as exc:  # the user's code: any error is a finding, never a crash
+        context.report(_problem(path, exc))
+        return None
+    finally:
+        _CURRENT.pop()
+        for name, module in saved.items():
+            if module is None:
+                sys.modules.pop(name, None)
+            else:
+                sys.modules[name] = module
+    if not isinstance(description, A.LaunchDescription):
+        context.report(Diagnostic(Severity.ERROR, 'generate_launch_description() returned '
+                                  f'{type(description).__name__}, not a LaunchDescription', (), path,
+                                  code='NODL516'))
+        return None
+    description.location = SourceLocation(path, 0, 0)
+    return description

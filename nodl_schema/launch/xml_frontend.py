@@ -1,0 +1,66 @@
+"""The XML launch frontend, read with the toolkit's safe XML parser.
+
+:func:`~nodl_schema.frontends.legacy_xml.load_xml` (expat, positions for every element and
+attribute, no DTDs and no entities, the 10 MB size limit and UTF-8) gives the tree; this module
+turns elements into :class:`~nodl_schema.launch.frontend.Entity` objects: the child elements a
+tag lists as nested (``param``, ``remap``, ``arg``...) go to ``nested``, the others are actions.
+"""
+
+from __future__ import annotations
+
+from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.launch.actions import LaunchDescription
+from nodl_schema.launch.errors import MAX_XML_DEPTH
+from nodl_schema.launch.frontend import NESTED, TAGS, Attribute, Entity, build_description
+
+__all__ = ['read_xml_launch']
+
+
+def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnostic]]:
+    """Read an XML launch file (problems as diagnostics, never an exception for its content)."""
+    from pathlib import Path
+
+    from nodl_schema.frontends.legacy_xml import XmlElement, load_xml
+
+    problems: list[Diagnostic] = []
+    try:
+        tree = load_xml(Path(path), path)
+    except OSError as exc:
+        return None, [Diagnostic(Severity.ERROR, f'cannot read the launch file: {exc.strerror}', (), path,
+                                 code='NODL515')]
+    problems.extend(tree.diagnostics)
+    if tree.root is None or any(d.severity is Severity.ERROR for d in tree.diagnostics):
+        return None, problems
+
+    def convert(element: XmlElement, depth: int) -> Entity | None:
+        if depth > MAX_XML_DEPTH:
+            problems.append(Diagnostic(Severity.ERROR, f'the launch file nests deeper than {MAX_XML_DEPTH} '
+                                       'levels', (), path, element.line, element.column, code='NODL009'))
+            return None
+        entity = Entity(element.tag, path, element.line, element.column)
+        for attribute in element.attributes:
+            entity.attributes[attribute.name] = Attribute(attribute.value, attribute.line, attribute.column)
+        lists = TAGS.get(element.tag, (None, (), None))[1] or NESTED.get(element.tag, ((), ()))[1]
+        for child in element.children:
+            converted = convert(child, depth + 1)
+            if converted is None:
+                continue
+            if child.tag in lists:
+                entity.nested.setdefault(child.tag, []).append(converted)
+            else:
+                entity.children.append(converted)
+        return entity
+
+    # Iterative depth check first: expat itself reads any depth, the conversion is recursive.
+    stack = [(tree.root, 1)]
+    while stack:
+        element, depth = stack.pop()
+        if depth > MAX_XML_DEPTH:
+            problems.append(Diagnostic(Severity.ERROR, f'the launch file nests deeper than {MAX_XML_DEPTH} '
+                                       'levels', (), path, element.line, element.column, code='NODL009'))
+            return None, problems
+        stack.extend((child, depth + 1) for child in element.children)
+    root = convert(tree.root, 1)
+    if root is None:
+        return None, problems
+    return build_description(root, problems), problems

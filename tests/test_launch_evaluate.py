@@ -1,0 +1,199 @@
+"""Launch files read as ros2 launch would: a table of semantics cases, one system in three
+formats, and hostile input (bounded, coded, no traceback)."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+from typing import Any
+
+import pytest
+import yaml
+
+from conftest import FIXTURES, REPO
+from nodl_schema.launch import load_launch, match_composable_parameter_keys, match_parameter_file_nodes
+
+CASES = sorted((FIXTURES / 'launch' / 'cases').glob('*.yaml'))
+SAME = FIXTURES / 'launch' / 'same_system'
+
+
+def _write(tmp_path: Path, files: dict[str, str]) -> Path:
+    for name, text in files.items():
+        (tmp_path / name).write_text(text, encoding='utf-8')
+    return tmp_path / next(iter(files))
+
+
+def _node_view(node: Any, base: Path) -> dict[str, Any]:
+    view = node.to_dict()
+    view['parameters'] = [
+        {**p, **({'path': os.path.relpath(p['path'], base)} if p.get('path') else {})}
+        for p in view['parameters']]
+    return view
+
+
+def _matches(actual: Any, expected: Any) -> bool:
+    if isinstance(expected, dict):
+        return isinstance(actual, dict) and all(_matches(actual.get(k), v) for k, v in expected.items())
+    if isinstance(expected, list):
+        return (isinstance(actual, list) and len(actual) == len(expected)
+                and all(_matches(a, e) for a, e in zip(actual, expected)))
+    return bool(actual == expected)
+
+
+@pytest.mark.parametrize('case', CASES, ids=[c.stem for c in CASES])
+def test_launch_semantics_case(case: Path, tmp_path: Path) -> None:
+    spec = yaml.safe_load(case.read_text(encoding='utf-8'))
+    main = _write(tmp_path, spec['files'])
+    result = load_launch(main, spec.get('arguments', {}))
+    assert result.ok, [str(d) for d in result.diagnostics]
+    nodes = [_node_view(n, tmp_path) for n in result.nodes]
+    assert _matches(nodes, spec['expected']), json.dumps(nodes, indent=1)
+
+
+def _normalized(path: Path) -> list[dict[str, Any]]:
+    result = load_launch(path, {})
+    assert result.ok, [str(d) for d in result.diagnostics]
+    out = []
+    for node in result.nodes:
+        view = node.to_dict()
+        view.pop('source')
+        for p in view['parameters']:
+            p.pop('source')
+        out.append(view)
+    return out
+
+
+def test_the_same_system_in_xml_yaml_and_python_resolves_alike() -> None:
+    xml = _normalized(SAME / 'system.launch.xml')
+    assert xml == _normalized(SAME / 'system.launch.yaml')
+    assert xml == _normalized(SAME / 'system.launch.py')
+    assert [n['namespace'] for n in xml] == ['/rover/sensors', '/rover/nav']
+    assert xml[1]['remaps'] == [['odom', '/odom']]
+    assert xml[0]['parameters'][0] == {'kind': 'values', 'origin': 'global',
+                                       'values': {'use_sim_time': False}, 'node_key': '/**'}
+
+
+def test_sources_and_include_chain(tmp_path: Path) -> None:
+    main = _write(tmp_path, {
+        'main.launch.xml': '<launch>\n  <include file="$(dirname)/sub.launch.py"/>\n</launch>\n',
+        'sub.launch.py': textwrap.dedent('''\
+            from launch import LaunchDescription
+            from launch_ros.actions import Node
+            def generate_launch_description():
+                return LaunchDescription([
+                    Node(package='p', executable='e')])
+            ''')})
+    result = load_launch(main, {})
+    (node,) = result.nodes
+    assert (node.source.line, node.source.file) == (5, str(tmp_path / 'sub.launch.py'))
+    assert [(s.file, s.line) for s in node.include_chain] == [(str(main), 2)]
+
+
+@pytest.mark.parametrize('text, arguments, code, words', [
+    ('<launch><nod pkg="p" exec="e"/></launch>', {}, 'NODL501', "did you mean 'node'"),
+    ('<launch><node pkg="p" exec="e" nmae="x"/></launch>', {}, 'NODL502', "did you mean 'name'"),
+    ('<launch><node pkg="p"/></launch>', {}, 'NODL503', "'exec'"),
+    ('<launch><arg name="m"><choice value="a"/></arg></launch>', {'m': 'b'}, 'NODL505', 'choices'),
+    ('<launch><arg name="m"/></launch>', {}, 'NODL506', "'m'"),
+    ('<launch><node pkg="p" exec="$(vra x)"/></launch>', {}, 'NODL509', "did you mean 'var'"),
+    ('<launch><node pkg="p" exec="$(var nope)"/></launch>', {}, 'NODL510', "'nope'"),
+    ('<launch><include file="$(find-pkg-share no_such_pkg)/x.launch.xml"/></launch>', {}, 'NODL511',
+     'no_such_pkg'),
+    ('<launch><node pkg="p" exec="e" if="maybe"/></launch>', {}, 'NODL514', 'maybe'),
+    ('<launch><include file="/nonexistent/x.launch.xml"/></launch>', {}, 'NODL515', 'does not exist'),
+    ('<launch><node pkg="p" exec="e" name="bad name"/></launch>', {}, 'NODL519', 'bad name'),
+    ('<launch/>', {'typo': '1'}, 'NODL520', 'typo'),
+])
+def test_problems_are_coded_and_placed(tmp_path: Path, text: str, arguments: dict[str, str], code: str,
+                                       words: str) -> None:
+    main = _write(tmp_path, {'main.launch.xml': text})
+    result = load_launch(main, arguments, environment={'AMENT_PREFIX_PATH': ''})
+    found = [d for d in result.diagnostics if d.code == code]
+    assert found, [str(d) for d in result.diagnostics]
+    assert words in found[0].message and found[0].file == str(main)
+
+
+def test_include_cycle_shows_the_chain(tmp_path: Path) -> None:
+    main = _write(tmp_path, {
+        'a.launch.xml': '<launch>\n  <include file="$(dirname)/b.launch.yaml"/>\n</launch>\n',
+        'b.launch.yaml': 'launch:\n  - include: {file: $(dirname)/a.launch.xml}\n'})
+    result = load_launch(main, {})
+    (cycle,) = [d for d in result.diagnostics if d.code == 'NODL507']
+    assert 'a.launch.xml -> ' in cycle.message and 'b.launch.yaml -> ' in cycle.message
+    assert (cycle.file, cycle.line) == (str(tmp_path / 'b.launch.yaml'), 2)
+
+
+def test_opaque_function_and_unknown_action_are_findings(tmp_path: Path) -> None:
+    main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
+        from launch import LaunchDescription
+        from launch.actions import OpaqueFunction, SomethingNew
+        from launch_ros.actions import Node
+        def generate_launch_description():
+            return LaunchDescription([
+                OpaqueFunction(function=print),
+                SomethingNew(x=1),
+                Node(package='p', executable='e')])
+        ''')})
+    result = load_launch(main, {})
+    assert [(d.code, d.line) for d in result.diagnostics] == [('NODL512', 6), ('NODL512', 7)]
+    assert len(result.nodes) == 1
+    assert 'launch' not in sys.modules and 'launch_ros.actions' not in sys.modules
+
+
+def test_parameter_file_matching() -> None:
+    keys = ['/**', '/*', '/ns/n', 'ns/n', '/**/n', '/ns/*', '/other', 'n']
+    assert match_parameter_file_nodes(keys, '/ns/n') == ['/**', '/ns/n', 'ns/n', '/**/n', '/ns/*']
+    assert match_parameter_file_nodes(keys, '/n') == ['/**', '/*', '/**/n', 'n']
+    assert match_composable_parameter_keys(['/ns/n', '/**', '/*', 'ns/n'], 'n', '/ns') == ['/**', '/ns/n', 'ns/n']
+
+
+_HOSTILE_RUNNER = '''
+import json, resource, sys, time
+from nodl_schema.launch import load_launch
+start = time.perf_counter()
+result = load_launch(sys.argv[1], {})
+print(json.dumps({"codes": sorted({d.code for d in result.diagnostics}),
+                  "seconds": time.perf_counter() - start,
+                  "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
+'''
+
+
+def _hostile(path: Path) -> dict[str, Any]:
+    done = subprocess.run([sys.executable, '-c', _HOSTILE_RUNNER, str(path)], cwd=REPO, text=True,
+                          capture_output=True, timeout=60)
+    assert done.returncode == 0 and 'Traceback' not in done.stderr, done.stderr
+    out: dict[str, Any] = json.loads(done.stdout)
+    assert out['seconds'] < 5 and out['rss_mb'] < 400, out
+    return out
+
+
+def test_hostile_launch_input(tmp_path: Path) -> None:
+    bomb = tmp_path / 'bomb.launch.xml'
+    bomb.write_text('<?xml version="1.0"?>\n<!DOCTYPE l [<!ENTITY a "aaaaaaaaaa">'
+                    + ''.join(f'<!ENTITY a{i} "{"&a;" * 10}">' for i in range(8))
+                    + ']>\n<launch><node pkg="p" exec="&a7;"/></launch>\n')
+    assert _hostile(bomb)['codes'] == ['NODL013']
+    deep = tmp_path / 'deep.launch.xml'
+    deep.write_text('<launch>' + '<group>' * 5000 + '</group>' * 5000 + '</launch>')
+    assert _hostile(deep)['codes'] == ['NODL009']
+    huge = tmp_path / 'huge.launch.xml'
+    huge.write_text('<launch>' + ' ' * (11 * 1024 * 1024) + '</launch>')
+    assert _hostile(huge)['codes'] == ['NODL001']
+    chain = tmp_path / 'c0.launch.xml'
+    for i in range(60):
+        (tmp_path / f'c{i}.launch.xml').write_text(
+            f'<launch><include file="$(dirname)/c{i + 1}.launch.xml"/></launch>')
+    (tmp_path / 'c60.launch.xml').write_text('<launch/>')
+    assert _hostile(chain)['codes'] == ['NODL508']
+    loop = tmp_path / 'loop.launch.yaml'
+    loop.write_text('launch:\n  - include: {file: $(dirname)/loop.launch.yaml}\n')
+    assert _hostile(loop)['codes'] == ['NODL507']
+    laughs = tmp_path / 'laughs.launch.yaml'
+    laughs.write_text('a: &a ["x","x","x","x","x","x","x","x","x"]\n'
+                      + ''.join(f'{c}: &{c} [*{p},*{p},*{p},*{p},*{p},*{p},*{p},*{p},*{p}]\n'
+                                for p, c in zip('abcdefg', 'bcdefgh')))
+    assert _hostile(laughs)['codes'] == ['NODL008']
