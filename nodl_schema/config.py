@@ -8,7 +8,9 @@ without one is passed over).  Keys:
 ``ignore``
     a list of codes whose diagnostics are not reported;
 ``error``
-    a list of codes whose diagnostics are errors whatever their severity.
+    a list of codes whose diagnostics are errors whatever their severity;
+``analyse``
+    a table of settings of ``nodl analyse`` (:mod:`nodl_schema.analysis.settings`).
 
 Unknown keys, values that are not lists of strings and unknown codes are a
 :class:`ConfigError` (a ``ValueError``) whose message names the file.
@@ -31,7 +33,8 @@ __all__ = ['ConfigError', 'CONFIG_FILES', 'KEYS', 'find_config_file', 'load_conf
 #: The file names looked for in each directory, in order of precedence.
 CONFIG_FILES = ('nodl.toml', 'pyproject.toml')
 #: The keys of a configuration and what each holds.
-KEYS = {'ignore': 'a list of codes to silence', 'error': 'a list of codes to report as errors'}
+KEYS = {'ignore': 'a list of codes to silence', 'error': 'a list of codes to report as errors',
+        'analyse': 'a table of settings of nodl analyse (see nodl_schema.analysis.settings)'}
 
 
 class ConfigError(ValueError):
@@ -110,6 +113,11 @@ def load_config(path: str) -> Overrides:
             close = difflib.get_close_matches(str(key), list(KEYS), n=1)
             hint = f"; did you mean '{close[0]}'?" if close else f'; expected {" or ".join(KEYS)}'
             raise ConfigError(f"{where}: error: unknown key '{key}'{hint}")
+        if key == 'analyse':  # checked by its owner, so that a wrong table fails every verb alike
+            from nodl_schema.analysis.settings import settings_from_table
+
+            settings_from_table(value, where)
+            continue
         if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
             raise ConfigError(f"{where}: error: '{key}' must be {KEYS[key]} "
                               '(for example ["NODL216"])')

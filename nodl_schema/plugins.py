@@ -83,7 +83,8 @@ EXTENSION_POINTS: dict[str, ExtensionPointSpec] = {p.group: p for p in (
                        'nodl_schema.composition.resolvers:ResolverExtension',
                        'mixin reference resolvers, one per URI scheme (the entry point name)'),
     ExtensionPointSpec('nodl.frontends', '1.0', None, 'readers of other definition formats'),
-    ExtensionPointSpec('nodl.checks', '1.0', None, 'analysis checks'),
+    ExtensionPointSpec('nodl.checks', '1.0', 'nodl_schema.analysis.checks:CheckExtension',
+                       'checks of `nodl analyse` over a launched system'),
     ExtensionPointSpec('nodl.generators', '1.0', None, 'code and document generators'),
     ExtensionPointSpec('nodl.reporters', '1.0', None, 'output formats of diagnostics'),
 )}

@@ -1,0 +1,130 @@
+"""Checks on each topic, service and action: ``multiple-publishers``, ``type-mismatch``,
+``qos-incompatible`` / ``qos-warning``."""
+
+from __future__ import annotations
+
+from typing import Any, Iterator
+
+from nodl_schema.analysis.checks import CheckExtension
+from nodl_schema.analysis.context import AnalysisContext
+from nodl_schema.analysis.findings import Finding, make_finding
+from nodl_schema.system.entities import Provider
+from nodl_schema.system.instance import InstanceEntity
+
+__all__ = ['MultiplePublishersCheck', 'TypeMismatchCheck', 'QoSCheck']
+
+
+def _own(endpoints: tuple[InstanceEntity, ...]) -> list[InstanceEntity]:
+    """The endpoints the nodes bring themselves (not the client library's)."""
+    return [e for e in endpoints if e.entity.provider is not Provider.CLIENT_LIBRARY]
+
+
+def _related(bound: InstanceEntity, what: str) -> tuple[str, int, int, str]:
+    where = bound.entity.location
+    return (where.file, where.line, where.column, what)
+
+
+class MultiplePublishersCheck(CheckExtension):
+    """More than one node publishes a topic (the client library's ``/rosout`` and
+    ``/parameter_events`` excluded; topics on the configured allow list too)."""
+
+    kinds = ('multiple-publishers',)
+
+    def check(self, context: AnalysisContext) -> Iterator[Finding]:
+        """One finding per topic published by several nodes."""
+        for connection in context.system.connections('topic'):
+            publishers = _own(connection.publishers)
+            nodes = list(dict.fromkeys(p.instance.fqn for p in publishers))
+            if len(nodes) < 2 or context.settings.publishers_allowed(connection.name):
+                continue
+            second = next(p for p in publishers if p.instance.fqn == nodes[1])
+            yield make_finding(
+                'multiple-publishers',
+                f'topic {connection.name} is published by {len(nodes)} nodes: {", ".join(nodes)} '
+                '(if that is intended, add it to multiple_publishers_allow in nodl.toml)',
+                context.node_of(second.instance).location, nodes, endpoint=connection.name,
+                related=[_related(p, f'{p.instance.fqn} publishes it') for p in publishers])
+
+
+_SIDE_WORDS = {'publisher': 'published', 'subscription': 'subscribed', 'service_server': 'served',
+               'service_client': 'called', 'action_server': 'served', 'action_client': 'called'}
+
+
+class TypeMismatchCheck(CheckExtension):
+    """The endpoints of a topic (or the servers and clients of a service or action)
+    disagree on its type: the middleware never connects them."""
+
+    kinds = ('type-mismatch',)
+
+    def check(self, context: AnalysisContext) -> Iterator[Finding]:
+        """One finding per connection whose endpoints use more than one type."""
+        for connection in context.system.connections():
+            endpoints = connection.endpoints
+            first_type = endpoints[0].entity.type_name
+            if all(e.entity.type_name == first_type for e in endpoints):
+                continue
+            by_type: dict[str, list[InstanceEntity]] = {}
+            for e in endpoints:
+                by_type.setdefault(e.entity.type_name, []).append(e)
+            parts = []
+            for type_name, group in by_type.items():
+                who = ', '.join(f'{_SIDE_WORDS[e.entity.kind.value]} by {e.instance.fqn}'
+                                for e in group)
+                parts.append(f'{type_name} ({who})')
+            odd = next(e for e in endpoints if e.entity.type_name != first_type)
+            yield make_finding(
+                'type-mismatch', f'{connection.communication} {connection.name} has '
+                f'{len(by_type)} types: {"; ".join(parts)}',
+                context.node_of(odd.instance).location,
+                [e.instance.fqn for e in endpoints], endpoint=connection.name,
+                related=[_related(e, f'{e.instance.fqn}: {e.entity.kind.word} of '
+                                     f'{e.entity.type_name}') for e in endpoints])
+
+
+def _qos_key(qos: Any) -> tuple[Any, ...]:
+    return tuple(sorted(qos.to_dict().items())) if qos is not None else ()
+
+
+class QoSCheck(CheckExtension):
+    """A publisher and a subscription on one topic that the middleware would not connect
+    (``qos-incompatible``), or would connect with a warning (``qos-warning``): exactly
+    :func:`nodl_schema.qos_compat.check_qos_compatible`."""
+
+    kinds = ('qos-incompatible', 'qos-warning')
+
+    def check(self, context: AnalysisContext) -> Iterator[Finding]:
+        """One finding per incompatible (or doubtful) publisher/subscription pair."""
+        from nodl_schema.qos_compat import check_qos_compatible
+
+        verdicts: dict[tuple[Any, Any], Any] = {}
+        for connection in context.system.connections('topic'):
+            if not connection.publishers or not connection.subscriptions:
+                continue
+            # client library to client library pairs (/parameter_events) are never checked:
+            # pair every publisher with the nodes' own subscriptions, and the nodes' own
+            # publishers with the client library's subscriptions (linear when none are own)
+            own_subs = _own(connection.subscriptions)
+            library_subs = [s for s in connection.subscriptions
+                            if s.entity.provider is Provider.CLIENT_LIBRARY]
+            pairs = [(p, s) for p in connection.publishers for s in own_subs]
+            pairs += [(p, s) for p in _own(connection.publishers) for s in library_subs]
+            for pub, sub in pairs:
+                key = (_qos_key(pub.entity.qos), _qos_key(sub.entity.qos))
+                verdict = verdicts.get(key)
+                if verdict is None:
+                    try:
+                        verdict = check_qos_compatible(pub.entity.qos, sub.entity.qos)
+                    except ValueError:
+                        continue  # a definition that passed validation has valid QoS
+                    verdicts[key] = verdict
+                if verdict.verdict == 'ok':
+                    continue
+                kind = 'qos-incompatible' if verdict.verdict == 'error' else 'qos-warning'
+                outcome = 'will not connect' if verdict.verdict == 'error' else 'may not connect'
+                yield make_finding(
+                    kind, f'topic {connection.name}: the publisher of {pub.instance.fqn} and '
+                    f'the subscription of {sub.instance.fqn} {outcome}: {verdict.reason}',
+                    context.node_of(sub.instance).location,
+                    [pub.instance.fqn, sub.instance.fqn], endpoint=connection.name,
+                    related=[_related(pub, f'the publisher of {pub.instance.fqn}'),
+                             _related(sub, f'the subscription of {sub.instance.fqn}')])

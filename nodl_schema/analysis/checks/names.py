@@ -1,0 +1,69 @@
+"""Checks on node names and remapping rules: ``duplicate-node``, ``unused-remap``."""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+from nodl_schema.analysis.checks import CheckExtension
+from nodl_schema.analysis.context import AnalysisContext
+from nodl_schema.analysis.findings import Finding, make_finding
+
+__all__ = ['DuplicateNodeCheck', 'UnusedRemapCheck']
+
+#: What a rule of each kind can remap (rostopic:// and rosservice:// rules are limited).
+_WHAT = {'topic': 'topic or action', 'service': 'service'}
+
+
+class DuplicateNodeCheck(CheckExtension):
+    """Two launched nodes with the same final name (rcl lets them start; the graph cannot
+    tell them apart, and their parameters and services collide)."""
+
+    kinds = ('duplicate-node',)
+
+    def check(self, context: AnalysisContext) -> Iterator[Finding]:
+        """One finding per node launched under a name an earlier node already has."""
+        for fqn, group in context.by_fqn.items():
+            if len(group) < 2:
+                continue
+            first = group[0]
+            for other in group[1:]:
+                yield make_finding(
+                    'duplicate-node',
+                    f'{fqn} is launched twice ({other.executable_label} here, '
+                    f'{first.executable_label} at {first.location}); give one a different '
+                    'name or namespace',
+                    other.location, [n.fqn for n in group],
+                    related=[(first.location.file, first.location.line, first.location.column,
+                              f'{fqn} is first launched here')])
+
+
+class UnusedRemapCheck(CheckExtension):
+    """A remapping rule given to a node that matches none of the node's topics, services
+    or actions (usually a typo, or a name the node does not use)."""
+
+    kinds = ('unused-remap',)
+
+    def check(self, context: AnalysisContext) -> Iterator[Finding]:
+        """One finding per unused rule of every node with a definition."""
+        for node in context.analysed():
+            names = node.names
+            assert node.instance is not None and names is not None
+            used: set[int] = set()
+            for bound in node.instance.endpoints:
+                rule = names.rule_for(bound.entity.name,
+                                      service=bound.entity.kind.communication == 'service')
+                if rule is not None:
+                    used.add(id(rule))
+            for rule in names.rules:
+                if rule.kind in ('node', 'namespace') or id(rule) in used:
+                    continue
+                if not rule.applies_to(names.name):
+                    why = f'it is for the node {rule.node!r}, and this node is {names.name!r}'
+                else:
+                    what = _WHAT.get(rule.kind, 'topic, service or action')
+                    why = f'the node has no {what} {names.expand(rule.match or "")!r}'
+                yield make_finding(
+                    'unused-remap', f'{node.fqn}: the remapping rule {str(rule)!r} is never used: '
+                    f'{why} (see nodl show {node.executable_label})',
+                    node.location, [node.fqn], endpoint=names.expand(rule.match or '')
+                    if rule.applies_to(names.name) else None)

@@ -1,0 +1,133 @@
+"""Checks on the parameters a launch gives each node: ``unknown-parameter``,
+``parameter-type``, ``parameter-invalid`` and ``missing-parameter``.
+
+Types are checked as strictly as a real node checks its overrides (rclcpp and
+rclpy raise ``InvalidParameterTypeException``): an integer for a ``double``
+parameter, a boolean for a ``string``, a list of integers for a
+``double_array`` are errors.  Values are checked against the built-in
+validators of the declaration (the validator table; custom validators are
+not evaluated).  A read-only parameter takes its launch value at declaration,
+as rcl does, so overriding it at launch is no finding.
+"""
+
+from __future__ import annotations
+
+import difflib
+from typing import Any, Iterator
+
+from nodl_schema.analysis.checks import CheckExtension
+from nodl_schema.analysis.context import AnalysisContext
+from nodl_schema.analysis.findings import Finding, make_finding
+from nodl_schema.model.parameter_types import TypeSpec
+
+__all__ = ['ParameterCheck', 'launch_value_fits', 'value_type_words']
+
+
+def _element_fits(value: Any, element: str) -> bool:
+    if element == 'bool':
+        return isinstance(value, bool)
+    if element in ('int', 'byte'):
+        if isinstance(value, bool) or not isinstance(value, int):
+            return False
+        return element == 'int' or 0 <= value <= 255
+    if element == 'double':
+        return isinstance(value, float)
+    if element == 'string':
+        return isinstance(value, str)
+    return False
+
+
+def launch_value_fits(value: Any, spec: TypeSpec) -> bool:
+    """True if a node declaring a parameter of type ``spec`` accepts ``value`` as its
+    override (no conversion: an int is not a double)."""
+    if spec.element == 'none':
+        return True
+    if spec.is_array:
+        if not isinstance(value, list):
+            return False
+        if spec.size is not None and len(value) > spec.size:
+            return False
+        return all(_element_fits(v, spec.element) for v in value)
+    if spec.size is not None and isinstance(value, str) and len(value) > spec.size:
+        return False
+    return _element_fits(value, spec.element)
+
+
+def value_type_words(value: Any) -> str:
+    """What a value is, in parameter type words (``int``, ``double array``, ...)."""
+    def scalar(v: Any) -> str:
+        if isinstance(v, bool):
+            return 'bool'
+        if isinstance(v, int):
+            return 'int'
+        if isinstance(v, float):
+            return 'double'
+        if isinstance(v, str):
+            return 'string'
+        return type(v).__name__
+    if isinstance(value, list):
+        kinds = sorted({scalar(v) for v in value})
+        return f'{kinds[0]} array' if len(kinds) == 1 else 'empty array' if not kinds \
+            else 'mixed array'
+    return scalar(value)
+
+
+def _show(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + '...'
+
+
+class ParameterCheck(CheckExtension):
+    """Parameters set for a node against the parameters its definition declares."""
+
+    kinds = ('unknown-parameter', 'parameter-type', 'parameter-invalid', 'missing-parameter')
+
+    def check(self, context: AnalysisContext) -> Iterator[Finding]:
+        """Findings about every node with a definition."""
+        from nodl_schema.validation.validators import value_problems
+
+        for node in context.analysed():
+            assert node.instance is not None
+            declared = {e.name: e for e in node.instance.resolved.parameters}
+            given = node.parameters
+            fqn = node.fqn
+            for name, setting in given.items():
+                entity = declared.get(name)
+                where = setting.location
+                if entity is None:
+                    close = difflib.get_close_matches(name, list(declared), n=1)
+                    hint = f"; did you mean '{close[0]}'?" if close else ''
+                    yield make_finding(
+                        'unknown-parameter', f"{fqn}: parameter '{name}' is set ({setting.origin}) "
+                        f'but {node.executable_label} does not declare it{hint}', where, [fqn],
+                        parameter=name)
+                    continue
+                spec = entity.type
+                if not isinstance(spec, TypeSpec):
+                    continue
+                related = [(entity.location.file, entity.location.line, entity.location.column,
+                            f"'{name}' is declared here as {entity.type_name}")]
+                if not launch_value_fits(setting.value, spec):
+                    yield make_finding(
+                        'parameter-type', f"{fqn}: parameter '{name}' is declared "
+                        f'{spec.category} but is set to {_show(setting.value)} '
+                        f'({value_type_words(setting.value)}); the node would refuse it',
+                        where, [fqn], parameter=name, related=related)
+                    continue
+                validation = getattr(entity.definition, 'validation', None)
+                for key, why in value_problems(setting.value, entity.type_name, validation):
+                    yield make_finding(
+                        'parameter-invalid', f"{fqn}: parameter '{name}' = {_show(setting.value)} "
+                        f'breaks {key}: {why}', where, [fqn], parameter=name, related=related)
+            for name, entity in declared.items():
+                if name in given or entity.default_value is not None:
+                    continue
+                spec = entity.type
+                if isinstance(spec, TypeSpec) and spec.element == 'none':
+                    continue
+                where = entity.location
+                yield make_finding(
+                    'missing-parameter', f"{fqn}: parameter '{name}' ({entity.type_name}) has no "
+                    'default and the launch does not set it; the node cannot start without it',
+                    node.location, [fqn], parameter=name,
+                    related=[(where.file, where.line, where.column, f"'{name}' is declared here")])

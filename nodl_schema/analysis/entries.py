@@ -1,0 +1,143 @@
+"""What the analysis reads from a launch: one :class:`LaunchEntry` per launched node.
+
+The launch reader (:mod:`nodl_schema.launch`) evaluates launch files; the
+analysis needs, per node, only what this module holds: package, executable
+(or composable node plugin), name, namespace, remapping rules in the order rcl
+applies them, parameter settings in the order they are applied, and where the
+node is launched.  :func:`entries_from_launch` adapts the reader's records;
+tests and other front ends may build entries directly.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable, Iterable
+
+from nodl_schema.system.entities import Location
+
+__all__ = ['ParameterSetting', 'ParameterFile', 'LaunchEntry', 'entries_from_launch']
+
+
+@dataclass(frozen=True)
+class ParameterSetting:
+    """One parameter value given to a node, where it is written, and how."""
+
+    #: The parameter's name (dotted for nested values).
+    name: str
+    #: The value, typed as launch types it.
+    value: Any
+    #: Where it is written (a launch entry, or the line of a parameter file).
+    location: Location
+    #: ``inline`` (``param``, ``parameters=``), ``file`` (a parameter file), ``global``
+    #: (``set_parameter``), ``argument`` (``--ros-args -p``).
+    origin: str = 'inline'
+
+
+@dataclass(frozen=True)
+class ParameterFile:
+    """A parameter file given to a node, applied once the node's final name is known.
+
+    ``settings(fqn)`` returns the settings of the file that apply to the node
+    called ``fqn`` (exact name or wildcards, as rcl matches node keys).
+    """
+
+    path: str
+    settings: Callable[[str], list[ParameterSetting]]
+    location: Location
+
+
+@dataclass
+class LaunchEntry:
+    """One launched node, as the launch would start it."""
+
+    package: str
+    #: The executable (None for a composable node).
+    executable: str | None
+    #: Where the node is launched (the ``node`` / ``composable_node`` entry).
+    location: Location
+    #: The composable node class (``pkg::ClassName``), None for an executable.
+    plugin: str | None = None
+    #: ``name=`` (None: the executable picks it).
+    name: str | None = None
+    #: The namespace, pushed namespaces combined (``/`` for none).
+    namespace: str = '/'
+    #: ``(from, to)`` in the order rcl applies them (``set_remap`` rules first).
+    remaps: list[tuple[str, str]] = field(default_factory=list)
+    #: Parameter values and files, in the order they are applied (a later value wins).
+    parameters: list[ParameterSetting | ParameterFile] = field(default_factory=list)
+    #: The container a composable node is loaded into (its fully qualified name), if any.
+    container: str | None = None
+    #: ``node`` (a process), ``container`` (a process hosting composable nodes) or
+    #: ``composable`` (a node loaded into a container).
+    role: str = 'node'
+
+    @property
+    def composable(self) -> bool:
+        """True for a composable node (matched by its plugin)."""
+        return self.plugin is not None
+
+
+def _location(value: Any) -> Location:
+    if value is None:
+        return Location('<launch>', 0, 0)
+    return Location(str(value.file), int(value.line or 0), int(value.column or 0))
+
+
+#: The launch reader's parameter origins -> the words of :attr:`ParameterSetting.origin`.
+_ORIGINS = {'arguments': 'argument', 'global': 'global', 'node': 'inline'}
+
+
+def _file_settings(path: str, origin: str, composable: bool, name: str | None,
+                   namespace: str) -> Callable[[str], list[ParameterSetting]]:
+    """The settings of a parameter file that apply to a node, given its final name."""
+    def settings(fqn: str) -> list[ParameterSetting]:
+        from nodl_schema.launch.params import (load_parameter_file,
+                                               match_composable_parameter_keys,
+                                               match_parameter_file_nodes)
+
+        loaded = load_parameter_file(path)
+        if composable:
+            keys = match_composable_parameter_keys(loaded.keys, name or fqn.rsplit('/', 1)[-1],
+                                                   namespace)
+        else:
+            keys = match_parameter_file_nodes(loaded.keys, fqn)
+        wanted = set(keys)
+        ordered = [n for n in loaded.nodes if n.key in wanted]
+        if composable:  # launch_ros applies /** first, then the node's own key
+            ordered.sort(key=lambda n: keys.index(n.key))
+        out = []
+        for node in ordered:
+            for pname, value in node.parameters.items():
+                line, column = node.positions.get(pname, (node.line, node.column))
+                out.append(ParameterSetting(pname, value, Location(path, line, column), origin))
+        return out
+    return settings
+
+
+def entries_from_launch(records: Iterable[Any]) -> list[LaunchEntry]:
+    """Launch entries from the launch reader's records
+    (:class:`nodl_schema.launch.LaunchedNode`); :class:`LaunchEntry` objects pass through."""
+    out = []
+    for record in records:
+        if isinstance(record, LaunchEntry):
+            out.append(record)
+            continue
+        composable = record.kind == 'composable'
+        namespace = record.namespace or '/'
+        parameters: list[ParameterSetting | ParameterFile] = []
+        for source in record.parameters:
+            origin = _ORIGINS.get(source.origin, 'inline')
+            where = _location(source.source)
+            if source.kind == 'file' and source.path:
+                parameters.append(ParameterFile(
+                    source.path, _file_settings(source.path, 'file', composable, record.name,
+                                                namespace), where))
+            else:
+                parameters.extend(ParameterSetting(name, value, where, origin)
+                                  for name, value in source.values.items())
+        out.append(LaunchEntry(
+            package=str(record.package or ''), executable=record.executable,
+            location=_location(record.source), plugin=record.plugin, name=record.name,
+            namespace=namespace, remaps=[(str(a), str(b)) for a, b in record.remaps],
+            parameters=parameters, container=record.container, role=record.kind))
+    return out

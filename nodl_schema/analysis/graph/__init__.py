@@ -1,0 +1,47 @@
+"""Pictures of an analysed system: Graphviz DOT, SVG and a self-contained HTML page.
+
+The shapes are those of rqt_graph: nodes are ellipses, topics boxes; services
+and actions get their own shapes (a hexagon, a double octagon), so the three
+are told apart.  What the client library gives every node (``/rosout``,
+``/parameter_events``, the parameter services) is left out, as rqt_graph hides
+it.  Findings are marked on the nodes and on the topics, services and actions
+they concern (red: error, orange: warning), with their messages as tooltips;
+nodes without a definition are dashed.
+
+SVG and HTML are laid out by ``graphviz-pure`` (the ``graph`` extra:
+``pip install 'nodl-toolkit[graph]'``); without it they fail with a
+:class:`GraphError` that says so.  DOT needs nothing.
+"""
+
+from __future__ import annotations
+
+from nodl_schema.analysis.graph.model import GraphError
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from nodl_schema.analysis.system import Analysis
+
+__all__ = ['GraphError', 'render_graph', 'FORMATS']
+
+#: The formats, by file extension.
+FORMATS = ('dot', 'svg', 'html')
+
+
+def render_graph(analysis: Analysis, format: str) -> str:
+    """The picture of ``analysis`` as ``dot``, ``svg`` or ``html`` text."""
+    from nodl_schema.analysis.graph.dot import format_dot
+    from nodl_schema.analysis.graph.model import build_graph
+
+    graph = build_graph(analysis)
+    if format == 'dot':
+        return format_dot(graph)
+    from nodl_schema.analysis.graph.layout import layout_svg
+
+    svg = layout_svg(format_dot(graph))
+    if format == 'svg':
+        return svg
+    if format == 'html':
+        from nodl_schema.analysis.graph.html import format_html
+
+        return format_html(graph, svg, analysis)
+    raise GraphError(f"unknown graph format '{format}'; expected one of {', '.join(FORMATS)}")

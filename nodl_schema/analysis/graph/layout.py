@@ -1,0 +1,46 @@
+"""Laying the DOT text out as SVG with ``graphviz-pure`` (the ``graph`` extra)."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+
+from nodl_schema.analysis.graph.model import GraphError
+
+__all__ = ['LAYOUT_PROGRAM', 'find_layout_program', 'layout_svg']
+
+#: The program that lays graphs out (it reads DOT like Graphviz's ``dot``).
+LAYOUT_PROGRAM = 'graphviz-pure'
+#: At most this long for one layout.
+TIMEOUT = 120.0
+
+
+def find_layout_program() -> str | None:
+    """The layout program: next to this Python (a virtual environment), else on PATH."""
+    beside = os.path.join(os.path.dirname(sys.executable), LAYOUT_PROGRAM)
+    if os.path.isfile(beside) and os.access(beside, os.X_OK):
+        return beside
+    return shutil.which(LAYOUT_PROGRAM)
+
+
+def layout_svg(dot: str) -> str:
+    """The SVG of ``dot`` (GraphError if the layout program is missing or fails)."""
+    program = find_layout_program()
+    if program is None:
+        raise GraphError(f"SVG and HTML pictures need the '{LAYOUT_PROGRAM}' program: "
+                         "pip install 'nodl-toolkit[graph]' (or write a .dot file, and lay it "
+                         'out with Graphviz)')
+    try:
+        done = subprocess.run([program, '-Tsvg'], input=dot.encode('utf-8'), capture_output=True,
+                              timeout=TIMEOUT, check=False)
+    except subprocess.TimeoutExpired:
+        raise GraphError(f'{LAYOUT_PROGRAM} took longer than {TIMEOUT:.0f} s') from None
+    except OSError as exc:
+        raise GraphError(f'cannot run {program}: {exc.strerror or exc}') from None
+    if done.returncode != 0:
+        message = done.stderr.decode('utf-8', 'replace').strip().splitlines()
+        raise GraphError(f'{LAYOUT_PROGRAM} failed ({done.returncode}): '
+                         f'{message[-1] if message else "no message"}')
+    return done.stdout.decode('utf-8')

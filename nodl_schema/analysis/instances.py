@@ -1,0 +1,128 @@
+"""Launched nodes as node instances: final name, namespace, remaps and parameters.
+
+:func:`analyse_entries` (in :mod:`nodl_schema.analysis.system`) builds one
+:class:`AnalysedNode` per launch entry: the definition it matched, the name it
+runs under (``name=``, else the name its registration records, else its
+executable's name, with a warning), its remapping rules parsed as rcl parses
+them, the parameter values it receives (files matched against its final name,
+a later value winning) and, when it has a definition, its
+:class:`~nodl_schema.system.NodeInstance` with every endpoint's final name.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from nodl_schema.analysis.entries import LaunchEntry, ParameterFile, ParameterSetting
+from nodl_schema.analysis.findings import Finding, make_finding
+from nodl_schema.analysis.matching import Match
+from nodl_schema.naming import InvalidNameError, NodeNames, RemapRule, parse_remap_rule
+from nodl_schema.system.entities import Location
+from nodl_schema.system.instance import NodeInstance
+
+__all__ = ['AnalysedNode', 'build_node']
+
+
+class AnalysedNode:
+    """One launched node after matching and naming (see the module docstring)."""
+
+    def __init__(self, entry: LaunchEntry, match: Match, name: str, names: NodeNames | None,
+                 rules: list[RemapRule], settings: list[ParameterSetting],
+                 instance: NodeInstance | None) -> None:
+        #: The launch entry.
+        self.entry = entry
+        #: Its definition (``match.resolved`` is None without one).
+        self.match = match
+        #: The name it is created with (before ``__node`` rules).
+        self.created_name = name
+        #: Its final name and namespace (None if rcl would refuse them).
+        self.names = names
+        #: Its remapping rules, parsed, in rcl's order (malformed ones left out).
+        self.rules = rules
+        #: Every parameter setting it receives, in the order they are applied.
+        self.settings = settings
+        #: Its instance (None without a usable definition).
+        self.instance = instance
+
+    @property
+    def fqn(self) -> str:
+        """The final fully qualified name (as created, if the name is invalid)."""
+        if self.names is not None:
+            return self.names.fqn
+        namespace = self.entry.namespace.rstrip('/')
+        return f'{namespace}/{self.created_name}'
+
+    @property
+    def location(self) -> Location:
+        """Where the node is launched."""
+        return self.entry.location
+
+    @property
+    def parameters(self) -> dict[str, ParameterSetting]:
+        """The final setting of each parameter it receives (a later setting wins)."""
+        out: dict[str, ParameterSetting] = {}
+        for setting in self.settings:
+            out[setting.name] = setting
+        return out
+
+    def parameter_values(self) -> dict[str, Any]:
+        """The final values it receives, by name."""
+        return {name: s.value for name, s in self.parameters.items()}
+
+    @property
+    def executable_label(self) -> str:
+        """``package executable`` or ``package plugin``: how the launch names what it runs."""
+        return f'{self.entry.package} {self.entry.executable or self.entry.plugin or "?"}'
+
+    def __repr__(self) -> str:
+        return f'AnalysedNode({self.fqn!r}, {self.executable_label!r})'
+
+
+def build_node(entry: LaunchEntry, match: Match, findings: list[Finding]) -> AnalysedNode:
+    """The analysed node of one entry; problems are appended to ``findings``."""
+    where = entry.location
+    label = f'{entry.package} {entry.executable or entry.plugin}'
+    name = entry.name or match.node_name
+    if not name:
+        name = entry.executable or match.key
+        if match.resolved is not None:
+            findings.append(make_finding(
+                'unnamed-node',
+                f"{label} is launched without a name and its registration records none: "
+                f"assuming the node is called '{name}' (set name= in the launch file, or record "
+                f'it: ament_nodl_register_node({match.key} FILE ... NODE_NAME <name>))', where,
+                ()))
+    rules: list[RemapRule] = []
+    for source, target in entry.remaps:
+        try:
+            rules.append(parse_remap_rule(f'{source}:={target}'))
+        except ValueError as exc:
+            findings.append(make_finding('not-analysable', f'{label}: {exc}', where, ()))
+    names: NodeNames | None
+    try:
+        names = NodeNames.create(name, entry.namespace or '/', rules)
+    except InvalidNameError as exc:
+        names = None
+        findings.append(make_finding('not-analysable', f'{label}: {exc}', where, ()))
+    fqn = names.fqn if names is not None else f'{entry.namespace.rstrip("/")}/{name}'
+    settings: list[ParameterSetting] = []
+    for item in entry.parameters:
+        if isinstance(item, ParameterFile):
+            settings.extend(item.settings(fqn))
+        else:
+            settings.append(item)
+    node = AnalysedNode(entry, match, name, names, rules, settings, None)
+    if match.resolved is None or names is None:
+        if match.file is not None and match.resolved is None:
+            first = match.problems[0] if match.problems else None
+            why = f': {first}' if first is not None else ''
+            findings.append(make_finding(
+                'not-analysable', f'{label}: its definition {match.file} does not resolve{why}',
+                where, (fqn,)))
+        return node
+    try:
+        node.instance = NodeInstance(match.resolved, name, entry.namespace or '/', rules,
+                                     node.parameter_values(), where)
+    except ValueError as exc:
+        findings.append(make_finding('not-analysable', f'{fqn}: {exc}', where, (fqn,)))
+    return node

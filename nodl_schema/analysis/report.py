@@ -1,0 +1,118 @@
+"""An analysis as JSON, text, SARIF and JUnit.
+
+The JSON shape (``--format json``)::
+
+    {"nodes": [{"name": "/robot/camera", "package": "...", "executable": "...",
+                "definition": "/path/camera.nodl.yaml" | null,
+                "source": {"file": "robot.launch.xml", "line": 12},
+                "remaps": [["from", "to"], ...],          # in the order rcl applies them
+                "parameters": {"fps": 30.0, ...},         # the final values it receives
+                "endpoints": {"publishers": [["~/image", "/robot/camera/image"], ...], ...}}],
+     "findings": [{"code": "NODL553", "kind": "qos-incompatible", "severity": "error",
+                   "message": "...", "file": "...", "line": 12, "column": 5,
+                   "nodes": ["/lidar", "/planner"], "endpoint": "/scan"}]}
+
+A composable node's ``executable`` is its plugin class.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from nodl_schema.analysis.instances import AnalysedNode
+from nodl_schema.analysis.system import Analysis
+from nodl_schema.diagnostics import Severity
+
+__all__ = ['node_to_dict', 'analysis_to_dict', 'format_json', 'format_text', 'format_sarif',
+           'format_junit', 'summary']
+
+
+def node_to_dict(node: AnalysedNode) -> dict[str, Any]:
+    """One node of the JSON report."""
+    endpoints: dict[str, list[list[str]]] = {}
+    if node.instance is not None:
+        for bound in node.instance.endpoints:
+            endpoints.setdefault(bound.entity.section, []).append([bound.entity.name, bound.name])
+    entry = node.entry
+    return {
+        'name': node.fqn,
+        'package': entry.package,
+        'executable': entry.executable if entry.executable is not None else entry.plugin,
+        'definition': node.match.file,
+        'source': {'file': entry.location.file, 'line': entry.location.line},
+        'remaps': [[source, target] for source, target in entry.remaps],
+        'parameters': node.parameter_values(),
+        'endpoints': endpoints,
+    }
+
+
+def analysis_to_dict(analysis: Analysis) -> dict[str, Any]:
+    """``{"nodes": [...], "findings": [...]}``."""
+    return {'nodes': [node_to_dict(n) for n in analysis.nodes],
+            'findings': [f.to_dict() for f in analysis.findings]}
+
+
+def format_json(analysis: Analysis) -> str:
+    """The JSON report (one object)."""
+    return json.dumps(analysis_to_dict(analysis), indent=2, default=str) + '\n'
+
+
+def summary(analysis: Analysis) -> str:
+    """``N nodes, N errors, N warnings`` (and infos when there are some)."""
+    from nodl_schema.reporting import plural
+
+    counts = analysis.counts()
+    parts = [plural(len(analysis.nodes), 'node'), plural(counts['error'], 'error'),
+             plural(counts['warning'], 'warning')]
+    if counts['info']:
+        parts.append(f"{counts['info']} info")
+    return ', '.join(parts)
+
+
+def format_text(analysis: Analysis, verbose: bool = False) -> str:
+    """One ``FILE:LINE:COL: severity: message [CODE]`` line per finding (info with
+    ``verbose``), then the summary line."""
+    lines = [str(f) for f in analysis.findings
+             if verbose or f.severity is not Severity.INFO]
+    lines.append(summary(analysis))
+    return '\n'.join(lines) + '\n'
+
+
+def format_sarif(analysis: Analysis) -> str:
+    """SARIF 2.1.0 (one result per finding)."""
+    from nodl_schema.reporting.sarif import format_sarif as sarif
+
+    return sarif([f.diagnostic for f in analysis.findings])
+
+
+def format_junit(analysis: Analysis) -> str:
+    """JUnit XML: one test case per kind of finding (failed when it has errors), the
+    findings as failure text and their warnings as the case's output."""
+    from xml.sax.saxutils import escape, quoteattr
+
+    from nodl_schema.analysis.findings import KINDS
+    from nodl_schema.analysis.system import LAUNCH_KIND
+
+    by_kind: dict[str, list[Any]] = {kind: [] for kind in (LAUNCH_KIND, *KINDS)}
+    for finding in analysis.findings:
+        by_kind.setdefault(finding.kind, []).append(finding)
+    suite = analysis.launch_file or 'launch'
+    cases = []
+    failures = 0
+    for kind, found in by_kind.items():
+        errors = [f for f in found if f.severity is Severity.ERROR]
+        others = [f for f in found if f.severity is not Severity.ERROR]
+        body = ''
+        if errors:
+            failures += 1
+            text = '\n'.join(str(f) for f in errors)
+            body += (f'<failure message={quoteattr(f"{len(errors)} error(s)")} '
+                     f'type={quoteattr(kind)}>{escape(text)}</failure>')
+        if others:
+            body += f'<system-out>{escape(chr(10).join(str(f) for f in others))}</system-out>'
+        cases.append(f'  <testcase classname={quoteattr("nodl.analyse." + suite)} '
+                     f'name={quoteattr(kind)}>{body}</testcase>')
+    return ('<?xml version="1.0" encoding="UTF-8"?>\n'
+            f'<testsuite name={quoteattr("nodl analyse " + suite)} tests="{len(cases)}" '
+            f'failures="{failures}" errors="0">\n' + '\n'.join(cases) + '\n</testsuite>\n')

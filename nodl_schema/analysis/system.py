@@ -1,0 +1,134 @@
+"""The analysis of a launched system: entries -> nodes -> checks -> findings.
+
+:func:`analyse_launch` reads a launch file (any frontend) with
+:mod:`nodl_schema.launch`; :func:`analyse_entries` analyses launch entries
+however they were obtained.  Both return an :class:`Analysis` and never raise
+for a problem in the user's files: problems are findings.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from typing import Any, Iterable, Mapping
+
+from nodl_schema.analysis.context import AnalysisContext, AnalysisSettings
+from nodl_schema.analysis.entries import LaunchEntry, entries_from_launch
+from nodl_schema.analysis.findings import Finding
+from nodl_schema.analysis.instances import AnalysedNode, build_node
+from nodl_schema.diagnostics import Diagnostic, Severity
+
+__all__ = ['Analysis', 'analyse_entries', 'analyse_launch', 'LAUNCH_KIND']
+
+#: The kind of findings that come from reading the launch files themselves.
+LAUNCH_KIND = 'launch-file'
+
+
+@dataclass
+class Analysis:
+    """What an analysis found."""
+
+    #: Every launched node, in launch order.
+    nodes: list[AnalysedNode]
+    #: Every finding: launch-file problems first, then the checks', by place.
+    findings: list[Finding]
+    #: The launch file analysed (None for entries given directly).
+    launch_file: str | None = None
+    #: The context the checks ran on (the system of instances).
+    context: AnalysisContext | None = field(default=None, repr=False)
+    #: True if the launch file could not be read or parsed at all (exit status 2).
+    unreadable: bool = False
+
+    @property
+    def errors(self) -> list[Finding]:
+        """The findings of severity error."""
+        return [f for f in self.findings if f.severity is Severity.ERROR]
+
+    def counts(self) -> dict[str, int]:
+        """``{'error': n, 'warning': n, 'info': n}``."""
+        out = {'error': 0, 'warning': 0, 'info': 0}
+        for f in self.findings:
+            out[f.severity.value] += 1
+        return out
+
+    def apply_overrides(self, apply: Any) -> None:
+        """Apply ``--ignore``/``--error`` (``apply(file, diagnostics) -> diagnostics``, as
+        :meth:`nodl_schema.cli.diagnostic_options.DiagnosticPolicy.apply`) to every finding;
+        the configuration found upward from the launch file applies."""
+        file = self.launch_file
+        kept: list[Finding] = []
+        for finding in self.findings:
+            changed = apply(file, [finding.diagnostic])
+            if changed:
+                kept.append(finding.with_diagnostic(changed[0]))
+        self.findings = kept
+
+
+def _sort_key(finding: Finding) -> tuple[Any, ...]:
+    d = finding.diagnostic
+    return (finding.kind == LAUNCH_KIND and 0 or 1, d.file, d.line, d.column, d.code)
+
+
+def analyse_entries(entries: Iterable[LaunchEntry | Any], *, client_library: str | None = None,
+                    prefixes: list[str] | None = None,
+                    settings: AnalysisSettings | None = None,
+                    checks: Mapping[str, object] | None = None,
+                    launch_findings: Iterable[Finding] = (),
+                    launch_file: str | None = None) -> Analysis:
+    """Match, instantiate and check launched nodes.
+
+    ``entries``: :class:`LaunchEntry` objects or the launch reader's records.
+    ``client_library`` forces the base's client library (default: each
+    package's build type).  ``checks``: the checks to run (default: every
+    registered ``nodl.checks`` extension).
+    """
+    from nodl_schema.analysis.checks import run_checks
+    from nodl_schema.analysis.matching import DefinitionMatcher
+
+    matcher = DefinitionMatcher(client_library, prefixes)
+    findings: list[Finding] = list(launch_findings)
+    nodes = [build_node(entry, matcher.match(entry), findings)
+             for entry in entries_from_launch(entries)]
+    context = AnalysisContext(nodes, settings or AnalysisSettings(), matcher.prefixes)
+    findings.extend(run_checks(context, dict(checks) if checks is not None else None))
+    findings.sort(key=_sort_key)
+    return Analysis(nodes, findings, launch_file, context)
+
+
+def _launch_finding(diagnostic: Diagnostic) -> Finding:
+    return Finding(diagnostic, LAUNCH_KIND)
+
+
+def analyse_launch(launch_file: str | os.PathLike[str], arguments: Mapping[str, str] | None = None,
+                   *, client_library: str | None = None, prefixes: list[str] | None = None,
+                   settings: AnalysisSettings | None = None,
+                   checks: Mapping[str, object] | None = None) -> Analysis:
+    """Analyse the system a launch file (XML, YAML or Python) starts, with launch
+    ``arguments`` (``name -> value``, as ``name:=value`` on the command line)."""
+    from nodl_schema.launch import load_launch
+
+    path = os.fspath(launch_file)
+    result = load_launch(path, dict(arguments or {}))
+    records, diagnostics, unreadable = _launch_result(result, path)
+    analysis = analyse_entries(records, client_library=client_library, prefixes=prefixes,
+                               settings=settings, checks=checks,
+                               launch_findings=[_launch_finding(d) for d in diagnostics],
+                               launch_file=path)
+    analysis.unreadable = unreadable
+    return analysis
+
+
+#: Codes that mean the launch file itself could not be read or parsed (exit status 2):
+#: reading and syntax (NODL0xx), a missing file, a Python file that does not evaluate.
+_UNREADABLE = ('NODL515', 'NODL516')
+
+
+def _launch_result(result: Any, path: str) -> tuple[list[Any], list[Diagnostic], bool]:
+    """``(records of launched nodes, diagnostics, unreadable)`` of the launch reader's result."""
+    records = list(result.nodes)
+    diagnostics = list(result.diagnostics)
+    top = os.path.realpath(path)
+    unreadable = any(
+        d.severity is Severity.ERROR and (d.code.startswith('NODL0') or d.code in _UNREADABLE)
+        and os.path.realpath(d.file) == top for d in diagnostics) and not records
+    return records, diagnostics, unreadable

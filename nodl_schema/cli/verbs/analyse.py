@@ -1,0 +1,116 @@
+"""``nodl analyse`` (also spelled ``analyze``)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+
+class AnalyseVerb(Verb):
+    """Analyse the system a launch file starts: every node's final names, then the checks."""
+
+    failure = 'the analysis found errors'
+
+    def add_arguments(self, parser: argparse.ArgumentParser) -> None:
+        from nodl_schema.cli.arguments import add_client_library_argument
+        from nodl_schema.cli.diagnostic_options import add_diagnostic_options
+
+        parser.add_argument('launch_file', metavar='LAUNCH_FILE',
+                            help='a launch file: XML (.launch.xml), YAML (.launch.yaml) or Python '
+                                 '(.launch.py)')
+        parser.add_argument('launch_arguments', nargs='*', metavar='NAME:=VALUE',
+                            help='launch arguments, as for ros2 launch')
+        add_client_library_argument(parser)
+        parser.add_argument('--format', choices=('text', 'json', 'sarif', 'junit'), default='text',
+                            help='how to print the report (default: text)')
+        parser.add_argument('-o', '--output', metavar='FILE',
+                            help='write the report to FILE instead of standard output')
+        parser.add_argument('--log', metavar='FILE',
+                            help='also write the whole report (the resolved system, then every '
+                                 'finding) to FILE, for later debugging')
+        parser.add_argument('--graph', metavar='FILE',
+                            help='also draw the system: FILE.dot, FILE.svg or FILE.html '
+                                 '(self-contained, interactive)')
+        parser.add_argument('-v', '--verbose', action='store_true',
+                            help='also print informational findings (orphan publishers)')
+        add_diagnostic_options(parser)
+
+    def main(self, args: argparse.Namespace) -> int:
+        import os
+
+        from nodl_schema.cli.diagnostic_options import DiagnosticPolicy, PolicyError
+        from nodl_schema.cli.output import write_file
+        from nodl_schema.config import ConfigError
+
+        prog = 'nodl analyse'
+        arguments: dict[str, str] = {}
+        for item in args.launch_arguments:
+            name, sep, value = item.partition(':=')
+            if not sep or not name:
+                print(f"{prog}: error: launch argument '{item}' is not NAME:=VALUE", file=sys.stderr)
+                return EXIT_USAGE
+            arguments[name] = value
+        graph_format = None
+        if args.graph:
+            graph_format = os.path.splitext(args.graph)[1].lower().lstrip('.')
+            if graph_format not in ('dot', 'svg', 'html'):
+                print(f"{prog}: error: --graph {args.graph}: the name must end in .dot, .svg or "
+                      '.html (it picks the format)', file=sys.stderr)
+                return EXIT_USAGE
+        if not os.path.isfile(args.launch_file):
+            why = 'is a directory' if os.path.isdir(args.launch_file) else 'no such file'
+            print(f'{args.launch_file}: error: cannot read the launch file: {why} [NODL020]',
+                  file=sys.stderr)
+            return EXIT_USAGE
+        try:
+            policy = DiagnosticPolicy(args, prog)
+            from nodl_schema.analysis.settings import load_settings
+
+            settings = load_settings(args.launch_file)
+        except (PolicyError, ConfigError) as exc:
+            print(exc, file=sys.stderr)
+            return EXIT_USAGE
+
+        from nodl_schema.analysis import analyse_launch
+        from nodl_schema.analysis import report
+
+        analysis = analyse_launch(args.launch_file, arguments, client_library=args.client_library,
+                                  settings=settings)
+        try:
+            analysis.apply_overrides(policy.apply)
+        except PolicyError as exc:
+            print(exc, file=sys.stderr)
+            return EXIT_USAGE
+        if args.format == 'json':
+            text = report.format_json(analysis)
+        elif args.format == 'sarif':
+            text = report.format_sarif(analysis)
+        elif args.format == 'junit':
+            text = report.format_junit(analysis)
+        else:
+            text = report.format_text(analysis, args.verbose)
+        if args.log:
+            from nodl_schema.analysis.log import format_log
+
+            write_file(args.log, format_log(analysis))
+        if graph_format is not None:
+            from nodl_schema.analysis.graph import GraphError, render_graph
+
+            try:
+                write_file(args.graph, render_graph(analysis, graph_format))
+            except GraphError as exc:
+                print(f'{prog}: error: --graph {args.graph}: {exc}', file=sys.stderr)
+                return EXIT_USAGE
+        if args.output:
+            write_file(args.output, text)
+            if args.format != 'text':
+                print(report.summary(analysis), file=sys.stderr)
+        else:
+            sys.stdout.write(text)
+            if args.format != 'text':
+                print(report.summary(analysis), file=sys.stderr)
+        if analysis.unreadable:
+            return EXIT_USAGE
+        return EXIT_FAILURE if analysis.errors else EXIT_OK
