@@ -85,7 +85,8 @@ EXTENSION_POINTS: dict[str, ExtensionPointSpec] = {p.group: p for p in (
     ExtensionPointSpec('nodl.frontends', '1.0', None, 'readers of other definition formats'),
     ExtensionPointSpec('nodl.checks', '1.0', 'nodl_schema.analysis.checks:CheckExtension',
                        'checks of `nodl analyse` over a launched system'),
-    ExtensionPointSpec('nodl.generators', '1.0', None, 'code and document generators'),
+    ExtensionPointSpec('nodl.generators', '1.0', 'nodl_schema.generate:GeneratorExtension',
+                       'code generators, one per language (the entry point name)'),
     ExtensionPointSpec('nodl.reporters', '1.0', None, 'output formats of diagnostics'),
 )}
 
