@@ -1,0 +1,257 @@
+"""``nodl policy``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
+
+    from nodl_schema.diagnostics import Diagnostic
+
+from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+
+def _complete_definition(**kwargs: Any) -> list[str]:
+    from nodl_schema.cli.completion import complete_definition
+
+    return complete_definition(**kwargs)
+
+
+def _name_value(token: str) -> tuple[str, str] | None:
+    name, sep, value = token.partition(':=')
+    if not sep or not name or '/' in name:
+        return None
+    return name, value
+
+
+class PolicyVerb(Verb):
+    """Write (or check) the least-privilege SROS 2 access-control policy of nodes or a launched system."""
+
+    failure = 'the policy cannot be exact (a node without definition, a name that cannot be granted), ' \
+              'or --check found missing or extra grants'
+
+    def add_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument('targets', nargs='*', metavar='TARGET',
+                            help='a launch file (*.launch.xml|py|yaml), or node definitions: FILE '
+                                 'or PACKAGE EXECUTABLE (repeatable); NAME:=VALUE gives a launch '
+                                 'argument (for definitions: a parameter of every node)'
+                            ).completer = _complete_definition  # type: ignore[attr-defined]
+        parser.add_argument('--name', action='append', default=[], metavar='/NS/NODE',
+                            help='place the next definition under this name (repeatable, in order; '
+                                 'default: its executable or file name at /)')
+        parser.add_argument('--remap', action='append', default=[], metavar='FROM:=TO',
+                            help='a remapping rule for the placed definitions, as rcl applies it '
+                                 '(NODE:FROM:=TO for one node; repeatable)')
+        parser.add_argument('-o', '--output', metavar='FILE',
+                            help='write the policy to FILE (default: standard output)')
+        parser.add_argument('--check', metavar='POLICY_FILE',
+                            help='compare an existing policy with what the system needs: missing and '
+                                 'extra grants (writes nothing)')
+        parser.add_argument('--live', action='store_true',
+                            help='observe the running graph instead of reading definitions')
+        parser.add_argument('--timeout', type=_seconds, default=5.0, metavar='S',
+                            help='--live: seconds to wait for the graph (default: 5)')
+        group = parser.add_mutually_exclusive_group()
+        group.add_argument('--enclave-per', choices=('node', 'namespace'), default=None,
+                           help='one enclave per node (default; path = the node\'s name) or per '
+                                'namespace')
+        group.add_argument('--enclave-map', metavar='FILE',
+                           help='a YAML file mapping enclave paths to node names or patterns')
+        parser.add_argument('--allow-missing', action='store_true',
+                            help='write the policy even if a node has no definition (an empty '
+                                 'profile with a comment marks the gap)')
+        from nodl_schema.cli.arguments import add_client_library_argument
+
+        add_client_library_argument(parser)
+        parser.add_argument('--distro', default=None, metavar='DISTRO',
+                            help='the ROS 2 distribution whose client libraries create the base '
+                                 'entities (humble, iron, jazzy, kilted, rolling; default: kilted)')
+        parser.add_argument('--format', choices=('text', 'json'), default='text',
+                            help='format of the diagnostics (default: text)')
+        from nodl_schema.cli.diagnostic_options import add_diagnostic_options
+
+        add_diagnostic_options(parser)
+
+    def main(self, args: argparse.Namespace) -> int:
+        from nodl_schema.cli.diagnostic_options import DiagnosticPolicy, PolicyError
+        from nodl_schema.policy.distros import DEFAULT_DISTRO, check_distro
+
+        try:
+            check_distro(args.distro or DEFAULT_DISTRO)
+            options = DiagnosticPolicy(args, 'nodl policy')
+        except (ValueError, PolicyError) as exc:
+            return _usage(str(exc).removeprefix('nodl policy: error: '))
+        args.distro = args.distro or DEFAULT_DISTRO
+        targets, values = [], {}
+        for token in args.targets:
+            pair = _name_value(token)
+            if pair is None:
+                targets.append(token)
+            else:
+                values[pair[0]] = pair[1]
+        if args.live and targets:
+            return _usage('--live observes the running graph: give no TARGET with it')
+        if not args.live and not targets:
+            return _usage('give a launch file, node definitions (FILE or PACKAGE EXECUTABLE), or --live')
+        if args.check and args.output:
+            return _usage('--check writes nothing: drop -o')
+        enclaves: Any = args.enclave_per or 'node'
+        if args.enclave_map:
+            from nodl_schema.policy.enclaves import load_enclave_mapping
+
+            try:
+                mapping, problems = load_enclave_mapping(args.enclave_map)
+            except OSError as exc:
+                return _usage(f'cannot read {args.enclave_map}: {exc.strerror or exc}')
+            if mapping is None:
+                _report(problems, args, options)
+                return EXIT_USAGE
+            enclaves = mapping
+        result = self._expected(args, targets, values, enclaves)
+        if isinstance(result, int):
+            return result
+        diagnostics = _report(result.diagnostics, args, options)
+        from nodl_schema.diagnostics import Severity
+
+        failed = any(d.severity is Severity.ERROR for d in diagnostics)
+        if args.check:
+            return _check(args, result.policy, options, failed)
+        if failed:
+            print('nodl policy: no policy written: it could not be exact (see above)', file=sys.stderr)
+            return EXIT_FAILURE
+        from nodl_schema.policy.writer import PolicyNotWritable, write_policy
+
+        try:
+            text = write_policy(result.policy)
+        except PolicyNotWritable as exc:
+            _report(exc.diagnostics, args, options)
+            print('nodl policy: no policy written: SROS 2 would reject it', file=sys.stderr)
+            return EXIT_FAILURE
+        if args.output and args.output != '-':
+            try:
+                with open(args.output, 'w', encoding='utf-8') as f:
+                    f.write(text)
+            except OSError as exc:
+                return _usage(f'cannot write {args.output}: {exc.strerror or exc}')
+        else:
+            sys.stdout.write(text)
+        return EXIT_OK
+
+    def _expected(self, args: argparse.Namespace, targets: list[str], values: dict[str, str],
+                  enclaves: Any) -> Any:
+        if args.live:
+            from nodl_schema.live.session import LiveError
+            from nodl_schema.policy.live import live_policy
+
+            try:
+                live = live_policy(timeout=args.timeout, distro=args.distro, enclaves=enclaves,
+                                   client_library=args.client_library)
+            except LiveError as exc:
+                return _usage(str(exc))
+            for line in live.unobserved:
+                print(f'nodl policy: not observed: {line}', file=sys.stderr)
+            return live.result
+        from nodl_schema.policy.targets import instances_from_definitions, split_targets
+
+        try:
+            definitions, launches = split_targets(targets)
+        except ValueError as exc:
+            return _usage(str(exc))
+        if launches and (definitions or len(launches) > 1):
+            return _usage('give one launch file, or node definitions, not both')
+        if launches:
+            if args.name or args.remap:
+                return _usage('--name and --remap place definitions; a launch file names its nodes')
+            from nodl_schema.policy.launched import launch_policy
+
+            try:
+                return launch_policy(launches[0], values, client_library=args.client_library,
+                                     distro=args.distro, enclaves=enclaves,
+                                     allow_missing=args.allow_missing)
+            except OSError as exc:
+                return _usage(f'cannot read {launches[0]}: {exc.strerror or exc}')
+            except ValueError as exc:
+                return _usage(str(exc))
+        import os
+
+        for definition in definitions:
+            if definition.file is not None and not os.path.isfile(definition.file):
+                what = 'is a directory' if os.path.isdir(definition.file) else 'no such file'
+                return _usage(f'{definition.file}: {what}')
+        parameters = {name: _typed(value) for name, value in values.items()}
+        try:
+            instances, problems = instances_from_definitions(
+                definitions, args.name, remaps=args.remap, parameters=parameters,
+                client_library=args.client_library)
+        except ValueError as exc:
+            return _usage(str(exc))
+        except OSError as exc:
+            return _usage(f'cannot read {exc.filename or ""}: {exc.strerror or exc}')
+        from nodl_schema.policy.generate import policy_for_instances
+
+        result = policy_for_instances(instances, distro=args.distro, enclaves=enclaves,
+                                      allow_missing=args.allow_missing,
+                                      notes=['Least-privilege SROS 2 policy written by nodl policy '
+                                             'from node definitions.'])
+        return result._replace(diagnostics=problems + result.diagnostics)
+
+
+def _seconds(text: str) -> float:
+    from nodl_schema.cli.arguments import seconds
+
+    return seconds(text)
+
+
+def _typed(value: str) -> Any:
+    """A parameter value typed as YAML types it (``true`` -> True, ``5`` -> 5)."""
+    import yaml
+
+    try:
+        return yaml.safe_load(value) if value else ''
+    except yaml.YAMLError:
+        return value
+
+
+def _usage(message: str) -> int:
+    print(f'nodl policy: error: {message}', file=sys.stderr)
+    return EXIT_USAGE
+
+
+def _report(diagnostics: list[Diagnostic], args: argparse.Namespace, options: Any,
+            stream: Any = None) -> list[Diagnostic]:
+    from nodl_schema.reporting import format_json, format_text, without_info
+
+    shown: list[Diagnostic] = []
+    by_file: dict[str, list[Diagnostic]] = {}
+    for d in diagnostics:
+        by_file.setdefault(d.file, []).append(d)
+    for file, group in by_file.items():
+        shown += options.apply(file, group)
+    shown = without_info(shown)
+    out = stream or sys.stderr
+    out.write(format_json(shown) if args.format == 'json' and stream is not None else format_text(shown))
+    return shown
+
+
+def _check(args: argparse.Namespace, expected: Any, options: Any, failed: bool) -> int:
+    from nodl_schema.diagnostics import Severity
+    from nodl_schema.policy.check import check_policy_file
+
+    try:
+        found = check_policy_file(args.check, expected)
+    except OSError as exc:
+        return _usage(f'cannot read {args.check}: {exc.strerror or exc}')
+    shown = _report(found, args, options, sys.stdout)
+    missing = sum(d.code in ('NODL604', 'NODL607') for d in shown)
+    extra = sum(d.code in ('NODL605', 'NODL608') for d in shown)
+    errors = sum(d.severity is Severity.ERROR for d in shown)
+    summary = f'{args.check}: {missing} missing, {extra} extra'
+    if errors - missing - extra:
+        summary += f', {errors - missing - extra} other errors'
+    if not errors and not failed:
+        summary += ': the policy grants exactly what the system needs'
+    print(summary, file=sys.stderr)
+    return EXIT_FAILURE if errors or failed else EXIT_OK

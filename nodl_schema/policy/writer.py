@@ -1,0 +1,118 @@
+"""Writing a policy document: deterministic, canonically ordered, with comments that trace.
+
+Enclaves are ordered by path, profiles by namespace and node, permission
+lists as SROS 2 orders them (actions, services, topics; offering access
+first), names alphabetically; one permission list per access, so that a
+changed grant is a one-line diff.  Each name carries a comment saying what
+declares it (definition file and line, layer, launch entry).
+
+:func:`write_policy` refuses to return a document SROS 2 would reject: the
+text is parsed back and checked against the structure of ``policy.xsd``
+(:mod:`nodl_schema.policy.schema_check`), and every name is checked to
+resolve, as SROS 2 resolves it, to the final name it grants.
+"""
+
+from __future__ import annotations
+
+from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.policy.model import POLICY_VERSION, Policy, Profile, permission_list
+from nodl_schema.policy.names import resolve_policy_name, written_name, written_name_error
+
+__all__ = ['write_policy', 'PolicyNotWritable', 'xml_text', 'xml_attribute', 'xml_comment']
+
+
+class PolicyNotWritable(ValueError):
+    """The policy would be rejected by SROS 2; ``diagnostics`` say why (a bug or a bad model)."""
+
+    def __init__(self, diagnostics: list[Diagnostic]) -> None:
+        self.diagnostics = diagnostics
+        super().__init__('; '.join(d.message for d in diagnostics))
+
+
+def xml_text(text: str) -> str:
+    """``text`` escaped for element content."""
+    return text.replace('&', '&amp;').replace('<', '&lt;').replace('>', '&gt;')
+
+
+def xml_attribute(text: str) -> str:
+    """``text`` escaped for a double-quoted attribute value."""
+    return xml_text(text).replace('"', '&quot;').replace('\n', '&#10;').replace('\t', '&#9;')
+
+
+def xml_comment(text: str) -> str:
+    """``<!-- text -->`` with what a comment cannot hold (``--``, a final ``-``, line breaks) defused."""
+    text = ' '.join(text.split())
+    while '--' in text:
+        text = text.replace('--', '- -')
+    if text.endswith('-'):
+        text += ' '
+    return f'<!-- {text} -->'
+
+
+def _profile_lines(profile: Profile, problems: list[Diagnostic]) -> list[str]:
+    out = []
+    head = [profile.fqn]
+    if profile.definition:
+        head.append(f'definition {profile.definition}')
+    if profile.base:
+        head.append(f'base entities as {profile.base} creates them')
+    if profile.launch:
+        head.append(f'launched at {profile.launch}')
+    out.append('        ' + xml_comment(head[0] + (': ' + '; '.join(head[1:]) if head[1:] else '')))
+    for note in profile.notes:
+        out.append('        ' + xml_comment(note))
+    out.append(f'        <profile ns="{xml_attribute(profile.namespace)}" '
+               f'node="{xml_attribute(profile.node)}">')
+    current: tuple[str, str] | None = None
+    kind = None
+    for grant in profile.sorted_grants():
+        if (grant.communication, grant.access) != current:
+            if kind is not None:
+                out.append(f'          </{kind.element}>')
+            current = (grant.communication, grant.access)
+            kind = permission_list(grant.communication)
+            out.append(f'          <{kind.element} {grant.access}="ALLOW">')
+        assert kind is not None
+        name = written_name(grant.name, profile.namespace, profile.node)
+        problem = written_name_error(grant.name)
+        if problem is None and resolve_policy_name(name, profile.namespace, profile.node) != grant.name:
+            problem = f'{name!r} would resolve to another name'
+        if problem is not None:
+            problems.append(Diagnostic(Severity.ERROR, f'{profile.fqn}: {grant.communication} '
+                                       f'{grant.name!r} cannot be written: {problem}', code='NODL602'))
+            continue
+        comment = '; '.join(str(s) for s in grant.sources)
+        line = f'            <{kind.item}>{xml_text(name)}</{kind.item}>'
+        out.append(line + (' ' + xml_comment(comment) if comment else ''))
+    if kind is not None:
+        out.append(f'          </{kind.element}>')
+    out.append('        </profile>')
+    return out
+
+
+def write_policy(policy: Policy) -> str:
+    """The policy document as text (UTF-8 XML); :class:`PolicyNotWritable` if SROS 2 would reject it."""
+    problems: list[Diagnostic] = []
+    lines = ['<?xml version="1.0" encoding="UTF-8"?>']
+    for note in policy.notes:
+        lines.append(xml_comment(note))
+    lines.append(f'<policy version="{POLICY_VERSION}">')
+    lines.append('  <enclaves>')
+    for enclave in policy.sorted_enclaves():
+        lines.append(f'    <enclave path="{xml_attribute(enclave.path)}">')
+        lines.append('      <profiles>')
+        for profile in enclave.sorted_profiles():
+            lines.extend(_profile_lines(profile, problems))
+        lines.append('      </profiles>')
+        lines.append('    </enclave>')
+    lines.append('  </enclaves>')
+    lines.append('</policy>')
+    text = '\n'.join(lines) + '\n'
+    if not problems:
+        from nodl_schema.policy.schema_check import check_policy_text
+
+        problems = [d for d in check_policy_text(text, '<generated policy>')
+                    if d.severity is Severity.ERROR]
+    if problems:
+        raise PolicyNotWritable(problems)
+    return text
