@@ -23,7 +23,8 @@ import sysconfig
 import threading
 import time
 
-_COLLECTING = re.compile(r'^Collecting (\S+)')
+# a requirement from an index, or a local file or folder (the project itself)
+_COLLECTING = re.compile(r'^(?:Collecting|Processing) (\S+)')
 _FETCHING = re.compile(r'^\s*(Downloading|Using cached) (\S+?)(?:\s+\((.*)\))?$')
 _INSTALLING = re.compile(r'^Installing collected packages: (.*)$')
 _DONE = re.compile(r'^Successfully installed (.*)$')
@@ -69,7 +70,8 @@ def main(argv: list[str]) -> int:
             tail.append(line)
             if m := _COLLECTING.match(line):
                 collected += 1
-                print(f'  resolving [{collected}] {m.group(1)}', flush=True)
+                print(f'  resolving [{collected}] {os.path.basename(m.group(1)) or m.group(1)}',
+                      flush=True)
             elif m := _FETCHING.match(line):
                 fetched += 1
                 what = os.path.basename(m.group(2))
