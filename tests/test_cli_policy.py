@@ -1,0 +1,74 @@
+"""`nodl policy` as users run it: definitions, -o, --check, usage errors, exit statuses."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+from conftest import REPO
+
+POLICY = 'tests/fixtures/policy'
+
+
+def nodl(*args: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', *args], cwd=REPO, text=True,
+                            capture_output=True, timeout=timeout)
+    assert 'Traceback' not in result.stdout + result.stderr, result.stderr
+    return result
+
+
+def test_definitions_to_stdout_match_the_library_golden():
+    result = nodl(f'{POLICY}/talker.nodl.yaml', f'{POLICY}/listener.nodl.yaml')
+    assert result.returncode == 0, result.stderr
+    expected = (REPO / POLICY / 'expected' / 'talker_listener.policy.xml').read_text()
+    body = lambda text: text.split('<policy', 1)[1]  # noqa: E731 (the header note differs)
+    assert body(result.stdout) == body(expected)
+
+
+def test_parameters_names_remaps_and_output_file(tmp_path: Path):
+    out = tmp_path / 'p.xml'
+    result = nodl(f'{POLICY}/relay.nodl.yaml', 'use_sim_time:=true', '--name', '/robot/relay',
+                  '--remap', 'input:=/sensors/raw', '-o', str(out), '--distro', 'humble')
+    assert result.returncode == 0 and result.stdout == '', result.stderr
+    text = out.read_text()
+    assert '<topic>/clock</topic>' in text and '<topic>/sensors/raw</topic>' in text
+    assert 'get_type_description' not in text  # humble
+    assert '<profile ns="/robot" node="relay">' in text
+
+
+def test_check_reports_missing_and_extra_with_exit_status(tmp_path: Path):
+    good = tmp_path / 'good.xml'
+    assert nodl(f'{POLICY}/talker.nodl.yaml', '-o', str(good)).returncode == 0
+    result = nodl('--check', str(good), f'{POLICY}/talker.nodl.yaml')
+    assert result.returncode == 0 and 'grants exactly what the system needs' in result.stderr
+    widened = tmp_path / 'widened.xml'
+    widened.write_text(good.read_text().replace(
+        '<topics publish="ALLOW">', '<topics publish="ALLOW">\n            <topic>/cmd_vel</topic>'))
+    result = nodl('--check', str(widened), f'{POLICY}/talker.nodl.yaml', f'{POLICY}/listener.nodl.yaml')
+    assert result.returncode == 1
+    lines = result.stdout.splitlines()
+    assert [line.rsplit(' ', 1)[-1] for line in lines] == ['[NODL607]', '[NODL605]']
+    assert lines[1].startswith(f'{widened}:') and '/cmd_vel' in lines[1]
+    assert 'no profile for /listener' in lines[0]
+    assert '1 missing, 1 extra' in result.stderr
+
+
+def test_usage_errors_exit_2():
+    assert nodl().returncode == 2
+    assert nodl('no_such.nodl.yaml').returncode == 2
+    assert nodl('--live', f'{POLICY}/talker.nodl.yaml').returncode == 2
+    result = nodl(f'{POLICY}/talker.nodl.yaml', '--distro', 'foxy')
+    assert result.returncode == 2 and "unknown distribution 'foxy'" in result.stderr
+    result = nodl(f'{POLICY}/talker.nodl.yaml', '--name', '/a', '--name', '/b')
+    assert result.returncode == 2 and '2 --name options for 1 definitions' in result.stderr
+    result = nodl(f'{POLICY}/talker.nodl.yaml', '--name', '/bad name')
+    assert result.returncode == 2 and result.stderr.count('\n') == 1
+
+
+def test_invalid_definition_exits_1_without_writing(tmp_path: Path):
+    bad = tmp_path / 'bad.nodl.yaml'
+    bad.write_text('nodl_version: 2\nbase: node\nmain: {nodl_version: 2, publishers: [{name: x}]}\n')
+    result = nodl(str(bad))
+    assert result.returncode == 1 and result.stdout == ''
+    assert f'{bad}:3:' in result.stderr and 'no policy written' in result.stderr
