@@ -49,11 +49,12 @@ KIND_CODES = {
 class Difference:
     """One difference between the declared and the observed interface."""
 
-    __slots__ = ('kind', 'section', 'name', 'declared', 'observed', 'layer', 'message', 'location')
+    __slots__ = ('kind', 'section', 'name', 'declared', 'observed', 'layer', 'message', 'location',
+                 'promoted')
 
     def __init__(self, kind: str, section: str, name: str, message: str, *,
                  declared: Any = None, observed: Any = None, layer: str | None = None,
-                 location: Location | None = None) -> None:
+                 location: Location | None = None, promoted: bool = False) -> None:
         self.kind = kind
         self.section = section
         self.name = name
@@ -64,11 +65,14 @@ class Difference:
         #: Where the entity is declared (file, line, column), when checked against a
         #: resolved node; None for what is observed but not declared.
         self.location = location
+        #: True when ``--error CODE`` (or a configuration) made this difference an error.
+        self.promoted = promoted
 
     @property
     def severity(self) -> str:
-        """``error`` for drift, ``warning`` for a bad value, ``info`` for unverifiable."""
-        if self.kind in DRIFT_KINDS:
+        """``error`` for drift (or a promoted code), ``warning`` for a bad value, ``info`` for
+        unverifiable."""
+        if self.kind in DRIFT_KINDS or self.promoted:
             return 'error'
         return 'warning' if self.kind == 'value' else 'info'
 
@@ -145,8 +149,8 @@ def final_name(name: str, section: str, observed: ObservedNode, remaps: Remaps =
 
 
 def conforms(differences: Iterable[Difference]) -> bool:
-    """True if no difference is drift."""
-    return not any(d.kind in DRIFT_KINDS for d in differences)
+    """True if no difference is drift (an error: a drift kind, or a promoted code)."""
+    return not any(d.severity == 'error' for d in differences)
 
 
 def _word(section: str) -> str:
