@@ -1,0 +1,113 @@
+"""nodl analyse: every check kind fails on a planted problem, and stays quiet without it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from nodl_schema.analysis import KINDS, AnalysisSettings, analyse_launch
+from nodl_schema.analysis.checks import load_checks
+from nodl_schema.analysis.checks.parameters import launch_value_fits
+from nodl_schema.model.parameter_types import parse_type
+
+FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
+PREFIX = [str(FIXTURES / 'prefix')]
+LAUNCH = FIXTURES / 'launch'
+
+
+@pytest.fixture(scope='module')
+def checks_analysis():  # type: ignore[no-untyped-def]
+    return analyse_launch(LAUNCH / 'checks.launch.xml', prefixes=PREFIX)
+
+
+def _of(analysis, kind: str):  # type: ignore[no-untyped-def]
+    return [f for f in analysis.findings if f.kind == kind]
+
+
+def test_the_builtin_checks_are_registered_extensions() -> None:
+    checks, broken = load_checks()
+    assert not broken
+    kinds = {kind for check in checks.values() for kind in check.kinds}  # type: ignore[attr-defined]
+    assert kinds == set(KINDS) - {'unnamed-node', 'not-analysable', 'broken-check'}
+
+
+@pytest.mark.parametrize(('kind', 'line', 'nodes', 'where', 'words'), [
+    ('duplicate-node', 10, ['/planner', '/planner'][:1], None, 'launched twice'),
+    ('multiple-publishers', 4, ['/lidar', '/lidar2'], '/scan', 'published by 2 nodes'),
+    ('type-mismatch', 10, ['/planner'], '/cmd_vel', 'geometry_msgs/msg/TwistStamped'),
+    ('qos-incompatible', 5, ['/lidar', '/planner'], '/scan', 'best effort'),
+    ('qos-warning', 5, ['/imu_filter', '/planner'], '/imu/data', 'SYSTEM_DEFAULT'),
+    ('orphan-subscription', 11, ['/imu_filter'], '/imu/raw', 'no node publishes it'),
+    ('orphan-service-client', 5, ['/planner'], '/get_map', 'no node serves it'),
+    ('orphan-action-client', 5, ['/planner'], '/dock', 'no node serves it'),
+    ('orphan-publisher', 14, ['/camera'], '/camera/image', 'no node subscribes'),
+    ('unused-remap', 5, ['/planner'], '/odm', "'odm:=odom' is never used"),
+    ('unknown-parameter', 5, ['/planner'], 'sped', "did you mean 'speed'"),
+    ('parameter-type', 5, ['/planner'], 'speed', 'declared double but is set to 1 (int)'),
+    ('parameter-invalid', 14, ['/camera'], 'fps', 'outside [1.0, 120.0]'),
+    ('missing-parameter', 14, ['/camera'], 'device', 'has no default'),
+    ('no-definition', 12, ['/ghost'], None, "registers no node definition for 'ghost'"),
+    ('unnamed-node', 11, [], None, "called 'imu_filter'"),
+])
+def test_each_kind_is_found_at_its_launch_entry(checks_analysis, kind, line, nodes, where,  # type: ignore[no-untyped-def]
+                                                words) -> None:
+    found = [f for f in _of(checks_analysis, kind) if where is None
+             or where in (f.to_dict().get('endpoint'), f.to_dict().get('parameter'))]
+    assert found, f'no {kind} finding about {where}'
+    first = found[0]
+    assert first.code == KINDS[kind]
+    assert first.diagnostic.line == line and first.diagnostic.file.endswith('checks.launch.xml')
+    assert words in first.message
+    for node in nodes:
+        assert node in first.nodes
+
+
+def test_severities_are_the_catalogue_defaults(checks_analysis) -> None:  # type: ignore[no-untyped-def]
+    from nodl_schema.codes import default_severity
+
+    for finding in checks_analysis.findings:
+        assert finding.severity.value == default_severity(finding.code)
+
+
+def test_a_clean_system_has_no_error(tmp_path: Path) -> None:
+    analysis = analyse_launch(LAUNCH / 'system.launch.xml', prefixes=PREFIX)
+    assert not analysis.errors
+    assert {f.kind for f in analysis.findings} <= {'qos-warning', 'orphan-subscription',
+                                                   'orphan-service-client', 'orphan-action-client',
+                                                   'orphan-publisher'}
+
+
+def test_the_allow_list_silences_multiple_publishers() -> None:
+    analysis = analyse_launch(LAUNCH / 'checks.launch.xml', prefixes=PREFIX,
+                              settings=AnalysisSettings(('/sc*',)))
+    assert not _of(analysis, 'multiple-publishers')
+
+
+def test_a_recorded_node_name_names_an_unnamed_node(checks_analysis) -> None:  # type: ignore[no-untyped-def]
+    lidar = next(n for n in checks_analysis.nodes if n.entry.executable == 'lidar_node'
+                 and n.entry.name is None)
+    assert lidar.fqn == '/lidar'   # node_name=lidar in nodl_node_info/sensors__lidar_node
+    assert not [f for f in _of(checks_analysis, 'unnamed-node') if '/lidar' in f.message]
+
+
+def test_a_composable_node_is_matched_by_its_recorded_plugin(checks_analysis) -> None:  # type: ignore[no-untyped-def]
+    camera = next(n for n in checks_analysis.nodes if n.entry.plugin)
+    assert camera.match.how == 'plugin' and camera.match.file.endswith('camera.nodl.yaml')
+
+
+def test_orphans_are_not_derived_from_a_node_without_definition(checks_analysis) -> None:  # type: ignore[no-untyped-def]
+    for finding in _of(checks_analysis, 'orphan-subscription'):
+        assert '/ghost' in finding.message   # says the unknown node may serve it
+
+
+@pytest.mark.parametrize(('value', 'type_name', 'ok'), [
+    (1, 'double', False), (1.0, 'double', True), (True, 'int', False), (True, 'string', False),
+    ('x', 'string', True), ([1, 2], 'double_array', False), ([1.0], 'double_array', True),
+    ([], 'string_array', True), (300, 'byte_array', False), ([1, 300], 'byte_array', False),
+    ('anything', 'none', True), ('abcdef', 'string_fixed_3', False),
+])
+def test_parameter_types_are_as_strict_as_a_node(value, type_name: str, ok: bool) -> None:  # type: ignore[no-untyped-def]
+    spec = parse_type(type_name)
+    assert spec is not None
+    assert launch_value_fits(value, spec) is ok

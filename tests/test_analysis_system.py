@@ -1,0 +1,81 @@
+"""The same system written in XML, YAML and Python resolves to identical nodes; the JSON
+shape of a report; the log file."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from nodl_schema.analysis import analyse_launch
+from nodl_schema.analysis.log import format_log
+from nodl_schema.analysis.report import analysis_to_dict, format_junit, format_sarif
+
+FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
+PREFIX = [str(FIXTURES / 'prefix')]
+LAUNCH = FIXTURES / 'launch'
+
+
+def _nodes(name: str) -> list[dict[str, object]]:
+    report = analysis_to_dict(analyse_launch(LAUNCH / name, prefixes=PREFIX))
+    for node in report['nodes']:
+        node.pop('source')  # the line differs between the three files
+    return report['nodes']
+
+
+def test_three_formats_resolve_to_identical_nodes() -> None:
+    xml = _nodes('system.launch.xml')
+    assert xml == _nodes('system.launch.yaml') == _nodes('system.launch.py')
+    imu = next(n for n in xml if n['name'] == '/rover/imu')
+    assert imu['parameters'] == {'gain': 0.2}
+    assert ['imu/data', '/imu/data'] in imu['endpoints']['publishers']
+    assert imu['remaps'] == [['imu/data', '/imu/data']]
+
+
+def test_json_shape() -> None:
+    report = analysis_to_dict(analyse_launch(LAUNCH / 'checks.launch.xml', prefixes=PREFIX))
+    assert set(report) == {'nodes', 'findings'}
+    for node in report['nodes']:
+        assert set(node) == {'name', 'package', 'executable', 'definition', 'source', 'remaps',
+                             'parameters', 'endpoints'}
+        assert set(node['source']) == {'file', 'line'}
+    planner = next(n for n in report['nodes'] if n['executable'] == 'planner')
+    assert planner['remaps'] == [['odm', 'odom']]
+    assert planner['parameters'] == {'speed': 1, 'sped': 1.0}
+    assert ['~/get_parameters', '/planner/get_parameters'] in planner['endpoints']['service_servers']
+    for finding in report['findings']:
+        assert {'code', 'kind', 'severity', 'message', 'file', 'line', 'column', 'nodes'} <= set(finding)
+    assert any(f.get('endpoint') == '/scan' for f in report['findings'])
+    assert any(f.get('parameter') == 'speed' for f in report['findings'])
+    json.dumps(report)
+
+
+def test_sarif_and_junit() -> None:
+    analysis = analyse_launch(LAUNCH / 'checks.launch.xml', prefixes=PREFIX)
+    sarif = json.loads(format_sarif(analysis))
+    rules = {r['id'] for r in sarif['runs'][0]['tool']['driver']['rules']}
+    assert 'NODL550' in rules and len(sarif['runs'][0]['results']) == len(analysis.findings)
+    import xml.etree.ElementTree as ET
+
+    suite = ET.fromstring(format_junit(analysis))
+    failed = {case.get('name') for case in suite if case.find('failure') is not None}
+    assert {'duplicate-node', 'type-mismatch', 'parameter-type'} <= failed
+    assert 'multiple-publishers' not in failed   # a warning
+
+
+def test_log_has_the_system_then_every_finding() -> None:
+    analysis = analyse_launch(LAUNCH / 'checks.launch.xml', prefixes=PREFIX)
+    log = format_log(analysis)
+    system, findings = log.split('== Findings')
+    assert 'node /planner' in system and '/planner/get_parameters' in system
+    assert 'definition      none' in system          # /ghost
+    for finding in analysis.findings:
+        assert finding.message in findings
+
+
+@pytest.mark.parametrize('name', ['system.launch.xml', 'checks.launch.xml'])
+def test_analysis_is_deterministic(name: str) -> None:
+    one = analysis_to_dict(analyse_launch(LAUNCH / name, prefixes=PREFIX))
+    two = analysis_to_dict(analyse_launch(LAUNCH / name, prefixes=PREFIX))
+    assert one == two

@@ -1,0 +1,111 @@
+"""``nodl analyse`` / ``nodl analyze`` on the command line: formats, exit statuses, options,
+the log file and the graph files."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+FIXTURES = REPO / 'tests' / 'fixtures' / 'analysis'
+LAUNCH = FIXTURES / 'launch'
+
+
+def run(*args: str, cwd: Path = REPO) -> subprocess.CompletedProcess[str]:
+    env = dict(os.environ, AMENT_PREFIX_PATH=str(FIXTURES / 'prefix'), NO_COLOR='1')
+    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=cwd, env=env,
+                          capture_output=True, text=True, timeout=120)
+
+
+def test_text_report_and_exit_status_1_on_errors() -> None:
+    done = run('analyse', str(LAUNCH / 'checks.launch.xml'))
+    assert done.returncode == 1, done.stderr
+    assert re.search(r'checks\.launch\.xml:10:3: error: /planner is launched twice .*\[NODL550\]',
+                     done.stdout)
+    assert 'orphan-publisher' not in done.stdout and '[NODL558]' not in done.stdout  # info: -v
+    assert done.stdout.rstrip().splitlines()[-1].startswith('8 nodes, ')
+    assert 'Traceback' not in done.stderr
+
+
+def test_analyze_spelling_and_exit_0_without_errors() -> None:
+    done = run('analyze', str(LAUNCH / 'system.launch.xml'))
+    assert done.returncode == 0, done.stdout + done.stderr
+
+
+def test_launch_arguments() -> None:
+    done = run('analyse', str(LAUNCH / 'system.launch.xml'), 'robot:=other', '--format', 'json')
+    names = [n['name'] for n in json.loads(done.stdout)['nodes']]
+    assert names == ['/other/imu', '/other/planner']
+    bad = run('analyse', str(LAUNCH / 'system.launch.xml'), 'robot=other')
+    assert bad.returncode == 2 and "'robot=other' is not NAME:=VALUE" in bad.stderr
+
+
+@pytest.mark.parametrize('fmt', ['json', 'sarif', 'junit'])
+def test_formats_to_a_file(tmp_path: Path, fmt: str) -> None:
+    out = tmp_path / f'report.{fmt}'
+    done = run('analyse', str(LAUNCH / 'checks.launch.xml'), '--format', fmt, '-o', str(out))
+    assert done.returncode == 1 and done.stdout == ''
+    text = out.read_text()
+    if fmt == 'junit':
+        import xml.etree.ElementTree as ET
+
+        ET.fromstring(text)
+    else:
+        json.loads(text)
+
+
+def test_ignore_and_error_options_and_the_configuration(tmp_path: Path) -> None:
+    done = run('analyse', str(LAUNCH / 'checks.launch.xml'), '--ignore', 'NODL550,NODL552',
+               '--ignore', 'NODL553,NODL561,NODL562,NODL563', '--format', 'json')
+    report = json.loads(done.stdout)
+    assert done.returncode == 0, done.stdout
+    assert not [f for f in report['findings'] if f['severity'] == 'error']
+    promoted = run('analyse', str(LAUNCH / 'system.launch.xml'), '--error', 'NODL554')
+    assert promoted.returncode == 1
+    # nodl.toml next to the launch file: ignore + the allow list
+    (tmp_path / 'nodl.toml').write_text('ignore = ["NODL550"]\n[analyse]\n'
+                                        'multiple_publishers_allow = ["/scan"]\n')
+    copy = tmp_path / 'checks.launch.xml'
+    copy.write_text((LAUNCH / 'checks.launch.xml').read_text())
+    report = json.loads(run('analyse', str(copy), '--format', 'json').stdout)
+    kinds = {f['kind'] for f in report['findings']}
+    assert 'duplicate-node' not in kinds and 'multiple-publishers' not in kinds
+    (tmp_path / 'nodl.toml').write_text('[analyse]\nmultiple_publisher_allow = ["/scan"]\n')
+    bad = run('analyse', str(copy))
+    assert bad.returncode == 2 and "did you mean 'multiple_publishers_allow'" in bad.stderr
+
+
+def test_unreadable_launch_files_exit_2(tmp_path: Path) -> None:
+    missing = run('analyse', str(tmp_path / 'nothing.launch.xml'))
+    assert missing.returncode == 2 and 'no such file' in missing.stderr
+    broken = tmp_path / 'broken.launch.xml'
+    broken.write_text('<launch><node pkg="a"')
+    done = run('analyse', str(broken))
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert 'Traceback' not in done.stderr + done.stdout
+
+
+def test_log_file(tmp_path: Path) -> None:
+    log = tmp_path / 'analysis.log'
+    run('analyse', str(LAUNCH / 'checks.launch.xml'), '--log', str(log))
+    text = log.read_text()
+    assert '== System' in text and '== Findings' in text and '[NODL558]' in text  # info too
+
+
+def test_graph_dot_svg_html(tmp_path: Path) -> None:
+    for ext in ('dot', 'svg', 'html'):
+        out = tmp_path / f'system.{ext}'
+        done = run('analyse', str(LAUNCH / 'checks.launch.xml'), '--graph', str(out))
+        assert done.returncode == 1, done.stderr
+        assert out.stat().st_size > 0
+    dot = (tmp_path / 'system.dot').read_text()
+    assert 'shape=ellipse' in dot and 'shape=box' in dot and 'shape=hexagon' in dot \
+        and 'shape=doubleoctagon' in dot
+    bad = run('analyse', str(LAUNCH / 'checks.launch.xml'), '--graph', str(tmp_path / 'x.png'))
+    assert bad.returncode == 2 and '.dot, .svg or .html' in bad.stderr
