@@ -103,8 +103,8 @@ def check_parsed_policy(parsed: ParsedPolicy, expected: Policy) -> list[Diagnost
     root = parsed.root
     assert root is not None
     by_node: dict[str, list[GrantedName]] = {}
-    for granted in names:
-        by_node.setdefault(granted.node, []).append(granted)
+    for name in names:
+        by_node.setdefault(name.node, []).append(name)
     out = list(structure)
     needed_nodes = set()
     for _, profile in expected.profiles():
@@ -118,9 +118,9 @@ def check_parsed_policy(parsed: ParsedPolicy, expected: Policy) -> list[Diagnost
                     f'node="{profile.node}"), which needs {len(profile.grants)} grants: the node would '
                     'fail at runtime', root.line, root.column, 'NODL607'))
             continue
-        granted = by_node.get(fqn, [])
-        allowed = [g for g in granted if g.qualifier == 'ALLOW']
-        denied = [g for g in granted if g.qualifier == 'DENY']
+        in_profile = by_node.get(fqn, [])
+        allowed = [g for g in in_profile if g.qualifier == 'ALLOW']
+        denied = [g for g in in_profile if g.qualifier == 'DENY']
 
         def covers(g: GrantedName, communication: str, access: str, name: str) -> bool:
             return g.communication == communication and g.access == access and \

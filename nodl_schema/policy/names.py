@@ -75,7 +75,7 @@ def written_name_error(final: str) -> str | None:
 
 
 #: communication -> access -> (DDS side, [(prefix, suffix)]): the DDS topics a grant covers.
-_TOPICS = {
+_TOPICS: dict[str, dict[str, tuple[tuple[str, str, str], ...]]] = {
     'topic': {'publish': (('publish', 'rt', ''),), 'subscribe': (('subscribe', 'rt', ''),)},
     'service': {
         'request': (('publish', 'rq', 'Request'), ('subscribe', 'rr', 'Reply')),
