@@ -20,7 +20,7 @@ import re
 
 from setuptools import find_namespace_packages, setup
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+HERE = os.path.dirname(os.path.realpath(__file__))  # colcon --symlink-install links it
 PYPROJECT = os.path.join(HERE, '..', '..', 'pyproject.toml')
 PACKAGE = 'nodl_toolkit'
 # The ros2nodl package registers the ros2cli command (see ros/ros2nodl/setup.py).
