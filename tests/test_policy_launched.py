@@ -1,0 +1,46 @@
+"""The policy of a launched system, resolved as `nodl analyse` resolves it (its test system)."""
+
+from pathlib import Path
+
+import pytest
+
+from nodl_schema.analysis import analyse_launch
+from nodl_schema.policy.launched import launch_policy
+from nodl_schema.policy.writer import write_policy
+from test_policy_generate import round_trip
+
+REPO = Path(__file__).parent.parent
+ANALYSIS = REPO / 'tests' / 'fixtures' / 'analysis'
+PREFIX = [str(ANALYSIS / 'prefix')]
+
+
+@pytest.fixture(autouse=True)
+def _in_repo(monkeypatch):
+    monkeypatch.chdir(REPO)
+
+
+def test_launched_system_golden_and_round_trip(golden):
+    launch = ANALYSIS / 'launch' / 'system.launch.xml'
+    result = launch_policy(launch, prefixes=PREFIX)
+    assert result.ok, result.diagnostics
+    text = write_policy(result.policy)
+    golden.check(text, REPO / 'tests' / 'fixtures' / 'policy' / 'expected' / 'launched_system.policy.xml')
+    instances = [n.instance for n in analyse_launch(launch, prefixes=PREFIX, checks={}).nodes]
+    assert instances and all(i is not None for i in instances)
+    round_trip(instances, text)
+
+
+def test_the_three_frontends_give_one_policy():
+    bodies = set()
+    for name in ('system.launch.xml', 'system.launch.yaml', 'system.launch.py'):
+        result = launch_policy(ANALYSIS / 'launch' / name, prefixes=PREFIX)
+        text = write_policy(result.policy)
+        # comments name the launch file and lines; the grants themselves must agree
+        bodies.add('\n'.join(line.split(' <!--')[0] for line in text.splitlines()
+                             if not line.lstrip().startswith('<!--')))
+    assert len(bodies) == 1
+
+
+def test_missing_launch_file_is_an_os_error(tmp_path):
+    with pytest.raises(OSError):
+        launch_policy(tmp_path / 'none.launch.xml')
