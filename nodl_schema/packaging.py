@@ -51,6 +51,8 @@ _INDEX = 'share/ament_index/resource_index'
 def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
                     interfaces: Mapping[str, str] | None = None, *,
                     validate: bool = True, staging_dir: str = os.path.join('build', 'nodl_index'),
+                    plugins: Mapping[str, str] | None = None,
+                    node_names: Mapping[str, str] | None = None,
                     ) -> list[tuple[str, list[str]]]:
     """``data_files`` entries that install and register NoDL definitions.
 
@@ -59,6 +61,9 @@ def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
     :param interfaces: name -> interface definition file, used as ``nodl://<package>/<name>``
     :param validate: validate every file now and stop the build if one is invalid
     :param staging_dir: where the index marker files are written (relative to setup.py)
+    :param plugins: executable -> the composable node class (``pkg::ClassName``) its
+        definition describes (``nodl analyse`` matches ``ComposableNode(plugin=...)``)
+    :param node_names: executable -> the name it gives its node when launched without one
     """
     nodes = dict(nodes or {})
     interfaces = dict(interfaces or {})
@@ -86,6 +91,7 @@ def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
                 f.write(f'nodl/{os.path.basename(file)}')
             entries.setdefault(f'{_INDEX}/{resource_type}', []).append(marker)
     entries[f'share/{package}/nodl'] = sorted(set(installed.values()))
+    _node_info(package, nodes, dict(plugins or {}), dict(node_names or {}), staging_dir, entries)
     # What the build validates is what gets installed: the node files' relative mixins,
     # at the same place relative to the installed node file.
     destinations = {f'share/{package}/nodl/{name}': file for name, file in installed.items()}
@@ -189,3 +195,28 @@ def relative_mixins(node_file: str | os.PathLike[str]) -> list[str]:
         if normal not in found:
             found.append(normal)
     return found
+
+
+def _node_info(package: str, nodes: Mapping[str, str], plugins: dict[str, str],
+               node_names: dict[str, str], staging_dir: str,
+               entries: dict[str, list[str]]) -> None:
+    """Write the ``nodl_node_info`` markers (plugin, node name) and add them to ``entries``."""
+    from nodl_schema.index.node_info import NODE_INFO_RESOURCE, format_node_info
+
+    problems = [f"nodl_data_files: {what} names '{key}', which is not in nodes"
+                for what, given in (('plugins', plugins), ('node_names', node_names))
+                for key in given if key not in nodes]
+    folder = os.path.join(staging_dir, 'share', 'ament_index', 'resource_index', NODE_INFO_RESOURCE)
+    for key in sorted(set(plugins) | set(node_names)):
+        try:
+            content = format_node_info(plugins.get(key), node_names.get(key))
+        except ValueError as exc:
+            problems.append(f'nodl_data_files: {key}: {exc}')
+            continue
+        os.makedirs(folder, exist_ok=True)
+        marker = os.path.join(folder, resource_name(package, key))
+        with open(marker, 'w', encoding='utf-8') as f:
+            f.write(content)
+        entries.setdefault(f'{_INDEX}/{NODE_INFO_RESOURCE}', []).append(marker)
+    if problems:
+        raise SystemExit('\n'.join(problems))

@@ -12,6 +12,11 @@
 #
 # :param executable: the executable the definition describes
 # :param FILE: the node definition (YAML or JSON), relative to CMAKE_CURRENT_SOURCE_DIR
+# :param PLUGIN: optional, the composable node class (pkg::ClassName) the definition
+#   describes, so that `nodl analyse` matches ComposableNode(plugin=...) to it
+# :param NODE_NAME: optional, the name the executable gives its node when launched
+#   without one (NoDL keeps identity out of the definition)
+# Both are recorded in the ament index as nodl_node_info/<package>__<executable>.
 #
 function(ament_nodl_register_node executable)
   _ament_nodl_register(node nodl_nodes "${executable}" ${ARGN})
@@ -29,10 +34,30 @@ endfunction()
 
 function(_ament_nodl_register kind resource_type key)
   set(_what "ament_nodl_register_${kind}(${key})")
-  cmake_parse_arguments(ARG "" "FILE" "" ${ARGN})
+  if(kind STREQUAL "node")
+    set(_one FILE PLUGIN NODE_NAME)
+    set(_usage "<key> FILE <file> [PLUGIN <pkg::ClassName>] [NODE_NAME <name>]")
+  else()
+    set(_one FILE)
+    set(_usage "<key> FILE <file>")
+  endif()
+  cmake_parse_arguments(ARG "" "${_one}" "" ${ARGN})
   if(ARG_UNPARSED_ARGUMENTS)
     message(FATAL_ERROR "${_what}: unexpected arguments '${ARG_UNPARSED_ARGUMENTS}'; "
-      "usage: ament_nodl_register_${kind}(<key> FILE <file>)")
+      "usage: ament_nodl_register_${kind}(${_usage})")
+  endif()
+  set(_info "")
+  if(ARG_PLUGIN)
+    if(NOT ARG_PLUGIN MATCHES "^[A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)*$")
+      message(FATAL_ERROR "${_what}: PLUGIN '${ARG_PLUGIN}' is not a class name (pkg::ClassName)")
+    endif()
+    string(APPEND _info "plugin=${ARG_PLUGIN}\n")
+  endif()
+  if(ARG_NODE_NAME)
+    if(NOT ARG_NODE_NAME MATCHES "^[A-Za-z_][A-Za-z0-9_]*$")
+      message(FATAL_ERROR "${_what}: NODE_NAME '${ARG_NODE_NAME}' is not a valid node name")
+    endif()
+    string(APPEND _info "node_name=${ARG_NODE_NAME}\n")
   endif()
   if(NOT ARG_FILE)
     message(FATAL_ERROR "${_what}: FILE <file> is required")
@@ -91,6 +116,12 @@ function(_ament_nodl_register kind resource_type key)
   ament_index_register_resource(${resource_type}
     PACKAGE_NAME "${PROJECT_NAME}__${key}"
     CONTENT "nodl/${_name}")
+  if(NOT _info STREQUAL "")
+    # read back by nodl_schema.index.node_info
+    ament_index_register_resource(nodl_node_info
+      PACKAGE_NAME "${PROJECT_NAME}__${key}"
+      CONTENT "${_info}")
+  endif()
 endfunction()
 
 # Record that <file> is installed as share/<package>/<target>; fail if another file
