@@ -123,3 +123,25 @@ def test_live_features_say_what_is_missing(venv: Path) -> None:
     assert result.returncode == 2, result.stdout + result.stderr
     assert 'Traceback' not in result.stderr
     assert 'rclpy' in result.stderr
+
+
+def test_every_module_imports(venv: Path) -> None:
+    # A module may need an optional package (rclpy for the live features, pytest for the
+    # plugin); it may not use what this Python's standard library or syntax lacks.
+    code = '''
+import importlib, pkgutil, sys, nodl_schema
+for info in pkgutil.walk_packages(nodl_schema.__path__, 'nodl_schema.'):
+    if info.name.endswith('__main__'):
+        continue  # runs the command
+    try:
+        importlib.import_module(info.name)
+    except ModuleNotFoundError as exc:
+        top = (exc.name or '').partition('.')[0]
+        if top in sys.stdlib_module_names or top in ('nodl_schema', 'yaml'):
+            print(info.name, repr(exc))
+    except Exception as exc:
+        print(info.name, repr(exc))
+'''
+    result = run(venv, str(venv / 'bin' / 'python'), '-I', '-c', code)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout == ''
