@@ -7,12 +7,14 @@ from typing import Iterable
 
 from nodl_schema.composition import ComposedNode
 from nodl_schema.composition.client_library import ClientLibraryChoice
-from nodl_schema.diagnostics import ValidationError
+from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
 from nodl_schema.live.conformance import Difference, Remaps, compare, conforms
 from nodl_schema.naming import NodeNames
 from nodl_schema.live.observe import ObservedNode, observe_node
 from nodl_schema.live.session import DuplicateNode
 from nodl_schema.model import ENDPOINT_SECTIONS
+from nodl_schema.overrides import Overrides
+from nodl_schema.system.entities import Entity, Location
 from nodl_schema.system.resolved import ResolvedNode
 
 __all__ = ['CheckResult', 'load_definition', 'check_node', 'base_mismatch', 'RECHECK']
@@ -46,6 +48,11 @@ class CheckResult:
         #: One line when the node's base is not the declared one (``use `base: lifecycle_node```),
         #: and the differences that mismatch explains (the other base's own entities).
         self.base_hint, self.base_differences = base_mismatch(composed, observed, differences)
+        #: The ``--ignore`` / ``--error`` codes applied (see :meth:`with_overrides`).
+        self.overrides = Overrides()
+        #: The differences the overrides silenced (not in :attr:`differences`).
+        self.ignored: list[Difference] = []
+        self._by_location: dict[Location, Entity] | None = None
 
     @property
     def client_library(self) -> ClientLibraryChoice | None:
@@ -57,13 +64,102 @@ class CheckResult:
 
     @property
     def conforms(self) -> bool:
-        """True if no difference is drift."""
+        """True if no difference is drift (decided after the overrides, if any were applied)."""
         return conforms(self.differences)
 
     @property
     def drift(self) -> list[Difference]:
-        """Only the differences that are drift."""
+        """Only the differences that are drift (errors: drift kinds and promoted codes)."""
         return [d for d in self.differences if d.severity == 'error']
+
+    # -- overrides -----------------------------------------------------------------------------
+
+    def with_overrides(self, overrides: Overrides) -> CheckResult:
+        """This result with codes silenced or promoted (``--ignore`` / ``--error``).
+
+        The differences of an ignored code move to :attr:`ignored`; those of a
+        promoted code become errors (drift), so a ``value`` warning or an
+        ``unverifiable`` note can fail the check.  Conformance is decided on
+        what remains.  The base hint goes when every difference it explained
+        is ignored.
+        """
+        import copy
+
+        kept: list[Difference] = []
+        ignored = list(self.ignored)
+        of_base = {id(d) for d in self.base_differences}
+        base_kept: list[Difference] = []
+        for d in self.differences:
+            if d.code in overrides.ignore:
+                ignored.append(d)
+                continue
+            new = d
+            if d.code in overrides.error and d.severity != 'error':
+                new = copy.copy(d)
+                new.promoted = True
+            kept.append(new)
+            if id(d) in of_base:
+                base_kept.append(new)
+        out = copy.copy(self)
+        out.differences = kept
+        out.ignored = ignored
+        out.overrides = self.overrides.then(overrides)
+        out.base_differences = base_kept
+        if self.base_differences and not base_kept:
+            out.base_hint = None
+        return out
+
+    # -- diagnostics ---------------------------------------------------------------------------
+
+    def _entity_at(self, location: Location) -> Entity | None:
+        if self._by_location is None:
+            self._by_location = {e.location: e for e in self.resolved.entities}
+        return self._by_location.get(location)
+
+    def location_of(self, difference: Difference) -> Location:
+        """Where a difference points: the declaration of its entity (in the layer that
+        declared it: the main file, a mixin file or the base's file); for what is observed
+        but not declared, the section of ``main`` it would belong in (else ``main``, else
+        line 1 of the definition)."""
+        if difference.location is not None:
+            return difference.location
+        main = next((layer for layer in reversed(self.resolved.layers) if layer.role == 'main'),
+                    None)
+        if main is not None:
+            placed = main.place(Diagnostic(Severity.INFO, '', (difference.section,), anchor='key'))
+            if placed.line and not placed.file.startswith('<'):
+                return Location(placed.file, placed.line, placed.column)
+        return Location(self.definition, 1, 1)
+
+    def related_of(self, difference: Difference) -> tuple[tuple[str, int, int, str], ...]:
+        """The other layers that declare the difference's entity (those it overrides),
+        as ``(file, line, column, message)``."""
+        if difference.location is None:
+            return ()
+        entity = self._entity_at(difference.location)
+        if entity is None or len(entity.declared_in) < 2:
+            return ()
+        trace = self.composed.declarations.get((entity.section, entity.name), [])
+        anchor = 'key' if entity.is_parameter else 'value'
+        out = []
+        for declaration in trace[:-1]:
+            placed = declaration.layer.place(Diagnostic(Severity.INFO, '', declaration.path,
+                                                        anchor=anchor))
+            out.append((placed.file, placed.line, placed.column,
+                        f'overrides the declaration in {declaration.layer.label}'))
+        return tuple(out)
+
+    def diagnostic(self, difference: Difference) -> Diagnostic:
+        """One difference as a coded :class:`~nodl_schema.diagnostics.Diagnostic`, placed at
+        :meth:`location_of` with the layers it overrides as related locations."""
+        file, line, column = self.location_of(difference)
+        return difference.to_diagnostic(file, line, column).replace(
+            related=self.related_of(difference))
+
+    @property
+    def diagnostics(self) -> list[Diagnostic]:
+        """Every (not ignored) difference as a diagnostic, in order (see :meth:`diagnostic`)."""
+        return [self.diagnostic(d) for d in self.differences]
 
 
 def base_mismatch(composed: ComposedNode, observed: ObservedNode,
@@ -123,8 +219,13 @@ def load_definition(definition: str | os.PathLike[str] | tuple[str, str],
 
 def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *,
                timeout: float = 5.0, remaps: Iterable[str] = (),
-               parameters: bool = True, client_library: str | None = None) -> CheckResult:
+               parameters: bool = True, client_library: str | None = None,
+               overrides: Overrides | None = None) -> CheckResult:
     """Check the running node ``fqn`` against ``definition`` (a file or ``(package, executable)``).
+
+    ``overrides`` (codes to ignore or to report as errors) are applied to the
+    result before conformance is decided (see :meth:`CheckResult.with_overrides`;
+    :func:`nodl_schema.config.overrides_for` reads a project's configuration).
 
     Raises ValidationError for a bad definition, LiveError when the node
     cannot be observed (NodeNotFound if it never appears within ``timeout``,
@@ -163,6 +264,7 @@ def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *
             observed = observe_node(fqn, timeout=max(1.0, timeout - (time.monotonic() - start)),
                                     parameters=parameters, session=session)
             differences = compare(composed, observed, names)
-    return CheckResult(observed.fully_qualified_name, composed.file, differences, composed, observed,
-                       names)
+    result = CheckResult(observed.fully_qualified_name, composed.file, differences, composed,
+                         observed, names)
+    return result.with_overrides(overrides) if overrides else result
 

@@ -1,4 +1,9 @@
-"""Check results for people (text), tools (JSON) and CI (JUnit XML)."""
+"""Check results for people (text), tools (JSON), CI (JUnit XML) and code scanning (SARIF).
+
+Every report shows the result as it stands after ``--ignore`` / ``--error``
+(:meth:`~nodl_schema.live.check.CheckResult.with_overrides`): ignored
+differences are counted, not listed; promoted ones are errors.
+"""
 
 from __future__ import annotations
 
@@ -9,7 +14,7 @@ from xml.sax.saxutils import escape, quoteattr
 from nodl_schema.live.check import CheckResult
 from nodl_schema.vocabulary import SECTION_KEYS
 
-__all__ = ['format_check_text', 'format_check_json', 'format_check_junit']
+__all__ = ['format_check_text', 'format_check_json', 'format_check_junit', 'format_check_sarif']
 
 
 def format_check_text(result: CheckResult, verbose: bool = False) -> str:
@@ -26,27 +31,58 @@ def format_check_text(result: CheckResult, verbose: bool = False) -> str:
             continue
         lines.append(f'{result.fqn}: {d}')
     drift = len(result.drift)
-    unverifiable = sum(1 for d in result.differences if d.kind == 'unverifiable')
+    unverifiable = sum(1 for d in result.differences
+                       if d.kind == 'unverifiable' and d.severity == 'info')
     if result.conforms:
         verdict = f'{result.fqn} conforms to {result.definition}'
     else:
         verdict = (f'{result.fqn} drifts from {result.definition}: {drift} '
                    f'difference{"s" * (drift != 1)}')
-    lines.append(verdict + (f' ({unverifiable} unverifiable, listed with -v)'
-                            if unverifiable and not verbose else
-                            f' ({unverifiable} unverifiable)' if unverifiable else ''))
+    notes = []
+    if unverifiable:
+        notes.append(f'{unverifiable} unverifiable' + (', listed with -v' if not verbose else ''))
+    if result.ignored:
+        notes.append(f'{len(result.ignored)} ignored')
+    lines.append(verdict + (f' ({"; ".join(notes)})' if notes else ''))
     return '\n'.join(lines) + '\n'
 
 
+def _difference_dict(result: CheckResult, difference: Any) -> dict[str, Any]:
+    data: dict[str, Any] = difference.to_dict()
+    placed = result.diagnostic(difference)
+    data.update(file=placed.file, line=placed.line, column=placed.column,
+                related=[{'file': f, 'line': li, 'column': c, 'message': m}
+                         for f, li, c, m in placed.related])
+    return data
+
+
 def format_check_json(result: CheckResult) -> str:
-    """``{"node", "definition", "conforms", "differences": [...]}``."""
+    """``{"node", "definition", "conforms", "ignored", "differences": [...]}``.
+
+    Each difference has its kind, code, severity (after the overrides),
+    section, name, declared and observed values, layer, message, and where
+    it points (``file``, ``line``, ``column``, ``related``); ``ignored`` counts
+    the differences the overrides silenced.
+    """
     data: dict[str, Any] = {'node': result.fqn, 'definition': result.definition,
                             'conforms': result.conforms,
                             'base_hint': result.base_hint,
                             'client_library': (result.client_library._asdict()
                                                if result.client_library is not None else None),
-                            'differences': [d.to_dict() for d in result.differences]}
+                            'ignored': len(result.ignored),
+                            'differences': [_difference_dict(result, d)
+                                            for d in result.differences]}
     return json.dumps(data, indent=2, default=str) + '\n'
+
+
+def format_check_sarif(result: CheckResult) -> str:
+    """A SARIF 2.1.0 log: one rule per code, one result per difference, located at the
+    entity's declaration (see :meth:`~nodl_schema.live.check.CheckResult.location_of`); each
+    message starts with the node's name."""
+    from nodl_schema.reporting.sarif import format_sarif
+
+    return format_sarif([d.replace(message=f'{result.fqn}: {d.message}')
+                         for d in result.diagnostics])
 
 
 def format_check_junit(result: CheckResult) -> str:

@@ -19,7 +19,8 @@ import pytest
 
 @pytest.fixture
 def nodl_conformance() -> Callable[..., Any]:
-    """``nodl_conformance(node, definition, timeout=10, remaps=())`` asserts that ``node`` conforms."""
+    """``nodl_conformance(node, definition, timeout=10, remaps=(), ignore=(), error=())`` asserts
+    that ``node`` conforms (see :func:`nodl_schema.testing.assert_conforms`)."""
     from nodl_schema.testing.conformance import assert_conforms
 
     return assert_conforms

@@ -40,17 +40,23 @@ class CheckVerb(Verb):
         from nodl_schema.cli.arguments import add_client_library_argument
 
         add_client_library_argument(parser)
-        parser.add_argument('--format', choices=('text', 'json'), default='text',
-                            help='output format (default: text)')
+        parser.add_argument('--format', choices=('text', 'json', 'junit', 'sarif'), default='text',
+                            help='output format (default: text; junit: JUnit XML; sarif: SARIF '
+                                 '2.1.0 for code scanning, each difference at its declaration)')
         parser.add_argument('--junit', metavar='FILE', help='also write a JUnit XML report')
         parser.add_argument('-v', '--verbose', action='store_true',
                             help='also list what could not be verified')
+        from nodl_schema.cli.diagnostic_options import add_diagnostic_options
+
+        add_diagnostic_options(parser)
 
     def main(self, args: argparse.Namespace) -> int:
         from nodl_schema.cli.arguments import definition_problem
+        from nodl_schema.cli.diagnostic_options import DiagnosticPolicy, PolicyError
         from nodl_schema.diagnostics import ValidationError
         from nodl_schema.live.check import check_node
-        from nodl_schema.live.report import format_check_json, format_check_junit, format_check_text
+        from nodl_schema.live.report import (
+            format_check_json, format_check_junit, format_check_sarif, format_check_text)
         from nodl_schema.live.session import LiveError
         from nodl_schema.reporting import format_text
 
@@ -59,6 +65,13 @@ class CheckVerb(Verb):
             print(f'nodl check: error: {problem}', file=sys.stderr)
             return EXIT_USAGE
         definition = args.definition[0] if len(args.definition) == 1 else tuple(args.definition)
+        try:  # --ignore / --error, and the nodl.toml or [tool.nodl] found upward from the file
+            policy = DiagnosticPolicy(args, 'nodl check')
+            if isinstance(definition, str):  # known before observing: a bad one fails at once
+                policy.overrides_for(definition)
+        except PolicyError as exc:
+            print(exc, file=sys.stderr)
+            return EXIT_USAGE
         try:
             result = check_node(args.node, definition, timeout=args.timeout, remaps=args.remap,
                                 parameters=not args.no_parameters,
@@ -73,10 +86,21 @@ class CheckVerb(Verb):
         except (LiveError, ValueError) as exc:
             print(f'nodl check: error: {exc}', file=sys.stderr)
             return EXIT_USAGE
+        try:  # conformance is decided after the overrides (of the file a package registers, too)
+            result = result.with_overrides(policy.overrides_for(result.definition))
+        except PolicyError as exc:
+            print(exc, file=sys.stderr)
+            return EXIT_USAGE
         if args.format == 'json':
             sys.stdout.write(format_check_json(result))
+        elif args.format == 'junit':
+            sys.stdout.write(format_check_junit(result))
+        elif args.format == 'sarif':
+            sys.stdout.write(format_check_sarif(result))
         else:
             sys.stdout.write(format_check_text(result, args.verbose))
+        if args.format in ('json', 'junit', 'sarif'):  # the verdict for a person, apart
+            print(format_check_text(result).splitlines()[-1], file=sys.stderr)
         if args.junit:
             try:
                 with open(args.junit, 'w', encoding='utf-8') as f:
