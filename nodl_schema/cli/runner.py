@@ -69,6 +69,9 @@ def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb',
                                         epilog=exit_status_epilog(verb),
                                         formatter_class=HelpFormatter)
             verb.add_arguments(sub)
+            if sub.epilog and 'exit status:' not in sub.epilog:
+                # A verb's own epilog comes first; the exit statuses always close --help.
+                sub.epilog = f'{sub.epilog}\n\n{exit_status_epilog(verb)}'
             add_common_arguments(sub)
         except Exception as exc:  # noqa: BLE001 - a broken plugin must not break the tool
             print(f"warning: skipped verb '{name}': {type(exc).__name__}: {exc}", file=sys.stderr)
