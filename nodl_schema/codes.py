@@ -60,7 +60,6 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL014': ('warning', 'the XML declaration names an encoding other than UTF-8'),
     'NODL015': ('error', 'a file the document refers to cannot be read'),
     'NODL016': ('error', 'JSON syntax error (in a file read as strict JSON)'),
-    'NODL020': ('error', 'a path given on the command line cannot be read'),
     'NODL020': ('error', 'a path given to a command cannot be read: missing, not permitted, a socket, '
                          'a dangling link, a directory that cannot be scanned or holds no NoDL files'),
     # -- NODL1xx: structure (the JSON Schemas) ------------------------------

@@ -32,6 +32,18 @@ def test_every_catalogued_code_is_used_somewhere() -> None:
     assert not unused, f'catalogued but never reported (remove them, or report them): {unused}'
 
 
+def test_no_code_is_catalogued_twice() -> None:
+    """A dict literal keeps the last of two equal keys silently: read the source itself."""
+    import ast
+
+    tree = ast.parse((LIBRARY / 'codes.py').read_text(encoding='utf-8'))
+    keys = [node.value for table in ast.walk(tree) if isinstance(table, ast.Dict)
+            for node in table.keys if isinstance(node, ast.Constant) and isinstance(node.value, str)
+            and CODE.fullmatch(node.value)]
+    duplicates = sorted({key for key in keys if keys.count(key) > 1})
+    assert not duplicates, f'catalogued twice in nodl_schema/codes.py: {duplicates}'
+
+
 def test_entries_are_well_formed_and_in_order() -> None:
     assert list(CODES) == sorted(CODES)
     for code, (severity, explanation) in CODES.items():
