@@ -12,6 +12,7 @@ from __future__ import annotations
 import copy
 import json
 import os
+import re
 import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -342,3 +343,92 @@ def test_load_definition_returns_the_resolved_node(described) -> None:
     rosout = resolved.entity(EntityKind.PUBLISHER, '/rosout')
     assert rosout.provider is Provider.CLIENT_LIBRARY
     assert all(e.layer == 'main' for e in resolved.implementation_entities())
+
+
+# -- coded diagnostics: locations and overrides -------------------------------------------------
+
+
+def _line_of(path: Path, text: str) -> int:
+    """The 1-based number of the only line of ``path`` that contains ``text``."""
+    found = [n for n, line in enumerate(path.read_text(encoding='utf-8').splitlines(), 1)
+             if text in line]
+    assert len(found) == 1, (text, found)
+    return found[0]
+
+
+def test_drift_diagnostics_point_at_the_declarations(edited: CheckResult) -> None:
+    from nodl_schema.diagnostics import Severity
+
+    path = Path(edited.definition)
+    by_kind = {d.kind: edited.diagnostic(d) for d in edited.differences
+               if d.kind != 'unverifiable'}
+    assert {k: d.code for k, d in by_kind.items()} == {
+        'extra': 'NODL402', 'missing': 'NODL401', 'type': 'NODL403', 'qos': 'NODL404',
+        'parameter_type': 'NODL405', 'read_only': 'NODL406', 'value': 'NODL407'}
+    # an endpoint: its list item; a parameter: its key; an extra entity: main's section
+    assert (by_kind['type'].file, by_kind['type'].line) == \
+        (str(path), _line_of(path, 'name: /emergency_stop'))
+    assert (by_kind['missing'].file, by_kind['missing'].line) == \
+        (str(path), _line_of(path, 'name: ~/odom'))
+    assert (by_kind['parameter_type'].file, by_kind['parameter_type'].line) == \
+        (str(path), _line_of(path, '    rate:'))
+    assert by_kind['parameter_type'].column == 5
+    assert (by_kind['extra'].file, by_kind['extra'].line) == \
+        (str(path), _line_of(path, '  subscriptions:'))
+    assert by_kind['value'].severity is Severity.WARNING
+    assert all(d.line > 0 and d.column > 0 for d in edited.diagnostics)
+    for difference, diagnostic in zip(edited.differences, edited.diagnostics):
+        in_base = (difference.layer or '').startswith('base:')
+        assert (diagnostic.file == str(path)) is not in_base, diagnostic
+
+
+def test_drift_in_a_mixin_and_an_override_are_located_in_their_layers(full: NodeProcess) -> None:
+    located = FIXTURES / 'live' / 'located'
+    path, mixin = located / 'full_located.nodl.yaml', located / 'full_mixin.nodl.yaml'
+    result = check_node(full.fqn, path, timeout=15)
+    found = {(d.kind, d.name): result.diagnostic(d) for d in result.differences
+             if d.kind != 'unverifiable'}
+    assert sorted(found) == [('extra', '/chk/measurement'), ('missing', '/chk/full/heartbeat'),
+                             ('value', 'gain')]
+    missing = found[('missing', '/chk/full/heartbeat')]
+    assert (Path(missing.file), missing.line) == (mixin, _line_of(mixin, 'name: ~/heartbeat'))
+    assert 'declared in full_mixin.nodl.yaml' in missing.message
+    value = found[('value', 'gain')]
+    assert (Path(value.file), value.line) == (path, _line_of(path, '    gain:'))
+    assert [(Path(f), line, text) for f, line, _, text in value.related] == [
+        (mixin, _line_of(mixin, '  gain:'), 'overrides the declaration in full_mixin.nodl.yaml')]
+    extra = found[('extra', '/chk/measurement')]
+    assert (Path(extra.file), extra.line) == (path, _line_of(path, '  publishers:'))
+
+
+def test_overrides_decide_conformance(edited: CheckResult) -> None:
+    from nodl_schema.overrides import Overrides
+
+    drift_codes = ['NODL401', 'NODL402', 'NODL403', 'NODL404', 'NODL405', 'NODL406']
+    quiet = edited.with_overrides(Overrides(ignore=drift_codes))
+    assert quiet.conforms and quiet.drift == []
+    assert len(quiet.ignored) == 6 and not edited.ignored  # the original is unchanged
+    assert [d.kind for d in quiet.differences if d.severity == 'warning'] == ['value']
+    assert '6 ignored' in format_check_text(quiet).splitlines()[-1]
+    assert json.loads(format_check_json(quiet))['ignored'] == 6
+    # a promoted warning is drift; the command line (stronger) wins over what came before
+    strict = quiet.with_overrides(Overrides(error=['NODL407']))
+    assert not strict.conforms
+    assert [(d.kind, d.severity, d.code) for d in strict.drift] == [('value', 'error', 'NODL407')]
+    assert strict.diagnostics[[d.kind for d in strict.differences].index('value')].severity.value \
+        == 'error'
+    assert re.fullmatch(r'/chk/full drifts from .*: 1 difference '
+                        r'\((\d+ unverifiable, listed with -v; )?6 ignored\)',
+                        format_check_text(strict).splitlines()[-1])
+    assert not edited.with_overrides(Overrides(ignore=drift_codes[:5])).conforms
+
+
+def test_unverifiable_fails_only_when_promoted(full: NodeProcess, described) -> None:
+    from nodl_schema.overrides import Overrides
+
+    path, _ = described
+    result = check_node(full.fqn, path, timeout=15, overrides=Overrides(error=['NODL408']))
+    unverifiable = [d for d in result.differences if d.kind == 'unverifiable']
+    assert unverifiable  # what the description writes as SYSTEM_DEFAULT cannot be compared
+    assert not result.conforms and result.drift == unverifiable
+    assert result.with_overrides(Overrides(ignore=['NODL408'])).conforms
