@@ -182,6 +182,8 @@ CODES: dict[str, tuple[str, str]] = {
                 'or two nodes for one file)'),
     'NODL815': ('warning', 'legacy XML: something is given twice, redundantly (a role, an exported path)'),
     'NODL816': ('warning', 'conversion: an executable holds several nodes; each gets a file named after both'),
+    'NODL817': ('error', 'legacy XML (or other XML) given where a NoDL v2 document is read; nodl convert '
+                'converts legacy files'),
     'NODL851': ('warning', "include dialect: the reference implementation's include/includes file is read "
                 'as a node definition (base + mixins + main); nodl convert rewrites it'),
     'NODL852': ('error', 'include dialect: an include entry is not a mapping with one ref'),

@@ -108,6 +108,12 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
     if text is None:
         assert problem is not None
         return Report(problem.file, None, None, [problem])
+    if text.text.lstrip('\ufeff \t\r\n')[:1] == '<':  # XML (legacy NoDL?): say what it is
+        from nodl_schema.legacy.recognise import xml_diagnostics
+
+        found = xml_diagnostics(text.text, text.file)
+        if found is not None:
+            return Report(text.file, None, None, found)
     parsed = parse_document(text)
     if parsed.diagnostics:
         return Report(text.file, None, parsed.data, list(parsed.diagnostics), parsed)
