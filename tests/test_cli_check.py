@@ -50,7 +50,13 @@ def files(full: NodeProcess, tmp_path_factory: pytest.TempPathFactory) -> dict[s
     next(e for e in main['publishers'] if e['name'] == '~/status')['qos']['durability'] = 'VOLATILE'
     drifting = folder / 'drifting.nodl.yaml'
     drifting.write_text(dump_nodl(definition, 'yaml'), encoding='utf-8')
-    return {'good': good, 'drifting': drifting}
+    # conforms, with one warning: the current gain (0.5) breaks a validator
+    valued: dict[str, Any] = copy.deepcopy(description.definition)
+    valued['main']['parameters']['gain'].update(default_value=0.7,
+                                                validation={'bounds<>': [0.6, 1.0]})
+    value = folder / 'value.nodl.yaml'
+    value.write_text(dump_nodl(valued, 'yaml'), encoding='utf-8')
+    return {'good': good, 'drifting': drifting, 'value': value}
 
 
 def test_conforming_node_exits_0(files: dict[str, Path]) -> None:
@@ -68,9 +74,9 @@ def test_drift_exits_1_with_text_and_junit(files: dict[str, Path], tmp_path: Pat
     assert result.returncode == 1, result.stderr
     lines = result.stdout.splitlines()
     assert "/cli_c/full: error: extra: publisher '/cli_c/measurement' (std_msgs/msg/Float64) is " \
-           'observed but not declared' in lines
+           'observed but not declared [NODL402]' in lines
     assert "/cli_c/full: error: type: subscription '/cli_c/commands': declared type " \
-           'std_msgs/msg/Int32, observed std_msgs/msg/String (declared in main)' in lines
+           'std_msgs/msg/Int32, observed std_msgs/msg/String (declared in main) [NODL403]' in lines
     assert any(l.startswith("/cli_c/full: error: qos: publisher '/cli_c/full/status' durability: "
                             'declared VOLATILE, observed TRANSIENT_LOCAL') for l in lines)
     assert any(': info: unverifiable: ' in l for l in lines)  # -v
@@ -101,8 +107,14 @@ def test_drift_as_json(files: dict[str, Path]) -> None:
     assert errors == [('extra', '/cli_c/measurement'), ('qos', '/cli_c/full/status'),
                       ('type', '/cli_c/commands')]
     assert {d['severity'] for d in data['differences']} == {'error', 'info'}
-    assert set(data['differences'][0]) == {'kind', 'severity', 'section', 'name', 'declared',
-                                           'observed', 'layer', 'message'}
+    assert set(data['differences'][0]) == {'kind', 'code', 'severity', 'section', 'name',
+                                           'declared', 'observed', 'layer', 'message',
+                                           'file', 'line', 'column', 'related'}
+    assert data['ignored'] == 0
+    commands = next(d for d in data['differences'] if d['kind'] == 'type')
+    assert (commands['code'], commands['file'], commands['line']) == (
+        'NODL403', str(files['drifting']), _line_of(files['drifting'], 'name: commands'))
+    assert result.stderr.splitlines()[-1].startswith('/cli_c/full drifts from ')  # the verdict
 
 
 def test_node_not_found_exits_2_within_the_timeout(files: dict[str, Path]) -> None:
@@ -167,3 +179,128 @@ def test_client_library_option_and_statement(files: dict[str, Path]) -> None:
     assert data['client_library'] == {'name': 'rclcpp', 'reason': 'as requested'}
     assert [(d['kind'], d['name'], d['layer']) for d in data['differences']
             if d['severity'] == 'error'] == [('missing', '/parameter_events', 'base:node')]
+
+
+# -- coded diagnostics: SARIF, --ignore / --error, nodl.toml and [tool.nodl] -------------------
+
+
+def _line_of(path: Path, text: str) -> int:
+    """The 1-based number of the only line of ``path`` that contains ``text``."""
+    found = [n for n, line in enumerate(path.read_text(encoding='utf-8').splitlines(), 1)
+             if text in line]
+    assert len(found) == 1, (text, found)
+    return found[0]
+
+
+def test_drift_as_sarif(files: dict[str, Path]) -> None:
+    result = nodl('check', '/cli_c/full', str(files['drifting']), '--format', 'sarif',
+                  '--timeout', '15')
+    assert result.returncode == 1, result.stderr
+    log = json.loads(result.stdout)
+    assert log['version'] == '2.1.0' and log['$schema'].endswith('sarif-2.1.0.json')
+    run, = log['runs']
+    rules = [r['id'] for r in run['tool']['driver']['rules']]
+    assert len(rules) == len(set(rules))  # one rule per code
+    errors = {r['ruleId']: r for r in run['results'] if r['level'] == 'error'}
+    assert sorted(errors) == ['NODL402', 'NODL403', 'NODL404']
+    assert {r['level'] for r in run['results']} == {'error', 'note'}  # unverifiable: notes
+    for found in run['results']:
+        assert rules[found['ruleIndex']] == found['ruleId']
+        assert found['message']['text'].startswith('/cli_c/full: ')
+        region = found['locations'][0]['physicalLocation']['region']
+        assert region['startLine'] > 0 and region['startColumn'] > 0
+    where = {code: (r['locations'][0]['physicalLocation']['artifactLocation']['uri'],
+                    r['locations'][0]['physicalLocation']['region']['startLine'])
+             for code, r in errors.items()}
+    drifting = files['drifting']
+    assert where == {
+        'NODL403': (drifting.as_uri(), _line_of(drifting, 'name: commands')),
+        'NODL404': (drifting.as_uri(), _line_of(drifting, 'name: ~/status')),
+        'NODL402': (drifting.as_uri(), _line_of(drifting, '  publishers:')),  # extra: the section
+    }
+    assert 'subscription' in errors['NODL403']['message']['text']
+    assert result.stderr.startswith('/cli_c/full drifts from ')
+
+
+def test_format_junit_on_stdout(files: dict[str, Path]) -> None:
+    result = nodl('check', '/cli_c/full', str(files['drifting']), '--format', 'junit',
+                  '--timeout', '15')
+    assert result.returncode == 1, result.stderr
+    suite = ET.fromstring(result.stdout)
+    assert suite.get('name') == 'nodl check /cli_c/full' and suite.get('failures') == '3'
+
+
+def test_ignore_makes_a_drifting_check_pass(files: dict[str, Path]) -> None:
+    result = nodl('check', '/cli_c/full', str(files['drifting']), '--timeout', '15',
+                  '--ignore', 'NODL402', '--ignore', 'nodl403,NODL404')
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert ': error: ' not in result.stdout
+    assert re.fullmatch(r'/cli_c/full conforms to .*drifting\.nodl\.yaml \(\d+ unverifiable, '
+                        r'listed with -v; 3 ignored\)', result.stdout.splitlines()[-1])
+    # ignoring two of the three codes is not enough
+    partly = nodl('check', '/cli_c/full', str(files['drifting']), '--timeout', '15',
+                  '--ignore', 'NODL402,NODL403')
+    assert partly.returncode == 1
+    assert re.fullmatch(r'/cli_c/full drifts from .*: 1 difference \(\d+ unverifiable, '
+                        r'listed with -v; 2 ignored\)', partly.stdout.splitlines()[-1])
+
+
+def test_error_promotes_a_value_warning(files: dict[str, Path]) -> None:
+    warned = nodl('check', '/cli_c/full', str(files['value']), '--timeout', '15')
+    assert warned.returncode == 0, warned.stdout + warned.stderr
+    assert any(l.startswith("/cli_c/full: warning: value: parameter 'gain'") and
+               l.endswith('[NODL407]') for l in warned.stdout.splitlines())
+    promoted = nodl('check', '/cli_c/full', str(files['value']), '--timeout', '15',
+                    '--error', 'NODL407', '--format', 'json')
+    assert promoted.returncode == 1, promoted.stdout + promoted.stderr
+    data = json.loads(promoted.stdout)
+    assert data['conforms'] is False
+    assert [(d['kind'], d['severity'], d['name']) for d in data['differences']
+            if d['severity'] != 'info'] == [('value', 'error', 'gain')]
+
+
+def test_configuration_next_to_the_definition(files: dict[str, Path], tmp_path: Path) -> None:
+    strict = tmp_path / 'strict'
+    strict.mkdir()
+    value = strict / 'value.nodl.yaml'
+    value.write_text(files['value'].read_text(encoding='utf-8'), encoding='utf-8')
+    (strict / 'nodl.toml').write_text('error = ["NODL407"]\n', encoding='utf-8')
+    result = nodl('check', '/cli_c/full', str(value), '--timeout', '15')
+    assert result.returncode == 1, result.stdout + result.stderr
+    assert "/cli_c/full: error: value: parameter 'gain'" in result.stdout
+    # the command line wins over the configuration
+    assert nodl('check', '/cli_c/full', str(value), '--timeout', '15',
+                '--ignore', 'NODL407').returncode == 0
+
+    # [tool.nodl] of a pyproject.toml found upward (the definition one folder down)
+    project = tmp_path / 'project'
+    (project / 'nodl').mkdir(parents=True)
+    (project / 'pyproject.toml').write_text(
+        '[project]\nname = "x"\n\n[tool.nodl]\nignore = ["NODL402", "NODL403", "NODL404"]\n',
+        encoding='utf-8')
+    drifting = project / 'nodl' / 'drifting.nodl.yaml'
+    drifting.write_text(files['drifting'].read_text(encoding='utf-8'), encoding='utf-8')
+    quiet = nodl('check', '/cli_c/full', str(drifting), '--timeout', '15')
+    assert quiet.returncode == 0, quiet.stdout + quiet.stderr
+    assert '3 ignored' in quiet.stdout.splitlines()[-1]
+
+
+def test_bad_codes_and_configurations_are_usage_errors(files: dict[str, Path],
+                                                       tmp_path: Path) -> None:
+    unknown = nodl('check', '/cli_c/full', str(files['good']), '--timeout', '30',
+                   '--ignore', 'NODL4O2')
+    assert unknown.returncode == 2 and unknown.stdout == ''
+    assert unknown.stderr.startswith("nodl check: error: unknown code 'NODL4O2' for --ignore")
+    both = nodl('check', '/cli_c/full', str(files['good']), '--timeout', '30',
+                '--ignore', 'NODL407', '--error', 'NODL407')
+    assert both.returncode == 2 and 'both --ignore and --error' in both.stderr
+    # a broken configuration fails before the node is looked for
+    (tmp_path / 'nodl.toml').write_text('ignroe = ["NODL402"]\n', encoding='utf-8')
+    definition = tmp_path / 'good.nodl.yaml'
+    definition.write_text(files['good'].read_text(encoding='utf-8'), encoding='utf-8')
+    start = time.monotonic()
+    broken = nodl('check', '/cli_c/nobody', str(definition), '--timeout', '30')
+    assert time.monotonic() - start < 20
+    assert broken.returncode == 2 and broken.stdout == ''
+    assert broken.stderr == f"{tmp_path / 'nodl.toml'}: error: unknown key 'ignroe'; " \
+                            "did you mean 'ignore'?\n"
