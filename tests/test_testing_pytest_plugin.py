@@ -121,3 +121,23 @@ def test_assert_conforms_accepts_remaps(full: NodeProcess, tmp_path: Path) -> No
     path.write_text(dump_nodl(definition, 'yaml'), encoding='utf-8')
     result = assert_conforms(full.fqn, path, timeout=15, remaps=['cmd_in:=commands'])
     assert result.remaps == {'/plug/cmd_in': '/plug/commands'}
+
+
+def test_assert_conforms_applies_codes_and_the_configuration(full: NodeProcess, drifting: Path,
+                                                             tmp_path: Path) -> None:
+    """As `nodl check` does: --ignore/--error as arguments, nodl.toml found upward."""
+    result = assert_conforms(full.fqn, drifting, timeout=15, ignore=['NODL403'])
+    assert [d.kind for d in result.ignored] == ['type']
+    with pytest.raises(ValueError, match="unknown code 'NODL4O3'"):
+        assert_conforms(full.fqn, drifting, timeout=15, ignore=['NODL4O3'])
+
+    folder = tmp_path / 'configured'
+    folder.mkdir()
+    copy_ = folder / 'drifting.nodl.yaml'
+    copy_.write_text(drifting.read_text(encoding='utf-8'), encoding='utf-8')
+    (folder / 'nodl.toml').write_text('ignore = ["NODL403"]\n', encoding='utf-8')
+    assert assert_conforms(full.fqn, copy_, timeout=15).conforms
+    with pytest.raises(NodeDrift):
+        assert_conforms(full.fqn, copy_, timeout=15, use_config=False)
+    with pytest.raises(NodeDrift, match=r'error: type: .*\[NODL403\]'):
+        assert_conforms(full.fqn, copy_, timeout=15, error=['NODL403'])  # the argument wins
