@@ -28,7 +28,8 @@ step: rclpy and rclcpp both skip the step test for 0).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from dataclasses import field as _field
 from typing import Any, Iterable, Sequence, Union
 
 from nodl_schema.generate.identifiers import PYTHON_KEYWORDS, IdentifierScope
@@ -152,7 +153,7 @@ class ParameterPlan:
     @property
     def dynamic_typing(self) -> bool:
         """True for type ``none`` (a parameter of any type)."""
-        return self.type.base == 'none'
+        return bool(self.type.base == 'none')
 
 
 @dataclass
@@ -166,7 +167,7 @@ class StructPlan:
     #: The identifiers from the root (``('camera', 'exposure')``).
     path: tuple[str, ...]
     #: Fields: leaf parameters and nested structs, in name order.
-    members: list[ParameterPlan | StructPlan] = field(default_factory=list)
+    members: list[ParameterPlan | StructPlan] = _field(default_factory=list)
 
     @property
     def structs(self) -> list[StructPlan]:

@@ -1,0 +1,87 @@
+"""``nodl generate``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+
+class GenerateVerb(Verb):
+    """Generate a node's base class (Python or C++) from its definition."""
+
+    failure = 'the definition is invalid or cannot be generated, or (--check) the output is stale'
+
+    def add_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument('target', nargs='+', metavar='FILE | PACKAGE EXECUTABLE',
+                            help='a node definition file, or a package and one of its executables')
+        parser.add_argument('--language', required=True, metavar='LANGUAGE',
+                            help='the target language: python (rclpy) or cpp (rclcpp); '
+                                 'generator plug-ins add others')
+        parser.add_argument('-o', '--output', required=True, metavar='DIR',
+                            help='the folder the files are written to (created if missing)')
+        parser.add_argument('--class-name', metavar='NAME',
+                            help='the class stem: NAMEBase (default: from the executable or file name)')
+        parser.add_argument('--node-name', metavar='NAME',
+                            help='the default node name (default: from the executable or file name)')
+        parser.add_argument('--namespace', default='', metavar='NS',
+                            help='C++: the namespace of the generated class')
+        parser.add_argument('--component', action='store_true',
+                            help='C++: register the class as an rclcpp component')
+        parser.add_argument('--check', action='store_true',
+                            help='write nothing; fail if a generated file is missing or differs')
+        parser.epilog = ('The generator implements what the node itself provides (main); the base '
+                         "comes from the language's client library, mixins from other code. "
+                         'Regenerating is idempotent: unchanged files are not rewritten.')
+
+    def main(self, args: argparse.Namespace) -> int:
+        from nodl_schema.generate import (
+            GenerateOptions, GenerationError, default_class_name, default_node_name, load_generators,
+            write_files)
+        from nodl_schema.generate.definition import resolve_target, target_name
+        from nodl_schema.reporting import format_text, without_info
+
+        if len(args.target) > 2:
+            print('nodl generate: error: give a definition FILE or PACKAGE EXECUTABLE', file=sys.stderr)
+            return EXIT_USAGE
+        generators = load_generators()
+        generator = generators.get(args.language)
+        if generator is None:
+            known = ', '.join(sorted(generators)) or 'none installed'
+            print(f'nodl generate: error: no generator for language {args.language!r} '
+                  f'(available: {known})', file=sys.stderr)
+            return EXIT_USAGE
+        try:
+            node, diagnostics, _ = resolve_target(args.target, generator.CLIENT_LIBRARY or None)
+        except (OSError, ValueError) as exc:
+            print(f'nodl generate: error: {exc}', file=sys.stderr)
+            return EXIT_USAGE
+        shown = without_info(diagnostics)
+        if shown:
+            sys.stderr.write(format_text(shown))
+        if node is None:
+            return EXIT_FAILURE
+        name = target_name(args.target)
+        options = GenerateOptions(
+            class_name=args.class_name or default_class_name(name),
+            node_name=args.node_name or default_node_name(name),
+            namespace=args.namespace, component=args.component)
+        try:
+            files = generator.generate(node, options)
+        except GenerationError as exc:
+            print(f'nodl generate: error: {exc}', file=sys.stderr)
+            return EXIT_FAILURE
+        try:
+            changed = write_files(files, args.output, check=args.check)
+        except OSError as exc:
+            print(f'nodl generate: error: {exc}', file=sys.stderr)
+            return EXIT_USAGE
+        if args.check:
+            for path in changed:
+                print(f'{path}: stale or missing: run nodl generate without --check to update it',
+                      file=sys.stderr)
+            return EXIT_FAILURE if changed else EXIT_OK
+        for path in changed:
+            print(path)
+        return EXIT_OK

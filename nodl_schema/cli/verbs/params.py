@@ -1,0 +1,137 @@
+"""``nodl params``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+
+class ParamsVerb(Verb):
+    """Write a node's parameter defaults as a parameter file, or check parameter files without ROS."""
+
+    failure = 'the definition is invalid, or (check) a parameter file has an error'
+
+    def add_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.usage = ('%(prog)s DEFINITION [--name /NS/NODE] [-o FILE]\n'
+                        '       %(prog)s check PARAMS_FILE... (--definition DEFINITION [--name /NS/NODE] '
+                        '| --launch LAUNCH_FILE)')
+        parser.add_argument('args', nargs='+', metavar='DEFINITION | check PARAMS_FILE...',
+                            help='a node definition (FILE or PACKAGE EXECUTABLE) to write the defaults '
+                                 'of, or "check" and parameter files')
+        parser.add_argument('--name', metavar='/NS/NODE',
+                            help='the fully qualified node name (default: /NODE, the node name '
+                                 'derived from the executable or file name)')
+        parser.add_argument('-o', '--output', metavar='FILE', help='write the defaults here (default: stdout)')
+        parser.add_argument('--definition', nargs='+', metavar='DEFINITION',
+                            help='check: the node definition (FILE or PACKAGE EXECUTABLE)')
+        parser.add_argument('--launch', metavar='LAUNCH_FILE',
+                            help='check: the launch file whose nodes the files are for (the files the '
+                                 'launch file itself gives are checked too)')
+        parser.add_argument('--launch-argument', action='append', default=[], metavar='NAME:=VALUE',
+                            help='check: a launch argument (repeatable)')
+        parser.epilog = ('Node keys match as rcl matches them (/** any number of name tokens, /* one); '
+                         'values are typed as rcl types them and checked as strictly as a node does: '
+                         'the type exactly, every validator; required parameters must be set.')
+
+    def main(self, args: argparse.Namespace) -> int:
+        if args.args[0] == 'check':
+            return self._check(args)
+        return self._defaults(args)
+
+    @staticmethod
+    def _resolve(target: list[str]) -> tuple[object, int]:
+        from nodl_schema.generate.definition import resolve_target
+        from nodl_schema.reporting import format_text, without_info
+
+        if len(target) > 2:
+            print('nodl params: error: give a definition FILE or PACKAGE EXECUTABLE', file=sys.stderr)
+            return None, EXIT_USAGE
+        try:
+            node, diagnostics, _ = resolve_target(target)
+        except (OSError, ValueError) as exc:
+            print(f'nodl params: error: {exc}', file=sys.stderr)
+            return None, EXIT_USAGE
+        shown = without_info(diagnostics)
+        if shown:
+            sys.stderr.write(format_text(shown))
+        return node, EXIT_OK if node is not None else EXIT_FAILURE
+
+    @staticmethod
+    def _fqn(args: argparse.Namespace, target: list[str]) -> str | None:
+        from nodl_schema.generate import default_node_name
+        from nodl_schema.generate.definition import target_name
+
+        if args.name is None:
+            return '/' + default_node_name(target_name(target))
+        name: str = args.name
+        from nodl_schema.naming.validation import full_name_error
+
+        problem = full_name_error(name)
+        if problem is not None:
+            problem = problem.replace('topic name', 'a node name')
+            print(f'nodl params: error: --name {name}: {problem}', file=sys.stderr)
+            return None
+        return name
+
+    def _defaults(self, args: argparse.Namespace) -> int:
+        from nodl_schema.params import defaults_yaml
+
+        if args.definition or args.launch:
+            print('nodl params: error: --definition and --launch belong to "nodl params check"',
+                  file=sys.stderr)
+            return EXIT_USAGE
+        node, status = self._resolve(args.args)
+        if node is None:
+            return status
+        fqn = self._fqn(args, args.args)
+        if fqn is None:
+            return EXIT_USAGE
+        text = defaults_yaml(node, fqn)  # type: ignore[arg-type]
+        if args.output is None:
+            sys.stdout.write(text)
+            return EXIT_OK
+        try:
+            with open(args.output, 'w', encoding='utf-8') as f:
+                f.write(text)
+        except OSError as exc:
+            print(f'nodl params: error: {args.output}: {exc.strerror}', file=sys.stderr)
+            return EXIT_USAGE
+        return EXIT_OK
+
+    def _check(self, args: argparse.Namespace) -> int:
+        from nodl_schema.diagnostics import Severity
+        from nodl_schema.params import check_launch_parameters, check_parameter_files
+        from nodl_schema.reporting import format_text
+
+        files = args.args[1:]
+        if (args.definition is None) == (args.launch is None):
+            print('nodl params check: error: give exactly one of --definition and --launch',
+                  file=sys.stderr)
+            return EXIT_USAGE
+        if args.definition is not None:
+            if not files:
+                print('nodl params check: error: give at least one PARAMS_FILE', file=sys.stderr)
+                return EXIT_USAGE
+            node, status = self._resolve(args.definition)
+            if node is None:
+                return status
+            fqn = self._fqn(args, args.definition)
+            if fqn is None:
+                return EXIT_USAGE
+            diagnostics = check_parameter_files(files, node, fqn)  # type: ignore[arg-type]
+        else:
+            arguments = {}
+            for item in args.launch_argument:
+                name, sep, value = item.partition(':=')
+                if not sep:
+                    print(f'nodl params check: error: --launch-argument {item}: expected NAME:=VALUE',
+                          file=sys.stderr)
+                    return EXIT_USAGE
+                arguments[name] = value
+            diagnostics = check_launch_parameters(args.launch, files, arguments)
+        if diagnostics:
+            sys.stdout.write(format_text(diagnostics))
+        errors = sum(1 for d in diagnostics if d.severity is Severity.ERROR)
+        return EXIT_FAILURE if errors else EXIT_OK

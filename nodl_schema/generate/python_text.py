@@ -1,0 +1,97 @@
+"""Python source text: literals, docstrings, comments and the built-in validators as expressions.
+
+The pieces the Python generator writes that must be exact: a value from a
+definition as a Python literal (deterministic, ``repr`` based), a
+description as an escaped docstring or comment, and each built-in validator
+of the validator table as a Python expression over ``v`` (the translation the
+generated code carries, because it must not import the toolkit; the tests
+keep each expression in agreement with the table's predicate).
+"""
+
+from __future__ import annotations
+
+import textwrap
+from typing import Any, Callable
+
+__all__ = ['literal', 'docstring', 'comment', 'VALIDATOR_EXPRESSIONS', 'validator_expression',
+           'python_value']
+
+
+def python_value(value: Any, base: str) -> Any:
+    """A definition's value as the Python value rclpy expects for a parameter of type ``base``.
+
+    Doubles become floats (``1`` -> ``1.0``); a byte array becomes a list of one-byte ``bytes``.
+    """
+    if base == 'double':
+        return float(value)
+    if base == 'double_array':
+        return [float(v) for v in value]
+    if base == 'byte_array':
+        return [bytes([v]) for v in value]
+    return value
+
+
+def literal(value: Any) -> str:
+    """``value`` as a Python literal (lists, strings, numbers, bools, bytes, None)."""
+    if isinstance(value, (list, tuple)):
+        inner = ', '.join(literal(v) for v in value)
+        return f'[{inner}]' if isinstance(value, list) else f'({inner}{"," if len(value) == 1 else ""})'
+    if isinstance(value, float):
+        text = repr(value)
+        return text if text not in ('inf', '-inf', 'nan') else f"float('{text}')"
+    return repr(value)
+
+
+def docstring(text: str, indent: str = '') -> str:
+    """``text`` as a docstring (escaped: backslashes and quotes cannot end or change it)."""
+    width = max(40, 99 - len(indent))
+    paragraphs = [textwrap.fill(p, width, break_long_words=False, break_on_hyphens=False)
+                  for p in text.strip().split('\n\n')]
+    body = '\n\n'.join(paragraphs).replace('\\', '\\\\').replace('"""', '\\"\\"\\"')
+    if body.endswith('"'):
+        body = body[:-1] + '\\"'
+    lines = body.splitlines() or ['']
+    if len(lines) == 1:
+        return f'{indent}"""{lines[0]}"""\n'
+    out = f'{indent}"""{lines[0]}\n'
+    for line in lines[1:]:
+        out += f'{indent}{line.rstrip()}\n' if line.strip() else '\n'
+    return out + f'{indent}"""\n'
+
+
+def comment(text: str, indent: str = '') -> str:
+    """``text`` as comment lines (each line prefixed with ``# ``)."""
+    return ''.join(f'{indent}# {line}'.rstrip() + '\n' for line in (text.strip().splitlines() or ['']))
+
+
+def _bounds(a: Any) -> str:
+    return f'{literal(a[0])} <= v <= {literal(a[1])}'
+
+
+def _choices(a: Any) -> str:
+    return literal(tuple(a))
+
+
+#: Built-in validator name -> its Python expression over ``v`` for the normalized argument.
+VALIDATOR_EXPRESSIONS: dict[str, Callable[[Any], str]] = {
+    'bounds': _bounds,
+    'lt': lambda a: f'v < {literal(a)}',
+    'gt': lambda a: f'v > {literal(a)}',
+    'lt_eq': lambda a: f'v <= {literal(a)}',
+    'gt_eq': lambda a: f'v >= {literal(a)}',
+    'one_of': lambda a: f'v in {_choices(a)}',
+    'not_empty': lambda a: 'len(v) > 0',
+    'fixed_size': lambda a: f'len(v) == {literal(a)}',
+    'size_gt': lambda a: f'len(v) > {literal(a)}',
+    'size_lt': lambda a: f'len(v) < {literal(a)}',
+    'unique': lambda a: 'len(set(v)) == len(v)',
+    'subset_of': lambda a: f'all(x in {_choices(a)} for x in v)',
+    'element_bounds': lambda a: f'all({literal(a[0])} <= x <= {literal(a[1])} for x in v)',
+    'lower_element_bounds': lambda a: f'all(x >= {literal(a)} for x in v)',
+    'upper_element_bounds': lambda a: f'all(x <= {literal(a)} for x in v)',
+}
+
+
+def validator_expression(name: str, argument: Any) -> str:
+    """The Python expression over ``v`` that is true when the built-in ``name`` accepts ``v``."""
+    return VALIDATOR_EXPRESSIONS[name](argument)
