@@ -102,6 +102,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL308': ('error', 'a layer changes the QoS of an entity of the base (the client library creates it)'),
     'NODL309': ('error', 'a layer changes read_only of a parameter of the base (the client library declares it)'),
     'NODL310': ('warning', 'a layer changes the type of an entity a mixin declares (the mixin\'s code and the node disagree)'),
+    'NODL311': ('error', 'include dialect: an included document includes itself (a cycle), or a document is '
+                'included twice'),
     # -- NODL4xx: live drift -----------------------------------------------
     'NODL401': ('error', 'drift: declared but not observed on the running node'),
     'NODL402': ('error', 'drift: observed on the running node but not declared'),

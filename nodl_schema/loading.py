@@ -57,6 +57,8 @@ class Report:
         self._raw: list[Diagnostic] = raw or []
         self._parsed = parsed
         self._placed: list[Diagnostic] | None = None
+        #: The dialect the document was written in (``include``, ``genparamlib``), None for NoDL v2.
+        self.dialect: str | None = None
 
     @property
     def diagnostics(self) -> list[Diagnostic]:
@@ -139,7 +141,9 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
         from nodl_schema.overrides import apply_directives
 
         diagnostics = apply_directives(text.text, diagnostics)
-    return Report(text.file, detected, parsed.data, diagnostics, parsed)
+    report = Report(text.file, detected, parsed.data, diagnostics, parsed)
+    report.dialect = dialect.dialect if dialect is not None else None
+    return report
 
 
 _PATH_SUFFIXES = ('.yaml', '.yml', '.json', '.xml')

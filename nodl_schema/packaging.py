@@ -172,29 +172,49 @@ def relative_mixins(node_file: str | os.PathLike[str]) -> list[str]:
     relative to it, which ``nodl_data_files`` and ``ament_nodl_register_node`` do.
     In the order written, each once. A file that cannot be read or parsed, or
     that has no mixins, has none (validation says what is wrong with it).
+    A mixin in the include dialect includes others in turn (``local://``
+    relative to itself): those are listed too, after it, relative to the
+    node file's folder.
     """
+    found: list[str] = []
+    _relative_mixins(os.fspath(node_file), '', found, set())
+    return found
+
+
+def _relative_mixins(file: str, prefix: str, found: list[str], visited: set[str]) -> None:
+    """Add the relative mixins of ``file`` (whose folder is ``prefix`` from the node's) to ``found``."""
     from pathlib import Path
 
     from nodl_schema.composition.resolvers import scheme_of
     from nodl_schema.loading import check_source
 
+    visited.add(os.path.realpath(file))
     try:
-        report = check_source(Path(node_file))
+        report = check_source(Path(file))
     except OSError:
-        return []
+        return
     data = report.data
     mixins = data.get('mixins') if isinstance(data, dict) else None
-    found: list[str] = []
     for mixin in mixins if isinstance(mixins, list) else ():
         if not isinstance(mixin, str) or scheme_of(mixin) != 'file':
             continue
         path = mixin[len('file://'):] if mixin.startswith('file://') else mixin
         if not path or os.path.isabs(path) or posixpath.isabs(path):
             continue
-        normal = posixpath.normpath(path.replace(os.sep, '/'))
+        normal = posixpath.normpath(posixpath.join(prefix, path.replace(os.sep, '/')))
         if normal not in found:
             found.append(normal)
-    return found
+        target = os.path.join(os.path.dirname(file), path)
+        if os.path.realpath(target) not in visited and os.path.isfile(target):
+            # Only the include dialect nests; a cycle is the validator's to report.
+            from nodl_schema.dialects import INCLUDE
+
+            try:
+                nested = check_source(Path(target)).dialect == INCLUDE
+            except OSError:
+                nested = False
+            if nested:
+                _relative_mixins(target, posixpath.dirname(normal), found, visited)
 
 
 def _node_info(package: str, nodes: Mapping[str, str], plugins: dict[str, str],

@@ -133,3 +133,87 @@ def test_validate_resolve_accepts_the_dialect_in_a_real_process() -> None:
     assert result.stdout.count('warning:') == 1
     assert "arm_driver.nodl.yaml:5:1: warning: this file is written in the reference " \
         "implementation's 'include' dialect" in result.stdout
+
+
+# -- nested includes: the reference resolves includes recursively ---------------------------
+
+CAMERA = FIXTURES / 'dialects' / 'include' / 'camera_driver' / 'nodl'
+
+
+def test_an_included_document_that_includes_others_is_flattened(prefix: Path) -> None:
+    composed = compose(CAMERA / 'wrist_camera.nodl.yaml')
+    # What an included document includes comes before it; local:// is relative to its holder.
+    assert [l.label for l in composed.layers] == [
+        'base:lifecycle_node', 'nodl://arm_common/heartbeat',
+        'shared/camera_common.nodl.yaml > sensor_health.nodl.yaml',
+        'shared/camera_common.nodl.yaml', 'main']
+    # The lifecycle base description, included by the included document, is the node's base.
+    assert composed.node.base is Base.LIFECYCLE_NODE
+    origins = {p.name: p.origin for p in composed.interface.publishers}
+    assert origins['~/health'] == 'shared/camera_common.nodl.yaml > sensor_health.nodl.yaml'
+    assert origins['~/image_raw'] == 'shared/camera_common.nodl.yaml'
+    assert '~/transition_event' in origins and '/heartbeat' in origins
+    assert not [d for d in composed.diagnostics if d.severity.value == 'error']
+
+
+def test_a_cycle_of_includes_is_an_error_where_it_closes(prefix: Path) -> None:
+    with pytest.raises(nodl_schema.ValidationError) as caught:
+        compose(CAMERA / 'looping.nodl.yaml')
+    [error] = caught.value.errors
+    assert error.code == 'NODL311' and 'includes itself' in error.message
+    assert error.file.endswith('loop_b.nodl.yaml') and (error.line, error.column) == (3, 10)
+    # The node's own include entry that leads there is named as a related place.
+    [(file, line, column, _)] = error.related
+    assert file.endswith('looping.nodl.yaml') and line == 3
+
+
+def test_a_document_included_twice_is_an_error(prefix: Path) -> None:
+    with pytest.raises(nodl_schema.ValidationError) as caught:
+        compose(CAMERA / 'twice.nodl.yaml')
+    [error] = caught.value.errors
+    assert error.code == 'NODL311' and 'included twice' in error.message
+    assert error.file.endswith('twice.nodl.yaml') and error.line == 5
+    assert 'shared/camera_common.nodl.yaml > sensor_health.nodl.yaml' in error.message
+
+
+def test_an_unresolvable_nested_include_is_placed_in_the_file_that_holds_it(prefix: Path) -> None:
+    with pytest.raises(nodl_schema.ValidationError) as caught:
+        compose(CAMERA / 'bad_inner.nodl.yaml')
+    [error] = caught.value.errors
+    assert error.code == 'NODL301' and 'no_such_part.nodl.yaml' in error.message
+    assert error.file.endswith('broken_inner.nodl.yaml') and error.line == 3
+    assert error.related and error.related[0][0].endswith('bad_inner.nodl.yaml')
+
+
+def test_a_v2_node_definition_as_a_mixin_is_still_refused(tmp_path: Path) -> None:
+    (tmp_path / 'package.xml').write_text('<package/>')
+    (tmp_path / 'inner.nodl.yaml').write_text('nodl_version: 2\nmain: {nodl_version: 2}\n')
+    (tmp_path / 'outer.nodl.yaml').write_text(
+        'nodl_version: 2\nmixins: [inner.nodl.yaml]\nmain: {nodl_version: 2}\n')
+    with pytest.raises(nodl_schema.ValidationError) as caught:
+        compose(tmp_path / 'outer.nodl.yaml')
+    [error] = caught.value.errors
+    assert error.code == 'NODL303' and 'single-level' in error.message
+
+
+def test_deps_lists_nested_local_includes_for_installation() -> None:
+    from nodl_schema.packaging import relative_mixins
+
+    assert relative_mixins(CAMERA / 'wrist_camera.nodl.yaml') == [
+        'shared/camera_common.nodl.yaml', 'shared/sensor_health.nodl.yaml']
+    assert relative_mixins(CAMERA / 'looping.nodl.yaml') == [
+        'shared/loop_a.nodl.yaml', 'shared/loop_b.nodl.yaml']  # and it terminates
+
+
+def test_validate_resolve_and_show_nested_includes_in_a_real_process() -> None:
+    env = dict(os.environ, AMENT_PREFIX_PATH=str(PREFIX))
+    node = os.path.relpath(CAMERA / 'wrist_camera.nodl.yaml', REPO)
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', node],
+                            cwd=REPO, text=True, capture_output=True, timeout=60, env=env)
+    assert result.returncode == 0, result.stdout + result.stderr
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'show', '--layers', node],
+                            cwd=REPO, text=True, capture_output=True, timeout=60, env=env)
+    assert result.returncode == 0, result.stderr
+    assert '# layer: shared/camera_common.nodl.yaml > sensor_health.nodl.yaml\n  - name: ~/health' \
+        in result.stdout
+    assert '# layer: base:lifecycle_node' in result.stdout

@@ -11,16 +11,19 @@ searched; the referenced file's own diagnostics follow with their positions.
 from __future__ import annotations
 
 import os
+from typing import Callable
 
 from nodl_schema.composition.bases import DEFAULT_CLIENT_LIBRARY, base_layer, check_client_library
 from nodl_schema.composition.layers import MAIN, Layer
 from nodl_schema.composition.merge import Declaration, merge_traced
 from nodl_schema.composition.resolvers import (
     ResolutionError, ResolveContext, Resolver, load_resolvers, package_root, scheme_of)
-from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
+from nodl_schema.diagnostics import Diagnostic, DocPath, Severity, ValidationError
+from nodl_schema.dialects import INCLUDE
 from nodl_schema.frontends.source import Source
 from nodl_schema.loading import Report, check_source
 from nodl_schema.model import Interface, Node
+from nodl_schema.model.node import Base
 from nodl_schema.validation.kinds import KIND_REASONS, Kind
 
 __all__ = ['ComposedNode', 'compose', 'compose_report']
@@ -30,6 +33,7 @@ MIXIN_UNRESOLVED = 'NODL301'
 MIXIN_INVALID = 'NODL302'
 MIXIN_NOT_INTERFACE = 'NODL303'
 NOT_A_NODE = 'NODL305'
+INCLUDE_CYCLE = 'NODL311'
 
 
 class ComposedNode:
@@ -72,17 +76,44 @@ def _context(report: Report) -> ResolveContext:
     return ResolveContext(file, package_root(os.path.dirname(os.path.abspath(file))))
 
 
-def _mixin_layer(reference: str, index: int, report: Report, context: ResolveContext,
-                 resolvers: dict[str, Resolver], out: list[Diagnostic]) -> Layer | None:
-    path = ('mixins', index)
+class _IncludeTree:
+    """What one composition has seen while following mixins, nested ones included.
 
+    The reference implementation's include dialect nests: a document it
+    includes may include others (``local://`` relative to itself), to any
+    depth; a cycle, or a document included twice, is an error.  Each
+    included document becomes mixin layers in place of its entry: what it
+    includes first, then its own flat interface.
+    """
+
+    def __init__(self, resolvers: dict[str, Resolver], out: list[Diagnostic],
+                 root_file: str | None, root_is_include: bool) -> None:
+        self.resolvers = resolvers
+        self.out = out
+        self.root_keys: tuple[str, ...] = (os.path.realpath(root_file),) if root_file else ()
+        self.root_is_include = root_is_include
+        #: Real path of each document reached -> (its chain of references, reached through an include?).
+        self.seen: dict[str, tuple[str, bool]] = {}
+        #: Base descriptions included by nested documents: (base, chain).
+        self.bases: list[tuple[str, str]] = []
+
+
+def _mixin_layers(reference: str, path: DocPath, place: Callable[[Diagnostic], Diagnostic],
+                  context: ResolveContext, tree: _IncludeTree, chain: tuple[str, ...] = (),
+                  keys: tuple[str, ...] = (),
+                  related: tuple[tuple[str, int, int, str], ...] = ()) -> list[Layer] | None:
+    """The layers of one mixin entry (several when it is an include-dialect document), or None.
+
+    ``path`` is the entry in the document ``place`` places diagnostics in;
+    ``chain`` the references that led there (empty for the node's own mixins).
+    """
     def fail(message: str, code: str = MIXIN_UNRESOLVED) -> None:
-        out.append(report.place(Diagnostic(Severity.ERROR, message, path, code=code)))
+        tree.out.append(place(Diagnostic(Severity.ERROR, message, path, code=code, related=related)))
 
     scheme = scheme_of(reference)
-    resolver = resolvers.get(scheme)
+    resolver = tree.resolvers.get(scheme)
     if resolver is None:
-        known = ', '.join(f'{s}://' for s in sorted(resolvers) if s != 'file')
+        known = ', '.join(f'{s}://' for s in sorted(tree.resolvers) if s != 'file')
         fail(f"cannot resolve mixin '{reference}': no resolver for the scheme '{scheme}' "
              f'(known: {known or "none"}, and paths relative to the node file)')
         return None
@@ -96,19 +127,66 @@ def _mixin_layer(reference: str, index: int, report: Report, context: ResolveCon
         fail(f"cannot resolve mixin '{reference}': the {scheme} resolver failed "
              f'({type(exc).__name__}: {exc})')
         return None
+    label = ' > '.join(chain + (reference,))
+    key = os.path.realpath(resolved.file) if os.path.isfile(resolved.file) else resolved.file
+    if key in tree.root_keys + keys:
+        fail(f"mixin '{reference}' ({resolved.file}) includes itself: {label} leads back to it; "
+             'remove the include that closes the cycle', INCLUDE_CYCLE)
+        return None
+    nested = bool(chain) or tree.root_is_include
+    if key in tree.seen and (nested or tree.seen[key][1]):
+        fail(f"mixin '{reference}' ({resolved.file}) is included twice: {label} and "
+             f'{tree.seen[key][0]}; include it once', INCLUDE_CYCLE)
+        return None
+    tree.seen.setdefault(key, (label, nested))
     sub = check_source(resolved.text, file=resolved.file)
     if sub.has_errors():
         fail(f"mixin '{reference}' ({resolved.file}) is not a valid interface definition: "
              f'{len(sub.errors)} error(s), listed below', MIXIN_INVALID)
-        out.extend(sub.diagnostics)
+        tree.out.extend(sub.diagnostics)
         return None
+    if sub.kind is Kind.NODE and sub.dialect == INCLUDE:
+        return _included_layers(sub, label, resolved.file, tree, chain + (reference,), keys + (key,),
+                                related or _related_entry(place, path, reference))
     if sub.kind is not Kind.INTERFACE:
         assert sub.kind is not None  # a kind is known once there are no errors
-        why = KIND_REASONS[sub.kind] + ('; mixins are single-level' if sub.kind is Kind.NODE else '')
+        why = KIND_REASONS[sub.kind] + ('; mixins are single-level (only documents in the include '
+                                        'dialect include others)' if sub.kind is Kind.NODE else '')
         fail(f"mixin '{reference}' ({resolved.file}) is a {sub.kind} definition, not an interface "
              f'definition: {why}', MIXIN_NOT_INTERFACE)
         return None
-    return Layer(reference, sub.model(), sub.place, role='mixin')  # type: ignore[arg-type]
+    return [Layer(label, sub.model(), sub.place, role='mixin')]  # type: ignore[arg-type]
+
+
+def _related_entry(place: Callable[[Diagnostic], Diagnostic], path: DocPath,
+                   reference: str) -> tuple[tuple[str, int, int, str], ...]:
+    """Where the node includes ``reference`` (named in errors about what that document includes)."""
+    entry = place(Diagnostic(Severity.INFO, '', path))
+    return ((entry.file, entry.line, entry.column, f"included through '{reference}' here"),)
+
+
+def _included_layers(sub: Report, label: str, file: str, tree: _IncludeTree, chain: tuple[str, ...],
+                     keys: tuple[str, ...], related: tuple[tuple[str, int, int, str], ...]
+                     ) -> list[Layer] | None:
+    """The layers of an included include-dialect document: what it includes, then itself."""
+    included: Node = sub.model()  # type: ignore[assignment]
+    if included.base is not None:
+        tree.bases.append((included.base.value, label))
+    context = (ResolveContext(file, package_root(os.path.dirname(os.path.abspath(file))))
+               if os.path.isfile(file) else ResolveContext(None, None))
+    layers: list[Layer] = []
+    complete = True
+    for index, mixin in enumerate(included.mixins or []):
+        assert isinstance(mixin, str)  # the include dialect has references only
+        found = _mixin_layers(mixin, ('mixins', index), sub.place, context, tree, chain, keys, related)
+        if found is None:
+            complete = False
+        else:
+            layers += found
+    if not complete:
+        return None
+    layers.append(Layer(label, included.main, sub.place, ('main',), role='mixin'))
+    return layers
 
 
 def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None, *,
@@ -131,19 +209,29 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None,
     diagnostics = list(report.diagnostics)
     errors: list[Diagnostic] = []
     layers: list[Layer] = []
-    if node.base is not None:
-        layers.append(base_layer(node.base, client_library))
+    tree: _IncludeTree | None = None
     if node.mixins:
         context = _context(report)
         available = resolvers if resolvers is not None else load_resolvers()
+        tree = _IncludeTree(available, errors, context.node_file, report.dialect == INCLUDE)
         for index, mixin in enumerate(node.mixins):
             if isinstance(mixin, str):
-                layer = _mixin_layer(mixin, index, report, context, available, errors)
-                if layer is not None:
-                    layers.append(layer)
+                found = _mixin_layers(mixin, ('mixins', index), report.place, context, tree)
+                layers += found or []
             else:
                 layers.append(Layer(f'mixins[{index}]', mixin, report.place, ('mixins', index),
                                     role='mixin'))
+    if tree is not None and tree.bases:
+        # A base description included by an included document is the node's base too
+        # (lifecycle_node's includes node's: the larger one wins, as for the node's own includes).
+        bases = [b for b, _ in tree.bases] + ([node.base.value] if node.base is not None else [])
+        strongest = 'lifecycle_node' if 'lifecycle_node' in bases else 'node'
+        if node.base is None or node.base.value != strongest:
+            import dataclasses
+
+            node = dataclasses.replace(node, base=Base(strongest))
+    if node.base is not None:
+        layers.insert(0, base_layer(node.base, client_library))
     layers.append(Layer(MAIN, node.main, report.place, ('main',), role='main'))
     if errors:
         return None, diagnostics + errors
