@@ -4,6 +4,8 @@
 ``ros2 launch`` would start (or load into a container) with its final namespace, remaps
 in rcl's order, parameter sources in application order and source location, the
 declared arguments, and coded diagnostics (NODL5xx) for every problem.  Nothing is started.
+``parameter_overrides(node, fqn)`` resolves a node's parameter sources to the values it
+receives, as rcl (processes) and launch_ros (composable nodes) resolve them.
 """
 
 from __future__ import annotations
@@ -11,9 +13,10 @@ from __future__ import annotations
 from nodl_schema.launch.evaluate import load_launch
 from nodl_schema.launch.model import (LaunchArgument, LaunchedNode, LaunchResult, ParameterSource,
                                       SourceLocation)
-from nodl_schema.launch.params import (load_parameter_file, match_composable_parameter_keys,
-                                       match_parameter_file_nodes)
+from nodl_schema.launch.overrides import (ParameterOverride, match_composable_parameter_keys,
+                                          match_parameter_file_nodes, parameter_overrides)
+from nodl_schema.launch.params import load_parameter_file
 
 __all__ = ['load_launch', 'LaunchResult', 'LaunchedNode', 'LaunchArgument', 'ParameterSource',
            'SourceLocation', 'load_parameter_file', 'match_parameter_file_nodes',
-           'match_composable_parameter_keys']
+           'match_composable_parameter_keys', 'parameter_overrides', 'ParameterOverride']

@@ -64,21 +64,81 @@ def read_launch_file(path: str, context: LaunchContext) -> LaunchDescription | N
     return description
 
 
-def _required_arguments(description: LaunchDescription) -> list[DeclareLaunchArgument]:
-    """Arguments without default declared unconditionally (through groups), as launch checks them."""
-    out: list[DeclareLaunchArgument] = []
-    stack: list[Any] = list(reversed(description.entities))
-    while stack:
-        entity = stack.pop()
-        if getattr(entity, 'condition', None) is not None:
+def _describe_without_context(context: LaunchContext, action: Any,
+                              seen: set[str]) -> LaunchDescription | None:
+    """The description an include would load, read without a launch context as launch's
+    ``try_get_launch_description_without_context`` does (None when its path needs one:
+    ``$(var)``, ``$(dirname)``...); read problems are reported when the include runs."""
+    scratch = LaunchContext(LaunchResult(context.result.file), context.environment, context.prefixes)
+    try:
+        path = perform(scratch, action.path)
+    except LaunchProblem:
+        return None
+    real = os.path.realpath(path)
+    if not os.path.isabs(path) or real in seen or len(seen) >= MAX_INCLUDE_DEPTH or not os.path.isfile(path):
+        return None
+    seen.add(real)
+    scratch.current_file = path
+    return read_launch_file(path, scratch)
+
+
+def _argument_names_without_context(context: LaunchContext, action: Any) -> list[str]:
+    scratch = LaunchContext(LaunchResult(context.result.file), context.environment, context.prefixes)
+    try:
+        return [perform(scratch, name) for name, _ in action.launch_arguments]
+    except LaunchProblem:
+        return []
+
+
+def _missing_required_argument(context: LaunchContext, description: LaunchDescription,
+                               given: list[str], path: str) -> LaunchProblem | None:
+    """launch's check before an include: every argument declared without a default and not
+    under a condition, in the included file or in the files IT includes (as far as they load
+    without a context), must be given by this include or by the includes leading to it."""
+    from nodl_schema.launch.actions import IncludeLaunchDescription
+
+    declared: list[tuple[DeclareLaunchArgument, bool, tuple[Any, ...] | None]] = []
+    names: set[str] = set()
+    seen = {os.path.realpath(path)}
+
+    def walk(entities: list[Any], conditional: bool, chain: tuple[Any, ...] | None) -> None:
+        for entity in entities:
+            if isinstance(entity, DeclareLaunchArgument):
+                if entity.name not in names:
+                    names.add(entity.name)
+                    declared.append((entity, conditional or entity.condition is not None, chain))
+                continue
+            inner = conditional or getattr(entity, 'condition', None) is not None
+            if isinstance(entity, GroupAction):
+                if entity.scoped and not entity.forwarding:
+                    continue  # launch stops at ResetLaunchConfigurations
+                walk(entity.actions, inner, chain)
+            elif isinstance(entity, LaunchDescription):
+                walk(entity.entities, inner, chain)
+            elif isinstance(entity, IncludeLaunchDescription):
+                nested = _describe_without_context(context, entity, seen)
+                if nested is not None:
+                    walk(nested.entities, inner, (*(chain or ()), entity))
+
+    walk(description.entities, False, None)
+    accepted = list(given)  # launch extends one list: names of nested includes accumulate
+    for argument, conditional, chain in declared:
+        if conditional or argument.default_value is not None:
             continue
-        if isinstance(entity, DeclareLaunchArgument) and entity.default_value is None:
-            out.append(entity)
-        elif isinstance(entity, (GroupAction,)):
-            stack.extend(reversed(entity.actions))
-        elif isinstance(entity, LaunchDescription):
-            stack.extend(reversed(entity.entities))
-    return out
+        for nested_include in chain or ():
+            accepted.extend(_argument_names_without_context(context, nested_include))
+        if argument.name not in accepted:
+            where = argument.location
+            through = ''
+            if chain:
+                through = ' (declared in a file it includes: ' + ' -> '.join(
+                    str(i.location) for i in chain) + ')'
+            return LaunchProblem('NODL506', f"included launch file '{path}' needs argument "
+                                            f"'{argument.name}'{through}, which is not given (given: "
+                                            f"{', '.join(given) or 'none'}); add "
+                                            f'<arg name="{argument.name}" value="..."/> to the include',
+                                 where.file, where.line, where.column)
+    return None
 
 
 class _Leave(Action):
@@ -119,14 +179,9 @@ def include(context: LaunchContext, action: Any) -> list[Action] | None:
         context.result.files.append(path)
     if description is None:
         return None
-    given = [name for name, _ in arguments]
-    for declared in _required_arguments(description):
-        if declared.name not in given and declared.name not in context.configurations:
-            raise LaunchProblem('NODL506', f"included launch file '{path}' needs argument "
-                                           f"'{declared.name}', which is not given (given: "
-                                           f"{', '.join(given) or 'none'}); add "
-                                           f'<arg name="{declared.name}" value="..."/> to the include',
-                                declared.location.file, declared.location.line, declared.location.column)
+    missing = _missing_required_argument(context, description, [name for name, _ in arguments], path)
+    if missing is not None:
+        raise missing
     values = [(name, perform(context, value)) for name, value in arguments]
     for name, value in values:
         context.configurations[name] = value

@@ -11,10 +11,12 @@ from typing import Any, NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch import actions as A
+from nodl_schema.launch import conditions as C
+from nodl_schema.launch import ros_actions as R
 from nodl_schema.launch.errors import LaunchProblem
 from nodl_schema.launch.model import SourceLocation
 from nodl_schema.launch.params import ParameterValue, get_typed_value, type_from_identifier
-from nodl_schema.launch.substitutions import parse_if_substitutions, parse_substitution
+from nodl_schema.launch.substitution_grammar import parse_if_substitutions, parse_substitution
 
 __all__ = ['Attribute', 'Entity', 'TAGS', 'build_description']
 
@@ -174,12 +176,12 @@ def _nested_ok(entity: Entity, problems: list[Diagnostic]) -> bool:
     return ok
 
 
-def _condition(entity: Entity) -> A.Condition | None:
+def _condition(entity: Entity) -> C.Condition | None:
     if_ = entity.subs('if')
     if if_ is not None:
-        return A.IfCondition(if_)
+        return C.IfCondition(if_)
     unless = entity.subs('unless')
-    return A.UnlessCondition(unless) if unless is not None else None
+    return C.UnlessCondition(unless) if unless is not None else None
 
 
 def _parameters(entity: Entity) -> list[Any]:
@@ -189,7 +191,7 @@ def _parameters(entity: Entity) -> list[Any]:
         if source is not None:
             if param.text('name') is not None:
                 raise LaunchProblem('NODL504', "<param> takes 'from' or 'name', not both", *param.location)
-            out.append(A.ParameterFileEntry(source, param.boolean('allow_substs') or False))
+            out.append(R.ParameterFileEntry(source, param.boolean('allow_substs') or False))
         elif param.text('name') is not None:
             out.append(_named(param, []))
         else:
@@ -234,8 +236,8 @@ def _remaps(entity: Entity) -> list[tuple[Any, Any]]:
     return [(r.subs('from'), r.subs('to')) for r in entity.nested.get('remap', [])]
 
 
-def _composable(entity: Entity) -> A.ComposableNode:
-    node = A.ComposableNode(package=entity.subs('pkg'), plugin=entity.subs('plugin'), name=entity.subs('name'),
+def _composable(entity: Entity) -> R.ComposableNode:
+    node = R.ComposableNode(package=entity.subs('pkg'), plugin=entity.subs('plugin'), name=entity.subs('name'),
                             namespace=entity.subs('namespace'), parameters=_parameters(entity),
                             remappings=_remaps(entity), condition=_condition(entity))
     node.location = entity.location
@@ -329,13 +331,13 @@ def _make(entity: Entity, tag: str, problems: list[Diagnostic]) -> A.Action:
                              forwarding=True if forwarding is None else forwarding,
                              launch_configurations={k: v for k, v in keep.items()})
     if tag in ('push-ros-namespace', 'push_ros_namespace'):
-        return A.PushRosNamespace(s('namespace'))
+        return R.PushRosNamespace(s('namespace'))
     if tag == 'set_remap':
-        return A.SetRemap(s('from'), s('to'))
+        return R.SetRemap(s('from'), s('to'))
     if tag == 'set_parameter':
-        return A.SetParameter(s('name'), s('value'))
+        return R.SetParameter(s('name'), s('value'))
     if tag == 'set_parameters_from_file':
-        return A.SetParametersFromFile(s('filename'))
+        return R.SetParametersFromFile(s('filename'))
     if tag == 'set_env':
         return A.SetEnvironmentVariable(s('name'), s('value'))
     if tag == 'unset_env':
@@ -344,13 +346,13 @@ def _make(entity: Entity, tag: str, problems: list[Diagnostic]) -> A.Action:
         return A.AppendEnvironmentVariable(s('name'), s('value'), prepend=bool(entity.boolean('prepend')),
                                            separator=entity.text('separator') or ':')
     if tag == 'node':
-        return A.Node(**_node_kwargs(entity))
+        return R.Node(**_node_kwargs(entity))
     if tag == 'node_container':
-        return A.ComposableNodeContainer(
+        return R.ComposableNodeContainer(
             composable_node_descriptions=[_composable(c) for c in entity.nested.get('composable_node', [])],
             **_node_kwargs(entity))
     if tag == 'load_composable_node':
-        return A.LoadComposableNodes(
+        return R.LoadComposableNodes(
             composable_node_descriptions=[_composable(c) for c in entity.nested.get('composable_node', [])],
             target_container=s('target'))
     if tag == 'timer':

@@ -41,12 +41,12 @@ class SourceLocation(NamedTuple):
 class ParameterSource:
     """One parameter source of a node, in application order.
 
-    ``kind`` is ``file`` (``path`` is the parameter file; which of its node keys
-    apply is the consumer's question: :func:`nodl_schema.launch.params.match_parameter_file_nodes`
-    for plain nodes, :func:`~nodl_schema.launch.params.match_composable_parameter_keys`
-    for composable nodes) or ``values`` (``values`` maps parameter names, nested
-    names joined with ``.``, to values typed as launch types them; ``node_key`` is
-    the key launch writes them under: the node's full name, or ``/**``).
+    ``kind`` is ``file`` (``path`` is the parameter file) or ``values`` (``values`` maps
+    parameter names, nested names joined with ``.``, to values typed as launch types them;
+    ``node_key`` is the key rcl files them under: the node's full name, ``/**``, or the node
+    prefix of ``-p NODE:NAME:=VALUE``).  Which of them apply and which value wins is
+    :func:`nodl_schema.launch.overrides.parameter_overrides` (rcl's merged table for a node
+    started as a process, launch_ros's rules for a composable node).
     """
 
     kind: str
@@ -78,7 +78,9 @@ class LaunchedNode:
     package: str | None
     #: The executable (plain nodes and containers); ``None`` for composable nodes.
     executable: str | None
-    #: The name as given in the launch file, or ``None`` (the node picks its own).
+    #: The name as given in the launch file, or ``None`` when the launch entry gives none:
+    #: the node then takes the name its program gives it, which the launch file does not say
+    #: (see :attr:`name_given`; the analysis looks for it in the node's registration).
     name: str | None
     #: The final namespace (absolute; ``/`` when none is given or pushed).
     namespace: str
@@ -103,6 +105,19 @@ class LaunchedNode:
     namespace_given: bool = False
 
     @property
+    def name_given(self) -> bool:
+        """True when the launch entry names the node; False when the program picks the name."""
+        return self.name is not None
+
+    def parameter_overrides(self, fqn: str | None = None) -> dict[str, Any]:
+        """The parameters the node receives by name (see
+        :func:`nodl_schema.launch.overrides.parameter_overrides`; ``fqn`` is needed when the
+        launch entry gives no name)."""
+        from nodl_schema.launch.overrides import parameter_overrides
+
+        return parameter_overrides(self, fqn)
+
+    @property
     def fqn(self) -> str | None:
         """``namespace/name`` when the name is known, else None."""
         if self.name is None:
@@ -124,6 +139,7 @@ class LaunchedNode:
         return {
             'kind': self.kind, 'package': self.package, 'executable': self.executable,
             'plugin': self.plugin, 'container': self.container, 'name': self.name,
+            'name_given': self.name is not None,
             'namespace': self.namespace, 'remaps': [list(r) for r in self.remaps],
             'parameters': [p.to_dict() for p in self.parameters],
             'ros_arguments': list(self.ros_arguments), 'arguments': list(self.arguments),

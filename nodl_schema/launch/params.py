@@ -5,21 +5,18 @@
   ``1`` is an int, ``1.0`` a float, ``true`` a bool, ``'1'`` a string, lists must be uniform.
 * Files: :func:`load_parameter_file` keeps the data and the line of every node key and
   parameter, so that a later check can point into the file.
-* Matching: :func:`match_parameter_file_nodes` is rcl's (rclcpp's) rule for a node started as a
-  process: a key matches the node's full name exactly, or as a pattern where ``/*`` is one
-  name token and ``/**`` any number of them (``/**``, ``/*/camera``, ``/**/camera``).
-  :func:`match_composable_parameter_keys` is launch_ros's narrower rule for composable nodes:
-  only ``/**`` and the node's exact ``namespace/name`` apply (in that order).
+* Matching and precedence (which keys apply to a node, which value wins) are in
+  :mod:`nodl_schema.launch.overrides`.
 """
 
 from __future__ import annotations
 
 import os
-import re
-from typing import Any, Iterable, NamedTuple
+from typing import Any, NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch.errors import LaunchProblem
+from nodl_schema.launch.overrides import match_composable_parameter_keys, match_parameter_file_nodes
 
 __all__ = ['ParameterValue', 'coerce_to_type', 'get_typed_value', 'evaluate_value',
            'ParameterFileNode', 'ParameterFile', 'load_parameter_file',
@@ -239,6 +236,10 @@ class ParameterFileNode(NamedTuple):
     positions: dict[str, tuple[int, int]]
     line: int
     column: int
+    #: The same parameters typed as rcl types them (a node started as a process reads the file
+    #: with rcl: ``y`` is a bool, ``1e5`` a double); ``parameters`` is typed by PyYAML, as
+    #: launch_ros reads the file for a composable node.
+    rcl_parameters: dict[str, Any] = {}
 
 
 class ParameterFile:
@@ -260,8 +261,9 @@ _CACHE: dict[tuple[str, float, int], ParameterFile] = {}
 
 def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
     """Read a ROS parameter file (``node: {ros__parameters: {...}}``), keeping positions."""
-    import yaml
     from yaml.nodes import MappingNode, ScalarNode
+
+    from nodl_schema.launch.overrides import rcl_node_value
 
     name = os.fspath(path)
     try:
@@ -292,14 +294,15 @@ def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
     problems: list[Diagnostic] = []
 
     def params_of(mapping: Any, prefix: str, params: dict[str, Any], positions: dict[str, tuple[int, int]],
-                  data: Any) -> None:
+                  data: Any, rcl: dict[str, Any]) -> None:
         for key_node, value_node in mapping.value:
             pname = f'{prefix}{key_node.value}'
             value = data.get(key_node.value) if isinstance(data, dict) else None
             if isinstance(value_node, MappingNode):
-                params_of(value_node, pname + '.', params, positions, value)
+                params_of(value_node, pname + '.', params, positions, value, rcl)
             else:
                 params[pname] = value
+                rcl[pname] = rcl_node_value(value_node)
                 positions[pname] = (key_node.start_mark.line + 1, key_node.start_mark.column + 1)
 
     def walk(mapping: Any, path: list[str], data: Any) -> None:
@@ -311,11 +314,12 @@ def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
                 node_key = '/'.join(path)
                 params: dict[str, Any] = {}
                 positions: dict[str, tuple[int, int]] = {}
+                rcl: dict[str, Any] = {}
                 if isinstance(value_node, MappingNode):
-                    params_of(value_node, '', params, positions, value)
+                    params_of(value_node, '', params, positions, value, rcl)
                 nodes.append(ParameterFileNode(node_key, params, positions,
                                                key_node.start_mark.line + 1,
-                                               key_node.start_mark.column + 1))
+                                               key_node.start_mark.column + 1, rcl))
             elif isinstance(value_node, MappingNode):
                 walk(value_node, path + [key_node.value], value)
             else:
@@ -331,50 +335,6 @@ def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
         _CACHE.clear()
     _CACHE[key] = result
     return result
-
-
-_PATTERNS: dict[str, re.Pattern[str]] = {}
-
-
-def _pattern(key: str) -> re.Pattern[str]:
-    pattern = _PATTERNS.get(key)
-    if pattern is None:
-        name = key if key.startswith('/') else '/' + key
-        # rclcpp: every "/*" becomes "(/\w+)", so "/**" is "(/\w+)*"; the rest is literal.
-        pieces = name.split('/*')
-        regex = r'(/\w+)'.join(re.escape(p).replace(r'\*', '*') for p in pieces)
-        try:
-            pattern = re.compile(regex, re.ASCII)
-        except re.error:
-            pattern = re.compile(re.escape(name))
-        _PATTERNS[key] = pattern
-    return pattern
-
-
-def match_parameter_file_nodes(keys: Iterable[str], node_fqn: str) -> list[str]:
-    """The node keys of a parameter file that apply to the node ``node_fqn``, in file order.
-
-    rcl reads every key; rclcpp and rclpy apply a key when the node's full name matches it
-    entirely, where ``/*`` stands for one name token and ``/**`` for any number of them
-    (``/**``, ``/*``, ``/**/name``, ``/ns/*``); a key without a leading ``/`` gets one.
-    """
-    return [key for key in keys if _pattern(key).fullmatch(node_fqn) is not None]
-
-
-def match_composable_parameter_keys(keys: Iterable[str], node_name: str, namespace: str) -> list[str]:
-    """The keys launch_ros applies to a composable node: ``/**`` first, then its exact name.
-
-    launch_ros reads the file itself (``to_parameters_list``): it joins nested keys with
-    ``/``, strips the leading ``/``, and takes only ``**`` and ``namespace/name``.
-    """
-    wanted = node_name.lstrip('/')
-    if namespace and namespace != '/':
-        wanted = f"{namespace.strip('/')}/{wanted}"
-    keys = list(keys)
-    normalized = {k: '/'.join(part.lstrip('/') for part in k.split('/') if part) for k in keys}
-    out = [k for k in keys if normalized[k] == '**']
-    out += [k for k in keys if normalized[k] == wanted and wanted != '**']
-    return out
 
 
 def flatten_parameters(values: dict[str, Any], prefix: str = '') -> dict[str, Any]:

@@ -22,7 +22,9 @@ from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch import actions as A
+from nodl_schema.launch import conditions as C
 from nodl_schema.launch import params as P
+from nodl_schema.launch import ros_actions as R
 from nodl_schema.launch import substitutions as S
 from nodl_schema.launch.errors import LaunchProblem
 from nodl_schema.launch.model import SourceLocation
@@ -117,7 +119,7 @@ class _Opaque(A.Unevaluated):
         super().__init__(f"OpaqueFunction({getattr(function, '__name__', '?')})")
 
 
-class _ParameterFile(A.ParameterFileEntry):
+class _ParameterFile(R.ParameterFileEntry):
     pass
 
 
@@ -194,23 +196,23 @@ def shim_modules() -> dict[str, types.ModuleType]:
         PushLaunchConfigurations=L(A.Ignored, 'PushLaunchConfigurations'),
         PopLaunchConfigurations=L(A.Ignored, 'PopLaunchConfigurations'),
     )
-    conditions = dict(IfCondition=A.IfCondition, UnlessCondition=A.UnlessCondition,
-                      LaunchConfigurationEquals=A.LaunchConfigurationEquals,
-                      LaunchConfigurationNotEquals=A.LaunchConfigurationNotEquals)
+    conditions = dict(IfCondition=C.IfCondition, UnlessCondition=C.UnlessCondition,
+                      LaunchConfigurationEquals=C.LaunchConfigurationEquals,
+                      LaunchConfigurationNotEquals=C.LaunchConfigurationNotEquals)
     sources = {n: _Source for n in ('PythonLaunchDescriptionSource', 'XMLLaunchDescriptionSource',
                                     'YAMLLaunchDescriptionSource', 'AnyLaunchDescriptionSource',
                                     'FrontendLaunchDescriptionSource')}
     handlers = {n: _Handler for n in ('OnProcessExit', 'OnProcessStart', 'OnExecutionComplete',
                                       'OnShutdown', 'OnProcessIO', 'OnIncludeLaunchDescription',
                                       'OnStateTransition')}
-    descriptions = dict(ComposableNode=L(A.ComposableNode), ParameterValue=_parameter_value,
+    descriptions = dict(ComposableNode=L(R.ComposableNode), ParameterValue=_parameter_value,
                         ParameterFile=_ParameterFile, Parameter=_Parameter)
     ros_actions = dict(
-        Node=L(A.Node), ComposableNodeContainer=L(A.ComposableNodeContainer),
-        LoadComposableNodes=L(A.LoadComposableNodes), PushRosNamespace=L(A.PushRosNamespace),
-        PushROSNamespace=L(A.PushRosNamespace), SetRemap=L(A.SetRemap), SetParameter=L(A.SetParameter),
-        SetParametersFromFile=L(A.SetParametersFromFile), LifecycleNode=L(A.Node, 'LifecycleNode'),
-        SetUseSimTime=L(A.SetParameter, 'SetUseSimTime'), RosTimer=L(_Timer, 'RosTimer'),
+        Node=L(R.Node), ComposableNodeContainer=L(R.ComposableNodeContainer),
+        LoadComposableNodes=L(R.LoadComposableNodes), PushRosNamespace=L(R.PushRosNamespace),
+        PushROSNamespace=L(R.PushRosNamespace), SetRemap=L(R.SetRemap), SetParameter=L(R.SetParameter),
+        SetParametersFromFile=L(R.SetParametersFromFile), LifecycleNode=L(R.Node, 'LifecycleNode'),
+        SetUseSimTime=L(R.SetParameter, 'SetUseSimTime'), RosTimer=L(_Timer, 'RosTimer'),
     )
     set_parameter: Any = ros_actions['SetParameter']
 
@@ -222,7 +224,7 @@ def shim_modules() -> dict[str, types.ModuleType]:
     ament = dict(get_package_share_directory=_package_share, get_package_prefix=_package_prefix,
                  PackageNotFoundError=_PackageNotFoundError)
     launch = dict(LaunchDescription=A.LaunchDescription, Action=A.Action, Substitution=S.Substitution,
-                  Condition=A.Condition, LaunchContext=object, SomeSubstitutionsType=object)
+                  Condition=C.Condition, LaunchContext=object, SomeSubstitutionsType=object)
     modules = {
         'launch': _module('launch', launch),
         'launch.actions': _module('launch.actions', actions, unknown=True),

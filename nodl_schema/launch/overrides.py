@@ -1,0 +1,311 @@
+"""The parameter values a launched node receives, resolved as rcl and launch_ros resolve them.
+
+A node started as a process (``node``, ``node_container``) gets its parameters from its
+command line: launch writes ``--ros-args`` with the node's ``ros_args`` first, then the
+``set_parameter``/``set_parameters_from_file`` in scope, then its own ``param`` entries
+(a ``parameters=[{...}]`` dict becomes a parameter file keyed by the node's full name when
+its name and namespace are both known, else ``/**``; a ``Parameter(...)`` or a
+``set_parameter`` becomes ``-p NAME:=VALUE``, which rcl files under the node key ``/**``).
+rcl reads every file and rule, in command-line order, into ONE table of node keys: a key is
+added where it first appears, and a value written again under the same key replaces the
+earlier value in place.  The node (rclcpp and rclpy alike) then walks that table in order,
+takes every key that matches its full name (``/*`` one name token, ``/**`` any number, a
+missing leading ``/`` added) and lets a later value win.  So a value under ``/**`` loses to
+one under the node's own name whenever ``/**`` entered the table first, even when it was
+written later; :func:`process_overrides` reproduces exactly that.  Values are typed by rcl's
+YAML rules (:func:`rcl_scalar`): ``y``/``on``/``yes`` are booleans, ``1e5`` and ``inf`` are
+doubles, ``010`` is octal, a quoted value is a string.
+
+A composable node gets its parameters from launch_ros in the load request
+(:func:`composable_overrides`): the sources in the same order, a later value wins; of a
+parameter file only the ``/**`` key and then the node's exact ``namespace/name`` apply
+(leading slashes dropped, no other wildcard), typed by PyYAML; a node loaded without a name
+gets only ``/**``; the container's own command line does not apply (launch_ros loads nodes
+with ``use_global_arguments`` off).
+
+These rules were checked against real rclpy nodes (``tests/test_launch_overrides.py``) and
+read from the sources of rcl, rclcpp, rclpy and launch_ros.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Any, Iterable, NamedTuple
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from nodl_schema.launch.model import LaunchedNode, ParameterSource
+
+__all__ = ['ParameterOverride', 'parameter_overrides', 'process_overrides', 'composable_overrides',
+           'match_parameter_file_nodes', 'match_composable_parameter_keys', 'rcl_scalar',
+           'rcl_yaml_value', 'as_rcl_reads_dump', 'as_rcl_reads_text']
+
+
+class ParameterOverride(NamedTuple):
+    """A parameter value a node receives, and where it was written."""
+
+    name: str
+    value: Any
+    #: The parameter file (at the parameter's key) or the launch entry that set it.
+    file: str
+    line: int
+    column: int
+    #: ``arguments`` (``ros_args``), ``global`` (``set_parameter...``) or ``node`` (its own).
+    origin: str
+    #: ``file`` or ``values``.
+    kind: str
+    #: The node key it was written under (``/**``, ``/ns/name``...).
+    node_key: str
+
+
+# -- matching ----------------------------------------------------------------------------------
+
+_PATTERNS: dict[str, re.Pattern[str]] = {}
+
+
+def _pattern(key: str) -> re.Pattern[str]:
+    pattern = _PATTERNS.get(key)
+    if pattern is None:
+        name = key if key.startswith('/') else '/' + key
+        # rclcpp and rclpy: every "/*" becomes "(/\w+)" (so "/**" is "(/\w+)*"); the rest is literal.
+        regex = r'(/\w+)'.join(re.escape(p).replace(r'\*', '*') for p in name.split('/*'))
+        try:
+            pattern = re.compile(regex, re.ASCII)
+        except re.error:
+            pattern = re.compile(re.escape(name))
+        if len(_PATTERNS) > 4096:
+            _PATTERNS.clear()
+        _PATTERNS[key] = pattern
+    return pattern
+
+
+def match_parameter_file_nodes(keys: Iterable[str], node_fqn: str) -> list[str]:
+    """The node keys that apply to a node started as a process called ``node_fqn``, in order.
+
+    A key applies when the full name matches it entirely, ``/*`` standing for one name token
+    and ``/**`` for any number of them (``/**``, ``/*``, ``/**/name``, ``/ns/*``); a key
+    without a leading ``/`` gets one.  Which value wins among matching keys is decided by
+    the order of rcl's merged table: see :func:`process_overrides`.
+    """
+    return [key for key in keys if _pattern(key).fullmatch(node_fqn) is not None]
+
+
+def _composable_key(key: str) -> str:
+    return '/'.join(part.lstrip('/') for part in key.split('/') if part)
+
+
+def match_composable_parameter_keys(keys: Iterable[str], node_name: str | None,
+                                    namespace: str) -> list[str]:
+    """The keys launch_ros applies to a composable node: ``/**`` first, then its exact name.
+
+    launch_ros reads the file itself (``to_parameters_list``): nested keys joined with ``/``,
+    leading slashes dropped, and only ``**`` and ``namespace/name`` taken; a node loaded
+    without a name (``node_name`` None) gets ``**`` only.
+    """
+    keys = list(keys)
+    normalized = {k: _composable_key(k) for k in keys}
+    out = [k for k in keys if normalized[k] == '**']
+    if node_name:
+        wanted = node_name.lstrip('/')
+        if namespace and namespace != '/':
+            wanted = f"{namespace.strip('/')}/{wanted}"
+        out += [k for k in keys if normalized[k] == wanted and wanted != '**']
+    return out
+
+
+# -- rcl's typing ----------------------------------------------------------------------------
+
+_STR_TAG = 'tag:yaml.org,2002:str'
+_TRUE = frozenset({'Y', 'y', 'yes', 'Yes', 'YES', 'true', 'True', 'TRUE', 'on', 'On', 'ON'})
+_FALSE = frozenset({'N', 'n', 'no', 'No', 'NO', 'false', 'False', 'FALSE', 'off', 'Off', 'OFF'})
+_INT = re.compile(r'\s*([+-]?)(0[xX][0-9a-fA-F]+|0[0-7]*|[1-9][0-9]*)')
+_FLOAT = re.compile(r'\s*[+-]?(?:(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?'
+                    r'|0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?[0-9]+)?'
+                    r'|(?i:inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?))')
+_SPECIAL = frozenset({'.nan', '.NaN', '.NAN', '.inf', '.Inf', '.INF', '+.inf', '+.Inf', '+.INF',
+                      '-.inf', '-.Inf', '-.INF'})
+_INT64 = 2 ** 63
+
+
+def _rcl_number(text: str) -> Any:
+    match = _INT.fullmatch(text)
+    if match:
+        sign, digits = match.groups()
+        base = 16 if digits[:2] in ('0x', '0X') else 8 if digits.startswith('0') and digits != '0' else 10
+        value = int(digits, base) * (-1 if sign == '-' else 1)
+        if -_INT64 <= value < _INT64:
+            return value
+    if text in _SPECIAL:
+        special = math.inf if 'inf' in text.lower() else math.nan
+        return -special if text.startswith('-') else special
+    if _FLOAT.fullmatch(text):
+        body = text.strip()
+        try:
+            number = float.fromhex(body) if 'x' in body.lower() else float(body.split('(')[0])
+        except ValueError:
+            return None
+        if math.isinf(number) and 'inf' not in body.lower():
+            return None  # strtod: out of range (ERANGE), not a double
+        return number
+    return None
+
+
+def rcl_scalar(text: str, *, quoted: bool = False, tagged_str: bool = False) -> Any:
+    """A YAML scalar as rcl's parameter parser types it (``rcl_yaml_param_parser`` ``get_value``).
+
+    ``!!str`` or quoted: a string; else ``Y``/``yes``/``true``/``on``... a bool, what
+    ``strtoll`` reads entirely (base 0: ``0x1F``, octal ``010``) an int, what ``strtod``
+    reads entirely (``1e5``, ``inf``, ``.nan``) a double, anything else a string.
+    """
+    if tagged_str or quoted:
+        return text
+    if text in _TRUE:
+        return True
+    if text in _FALSE:
+        return False
+    number = _rcl_number(text)
+    return text if number is None else number
+
+
+def _implicit_tag(kind: Any, value: str) -> Any:
+    from yaml.resolver import Resolver
+
+    resolver: Any = Resolver()
+    return resolver.resolve(kind, value, (True, False))
+
+
+def _scalar_node(node: Any) -> Any:
+    quoted = node.style in ("'", '"')
+    explicit = (node.tag == _STR_TAG and not node.style
+                and _implicit_tag(type(node), node.value) != _STR_TAG)
+    return rcl_scalar(node.value, quoted=quoted, tagged_str=explicit)
+
+
+def rcl_node_value(node: Any) -> Any:
+    """A composed YAML node (scalar or sequence of scalars) as rcl types it."""
+    from yaml.nodes import ScalarNode, SequenceNode
+
+    if isinstance(node, ScalarNode):
+        return _scalar_node(node)
+    if isinstance(node, SequenceNode):
+        return [_scalar_node(item) if isinstance(item, ScalarNode) else None for item in node.value]
+    return None
+
+
+def rcl_yaml_value(text: str) -> Any:
+    """The value of ``-p NAME:=TEXT`` as rcl types it (the text read as one YAML value)."""
+    import yaml
+
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.YAMLError:
+        return text
+    if node is None:
+        return text
+    value = rcl_node_value(node)
+    return text if value is None else value
+
+
+def as_rcl_reads_dump(value: Any) -> Any:
+    """What rcl reads back from ``yaml.dump(value)`` (launch_ros writes node dicts and
+    ``Parameter`` values that way): PyYAML leaves ``'y'`` or ``'1e5'`` unquoted, rcl reads a
+    bool and a double."""
+    if isinstance(value, str) or (isinstance(value, list) and any(isinstance(v, str) for v in value)):
+        import yaml
+
+        return rcl_yaml_value(yaml.dump(value))
+    return value
+
+
+def as_rcl_reads_text(value: Any) -> Any:
+    """What rcl reads from ``-p NAME:={value}`` (launch_ros passes ``set_parameter`` values
+    formatted by Python: ``'1'`` becomes the int 1, ``True`` the bool true)."""
+    if isinstance(value, (bool, int, float)) and not isinstance(value, str):
+        return value
+    if isinstance(value, (list, tuple)):
+        return rcl_yaml_value(str(list(value)))
+    return rcl_yaml_value(str(value))
+
+
+# -- resolution ------------------------------------------------------------------------------
+
+def _file_entries(path: str, composable: bool) -> list[tuple[str, dict[str, Any],
+                                                             dict[str, tuple[int, int]], int, int]]:
+    from nodl_schema.launch.params import load_parameter_file
+
+    loaded = load_parameter_file(path)
+    return [(n.key, n.parameters if composable else n.rcl_parameters, n.positions, n.line, n.column)
+            for n in loaded.nodes]
+
+
+def process_overrides(sources: Iterable[ParameterSource], fqn: str) -> dict[str, ParameterOverride]:
+    """The parameters a node started as a process called ``fqn`` receives from ``sources``
+    (its records' :attr:`~nodl_schema.launch.model.LaunchedNode.parameters`), as rcl resolves them."""
+    table: dict[str, dict[str, ParameterOverride]] = {}
+    for source in sources:
+        where = source.source
+        if source.kind == 'file':
+            if not source.path:
+                continue
+            for key, values, positions, line, column in _file_entries(source.path, False):
+                entry = table.setdefault(key, {})
+                for name, value in values.items():
+                    at = positions.get(name, (line, column))
+                    entry[name] = ParameterOverride(name, value, source.path, at[0], at[1],
+                                                    source.origin, 'file', key)
+            continue
+        entry = table.setdefault(source.node_key, {})
+        for name, value in source.values.items():
+            if source.origin == 'global':
+                value = as_rcl_reads_text(value)
+            elif source.origin == 'node':
+                value = as_rcl_reads_dump(value)
+            entry[name] = ParameterOverride(name, value, where.file, where.line, where.column,
+                                            source.origin, 'values', source.node_key)
+    out: dict[str, ParameterOverride] = {}
+    for key in match_parameter_file_nodes(table, fqn):
+        out.update(table[key])
+    return out
+
+
+def composable_overrides(sources: Iterable[ParameterSource], name: str | None,
+                         namespace: str) -> dict[str, ParameterOverride]:
+    """The parameters launch_ros puts in the load request of a composable node (``name`` as
+    given in the launch file, None when not given; ``namespace`` final)."""
+    out: dict[str, ParameterOverride] = {}
+    for source in sources:
+        where = source.source
+        if source.kind != 'file':
+            for pname, value in source.values.items():
+                out[pname] = ParameterOverride(pname, value, where.file, where.line, where.column,
+                                               source.origin, 'values', source.node_key)
+            continue
+        if not source.path:
+            continue
+        # launch_ros: one dict per normalized key (a later equal key replaces the earlier one).
+        by_key: dict[str, tuple[str, dict[str, Any], dict[str, tuple[int, int]], int, int]] = {}
+        for entry in _file_entries(source.path, True):
+            by_key[_composable_key(entry[0])] = entry
+        for key in match_composable_parameter_keys(list(by_key), name, namespace):
+            raw, values, positions, line, column = by_key[key]
+            for pname, value in values.items():
+                at = positions.get(pname, (line, column))
+                out[pname] = ParameterOverride(pname, value, source.path, at[0], at[1],
+                                               source.origin, 'file', raw)
+    return out
+
+
+def parameter_overrides(node: LaunchedNode, fqn: str | None = None) -> dict[str, ParameterOverride]:
+    """The parameters ``node`` receives, by name, as the running system would give them.
+
+    ``fqn`` is the node's final full name; it defaults to the record's own
+    (:attr:`~nodl_schema.launch.model.LaunchedNode.fqn`) and must be given for a node
+    launched without a name (the name its executable picks decides which keys apply).
+    """
+    if node.kind == 'composable':
+        return composable_overrides(node.parameters, node.name, node.namespace)
+    name = fqn if fqn is not None else node.fqn
+    if name is None:
+        raise ValueError('the node was launched without a name: pass the full name it takes')
+    return process_overrides(node.parameters, name)

@@ -1,0 +1,347 @@
+"""The ROS launch actions (``launch_ros``'s): nodes, containers, composable nodes, pushed
+namespaces, ``set_remap`` and ``set_parameter``.
+
+A :class:`Node` adds a :class:`~nodl_schema.launch.model.LaunchedNode` to the result
+instead of starting a process: its final namespace (pushed namespaces combined as
+launch_ros combines them), its remapping rules in the order rcl applies them, and its
+parameter sources in command-line order (see :mod:`nodl_schema.launch.overrides` for
+how they resolve to values).
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+from nodl_schema.launch.actions import Action
+from nodl_schema.launch.conditions import Condition
+from nodl_schema.launch.errors import LaunchProblem
+from nodl_schema.launch.model import LaunchedNode, ParameterSource, SourceLocation
+from nodl_schema.launch.params import ParameterValue, evaluate_value, normalize_python_dict
+from nodl_schema.launch.substitutions import normalize, perform
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from nodl_schema.launch.context import LaunchContext
+
+__all__ = ['PushRosNamespace', 'SetRemap', 'SetParameter', 'SetParametersFromFile', 'Node',
+           'ComposableNode', 'ComposableNodeContainer', 'LoadComposableNodes', 'Container',
+           'ParameterFileEntry', 'make_namespace_absolute', 'prefix_namespace']
+
+
+class PushRosNamespace(Action):
+    """``push-ros-namespace``: relative namespaces of later nodes in scope are prefixed."""
+
+    def __init__(self, namespace: Any, **_: Any) -> None:
+        self.namespace = normalize(namespace)
+
+    def execute(self, context: LaunchContext) -> list[Action] | None:
+        from nodl_schema.naming import namespace_error
+
+        pushed = perform(context, self.namespace)
+        previous = context.configurations.get('ros_namespace')
+        namespace = make_namespace_absolute(prefix_namespace(previous, pushed))
+        problem = namespace_error(namespace or '/')
+        if problem:
+            raise LaunchProblem('NODL519', f"the resulting namespace '{namespace}' is invalid: "
+                                           f'{problem} (previous {previous!r}, pushed {pushed!r})')
+        context.configurations['ros_namespace'] = namespace
+        return None
+
+
+class SetRemap(Action):
+    """``set_remap``: a rule every later node in scope gets before its own."""
+
+    def __init__(self, src: Any, dst: Any, **_: Any) -> None:
+        self.src, self.dst = normalize(src), normalize(dst)
+
+    def execute(self, context: LaunchContext) -> list[Action] | None:
+        rule = (perform(context, self.src), perform(context, self.dst))
+        remaps = context.configurations.get('ros_remaps', [])
+        remaps.append(rule)  # in place, as launch_ros does (see context.py)
+        context.configurations['ros_remaps'] = remaps
+        return None
+
+
+class SetParameter(Action):
+    """``set_parameter``: a parameter every later node in scope gets (before its own)."""
+
+    def __init__(self, name: Any, value: Any, **_: Any) -> None:
+        self.name = normalize(name)
+        # As normalize_parameter_dict: text stays text, substitutions are read as YAML.
+        self.value = value if isinstance(value, ParameterValue) else normalize_python_dict({'_': value})[0][1]
+
+    def execute(self, context: LaunchContext) -> list[Action] | None:
+        name = perform(context, self.name)
+        value = evaluate_value(context, self.value, name)
+        params = context.configurations.get('global_params', [])
+        params.append((name, value))
+        context.configurations['global_params'] = params
+        return None
+
+
+class SetParametersFromFile(Action):
+    """``set_parameters_from_file``: a parameter file every later node in scope gets."""
+
+    def __init__(self, filename: Any, **_: Any) -> None:
+        self.filename = normalize(filename)
+
+    def execute(self, context: LaunchContext) -> list[Action] | None:
+        params = context.configurations.get('global_params', [])
+        params.append(perform(context, self.filename))
+        context.configurations['global_params'] = params
+        return None
+
+
+# -- nodes -----------------------------------------------------------------------------------
+
+def prefix_namespace(base: str | None, namespace: str | None) -> str | None:
+    """launch_ros's ``prefix_namespace``: ``namespace`` under ``base`` unless it is absolute."""
+    if base is None and namespace is None:
+        return None
+    if namespace is None:
+        combined = base
+    elif not base or namespace.startswith('/'):
+        combined = namespace
+    else:
+        combined = ('' if base == '/' else base) + '/' + namespace
+    assert combined is not None
+    return combined if combined == '/' else combined.rstrip('/')
+
+
+def make_namespace_absolute(namespace: str | None) -> str | None:
+    """A leading ``/`` for a relative namespace."""
+    if namespace is None:
+        return None
+    return namespace if namespace.startswith('/') else '/' + namespace
+
+
+class ParameterFileEntry:
+    """A parameter file in a node's ``parameters`` (``param from=``, a path, ``ParameterFile``)."""
+
+    def __init__(self, param_file: Any, allow_substs: Any = False) -> None:
+        self.path = normalize(param_file)
+        self.allow_substs = allow_substs
+
+
+def _normalize_parameters(parameters: Any) -> list[Any]:
+    out: list[Any] = []
+    for item in parameters or []:
+        if isinstance(item, dict):
+            out.append(normalize_python_dict(item))
+        elif isinstance(item, ParameterFileEntry) or (isinstance(item, list) and item and
+                                                       isinstance(item[0], tuple)):
+            out.append(item)
+        elif hasattr(item, 'nodl_parameter'):
+            out.append(item)
+        else:
+            out.append(ParameterFileEntry(item))
+    return out
+
+
+def _ros_arguments(context: LaunchContext, node: Any, location: SourceLocation,
+                   record: LaunchedNode) -> None:
+    """Split ``arguments`` + ``--ros-args`` + ``ros_arguments`` as rcl reads a command line."""
+    words = [perform(context, a) for a in node.arguments]
+    if node.ros_arguments:
+        words += ['--ros-args', *[perform(context, a) for a in node.ros_arguments]]
+    in_ros = False
+    i = 0
+    while i < len(words):
+        word = words[i]
+        if word == '--ros-args':
+            in_ros = True
+        elif word == '--' and in_ros:
+            in_ros = False
+        elif not in_ros:
+            record.arguments.append(word)
+        elif word in ('-r', '--remap', '-p', '--param', '--params-file') and i + 1 < len(words):
+            value = words[i + 1]
+            i += 1
+            if word in ('-r', '--remap'):
+                if ':=' not in value:
+                    raise LaunchProblem('NODL519', f"invalid remapping rule '{value}' in the node's "
+                                                   'arguments; expected FROM:=TO')
+                src, dst = value.split(':=', 1)
+                record.remaps.append((src, dst))
+            elif word in ('-p', '--param'):
+                if ':=' not in value:
+                    raise LaunchProblem('NODL518', f"invalid parameter rule '{value}'; expected NAME:=VALUE")
+                name, text = value.split(':=', 1)
+                from nodl_schema.launch.overrides import rcl_yaml_value
+
+                # rcl: "-p NODE:NAME:=VALUE" files the value under the node key NODE (a node
+                # name, matched as "/NODE"), "-p NAME:=VALUE" under "/**"; VALUE typed by rcl.
+                node_key, _, name = name.rpartition(':')
+                record.parameters.append(ParameterSource('values', 'arguments', location,
+                                                         values={name: rcl_yaml_value(text)},
+                                                         node_key=node_key or '/**'))
+            else:
+                record.parameters.append(ParameterSource('file', 'arguments', location,
+                                                         path=os.path.abspath(value)))
+        else:
+            record.ros_arguments.append(word)
+        i += 1
+
+
+def _global_parameters(context: LaunchContext, location: SourceLocation) -> list[ParameterSource]:
+    out = []
+    for entry in context.configurations.get('global_params') or []:
+        if isinstance(entry, tuple):
+            out.append(ParameterSource('values', 'global', location, values={entry[0]: entry[1]}))
+        else:
+            out.append(ParameterSource('file', 'global', location, path=os.path.abspath(entry)))
+    return out
+
+
+def _own_parameters(context: LaunchContext, parameters: list[Any], location: SourceLocation,
+                    node_key: str) -> list[ParameterSource]:
+    out = []
+    for item in parameters:
+        if isinstance(item, ParameterFileEntry):
+            path = perform(context, item.path)
+            if not os.path.isfile(path):
+                context.warn('NODL517', f"parameter file '{path}' is not a file; launch skips it", location)
+                continue
+            out.append(ParameterSource('file', 'node', location, path=path))
+        elif hasattr(item, 'nodl_parameter'):
+            name, spec = item.nodl_parameter
+            pname = perform(context, name)
+            out.append(ParameterSource('values', 'node', location,
+                                       values={pname: evaluate_value(context, spec, pname)}))
+        else:
+            values: dict[str, Any] = {}
+            for name, spec in item:
+                pname = perform(context, name)
+                values[pname] = evaluate_value(context, spec, pname)
+            out.append(ParameterSource('values', 'node', location, values=values, node_key=node_key))
+    return out
+
+
+class Node(Action):
+    """``node``: a ROS node started as a process."""
+
+    kind = 'node'
+
+    def __init__(self, *, executable: Any, package: Any = None, name: Any = None, namespace: Any = None,
+                 parameters: Any = None, remappings: Any = None, ros_arguments: Any = None,
+                 arguments: Any = None, **_: Any) -> None:
+        self.executable = normalize(executable)
+        self.package = None if package is None else normalize(package)
+        self.name = None if name is None else normalize(name)
+        self.namespace = None if namespace is None else normalize(namespace)
+        self.parameters = _normalize_parameters(parameters)
+        self.remappings = [(normalize(a), normalize(b)) for a, b in (remappings or [])]
+        self.ros_arguments = list(ros_arguments or [])
+        self.arguments = list(arguments or [])
+        self.node_name: str | None = None
+
+    def execute(self, context: LaunchContext) -> list[Action] | None:
+        from nodl_schema.naming import namespace_error, node_name_error
+
+        name = None
+        if self.name is not None:
+            name = perform(context, self.name)
+            problem = node_name_error(name)
+            if problem:
+                raise LaunchProblem('NODL519', f"invalid node name '{name}': {problem}")
+        given = None if self.namespace is None else perform(context, self.namespace)
+        namespace = make_namespace_absolute(prefix_namespace(context.configurations.get('ros_namespace'),
+                                                             given))
+        if namespace is not None:
+            problem = namespace_error(namespace)
+            if problem:
+                raise LaunchProblem('NODL519', f"invalid namespace '{namespace}': {problem}")
+        record = LaunchedNode(self.kind, None if self.package is None else perform(context, self.package),
+                              perform(context, self.executable), name, namespace or '/', self.location,
+                              include_chain=context.include_chain, namespace_given=namespace is not None)
+        _ros_arguments(context, self, self.location, record)
+        fully = name is not None and namespace is not None
+        fqn = ('' if namespace == '/' else (namespace or '')) + '/' + (name or '')
+        self.node_name = fqn if name is not None else None
+        record.parameters += _global_parameters(context, self.location)
+        record.parameters += _own_parameters(context, self.parameters, self.location,
+                                             fqn if fully else '/**')
+        record.remaps += list(context.configurations.get('ros_remaps') or [])
+        record.remaps += [(perform(context, a), perform(context, b)) for a, b in self.remappings]
+        context.result.nodes.append(record)
+        return self.after(context)
+
+    def after(self, context: LaunchContext) -> list[Action] | None:
+        """What follows the node (a container's composable nodes)."""
+        return None
+
+
+class ComposableNode:
+    """``composable_node``: a node loaded into a container (not an action)."""
+
+    def __init__(self, *, package: Any, plugin: Any, name: Any = None, namespace: Any = None,
+                 parameters: Any = None, remappings: Any = None, extra_arguments: Any = None,
+                 condition: Condition | None = None, **_: Any) -> None:
+        self.package, self.plugin = normalize(package), normalize(plugin)
+        self.name = None if name is None else normalize(name)
+        self.namespace = None if namespace is None else normalize(namespace)
+        self.parameters = _normalize_parameters(parameters)
+        self.remappings = [(normalize(a), normalize(b)) for a, b in (remappings or [])]
+        self.condition = condition
+        self.location = SourceLocation('', 0, 0)
+
+
+class LoadComposableNodes(Action):
+    """``load_composable_node``: composable nodes loaded into a target container."""
+
+    def __init__(self, *, composable_node_descriptions: Any, target_container: Any, **_: Any) -> None:
+        self.descriptions = list(composable_node_descriptions)
+        self.target = target_container
+
+    def execute(self, context: LaunchContext) -> list[Action] | None:
+        if isinstance(self.target, Node):
+            container = self.target.node_name or ''
+        else:
+            container = perform(context, self.target)
+            if container and not container.startswith('/'):
+                container = '/' + container
+        for description in self.descriptions:
+            try:
+                _load(context, description, container)
+            except LaunchProblem as problem:
+                context.problem(problem, description.location)
+        return None
+
+
+def _load(context: LaunchContext, description: ComposableNode, container: str) -> None:
+    if description.condition is not None and not description.condition.evaluate(context):
+        return
+    name = None if description.name is None else perform(context, description.name)
+    given = None if description.namespace is None else perform(context, description.namespace)
+    namespace = make_namespace_absolute(prefix_namespace(context.configurations.get('ros_namespace'), given))
+    record = LaunchedNode('composable', perform(context, description.package), None, name,
+                          namespace or '/', description.location, plugin=perform(context, description.plugin),
+                          container=container, include_chain=context.include_chain,
+                          namespace_given=namespace is not None)
+    record.remaps += list(context.configurations.get('ros_remaps') or [])
+    record.remaps += [(perform(context, a), perform(context, b)) for a, b in description.remappings]
+    record.parameters += _global_parameters(context, description.location)
+    record.parameters += _own_parameters(context, description.parameters, description.location, '/**')
+    context.result.nodes.append(record)
+
+
+class ComposableNodeContainer(Node):
+    """``node_container``: a container process, then its composable nodes."""
+
+    kind = 'container'
+
+    def __init__(self, *, name: Any, namespace: Any, composable_node_descriptions: Any = None,
+                 **kwargs: Any) -> None:
+        super().__init__(name=name, namespace=namespace, **kwargs)
+        self.descriptions = list(composable_node_descriptions or [])
+
+    def after(self, context: LaunchContext) -> list[Action] | None:
+        if not self.descriptions:
+            return None
+        load = LoadComposableNodes(composable_node_descriptions=self.descriptions, target_container=self)
+        load.location = self.location
+        return [load]
+
+
+Container = ComposableNodeContainer
