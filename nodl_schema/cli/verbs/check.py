@@ -86,6 +86,10 @@ class CheckVerb(Verb):
         except (LiveError, ValueError) as exc:
             print(f'nodl check: error: {exc}', file=sys.stderr)
             return EXIT_USAGE
+        # A definition in the reference's include dialect says so once, as in every verb (NODL851).
+        dialect = [d for d in result.composed.diagnostics if d.code == 'NODL851']
+        if dialect:
+            sys.stderr.write(format_text(dialect))
         try:  # conformance is decided after the overrides (of the file a package registers, too)
             result = result.with_overrides(policy.overrides_for(result.definition))
         except PolicyError as exc:
