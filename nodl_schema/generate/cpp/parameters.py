@@ -22,7 +22,7 @@ from nodl_schema.generate.parameters import (
 
 __all__ = ['CPP_PREDICATES', 'cpp_parameter_plan', 'field_type', 'struct_lines', 'predicate',
            'custom_signature', 'custom_declarations', 'declare_lines', 'validate_lines',
-           'assign_lines', 'read_lines', 'helper_lines', 'REVISION_FIELD', 'DETAIL_NAMESPACE']
+           'assign_lines', 'read_lines', 'helper_lines', 'custom_definitions', 'REVISION_FIELD', 'DETAIL_NAMESPACE']
 
 #: The field of the parameter struct counting committed changes (``is_old``); no parameter
 #: field can end with ``_``, so it never collides.
@@ -190,6 +190,27 @@ def custom_declarations(plan: ParametersPlan) -> list[str]:
             lines += ['{', declaration, '}  // namespace ' + '::'.join(namespaces)]
         else:
             lines.append(declaration)
+    return lines
+
+
+def custom_definitions(plan: ParametersPlan) -> list[str]:
+    """Placeholder definitions of the custom validators (accept every value), for a user stub."""
+    seen: dict[tuple[str, tuple[str, ...]], None] = {}
+    for parameter in plan.parameters:
+        for validator in parameter.custom_validators:
+            seen[custom_signature(validator)] = None
+    lines: list[str] = []
+    for name, args in sorted(seen):
+        *namespaces, function = name.split('::')
+        params = ', '.join(['const rclcpp::Parameter & parameter'] + [
+            f'{t} arg{i}' for i, t in enumerate(args)])
+        body = ['{', '  (void)parameter;'] + [f'  (void)arg{i};' for i in range(len(args))] + [
+            '  return std::string();  // TODO: return why the value is rejected, if it is', '}']
+        if namespaces:
+            lines += [f'namespace {"::".join(namespaces)}', '{']
+        lines += [f'std::string {function}({params})'] + body
+        if namespaces:
+            lines.append('}  // namespace ' + '::'.join(namespaces))
     return lines
 
 

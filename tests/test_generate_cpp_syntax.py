@@ -1,0 +1,117 @@
+"""Generated C++ is well-formed: libclang parses it against stand-in rclcpp headers with no error.
+
+rclcpp is not installable here, so tests/fixtures/generate/cpp_stubs/ declares
+the part of its API generated code uses (callback shapes checked by
+static_assert); the message, service and action headers are the real ones
+the ROS wheels install.  Each generated base is parsed together with its
+user subclass (the stub ``nodl new`` writes), which instantiates the class:
+an unimplemented pure virtual callback, a wrong callback signature, an
+unknown type or a syntax error is a parse error.
+"""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import clang.cindex as clang  # the libclang package (test extra)
+import pytest
+
+from conftest import FIXTURES
+from nodl_schema.generate import GenerateOptions, default_class_name, default_node_name, write_files
+from nodl_schema.generate.cpp import generate_cpp, plan_cpp
+from nodl_schema.generate.cpp.user import render_user_source
+from nodl_schema.system import resolve_node
+
+GENERATE = FIXTURES / 'generate'
+STUBS = GENERATE / 'cpp_stubs'
+DEFINITIONS = sorted(p for p in GENERATE.glob('*.nodl.yaml'))
+
+
+def compiler_include_dir() -> str:
+    """The C compiler's own headers (stddef.h, ...), which the libclang wheel does not ship."""
+    for compiler in ('g++', 'c++', 'clang++', 'gcc', 'cc'):
+        path = shutil.which(compiler)
+        if path:
+            out = subprocess.run([path, '-print-file-name=include'], capture_output=True,
+                                 text=True, timeout=30).stdout.strip()
+            if out and Path(out, 'stddef.h').is_file():
+                return out
+    raise AssertionError('no C/C++ compiler found: CMake builds need one too')
+
+
+def parse_errors(source: Path, include: list[Path]) -> list[str]:
+    venv_include = Path(sys.prefix) / 'include'
+    args = ['-x', 'c++', '-std=c++17', '-Wall', '-Wextra', '-isystem', compiler_include_dir(),
+            f'-I{STUBS}'] + [f'-I{p}' for p in include]
+    args += [f'-isystem{p}' for p in sorted(venv_include.iterdir())
+             if p.is_dir() and not p.name.startswith('python')]
+    unit = clang.Index.create().parse(str(source), args=args)
+    return [f'{d.location.file}:{d.location.line}:{d.location.column}: {d.spelling}'
+            for d in unit.diagnostics if d.severity >= clang.Diagnostic.Warning]
+
+
+def generate_into(definition: Path, out: Path, **extra: object) -> tuple[Path, Path]:
+    node = resolve_node(definition, client_library='rclcpp')
+    options = GenerateOptions(default_class_name(str(definition)),
+                              default_node_name(str(definition)), **extra)  # type: ignore[arg-type]
+    write_files(generate_cpp(node, options), str(out))
+    plan = plan_cpp(node, options)
+    user = out / f'{default_node_name(str(definition))}.cpp'
+    user.write_text(render_user_source(plan, options.class_name), encoding='utf-8')
+    return out / f'{plan.stem}.cpp', user
+
+
+@pytest.mark.parametrize('definition', DEFINITIONS, ids=lambda p: p.name)
+def test_generated_base_and_user_stub_parse_without_a_diagnostic(definition: Path,
+                                                                 tmp_path: Path) -> None:
+    base, user = generate_into(definition, tmp_path)
+    assert parse_errors(base, [tmp_path]) == []
+    assert parse_errors(user, [tmp_path]) == []
+
+
+def test_the_examples_parse_too(tmp_path: Path) -> None:
+    from conftest import REPO
+
+    for definition in ('laser_driver.nodl.yaml', 'camera_lifecycle.nodl.yaml'):
+        base, user = generate_into(REPO / 'examples' / definition, tmp_path)
+        assert parse_errors(base, [tmp_path]) == []
+        assert parse_errors(user, [tmp_path]) == []
+
+
+def test_a_component_subclass_registers(tmp_path: Path) -> None:
+    _, user = generate_into(GENERATE / 'talker.nodl.yaml', tmp_path, component=True)
+    user.write_text(user.read_text(encoding='utf-8') +
+                    'RCLCPP_COMPONENTS_REGISTER_NODE(talker::Talker)\n', encoding='utf-8')
+    assert parse_errors(user, [tmp_path]) == []
+
+
+@pytest.mark.parametrize('breakage, expected', [
+    # a callback of the wrong shape: the message as a mutable pointer
+    (('[this](const std_msgs::msg::String::ConstSharedPtr & msg)',
+      '[this](const std_msgs::msg::String::SharedPtr & msg)'), 'subscription callback'),
+    # a QoS policy rclcpp does not have
+    (('rclcpp::ReliabilityPolicy::Reliable', 'rclcpp::ReliabilityPolicy::Sometimes'), 'Sometimes'),
+    # a parameter read as a type rclcpp cannot give
+    (('get_value<double>()', 'get_value<float>()'), 'parameter value'),
+])
+def test_the_check_finds_broken_code(tmp_path: Path, breakage: tuple[str, str],
+                                     expected: str) -> None:
+    base, _ = generate_into(GENERATE / 'talker.nodl.yaml', tmp_path)
+    text = base.read_text(encoding='utf-8')
+    assert breakage[0] in text
+    base.write_text(text.replace(breakage[0], breakage[1], 1), encoding='utf-8')
+    errors = parse_errors(base, [tmp_path])
+    assert any(expected in e for e in errors), errors
+
+
+def test_a_missing_callback_implementation_is_found(tmp_path: Path) -> None:
+    _, user = generate_into(GENERATE / 'everything.nodl.yaml', tmp_path)
+    text = user.read_text(encoding='utf-8')
+    start = text.index('  void on_in(')
+    end = text.index('  }\n', start) + 4
+    user.write_text(text[:start] + text[end:], encoding='utf-8')
+    errors = parse_errors(user, [tmp_path])
+    assert any('abstract' in e for e in errors), errors
