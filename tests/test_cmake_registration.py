@@ -52,7 +52,7 @@ def build(tmp_path_factory: pytest.TempPathFactory) -> Build:
     src.mkdir()
     for package in sorted((REPO / 'examples' / 'workspace' / 'src').iterdir()):
         shutil.copytree(package, src / package.name)
-    for fixture in ('broken_nodl', 'broken_config', 'relative_mixins'):
+    for fixture in ('broken_nodl', 'broken_config', 'relative_mixins', 'escaping_mixin'):
         shutil.copytree(FIXTURES / 'colcon' / fixture, src / fixture)
     result = subprocess.run([str(VENV / 'bin' / 'colcon'), 'build', '--continue-on-error'],
                             cwd=root, env=build_env(), text=True, capture_output=True,
@@ -75,6 +75,7 @@ def test_the_examples_build_and_the_broken_packages_fail(build: Build) -> None:
     assert 'Finished <<< relative_mixins' in out, out
     assert 'Failed   <<< broken_nodl' in out, out
     assert 'Failed   <<< broken_config' in out, out
+    assert 'Failed   <<< escaping_mixin' in out, out
     assert '3 packages finished' in out, out
 
 
@@ -210,6 +211,14 @@ def test_relative_mixins_are_not_registered(build: Build) -> None:
     index = build.prefix('relative_mixins') / INDEX
     assert sorted(str(p.relative_to(index)) for p in index.glob('nodl_*/*')) == [
         'nodl_nodes/relative_mixins__sensor_node']
+
+
+def test_a_relative_mixin_that_would_leave_the_package_fails_at_configure_time(build: Build) -> None:
+    out = ' '.join(build.output.split())  # CMake wraps its messages
+    assert ("ament_nodl_register_node(deep_node): mixin '../../common.yaml' of '"
+            in out), build.output
+    assert 'would be installed outside share/escaping_mixin' in out
+    assert not (build.root / 'build' / 'escaping_mixin' / 'Makefile').exists()
 
 
 def test_show_an_installed_node_with_relative_mixins(build: Build) -> None:

@@ -27,4 +27,6 @@ if(NOT AMENT_NODL_EXECUTABLE)
     "into the environment that builds this package (pip install nodl-toolkit).")
 endif()
 
+# ament_index_register_resource() comes from ament_cmake_core.
+find_package(ament_cmake_core QUIET REQUIRED)
 include("${CMAKE_CURRENT_LIST_DIR}/ament_nodl_register.cmake")
