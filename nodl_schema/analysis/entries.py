@@ -87,30 +87,16 @@ def _location(value: Any) -> Location:
 _ORIGINS = {'arguments': 'argument', 'global': 'global', 'node': 'inline'}
 
 
-def _file_settings(path: str, origin: str, composable: bool, name: str | None,
-                   namespace: str) -> Callable[[str], list[ParameterSetting]]:
-    """The settings of a parameter file that apply to a node, given its final name."""
+def _resolved_settings(record: Any) -> Callable[[str], list[ParameterSetting]]:
+    """The values a launched node receives, given its final name: which parameter-file keys
+    apply and which value wins as rcl (processes) or launch_ros (composable nodes) decide it
+    (:func:`nodl_schema.launch.overrides.parameter_overrides`)."""
     def settings(fqn: str) -> list[ParameterSetting]:
-        from nodl_schema.launch.params import (load_parameter_file,
-                                               match_composable_parameter_keys,
-                                               match_parameter_file_nodes)
+        from nodl_schema.launch.overrides import parameter_overrides
 
-        loaded = load_parameter_file(path)
-        if composable:
-            keys = match_composable_parameter_keys(loaded.keys, name or fqn.rsplit('/', 1)[-1],
-                                                   namespace)
-        else:
-            keys = match_parameter_file_nodes(loaded.keys, fqn)
-        wanted = set(keys)
-        ordered = [n for n in loaded.nodes if n.key in wanted]
-        if composable:  # launch_ros applies /** first, then the node's own key
-            ordered.sort(key=lambda n: keys.index(n.key))
-        out = []
-        for node in ordered:
-            for pname, value in node.parameters.items():
-                line, column = node.positions.get(pname, (node.line, node.column))
-                out.append(ParameterSetting(pname, value, Location(path, line, column), origin))
-        return out
+        return [ParameterSetting(o.name, o.value, Location(o.file, o.line, o.column),
+                                 'file' if o.kind == 'file' else _ORIGINS.get(o.origin, 'inline'))
+                for o in parameter_overrides(record, fqn).values()]
     return settings
 
 
@@ -122,19 +108,11 @@ def entries_from_launch(records: Iterable[Any]) -> list[LaunchEntry]:
         if isinstance(record, LaunchEntry):
             out.append(record)
             continue
-        composable = record.kind == 'composable'
         namespace = record.namespace or '/'
         parameters: list[ParameterSetting | ParameterFile] = []
-        for source in record.parameters:
-            origin = _ORIGINS.get(source.origin, 'inline')
-            where = _location(source.source)
-            if source.kind == 'file' and source.path:
-                parameters.append(ParameterFile(
-                    source.path, _file_settings(source.path, 'file', composable, record.name,
-                                                namespace), where))
-            else:
-                parameters.extend(ParameterSetting(name, value, where, origin)
-                                  for name, value in source.values.items())
+        if record.parameters:  # all sources at once: rcl merges them into one table
+            parameters.append(ParameterFile(record.source.file, _resolved_settings(record),
+                                            _location(record.source)))
         out.append(LaunchEntry(
             package=str(record.package or ''), executable=record.executable,
             location=_location(record.source), plugin=record.plugin, name=record.name,
