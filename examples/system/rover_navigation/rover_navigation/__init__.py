@@ -1,0 +1,1 @@
+"""Example system: the rover's navigation nodes (definitions only)."""

@@ -1,0 +1,1 @@
+"""Example system: the rover's operator tools (definitions only)."""
