@@ -3,6 +3,8 @@
 #   find_package(ament_nodl REQUIRED)
 #   ament_nodl_register_interface(<name> FILE <file>)     # nodl://<package>/<name>
 #   ament_nodl_register_node(<executable> FILE <file>)
+#   ament_nodl_generate_cpp(<target> <definition> ...)    # the rclcpp base class, as a library
+#   ament_nodl_generate_python(<definition> ...)          # the rclpy base class, installed
 #
 # Included by ament_nodlConfig.cmake: the one ament_package() generates when colcon builds
 # the ament_nodl package (CONFIG_EXTRAS), or the one `pip install nodl-toolkit` installs.
@@ -30,3 +32,4 @@ endif()
 # ament_index_register_resource() comes from ament_cmake_core.
 find_package(ament_cmake_core QUIET REQUIRED)
 include("${CMAKE_CURRENT_LIST_DIR}/ament_nodl_register.cmake")
+include("${CMAKE_CURRENT_LIST_DIR}/ament_nodl_generate.cmake")
