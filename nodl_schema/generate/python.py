@@ -334,7 +334,7 @@ class _Module:
             elif p.required or p.default == []:
                 out += f'        self.declare_parameter({literal(p.name)}, {type_arg}, descriptor)\n'
                 if not p.required:
-                    out += (f'        if self.get_parameter({literal(p.name)}).type_ == Parameter.Type.NOT_SET:\n'
+                    out += (f'        if self._nodl_initial_value({literal(p.name)}) is None:\n'
                             f'            self.set_parameters([Parameter({literal(p.name)}, {type_arg}, [])])\n')
             else:
                 out += (f'        self.declare_parameter({literal(p.name)}, '
@@ -510,14 +510,20 @@ class _Module:
                         + _wrap(f'    def {cbs["goal"]}(', ['self,', f'goal: {t}.Goal,'], ') -> GoalResponse:') + '\n'
                         + docstring(f'Accept or reject a goal of {e.name}. {doc}'.strip(), '        ')
                         + '\n    @abc.abstractmethod\n'
-                        + _wrap(f'    def {cbs["cancel"]}(', ['self,', f'goal_handle: ServerGoalHandle[{_type_args(e)}],'],
+                        + _wrap(f'    def {cbs["cancel"]}(', ['self,', _goal_handle(e)],
                                 ') -> CancelResponse:') + '\n'
                         + docstring(f'Accept or reject the cancellation of a goal of {e.name}.', '        ')
                         + '\n    @abc.abstractmethod\n'
-                        + _wrap(f'    def {cbs["execute"]}(', ['self,', f'goal_handle: ServerGoalHandle[{_type_args(e)}],'],
+                        + _wrap(f'    def {cbs["execute"]}(', ['self,', _goal_handle(e)],
                                 f') -> {t}.Result:') + '\n'
                         + docstring(f'Execute an accepted goal of {e.name}; return its result.', '        '))
         return out
+
+
+def _goal_handle(entity: Entity) -> str:
+    """The ``goal_handle`` parameter of an action server's callbacks (wrapped when long)."""
+    args = [a.strip() + ',' for a in _type_args(entity).split(',')]
+    return _wrap('goal_handle: ServerGoalHandle[', args, '],', limit=99 - 8)
 
 
 def _wrap(head: str, items: list[str], tail: str, limit: int = 99) -> str:
@@ -526,10 +532,11 @@ def _wrap(head: str, items: list[str], tail: str, limit: int = 99) -> str:
         return head[:-1] + ')' if tail == '})' else head + tail
     joined = ' '.join(items)
     one = head + (joined if len(items) == 1 and head.endswith('(') else joined.rstrip(',')) + tail
-    if len(one) <= limit:
+    if len(one) <= limit and '\n' not in one:
         return one
     indent = ' ' * (len(head) - len(head.lstrip()) + 4)
-    return head + '\n' + ''.join(f'{indent}{i}\n' for i in items) + ' ' * (len(indent) - 4) + tail
+    body = ''.join(indent + line for item in items for line in (item + '\n').splitlines(True))
+    return head + '\n' + body + ' ' * (len(indent) - 4) + tail
 
 
 def _helpers(module: _Module) -> str:
