@@ -97,7 +97,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL303': ('error', 'a mixin is a parameter or node definition, not an interface definition'),
     'NODL304': ('info', 'an entity overrides the one of an earlier layer'),
     'NODL305': ('error', 'this kind of document cannot be composed or shown as an interface'),
-    'NODL306': ('error', 'no node definition is registered for this package and executable'),
+    'NODL306': ('error', 'nothing is registered under this name: no node definition for this package and '
+                'executable, or no interface definition nodl://PACKAGE/NAME'),
     'NODL307': ('error', 'a layer changes the type of an entity of the base (the client library creates it)'),
     'NODL308': ('error', 'a layer changes the QoS of an entity of the base (the client library creates it)'),
     'NODL309': ('error', 'a layer changes read_only of a parameter of the base (the client library declares it)'),

@@ -107,7 +107,8 @@ def show_reference(reference: str) -> Shown:
     except ResolutionError as exc:
         searched = f' (searched: {", ".join(exc.searched)})' if exc.searched else ''
         return Shown(None, [Diagnostic(Severity.ERROR, f"cannot resolve '{reference}': "
-                                       f'{exc.message}{searched}', (), reference)], reference)
+                                       f'{exc.message}{searched}', (), reference, code='NODL306')],
+                     reference)
     report = check_source(resolved.text, kind=Kind.INTERFACE, file=resolved.file)
     if report.has_errors():
         return Shown(None, report.diagnostics, resolved.file)

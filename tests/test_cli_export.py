@@ -66,3 +66,14 @@ def test_export_errors_are_one_line(tmp_path: Path) -> None:
     invalid = nodl('export', 'genparamlib',
                    str(DIALECTS / 'include' / 'arm_driver' / 'nodl' / 'broken.nodl.yaml'), '-o', '-')
     assert invalid.returncode == 1 and 'error:' in invalid.stderr and invalid.stdout == ''
+
+
+def test_export_of_a_registered_node_and_of_an_unregistered_one() -> None:
+    env = dict(os.environ, AMENT_PREFIX_PATH=str(REPO / 'tests' / 'fixtures' / 'index' / 'first'))
+    result = nodl('export', 'genparamlib', 'alpha', 'talker', '-o', '-', env=env)
+    assert result.returncode == 0, result.stderr
+    assert yaml.safe_load(result.stdout) == {'talker': {'period': {
+        'type': 'double', 'default_value': 0.5, 'description': 'Seconds between two messages.'}}}
+    missing = nodl('export', 'genparamlib', 'alpha', 'nobody', '-o', '-', env=env)
+    assert missing.returncode == 2 and missing.stdout == ''  # not found: as a missing file
+    assert "registers no node definition for 'nobody'" in missing.stderr

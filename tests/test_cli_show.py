@@ -126,24 +126,24 @@ def test_package_executable_first_prefix_wins() -> None:
 
 def test_package_executable_not_found() -> None:
     result = nodl('alpha', 'nope')
-    assert result.returncode == 1
+    assert result.returncode == 2  # not found, as a missing file (and as in check)
     assert result.stdout == ''
     assert result.stderr == ("alpha/nope: error: package 'alpha' registers no node definition "
                              "for 'nope' (it has: inline, listener, talker) [NODL306]\n")
     result = nodl('zeta', 'x')
     assert (result.returncode, result.stderr) == (
-        1, "zeta/x: error: package 'zeta' is not in the ament index [NODL306]\n")
+        2, "zeta/x: error: package 'zeta' is not in the ament index [NODL306]\n")
 
 
 def test_package_executable_without_ament_prefix_path() -> None:
     result = nodl('alpha', 'talker', prefixes=None)
-    assert result.returncode == 1
+    assert result.returncode == 2
     assert 'AMENT_PREFIX_PATH is empty; source the workspace' in result.stderr
 
 
 def test_package_executable_with_a_dangling_entry() -> None:
     result = nodl('delta', 'dangling')
-    assert result.returncode == 1
+    assert result.returncode == 2
     assert result.stderr.startswith('delta/dangling: error: the index entry ')
     assert 'gone.nodl.yaml, which does not exist' in result.stderr
 

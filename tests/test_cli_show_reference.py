@@ -37,6 +37,6 @@ def test_layers_name_the_reference() -> None:
 
 def test_an_unknown_name_lists_what_the_package_registers() -> None:
     result = show('nodl://arm_common/nope')
-    assert result.returncode == 1
+    assert result.returncode == 2  # not registered: as a missing file
     assert "registers no interface definition 'nope' (it registers: heartbeat)" in result.stderr
     assert result.stdout == ''

@@ -10,10 +10,17 @@ from __future__ import annotations
 
 import argparse
 
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Iterable
+
+    from nodl_schema.diagnostics import Diagnostic
+
 from nodl_schema.plugins import EXTENSION_POINTS, ExtensionPoint
 
 __all__ = ['VerbExtension', 'Verb', 'EXIT_OK', 'EXIT_FAILURE', 'EXIT_USAGE', 'EXIT_INTERNAL', 'EXIT_INTERRUPTED',
-           'EXIT_BROKEN_PIPE', 'EXIT_STATUSES', 'help_text', 'exit_status_epilog']
+           'EXIT_BROKEN_PIPE', 'EXIT_STATUSES', 'NOT_FOUND_CODES', 'failure_status', 'help_text',
+           'exit_status_epilog']
 
 EXIT_OK = 0
 #: The checked thing is invalid / does not conform.
@@ -39,6 +46,16 @@ EXIT_STATUSES = (
     (EXIT_BROKEN_PIPE, 'standard output was closed early (e.g. piped into head); nothing more '
                        'is printed'),
 )
+
+#: Diagnostic codes that mean "what was asked for cannot be found or read" (a package or
+#: executable not in the ament index, a registered file that is gone): exit status 2, as
+#: for a missing file, in every verb; any other error is the verb's finding (status 1).
+NOT_FOUND_CODES = frozenset({'NODL015', 'NODL306'})
+
+
+def failure_status(diagnostics: Iterable[Diagnostic]) -> int:
+    """The exit status of a verb that could not produce its result because of ``diagnostics``."""
+    return EXIT_USAGE if any(d.code in NOT_FOUND_CODES for d in diagnostics) else EXIT_FAILURE
 
 
 class VerbExtension(ExtensionPoint):

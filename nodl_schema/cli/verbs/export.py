@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+from nodl_schema.cli.verb import EXIT_OK, EXIT_USAGE, Verb, failure_status
 
 #: The formats ``nodl export`` writes.
 FORMATS = ('genparamlib',)
@@ -64,8 +64,8 @@ class ExportVerb(Verb):
                   file=sys.stderr)
             return EXIT_USAGE
         sys.stderr.write(format_text(without_info(source.diagnostics)))
-        if source.parameters is None:
-            return EXIT_FAILURE
+        if source.parameters is None:  # not registered: 2, as for a missing file; invalid: 1
+            return failure_status(source.diagnostics)
         exported = export_genparamlib(source.parameters, namespace, source.source)
         sys.stderr.write(format_text(exported.diagnostics))
         text = exported.text(f'generate_parameter_library parameters of {source.source}, '

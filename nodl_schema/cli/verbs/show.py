@@ -9,7 +9,7 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Any
 
-from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+from nodl_schema.cli.verb import EXIT_OK, EXIT_USAGE, Verb, failure_status
 
 
 def _complete_definition(**kwargs: Any) -> list[str]:
@@ -66,8 +66,8 @@ class ShowVerb(Verb):
             return EXIT_USAGE
         problems = without_info(shown.diagnostics)
         sys.stderr.write(format_text(problems))
-        if shown.interface is None:
-            return EXIT_FAILURE
+        if shown.interface is None:  # not registered: 2, as for a missing file; invalid: 1
+            return failure_status(problems)
         library = shown.client_library
         if library is not None and args.format == 'json' and not args.layers:
             # plain JSON is the interface alone; say which base it has where it cannot break it
