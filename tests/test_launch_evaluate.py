@@ -1,5 +1,6 @@
-"""Launch files read as ros2 launch would: a table of semantics cases, one system in three
-formats, and hostile input (bounded, coded, no traceback)."""
+"""The launch walk (nodl_schema.launch.evaluate): launch files read as ros2 launch would, a
+table of semantics cases, one system in three formats, includes (chains, cycles, required
+arguments) and hostile input (bounded, coded, no traceback)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ import pytest
 import yaml
 
 from conftest import FIXTURES, REPO
-from nodl_schema.launch import load_launch, match_composable_parameter_keys, match_parameter_file_nodes
+from nodl_schema.launch import load_launch
 
 CASES = sorted((FIXTURES / 'launch' / 'cases').glob('*.yaml'))
 SAME = FIXTURES / 'launch' / 'same_system'
@@ -125,30 +126,6 @@ def test_include_cycle_shows_the_chain(tmp_path: Path) -> None:
     (cycle,) = [d for d in result.diagnostics if d.code == 'NODL507']
     assert 'a.launch.xml -> ' in cycle.message and 'b.launch.yaml -> ' in cycle.message
     assert (cycle.file, cycle.line) == (str(tmp_path / 'b.launch.yaml'), 2)
-
-
-def test_opaque_function_and_unknown_action_are_findings(tmp_path: Path) -> None:
-    main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
-        from launch import LaunchDescription
-        from launch.actions import OpaqueFunction, SomethingNew
-        from launch_ros.actions import Node
-        def generate_launch_description():
-            return LaunchDescription([
-                OpaqueFunction(function=print),
-                SomethingNew(x=1),
-                Node(package='p', executable='e')])
-        ''')})
-    result = load_launch(main, {})
-    assert [(d.code, d.line) for d in result.diagnostics] == [('NODL512', 6), ('NODL512', 7)]
-    assert len(result.nodes) == 1
-    assert 'launch' not in sys.modules and 'launch_ros.actions' not in sys.modules
-
-
-def test_parameter_file_matching() -> None:
-    keys = ['/**', '/*', '/ns/n', 'ns/n', '/**/n', '/ns/*', '/other', 'n']
-    assert match_parameter_file_nodes(keys, '/ns/n') == ['/**', '/ns/n', 'ns/n', '/**/n', '/ns/*']
-    assert match_parameter_file_nodes(keys, '/n') == ['/**', '/*', '/**/n', 'n']
-    assert match_composable_parameter_keys(['/ns/n', '/**', '/*', 'ns/n'], 'n', '/ns') == ['/**', '/ns/n', 'ns/n']
 
 
 _HOSTILE_RUNNER = '''

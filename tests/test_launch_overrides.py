@@ -239,3 +239,10 @@ def test_rcl_yaml_value() -> None:
     assert rcl_yaml_value("['a', y]") == ['a', True]
     assert rcl_yaml_value('!!str 5') == '5'
     assert rcl_yaml_value('{a: 1}') == '{a: 1}'
+
+
+def test_parameter_file_matching() -> None:
+    keys = ['/**', '/*', '/ns/n', 'ns/n', '/**/n', '/ns/*', '/other', 'n']
+    assert match_parameter_file_nodes(keys, '/ns/n') == ['/**', '/ns/n', 'ns/n', '/**/n', '/ns/*']
+    assert match_parameter_file_nodes(keys, '/n') == ['/**', '/*', '/**/n', 'n']
+    assert match_composable_parameter_keys(['/ns/n', '/**', '/*', 'ns/n'], 'n', '/ns') == ['/**', '/ns/n', 'ns/n']

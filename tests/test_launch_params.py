@@ -1,0 +1,54 @@
+"""Parameter values as launch types them and parameter files read with positions
+(nodl_schema.launch.params)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from nodl_schema.launch.errors import LaunchProblem
+from nodl_schema.launch.params import coerce_to_type, get_typed_value, load_parameter_file
+
+
+@pytest.mark.parametrize('text, data_type, value', [
+    ('true', None, True), ('1', None, 1), ('1.0', None, 1.0), ('[1, 2]', None, [1, 2]),
+    ("'1'", None, '1'), ('1e5', None, '1e5'), ('7', str, '7'), ('7', float, 7.0), ('1', bool, True),
+    ('[a, b]', ('list', str), ['a', 'b']),
+])
+def test_coerce_to_type(text: str, data_type: Any, value: Any) -> None:
+    got = coerce_to_type(text, data_type)
+    assert got == value and type(got) is type(value)
+
+
+@pytest.mark.parametrize('text, data_type', [('{a: 1}', None), ('[1, a]', None), ('x', int), ('2', bool)])
+def test_coerce_to_type_refuses(text: str, data_type: Any) -> None:
+    with pytest.raises(LaunchProblem) as caught:
+        coerce_to_type(text, data_type)
+    assert caught.value.code == 'NODL518'
+
+
+def test_value_sep_lists_are_uniform() -> None:
+    assert get_typed_value(['1', '2'], None) == [1, 2]
+    with pytest.raises(LaunchProblem):
+        get_typed_value(['1', 'true'], None, can_be_str=False)
+
+
+def test_parameter_files_keep_positions_and_both_typings(tmp_path: Path) -> None:
+    path = tmp_path / 'p.yaml'
+    path.write_text('/**:\n  ros__parameters:\n    a: y\n    b:\n      c: 1e5\nns:\n  n:\n    ros__parameters: {d: 1}\n')
+    loaded = load_parameter_file(path)
+    assert loaded.keys == ['/**', 'ns/n'] and not loaded.diagnostics
+    star, named = loaded.nodes
+    assert star.parameters == {'a': 'y', 'b.c': '1e5'}  # PyYAML, as launch_ros reads it
+    assert star.rcl_parameters == {'a': True, 'b.c': 100000.0}  # rcl, as a node reads it
+    assert star.positions == {'a': (3, 5), 'b.c': (5, 7)} and named.line == 8
+
+
+def test_a_bad_parameter_file_is_coded(tmp_path: Path) -> None:
+    path = tmp_path / 'bad.yaml'
+    path.write_text('/**:\n  x: 1\n')
+    (problem,) = load_parameter_file(path).diagnostics
+    assert (problem.code, problem.line) == ('NODL517', 2)
+    assert load_parameter_file(tmp_path / 'missing.yaml').diagnostics[0].code == 'NODL517'
