@@ -23,8 +23,12 @@ from nodl_schema.vocabulary import QOS_KEYS, TOPIC_SECTIONS
 __all__ = ['Description', 'deduce_base', 'deduce_client_library', 'describe_observed',
            'describe_node', 'render_description']
 
-_LIFECYCLE_SERVICES = ('change_state', 'get_state', 'get_available_states',
-                       'get_available_transitions', 'get_transition_graph')
+
+def _lifecycle_services() -> list[str]:
+    """The services only a lifecycle node serves (from the bases, not a second list)."""
+    plain = {s.name for s in base_layer('node').interface.endpoints('service_servers')}
+    return [s.name for s in base_layer('lifecycle_node').interface.endpoints('service_servers')
+            if s.name not in plain]
 
 
 class Description:
@@ -48,8 +52,7 @@ class Description:
 def deduce_base(observed: ObservedNode) -> str:
     """``lifecycle_node`` if the node serves the lifecycle services, else ``node``."""
     served = {e.name for e in observed.service_servers}
-    if all(expand('~/' + s, observed.name, observed.namespace) in served
-           for s in _LIFECYCLE_SERVICES):
+    if all(expand(s, observed.name, observed.namespace) in served for s in _lifecycle_services()):
         return 'lifecycle_node'
     return 'node'
 
