@@ -76,7 +76,12 @@ function(ament_nodl_generate_cpp target definition)
       continue()
     endif()
     find_package(${_dependency} REQUIRED)
-    if(DEFINED ${_dependency}_TARGETS)  # interface packages (rosidl) list their targets
+    # An interface package: its C++ headers and C++ type support (not its other languages').
+    set(_cpp "${_dependency}::${_dependency}__rosidl_generator_cpp")
+    set(_typesupport "${_dependency}::${_dependency}__rosidl_typesupport_cpp")
+    if(TARGET ${_cpp} AND TARGET ${_typesupport})
+      target_link_libraries(${target} PUBLIC ${_cpp} ${_typesupport})
+    elseif(DEFINED ${_dependency}_TARGETS)
       target_link_libraries(${target} PUBLIC ${${_dependency}_TARGETS})
     elseif(_dependency STREQUAL "rclcpp_components" AND TARGET rclcpp_components::component)
       target_link_libraries(${target} PUBLIC rclcpp_components::component)
