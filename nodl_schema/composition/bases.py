@@ -94,7 +94,9 @@ class _Assembled:
 
 
 @lru_cache(maxsize=None)
-def _assemble(base: Base, client_library: str) -> tuple[Interface, _Assembled]:
+def _assemble(base: Base, client_library: str) -> tuple[dict[str, Any], _Assembled]:
+    """The assembled base as the mapping a file holds (a fresh model is made from it per
+    layer: cheaper than a deep copy), and where each of its entities is written."""
     from nodl_schema.model import ENDPOINT_SECTIONS
 
     placer = _Assembled()
@@ -123,7 +125,7 @@ def _assemble(base: Base, client_library: str) -> tuple[Interface, _Assembled]:
                 placer.origins[(section, len(merged))] = (report, (section, index))
                 merged.append(entity)
     result.description = ' '.join(descriptions) or None
-    return result, placer
+    return result.to_dict(), placer
 
 
 def base_layer(base: Base | str, client_library: str = DEFAULT_CLIENT_LIBRARY) -> Layer:
@@ -132,9 +134,7 @@ def base_layer(base: Base | str, client_library: str = DEFAULT_CLIENT_LIBRARY) -
     Its label is ``base:<base>`` whatever the library; diagnostics about an
     entity of the base are placed in the part file that declares it.
     """
-    import copy
-
     name = Base(base)
-    interface, placer = _assemble(name, check_client_library(client_library))
-    # A copy: callers may stamp or edit what they get, the cache must stay as shipped.
-    return Layer(f'base:{name.value}', copy.deepcopy(interface), placer, role='base')
+    data, placer = _assemble(name, check_client_library(client_library))
+    # A fresh model each time: callers may stamp or edit what they get, the cache stays as shipped.
+    return Layer(f'base:{name.value}', Interface.from_dict(data), placer, role='base')
