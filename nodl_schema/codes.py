@@ -200,6 +200,8 @@ CODES: dict[str, tuple[str, str]] = {
                 'as a node definition (base + mixins + main); nodl convert rewrites it'),
     'NODL852': ('error', 'include dialect: an include entry is not a mapping with one ref'),
     'NODL853': ('error', "include dialect: both 'include' and 'includes' are given"),
+    'NODL854': ('warning', 'include dialect conversion: the converted file is written outside the source '
+                'package, so a local include cannot be reached from it'),
     'NODL861': ('error', 'a generate_parameter_library file, not a NoDL document (nodl convert --from genparamlib)'),
     'NODL862': ('warning', 'generate_parameter_library: parameters under __map_ segments have no NoDL form '
                 'and are not converted'),

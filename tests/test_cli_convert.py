@@ -201,3 +201,14 @@ def test_convert_refuses_a_v2_file_politely(tmp_path: Path) -> None:
     result = nodl('convert', 'examples/laser_driver.nodl.yaml', '-o', str(tmp_path))
     assert result.returncode == 1
     assert 'already a NoDL v2 node definition' in result.stdout
+
+
+def test_converting_an_include_document_out_of_its_package_warns_at_the_local_include(
+        tmp_path: Path) -> None:
+    source = DIALECTS / 'include' / 'arm_driver' / 'nodl' / 'arm_driver.nodl.yaml'
+    result = nodl('convert', str(source), '-o', str(tmp_path / 'elsewhere'))
+    assert result.returncode == 0, result.stdout + result.stderr  # written, with a warning
+    [warning] = [line for line in result.stdout.splitlines() if ': warning: ' in line]
+    # at the local:// include (line 8), not at nodl://arm_common/heartbeat
+    assert warning.startswith(f'{source}:8:') and warning.endswith('[NODL854]')
+    assert 'cannot use this local include' in warning

@@ -21,6 +21,9 @@ from nodl_schema.diagnostics import Diagnostic, Severity, has_errors
 from nodl_schema.dialects import GENPARAMLIB, INCLUDE, recognise
 from nodl_schema.legacy.convert import FileConversion
 
+#: A local include the converted file cannot reach from where it is written.
+_UNREACHABLE = 'NODL854'
+
 __all__ = ['DialectConversion', 'convert_dialect', 'convert_dialect_file', 'FileConversion']
 
 
@@ -57,6 +60,29 @@ def _rebase(reference: str, source_dir: str, out_dir: str) -> str:
         return reference
     target = os.path.normpath(os.path.join(source_dir, reference))
     return os.path.relpath(target, out_dir).replace(os.sep, '/')
+
+
+def _unreachable(mixins: list[Any], out_dir: str, original_path: Any) -> list[Diagnostic]:
+    """Warnings for local includes the converted file, written into ``out_dir``, cannot reach.
+
+    A relative mixin path may not leave the package of the node file (see the ``file``
+    resolver): written outside the source package, the rebased path would.
+    """
+    from nodl_schema.composition.resolvers import package_root, scheme_of
+
+    boundary = os.path.realpath(package_root(out_dir) or out_dir)
+    found: list[Diagnostic] = []
+    for index, mixin in enumerate(mixins):
+        if not isinstance(mixin, str) or scheme_of(mixin) != 'file' or os.path.isabs(mixin):
+            continue
+        target = os.path.realpath(os.path.join(out_dir, mixin))
+        if os.path.commonpath([boundary, target]) != boundary:
+            found.append(Diagnostic(
+                Severity.WARNING, f'the converted file, written into {out_dir}, cannot use this local '
+                f'include ({target}): a mixin path may not leave its package; write the output inside '
+                'the source package, or copy the file along and fix the path',
+                original_path(('mixins', index)), code=_UNREACHABLE))
+    return found
 
 
 def convert_dialect(path: str, dialect: str | None = None, out_dir: str | None = None
@@ -110,6 +136,7 @@ def convert_dialect(path: str, dialect: str | None = None, out_dir: str | None =
         if out_dir is not None and 'mixins' in data:
             data['mixins'] = [_rebase(m, source_dir, os.path.abspath(out_dir)) if isinstance(m, str)
                               else m for m in data['mixins']]
+            own += _unreachable(data['mixins'], os.path.abspath(out_dir), reading.original_path)
         file_name = os.path.basename(path)
         header = (f'Converted by nodl convert from {os.path.basename(path)} (the reference '
                   f"implementation's '{reading.key}' dialect).")
