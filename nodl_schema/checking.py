@@ -46,19 +46,24 @@ class _FilePath(os.PathLike):  # type: ignore[type-arg]
 
 
 def check_paths(paths: Iterable[str], kind: Kind | None = None,
-                resolve: bool = False) -> list[FileResult]:
+                resolve: bool = False, *, client_library: str | None = None) -> list[FileResult]:
     """Check every NoDL file named by ``paths`` (see :func:`find_nodl_files`).
 
-    With ``resolve``, node definitions are also composed: their mixin
-    references must resolve to valid interface definitions.  Notes (see
-    :func:`iter_check_paths`) are left out.
+    With ``resolve``, node definitions are also composed (on the base of
+    ``client_library``, rclpy by default; ValueError for an unknown one):
+    their mixin references must resolve to valid interface definitions and
+    the layers must agree.  Notes (see :func:`iter_check_paths`) are left out.
     """
-    return [r for r in iter_check_paths(paths, kind, resolve) if r.note is None]
+    return [r for r in iter_check_paths(paths, kind, resolve, client_library=client_library)
+            if r.note is None]
 
 
 def iter_check_paths(paths: Iterable[str], kind: Kind | None = None,
-                     resolve: bool = False) -> Iterator[FileResult]:
+                     resolve: bool = False, *, client_library: str | None = None
+                     ) -> Iterator[FileResult]:
     """Check the files named by ``paths`` one at a time, yielding each result as soon as it is known.
+
+    ``resolve`` and ``client_library`` as for :func:`check_paths`.
 
     Besides one result per file (a report, or the problem that kept it from
     being read), it yields notes (``result.note``): a file a directory scan
@@ -92,8 +97,9 @@ def iter_check_paths(paths: Iterable[str], kind: Kind | None = None,
         diagnostics = report.diagnostics
         if resolve and report.kind is Kind.NODE and not report.has_errors():
             from nodl_schema.composition import compose_report
+            from nodl_schema.composition.bases import DEFAULT_CLIENT_LIBRARY
 
-            diagnostics = compose_report(report)[1]
+            diagnostics = compose_report(report, client_library=client_library or DEFAULT_CLIENT_LIBRARY)[1]
         yield FileResult(report.file, report, diagnostics=diagnostics)
 
 

@@ -155,3 +155,19 @@ def test_resolve_strict_refuses_a_node_that_redefines_its_base() -> None:
                               'tests/fixtures/composition/overrides/base_refined.nodl.yaml'],
                              cwd=REPO, text=True, capture_output=True, timeout=60)
     assert refined.returncode == 0, refined.stdout + refined.stderr
+
+
+def test_resolve_composes_the_base_of_the_chosen_client_library() -> None:
+    # validate --resolve always composed the rclpy base; --client-library chooses (default rclpy)
+    fixture = 'tests/fixtures/composition/overrides/rclcpp_base_redefined.nodl.yaml'
+    default = nodl('validate', '--resolve', '--strict', fixture)
+    rclpy = nodl('validate', '--resolve', '--strict', '--client-library', 'rclpy', fixture)
+    rclcpp = nodl('validate', '--resolve', '--client-library', 'rclcpp', fixture)
+    assert (default.returncode, rclpy.returncode, rclcpp.returncode) == (0, 0, 1), rclcpp.stdout
+    errors = [line for line in rclcpp.stdout.splitlines() if ': error: ' in line]
+    assert [line.rsplit(' ', 1)[-1] for line in errors] == ['[NODL307]', '[NODL308]']
+    assert errors[0].startswith(f"{fixture}:8:7: error: subscription '/parameter_events' from main "
+                                'changes the type of the one from base:node '
+                                '(rcl_interfaces/msg/ParameterEvent -> std_msgs/msg/String)')
+    unknown = nodl('validate', '--resolve', '--client-library', 'rclcppp', fixture)
+    assert unknown.returncode == 2 and 'rclcppp' in unknown.stderr

@@ -32,6 +32,10 @@ class ValidateVerb(Verb):
                             help="also compose node definitions: every mixin reference must "
                                  "resolve (nodl:// through the ament index, paths relative to "
                                  "the file) to a valid interface definition")
+        from nodl_schema.cli.arguments import add_client_library_argument
+
+        add_client_library_argument(parser, 'rclpy; with --resolve, the base of this client '
+                                            'library is composed')
         parser.add_argument('-q', '--quiet', action='store_true',
                             help='print only diagnostics (no list of valid files, and no '
                                  'summary when every file is clean)')
@@ -69,7 +73,8 @@ class ValidateVerb(Verb):
                 stream.before_write = progress.clear
         if '-' in args.paths and sys.stdin.isatty():
             print('nodl validate: note: reading standard input (end it with Ctrl-D)', file=sys.stderr)
-        results = iter_check_paths(args.paths, Kind(args.kind) if args.kind else None, args.resolve)
+        results = iter_check_paths(args.paths, Kind(args.kind) if args.kind else None, args.resolve,
+                                   client_library=args.client_library)
         for result in results:
             if result.note is not None:
                 print(f'{result.path}: note: {result.note}', file=sys.stderr)
