@@ -259,10 +259,11 @@ class _Module:
         out = ('#: Built-in validators per parameter: (predicate over the value, requirement).\n'
                '_VALIDATORS: dict[str, tuple[tuple[Callable[[Any], bool], str], ...]] = {\n')
         for p in params:
-            checks = [f'(lambda v: {validator_expression(v.name, v.argument)}, {literal(v.requirement)})'
+            checks = [_wrap('        (', [f'lambda v: {validator_expression(v.name, v.argument)},',
+                                         f'{literal(v.requirement)},'], '),')
                       for v in p.builtin_validators]
             if checks:
-                out += f'    {literal(p.name)}: (\n' + ''.join(f'        {c},\n' for c in checks) + '    ),\n'
+                out += f'    {literal(p.name)}: (\n' + ''.join(f'{c}\n' for c in checks) + '    ),\n'
         out += '}\n\n#: Custom validators per parameter: (function name, arguments as written).\n'
         out += '_CUSTOM_VALIDATORS: dict[str, tuple[tuple[str, Any], ...]] = {\n'
         for p in params:

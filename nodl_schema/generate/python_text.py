@@ -79,7 +79,8 @@ VALIDATOR_EXPRESSIONS: dict[str, Callable[[Any], str]] = {
     'gt': lambda a: f'v > {literal(a)}',
     'lt_eq': lambda a: f'v <= {literal(a)}',
     'gt_eq': lambda a: f'v >= {literal(a)}',
-    'one_of': lambda a: f'v in {_choices(a)}',
+    # equal and both bools or both not (the table's rule: 1 is not True, 1 is 1.0)
+    'one_of': lambda a: f'any(v == x and isinstance(v, bool) is isinstance(x, bool) for x in {_choices(a)})',
     'not_empty': lambda a: 'len(v) > 0',
     'fixed_size': lambda a: f'len(v) == {literal(a)}',
     'size_gt': lambda a: f'len(v) > {literal(a)}',

@@ -1,0 +1,88 @@
+"""nodl params: defaults written as a parameter file, and parameter files checked without ROS."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import yaml
+
+from nodl_schema.generate.definition import resolve_target
+from nodl_schema.params import check_parameter_files, defaults_yaml
+
+FIXTURES = Path(__file__).parent / 'fixtures'
+EVERYTHING = str(FIXTURES / 'generate' / 'everything.nodl.yaml')
+REPO = Path(__file__).resolve().parent.parent
+
+
+def _node(path: str = EVERYTHING):  # type: ignore[no-untyped-def]
+    node, _, _ = resolve_target(path)
+    assert node is not None
+    return node
+
+
+def _codes(diagnostics):  # type: ignore[no-untyped-def]
+    return [(d.code, d.line, d.column) for d in diagnostics]
+
+
+def test_bad_file_every_problem_at_its_place() -> None:
+    bad = str(FIXTURES / 'params' / 'bad.params.yaml')
+    found = check_parameter_files([bad], _node(), '/everything')
+    by_line = {d.line: d for d in found if d.file == bad}
+    assert by_line[4].code == 'NODL701' and by_line[4].severity.value == 'warning'  # under /**
+    assert by_line[7].code == 'NODL703' and 'must be between 0 and 10' in by_line[7].message
+    assert by_line[8].code == 'NODL702' and 'expected double, got integer' in by_line[8].message
+    assert by_line[9].code == 'NODL703' and "must be one of 'fast' or 'slow'" in by_line[9].message
+    assert by_line[10].code == 'NODL701' and "did you mean 'count'?" in by_line[10].message
+    assert by_line[11].code == 'NODL703'
+    assert (by_line[13].code, by_line[13].column) == ('NODL702', 7)  # nested group.label
+    assert by_line[14].code == 'NODL702' and 'at most 3' in by_line[14].message
+    assert 18 not in by_line  # /other_node does not apply
+    required = [d for d in found if d.code == 'NODL704']
+    assert len(required) == 1 and required[0].file == EVERYTHING and 'required_scale' in required[0].message
+    assert all(d.related for d in found if d.code in ('NODL702', 'NODL703'))
+
+
+def test_wildcards_match_as_rcl_matches() -> None:
+    good = str(FIXTURES / 'params' / 'good.params.yaml')
+    assert check_parameter_files([good], _node(), '/ns/everything') == []
+    # /ns/* matches one token only: /ns/deeper/everything gets /** (required_scale) but not count
+    deeper = check_parameter_files([good], _node(), '/ns/deeper/everything')
+    assert deeper == []
+    nothing = check_parameter_files([good], _node(str(FIXTURES / 'generate' / 'talker.nodl.yaml')), '/x')
+    # /** applies; talker declares no required_scale: a warning only (the key serves other nodes too)
+    assert [(d.code, d.severity.value) for d in nothing] == [('NODL701', 'warning')]
+    unmatched = check_parameter_files([str(FIXTURES / 'params' / 'bad.params.yaml')],
+                                      _node(str(FIXTURES / 'generate' / 'talker.nodl.yaml')), '/talker')
+    assert 'NODL701' in [d.code for d in unmatched]
+
+
+def test_defaults_file_round_trips_through_the_check(tmp_path: Path) -> None:
+    text = defaults_yaml(_node(), '/ns/everything')
+    data = yaml.safe_load(text)
+    params = data['/ns/everything']['ros__parameters']
+    assert params['limit']['lt_eq'] == 1.0 and isinstance(params['limit']['lt_eq'], float)
+    assert params['group']['inner']['depth'] == 2
+    assert 'required_scale' not in params and '# required_scale: required (double)' in text
+    path = tmp_path / 'defaults.yaml'
+    path.write_text(text)
+    found = check_parameter_files([str(path)], _node(), '/ns/everything')
+    assert [d.code for d in found] == ['NODL704']  # only the required parameter is missing
+
+
+def test_cli(tmp_path: Path) -> None:
+    out = tmp_path / 'p.yaml'
+    run = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', EVERYTHING, '--name', '/a/b',
+                          '-o', str(out)], capture_output=True, text=True, timeout=60, cwd=REPO)
+    assert run.returncode == 0, run.stderr
+    assert '/a/b' in yaml.safe_load(out.read_text())
+    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check',
+                            str(FIXTURES / 'params' / 'bad.params.yaml'), '--definition', EVERYTHING],
+                           capture_output=True, text=True, timeout=60, cwd=REPO)
+    assert check.returncode == 1
+    assert f'{FIXTURES / "params" / "bad.params.yaml"}:8:5: error: ' in check.stdout
+    assert '[NODL702]' in check.stdout and 'Traceback' not in check.stderr
+    usage = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(out)],
+                           capture_output=True, text=True, timeout=60, cwd=REPO)
+    assert usage.returncode == 2 and 'exactly one of --definition and --launch' in usage.stderr
