@@ -52,7 +52,8 @@ def build(tmp_path_factory: pytest.TempPathFactory) -> Build:
     src.mkdir()
     for package in sorted((REPO / 'examples' / 'workspace' / 'src').iterdir()):
         shutil.copytree(package, src / package.name)
-    for fixture in ('broken_nodl', 'broken_config', 'relative_mixins', 'escaping_mixin'):
+    for fixture in ('broken_nodl', 'broken_config', 'relative_mixins', 'escaping_mixin',
+                    'bad_node_name'):
         shutil.copytree(FIXTURES / 'colcon' / fixture, src / fixture)
     result = subprocess.run([str(VENV / 'bin' / 'colcon'), 'build', '--continue-on-error'],
                             cwd=root, env=build_env(), text=True, capture_output=True,
@@ -76,6 +77,7 @@ def test_the_examples_build_and_the_broken_packages_fail(build: Build) -> None:
     assert 'Failed   <<< broken_nodl' in out, out
     assert 'Failed   <<< broken_config' in out, out
     assert 'Failed   <<< escaping_mixin' in out, out
+    assert 'Failed   <<< bad_node_name' in out, out
     assert '3 packages finished' in out, out
 
 
@@ -148,6 +150,14 @@ def test_a_registration_error_fails_at_configure_time(build: Build) -> None:
     assert 'does not exist' in out
     # it stopped before any build step
     assert not (build.root / 'build' / 'broken_config' / 'Makefile').exists()
+
+
+def test_a_namespaced_node_name_fails_at_configure_time(build: Build) -> None:
+    # PLUGIN and NODE_NAME themselves are built and read back in test_examples_system.py
+    out = ' '.join(build.output.split())  # CMake wraps its messages
+    assert ("ament_nodl_register_node(camera_driver): NODE_NAME 'front/camera' is not a valid "
+            'node name' in out), build.output
+    assert not (build.root / 'build' / 'bad_node_name' / 'Makefile').exists()
 
 
 def test_show_an_installed_node_with_its_layers(build: Build) -> None:
