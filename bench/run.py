@@ -13,9 +13,10 @@ sys.path.insert(0, str(Path(__file__).parent))
 import bench_analyse  # noqa: E402
 import bench_cli_start  # noqa: E402
 import bench_describe  # noqa: E402
+import bench_generate  # noqa: E402
 import bench_load  # noqa: E402
 
-BENCHMARKS = [bench_load, bench_cli_start, bench_describe, bench_analyse]
+BENCHMARKS = [bench_load, bench_cli_start, bench_describe, bench_analyse, bench_generate]
 
 
 def main() -> int:
