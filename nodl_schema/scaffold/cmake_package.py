@@ -1,0 +1,67 @@
+"""The files of an ament_cmake package: CMakeLists.txt and a C++ node per definition.
+
+The bases are generated at build time by ``ament_nodl_generate_cpp`` (so they
+are never stale and never committed); ``src/<exe>.cpp`` is the user's
+subclass, written once, with a placeholder for every callback and ``main``.
+"""
+
+from __future__ import annotations
+
+from nodl_schema.generate import GenerateOptions, default_class_name
+from nodl_schema.scaffold import NodeSource, PlannedFile
+from nodl_schema.scaffold.common import definition_path
+
+__all__ = ['cmake_files', 'cpp_options']
+
+
+def cpp_options(package: str, node: NodeSource) -> GenerateOptions:
+    """How a node's base is generated: class from the executable, the package as namespace."""
+    return GenerateOptions(default_class_name(node.executable), node.executable, namespace=package)
+
+
+def _cmake_string(text: str) -> str:
+    return '"' + text.replace('\\', '\\\\').replace('"', '\\"').replace('$', '\\$') + '"'
+
+
+def _cmakelists(package: str, nodes: list[NodeSource]) -> str:
+    lines = ['cmake_minimum_required(VERSION 3.8)', f'project({package})', '',
+             'if(CMAKE_COMPILER_IS_GNUCXX OR CMAKE_CXX_COMPILER_ID MATCHES "Clang")',
+             '  add_compile_options(-Wall -Wextra -Wpedantic)', 'endif()', '',
+             'find_package(ament_cmake REQUIRED)', 'find_package(ament_nodl REQUIRED)', '']
+    for node in nodes:
+        options = cpp_options(package, node)
+        exe, definition = node.executable, _cmake_string(definition_path(node))
+        lines += [f'# {exe}: the base generated from its definition, and your subclass',
+                  f'ament_nodl_generate_cpp({exe}_base {definition}',
+                  f'  CLASS_NAME {options.class_name} NODE_NAME {options.node_name} '
+                  f'NAMESPACE {options.namespace})',
+                  f'add_executable({exe} src/{exe}.cpp)',
+                  f'target_link_libraries({exe} {exe}_base)',
+                  f'ament_nodl_register_node({exe} FILE {definition})', '']
+    targets = ' '.join(n.executable for n in nodes)
+    lines += [f'install(TARGETS {targets} DESTINATION lib/${{PROJECT_NAME}})',
+              'install(DIRECTORY config launch DESTINATION share/${PROJECT_NAME})', '',
+              'if(BUILD_TESTING)',
+              '  find_package(ament_lint_auto REQUIRED)',
+              '  # Remove these two once the files carry a license and copyright notice',
+              '  set(ament_cmake_copyright_FOUND TRUE)',
+              '  set(ament_cmake_cpplint_FOUND TRUE)',
+              '  ament_lint_auto_find_test_dependencies()',
+              '  find_package(ament_cmake_pytest REQUIRED)',
+              '  ament_add_pytest_test(conformance test/test_conformance.py TIMEOUT 120)',
+              'endif()', '', 'ament_package()']
+    return '\n'.join(lines) + '\n'
+
+
+def cmake_files(package: str, nodes: list[NodeSource]) -> list[PlannedFile]:
+    """CMakeLists.txt and ``src/<exe>.cpp`` per node."""
+    from nodl_schema.generate.cpp import plan_cpp
+    from nodl_schema.generate.cpp.user import render_user_source
+
+    files = [PlannedFile('CMakeLists.txt', _cmakelists(package, nodes), False)]
+    for node in nodes:
+        options = cpp_options(package, node)
+        plan = plan_cpp(node.node, options)
+        files.append(PlannedFile(f'src/{node.executable}.cpp',
+                                 render_user_source(plan, options.class_name), False))
+    return files

@@ -1,0 +1,225 @@
+"""The files of an ament_python package: setup.py, setup.cfg, the module, the node stubs.
+
+The generated base (``<package>/<exe>_base.py``) is committed with the
+package, so that it can be read, reviewed and type-checked like the rest of
+the code; ``test/test_generated.py`` fails when it is stale (``nodl generate
+--check``).  The user's subclass (``<package>/<exe>.py``) is derived from the
+generated module itself: every abstract method is overridden with the same
+signature and a placeholder body, so the node runs right away.
+"""
+
+from __future__ import annotations
+
+import ast
+
+from nodl_schema.generate import GenerateOptions, default_class_name
+from nodl_schema.scaffold import NodeSource, PlannedFile, ScaffoldError
+from nodl_schema.scaffold.common import definition_path
+from nodl_schema.scaffold.text import python_string
+
+__all__ = ['python_files', 'user_module', 'generate_base']
+
+
+def generate_base(package: str, node: NodeSource) -> tuple[str, str]:
+    """``(file name, text)`` of the node's generated rclpy base."""
+    from nodl_schema.generate.python import generate_python
+
+    options = GenerateOptions(default_class_name(node.executable), node.executable)
+    files = generate_python(node.node, options)
+    if len(files) != 1:
+        raise ScaffoldError(f'the Python generator wrote {len(files)} files for {node.executable}')
+    return files[0].path, files[0].text
+
+
+def _placeholder(method: ast.FunctionDef, returns: str) -> list[str]:
+    names = [a.arg for a in method.args.args[1:]]
+    if returns == 'None':
+        return ['pass  # TODO: handle ' + (names[0] if names else 'the call')]
+    if returns == 'GoalResponse':
+        return ['return GoalResponse.ACCEPT']
+    if returns == 'CancelResponse':
+        return ['return CancelResponse.ACCEPT']
+    if returns.endswith('.Response') and 'response' in names:
+        return ['return response  # TODO: fill the response']
+    if returns.endswith('.Result'):
+        return ['# TODO: execute the goal, publishing feedback through goal_handle',
+                'goal_handle.succeed()', f'return {returns}()']
+    raise ScaffoldError(f'no placeholder for a callback returning {returns}')
+
+
+def user_module(package: str, node: NodeSource, base_module: str, base_text: str) -> str:
+    """The user's subclass of the generated base, with ``main``."""
+    tree = ast.parse(base_text)
+    lines = base_text.splitlines()
+    class_name = default_class_name(node.executable)
+    base_class = class_name + 'Base'
+    cls = next((n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == base_class), None)
+    if cls is None:
+        raise ScaffoldError(f'the generated module has no class {base_class}')
+    methods: list[str] = []
+    custom = '_CUSTOM_VALIDATORS' in base_text and not _empty_custom(tree)
+    for item in cls.body:
+        if not isinstance(item, ast.FunctionDef):
+            continue
+        if not any(ast.unparse(d) in ('abc.abstractmethod', 'abstractmethod')
+                   for d in item.decorator_list):
+            continue
+        header = lines[item.lineno - 1:item.body[0].lineno - 1]
+        returns = ast.unparse(item.returns) if item.returns is not None else 'None'
+        methods += [''] + header + ['        ' + line for line in _placeholder(item, returns)]
+    if custom:
+        methods += ['', '    def on_custom_validator(self, function: str, name: str, value: Any,',
+                    '                            arguments: Any) -> str | None:',
+                    '        return None  # TODO: check value with function; return why it fails']
+    text = '\n'.join(methods)
+    imports = _imports(tree, text)
+    doc = f'The implementation of the {node.executable} node (written once by nodl new: yours).'
+    out = [f'"""{doc}"""', '', 'from __future__ import annotations', '']
+    out += imports
+    out += ['', 'import rclpy', 'from rclpy.executors import ExternalShutdownException', '',
+            f'from {package}.{base_module} import {base_class}', '', '',
+            f'class {class_name}({base_class}):',
+            f'    """The {node.executable} node: implement its callbacks here."""']
+    out += methods if methods else ['']
+    out += ['', '', 'def main(args: list[str] | None = None) -> None:',
+            f'    """Run the {node.executable} node until it is shut down."""',
+            '    rclpy.init(args=args)',
+            f'    node = {class_name}()',
+            '    try:',
+            '        rclpy.spin(node)',
+            '    except (KeyboardInterrupt, ExternalShutdownException):',
+            '        pass',
+            '    finally:',
+            '        node.destroy_node()',
+            '        rclpy.try_shutdown()', '', '',
+            "if __name__ == '__main__':", '    main()']
+    return '\n'.join(out) + '\n'
+
+
+def _empty_custom(tree: ast.Module) -> bool:
+    for item in tree.body:
+        if isinstance(item, ast.AnnAssign) and ast.unparse(item.target) == '_CUSTOM_VALIDATORS':
+            return isinstance(item.value, ast.Dict) and not item.value.keys
+    return True
+
+
+def _imports(tree: ast.Module, text: str) -> list[str]:
+    """The generated module's imports that ``text`` uses (names, or dotted modules)."""
+    import re
+
+    used = set(re.findall(r'[A-Za-z_][A-Za-z0-9_.]*', text))
+    roots = {u.split('.')[0] for u in used}
+    out: list[str] = []
+    for item in tree.body:
+        if isinstance(item, ast.Import):
+            names = [a for a in item.names if (a.asname or a.name).split('.')[0] in roots]
+            out += [f'import {a.name}' + (f' as {a.asname}' if a.asname else '') for a in names]
+        elif isinstance(item, ast.ImportFrom) and item.module and item.module != '__future__':
+            names = [a for a in item.names if (a.asname or a.name) in roots]
+            if names:
+                out.append(f'from {item.module} import ' + ', '.join(
+                    a.name + (f' as {a.asname}' if a.asname else '') for a in names))
+    return out
+
+
+def _setup_py(package: str, nodes: list[NodeSource]) -> str:
+    registered = ',\n'.join(f'                         {python_string(n.executable)}: '
+                            f'{python_string(definition_path(n))}' for n in nodes)
+    scripts = ',\n'.join(f'            {python_string(f"{n.executable} = {package}.{n.executable}:main")}'
+                         for n in nodes)
+    return f'''"""Build and install {package}: its module, its node definitions and their registration."""
+
+from glob import glob
+
+from nodl_schema.packaging import nodl_data_files
+from setuptools import find_packages, setup
+
+package_name = {python_string(package)}
+
+setup(
+    name=package_name,
+    version='0.0.0',
+    packages=find_packages(exclude=['test']),
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+        ('share/' + package_name + '/config', glob('config/*.yaml')),
+        ('share/' + package_name + '/launch', glob('launch/*.launch.xml')),
+        # The definitions: validated now, installed to share/{package}/nodl, registered in
+        # the ament index (nodl show / nodl check {package} EXECUTABLE find them).
+        *nodl_data_files(package_name,
+                         nodes={{
+{registered},
+                         }}),
+    ],
+    install_requires=['setuptools'],
+    zip_safe=True,
+    maintainer='TODO',
+    maintainer_email='todo@todo.todo',
+    description='TODO: Package description',
+    license='TODO: License declaration',
+    tests_require=['pytest'],
+    entry_points={{
+        'console_scripts': [
+{scripts},
+        ],
+    }},
+)
+'''
+
+
+def _setup_cfg(package: str) -> str:
+    return (f'[develop]\nscript_dir=$base/lib/{package}\n'
+            f'[install]\ninstall_scripts=$base/lib/{package}\n')
+
+
+def _staleness_test(package: str, nodes: list[NodeSource]) -> str:
+    entries = '\n'.join(f'    ({python_string(n.executable)}, '
+                        f'{python_string(default_class_name(n.executable))}, '
+                        f'{python_string(definition_path(n))}),' for n in nodes)
+    return f'''"""The generated bases of {package} are up to date with the definitions under nodl/.
+
+They are committed with the package; after changing a definition, regenerate
+them with `nodl new {package} --from ... --build-type ament_python --update` or
+`nodl generate nodl/FILE --language python -o {package}`.
+"""
+
+import os
+import shutil
+import subprocess
+
+import pytest
+
+HERE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+#: (executable, class name, definition)
+NODES = [
+{entries}
+]
+
+
+@pytest.mark.parametrize('executable, class_name, definition', NODES)
+def test_generated_base_is_up_to_date(executable, class_name, definition):
+    nodl = shutil.which('nodl')
+    assert nodl, 'the nodl command (NoDL toolkit) is not on PATH'
+    result = subprocess.run(
+        [nodl, 'generate', os.path.join(HERE, definition), '--language', 'python',
+         '--node-name', executable, '--class-name', class_name, '-o', os.path.join(HERE, {python_string(package)}), '--check'],
+        capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+'''
+
+
+def python_files(package: str, nodes: list[NodeSource]) -> list[PlannedFile]:
+    """setup.py, setup.cfg, the index marker, the module: generated bases and user stubs."""
+    files = [PlannedFile('setup.py', _setup_py(package, nodes), False),
+             PlannedFile('setup.cfg', _setup_cfg(package), False),
+             PlannedFile(f'resource/{package}', '', False),
+             PlannedFile(f'{package}/__init__.py', '', False),
+             PlannedFile('test/test_generated.py', _staleness_test(package, nodes), False)]
+    for node in nodes:
+        name, text = generate_base(package, node)
+        files.append(PlannedFile(f'{package}/{name}', text, True))
+        module = name[:-len('.py')] if name.endswith('.py') else name
+        files.append(PlannedFile(f'{package}/{node.executable}.py',
+                                 user_module(package, node, module, text), False))
+    return files
