@@ -86,3 +86,21 @@ def test_cli(tmp_path: Path) -> None:
     usage = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(out)],
                            capture_output=True, text=True, timeout=60, cwd=REPO)
     assert usage.returncode == 2 and 'exactly one of --definition and --launch' in usage.stderr
+
+
+def test_launch_nodes_get_the_files_under_their_final_names(tmp_path: Path) -> None:
+    from nodl_schema.params import check_launch_parameters
+
+    launch = FIXTURES / 'analysis' / 'launch' / 'system.launch.xml'
+    prefixes = [str(FIXTURES / 'analysis' / 'prefix')]
+    params = tmp_path / 'robot.yaml'
+    params.write_text('/rover/imu:\n  ros__parameters:\n    gain: 1\n    gian: 0.5\n'
+                      '/rover/planner:\n  ros__parameters:\n    speed: 1.0\n')
+    found = check_launch_parameters(str(launch), [str(params)], prefixes=prefixes)
+    codes = sorted((d.code, d.line) for d in found if d.file == str(params))
+    assert ('NODL702', 3) in codes  # an integer for the double gain of /rover/imu
+    assert ('NODL701', 4) in codes  # gian: did you mean gain
+    assert all(d.code != 'NODL705' for d in found)
+    empty = tmp_path / 'empty.launch.xml'
+    empty.write_text('<launch/>\n')
+    assert [d.code for d in check_launch_parameters(str(empty), [str(params)], prefixes=prefixes)] == ['NODL706']

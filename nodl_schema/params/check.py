@@ -93,16 +93,18 @@ def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) ->
 
 
 def check_launch_parameters(launch_file: str, files: Sequence[str] = (),
-                            arguments: dict[str, str] | None = None) -> list[Diagnostic]:
+                            arguments: dict[str, str] | None = None,
+                            prefixes: list[str] | None = None) -> list[Diagnostic]:
     """The parameters a launch file gives its nodes, and ``files``, checked against the nodes' definitions.
 
     The launch file's own parameter files and values are checked by the launch
     analysis (NODL560-563); ``files`` are checked for every launched node that
-    has a definition, under its final name.
+    has a definition, under its final name.  ``prefixes``: the install prefixes
+    definitions are looked up in (default: ``AMENT_PREFIX_PATH``).
     """
     from nodl_schema.analysis.system import LAUNCH_KIND, analyse_launch
 
-    analysis = analyse_launch(launch_file, arguments or {})
+    analysis = analyse_launch(launch_file, arguments or {}, prefixes=prefixes)
     out = [f.diagnostic for f in analysis.findings
            if (f.kind == LAUNCH_KIND and f.severity is Severity.ERROR)
            or f.code in ('NODL560', 'NODL561', 'NODL562', 'NODL563')]
@@ -114,9 +116,15 @@ def check_launch_parameters(launch_file: str, files: Sequence[str] = (),
                               'definition: there is nothing to check the parameters against',
                               (), launch_file, code='NODL706'))
         return out
+    unmatched: list[Diagnostic] = []
     for node in defined:
         resolved = node.match.resolved
         assert resolved is not None
-        out.extend(d for d in check_parameter_files(files, resolved, node.fqn)
-                   if files or d.code != 'NODL705')
+        found = check_parameter_files(files, resolved, node.fqn)
+        unmatched += [d for d in found if d.code == 'NODL705']
+        out.extend(d for d in found if d.code != 'NODL705')
+    if files and len(unmatched) == len(defined):  # no key of the files applies to any node
+        out.append(Diagnostic(Severity.WARNING, 'no node key of the parameter file(s) applies to a node '
+                              'the launch file starts (' + ', '.join(n.fqn for n in defined) + ')',
+                              (), files[0], 1, 1, code='NODL705'))
     return out
