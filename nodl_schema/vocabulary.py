@@ -42,6 +42,8 @@ __all__ = [
     'QOS_KEYS', 'QOS_REQUIRED', 'QOS_ENUMS', 'QOS_DURATIONS', 'QOS_DEFAULT_VALUE',
     # client libraries
     'CLIENT_LIBRARIES', 'BUILD_TYPE_LIBRARIES',
+    # ROS names
+    'NAME_SUBSTITUTIONS',
 ]
 
 
@@ -214,3 +216,11 @@ QOS_DEFAULT_VALUE = 'SYSTEM_DEFAULT'
 CLIENT_LIBRARIES: tuple[str, ...] = ('rclpy', 'rclcpp')
 #: Package build type (``<export><build_type>``) -> the client library its nodes use.
 BUILD_TYPE_LIBRARIES: dict[str, str] = {'ament_python': 'rclpy', 'ament_cmake': 'rclcpp'}
+
+
+# --------------------------------------------------------------------------
+# ROS names
+
+#: The substitutions rcl expands in a topic or service name (``{node}``, ``{ns}``,
+#: ``{namespace}``), without their braces; :mod:`nodl_schema.naming` expands them.
+NAME_SUBSTITUTIONS: tuple[str, ...] = ('node', 'ns', 'namespace')

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from nodl_schema.naming.remap_rules import RemapArgs, RemapRule, parse_remap_rules
 from nodl_schema.naming.validation import (InvalidNameError, checked_namespace, full_name_error,
                                            namespace_error, normalize_namespace, topic_name_error)
+from nodl_schema.vocabulary import NAME_SUBSTITUTIONS
 
 __all__ = ['expand_name', 'node_name_after_remaps', 'node_namespace_after_remaps', 'NodeNames',
            'node_fqn', 'resolve_name', 'join_name', 'split_name', 'expand', 'relativize',
@@ -16,7 +17,7 @@ __all__ = ['expand_name', 'node_name_after_remaps', 'node_namespace_after_remaps
 
 # -- expansion (rcl_expand_topic_name) ---------------------------------------------------------
 
-_SUBSTITUTIONS = ('{node}', '{ns}', '{namespace}')
+_SUBSTITUTIONS = tuple('{' + word + '}' for word in NAME_SUBSTITUTIONS)
 
 
 def _expand(name: str, node_name: str, namespace: str) -> str:

@@ -22,12 +22,13 @@ if TYPE_CHECKING:
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.validation.messages import described, show, subject
+from nodl_schema.vocabulary import NAME_SUBSTITUTIONS
 
 __all__ = ['SUBSTITUTIONS', 'ros_name_problem', 'parameter_name_problem',
            'check_ros_name', 'check_parameter_name']
 
-#: Substitutions rcl expands in names.
-SUBSTITUTIONS = ('node', 'ns', 'namespace')
+#: Substitutions rcl expands in names (the vocabulary's table).
+SUBSTITUTIONS = NAME_SUBSTITUTIONS
 
 _ALLOWED = re.compile(r'[A-Za-z0-9_/~{}]*')
 _SUBSTITUTION = re.compile(r'\{([^{}]*)\}')
