@@ -9,7 +9,7 @@ from typing import Any
 import pytest
 
 from nodl_schema.launch.errors import LaunchProblem
-from nodl_schema.launch.params import coerce_to_type, get_typed_value, load_parameter_file
+from nodl_schema.launch.params import coerce_to_type, get_typed_value, load_parameter_file, yaml_value
 
 
 @pytest.mark.parametrize('text, data_type, value', [
@@ -27,6 +27,36 @@ def test_coerce_to_type_refuses(text: str, data_type: Any) -> None:
     with pytest.raises(LaunchProblem) as caught:
         coerce_to_type(text, data_type)
     assert caught.value.code == 'NODL518'
+
+
+_WORDS = ['5.0', '1', '-1', '+1', '0x1F', '0o17', '017', '0b101', '1_000', '1e5', '1.0e+5', '.inf',
+          '.NaN', 'true', 'True', 'yes', 'No', 'on', 'OFF', 'y', 'n', 'null', 'Null', '~', '2001-12-14',
+          '1:20', '+.5', '.5', '5.', '_', 'a/b', '/x', '-', '--', '---', '...', 'a-b', '0.1.2', '09',
+          'a b', '[1]', "'1'", '# c', 'a: 1', '1 # c', '!!str 1', '&a 1', '*a', '', ' 1', '1\n']
+
+
+def test_yaml_value_types_as_safe_load() -> None:
+    # yaml_value skips PyYAML's scanner for one plain word; it must type every text as
+    # safe_load does (the value, its type and whether it raises), plain words or not.
+    import random
+
+    import yaml
+
+    rng = random.Random(9)
+    texts = _WORDS + [''.join(rng.choice('aeynoTFx019_.+-/:e ') for _ in range(rng.randint(1, 6)))
+                      for _ in range(20000)]
+    for text in texts:
+        try:
+            expected: Any = yaml.safe_load(text)
+        except yaml.YAMLError as exc:
+            expected = type(exc)
+        try:
+            got: Any = yaml_value(text)
+        except yaml.YAMLError as exc:
+            got = type(exc)
+        if expected != expected and got != got:  # .nan
+            continue
+        assert (got, type(got)) == (expected, type(expected)), text
 
 
 def test_value_sep_lists_are_uniform() -> None:

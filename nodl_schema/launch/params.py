@@ -12,6 +12,7 @@
 from __future__ import annotations
 
 import os
+import re
 from typing import Any, NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
@@ -40,13 +41,34 @@ def _uniform(values: list[Any], can_be_str: bool = False) -> bool:
                for x in values)
 
 
+#: Text that YAML reads as one plain scalar (no indicator, space, quote, colon or comment):
+#: typed by PyYAML's resolver and constructor alone, exactly as ``yaml.safe_load`` types it,
+#: without its (pure Python) scanner and parser, which cost a launch file of thousands of
+#: parameters seconds.
+_PLAIN_WORD = re.compile(r'[-+.]?[A-Za-z0-9_][A-Za-z0-9_.+\-/]*')
+
+
+def yaml_value(text: str) -> Any:
+    """``yaml.safe_load(text)`` (yaml.YAMLError as it raises), quick for one plain word."""
+    import yaml
+
+    if _PLAIN_WORD.fullmatch(text):
+        from yaml.constructor import SafeConstructor
+        from yaml.nodes import ScalarNode
+        from yaml.resolver import Resolver
+
+        tag = Resolver().resolve(ScalarNode, text, (True, False))
+        return SafeConstructor().construct_document(ScalarNode(tag, text))
+    return yaml.safe_load(text)
+
+
 def _yaml(text: str, can_be_str: bool) -> Any:
     import yaml
 
     if not text:
         return text
     try:
-        out = yaml.safe_load(text)
+        out = yaml_value(text)
     except yaml.YAMLError as exc:
         if can_be_str:
             return text
@@ -169,7 +191,7 @@ def _dict_yaml(text: str, name: str) -> Any:
     import yaml
 
     try:
-        out = yaml.safe_load(text)
+        out = yaml_value(text)
     except yaml.YAMLError:
         raise LaunchProblem('NODL518', f"parameter '{name}': the value {text!r} is not valid YAML; "
                                        'for a string, wrap it in ParameterValue(value, value_type=str)')

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass
-from typing import Any, NamedTuple, Union
+from typing import Any, Callable, NamedTuple, Union
 
 from nodl_schema.model import QoSProfile
 from nodl_schema.model.parameter_types import TypeSpec, parse_type
@@ -149,12 +149,24 @@ class Entity:
     role: str
     #: Who provides the entity, from the layer that declared it first.
     provider: Provider
-    #: Where the winning declaration is written.
-    location: Location
+    #: Where the winning declaration is written: a :class:`Location`, or a function that
+    #: computes it on first use (placing a declaration in its source is not free, and most
+    #: consumers never print most locations); read it as :attr:`location`.
+    _where: Location | Callable[[], Location]
     #: The labels of every layer that declares the entity, first first.
     declared_in: tuple[str, ...]
     #: The model object of the winning declaration (ParameterDefinition, TopicEndpoint, ...).
     definition: Any
+
+    @property
+    def location(self) -> Location:
+        """Where the winning declaration is written (computed once, on first use)."""
+        where = self._where
+        if isinstance(where, Location):
+            return where
+        found = where()
+        object.__setattr__(self, '_where', found)
+        return found
 
     @property
     def key(self) -> tuple[EntityKind, str]:

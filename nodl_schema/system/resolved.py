@@ -12,7 +12,8 @@ of walking documents.
 from __future__ import annotations
 
 import os
-from typing import Iterator, Sequence
+from functools import partial
+from typing import Callable, Iterator, Sequence
 
 from nodl_schema.composition.client_library import ClientLibraryChoice, choose_client_library
 from nodl_schema.composition.compose import ComposedNode, compose_report
@@ -38,9 +39,10 @@ def _location(declaration: Declaration, parameter: bool) -> Location:
 def _entity(kind: EntityKind, name: str, merged: object,
             trace: Sequence[Declaration], layers: Sequence[Layer]) -> Entity:
     parameter = kind is EntityKind.PARAMETER
+    location: Location | Callable[[], Location]
     if trace:
         first, last = trace[0].layer, trace[-1]
-        location = _location(last, parameter)
+        location = partial(_location, last, parameter)  # placed on first use (see Entity.location)
         labels = tuple(d.layer.label for d in trace)
         layer = last.layer
     else:  # a ComposedNode built by hand, without traced declarations

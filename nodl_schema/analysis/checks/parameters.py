@@ -77,6 +77,14 @@ def _show(value: Any) -> str:
     return text if len(text) <= 60 else text[:57] + '...'
 
 
+def _declared_here(entity: Any) -> list[tuple[str, int, int, str]]:
+    """The related location of a finding about a declared parameter (placed only when a
+    finding needs it: placing is the costly part of an entity)."""
+    where = entity.location
+    return [(where.file, where.line, where.column,
+             f"'{entity.name}' is declared here as {entity.type_name}")]
+
+
 class ParameterCheck(CheckExtension):
     """Parameters set for a node against the parameters its definition declares."""
 
@@ -105,20 +113,19 @@ class ParameterCheck(CheckExtension):
                 spec = entity.type
                 if not isinstance(spec, TypeSpec):
                     continue
-                related = [(entity.location.file, entity.location.line, entity.location.column,
-                            f"'{name}' is declared here as {entity.type_name}")]
                 if not launch_value_fits(setting.value, spec):
                     yield make_finding(
                         'parameter-type', f"{fqn}: parameter '{name}' is declared "
                         f'{spec.category} but is set to {_show(setting.value)} '
                         f'({value_type_words(setting.value)}); the node would refuse it',
-                        where, [fqn], parameter=name, related=related)
+                        where, [fqn], parameter=name, related=_declared_here(entity))
                     continue
                 validation = getattr(entity.definition, 'validation', None)
                 for key, why in value_problems(setting.value, entity.type_name, validation):
                     yield make_finding(
                         'parameter-invalid', f"{fqn}: parameter '{name}' = {_show(setting.value)} "
-                        f'breaks {key}: {why}', where, [fqn], parameter=name, related=related)
+                        f'breaks {key}: {why}', where, [fqn], parameter=name,
+                        related=_declared_here(entity))
             for name, entity in declared.items():
                 if name in given or entity.default_value is not None:
                     continue
