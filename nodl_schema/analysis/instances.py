@@ -16,7 +16,7 @@ from typing import Any
 from nodl_schema.analysis.entries import LaunchEntry, ParameterFile, ParameterSetting
 from nodl_schema.analysis.findings import Finding, make_finding
 from nodl_schema.analysis.matching import Match
-from nodl_schema.naming import InvalidNameError, NodeNames, RemapRule, parse_remap_rule
+from nodl_schema.naming import InvalidNameError, NodeNames, RemapRule, join_name, parse_remap_rule
 from nodl_schema.system.entities import Location
 from nodl_schema.system.instance import NodeInstance
 
@@ -49,8 +49,7 @@ class AnalysedNode:
         """The final fully qualified name (as created, if the name is invalid)."""
         if self.names is not None:
             return self.names.fqn
-        namespace = self.entry.namespace.rstrip('/')
-        return f'{namespace}/{self.created_name}'
+        return join_name(self.entry.namespace, self.created_name)
 
     @property
     def location(self) -> Location:
@@ -104,7 +103,7 @@ def build_node(entry: LaunchEntry, match: Match, findings: list[Finding]) -> Ana
     except InvalidNameError as exc:
         names = None
         findings.append(make_finding('not-analysable', f'{label}: {exc}', where, ()))
-    fqn = names.fqn if names is not None else f'{entry.namespace.rstrip("/")}/{name}'
+    fqn = names.fqn if names is not None else join_name(entry.namespace, name)
     settings: list[ParameterSetting] = []
     for item in entry.parameters:
         if isinstance(item, ParameterFile):

@@ -122,7 +122,9 @@ class LaunchedNode:
         """``namespace/name`` when the name is known, else None."""
         if self.name is None:
             return None
-        return ('' if self.namespace == '/' else self.namespace) + '/' + self.name
+        from nodl_schema.naming import join_name
+
+        return join_name(self.namespace, self.name)
 
     @property
     def remap_rules(self) -> list[str]:

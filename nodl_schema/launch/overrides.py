@@ -107,9 +107,10 @@ def match_composable_parameter_keys(keys: Iterable[str], node_name: str | None,
     normalized = {k: _composable_key(k) for k in keys}
     out = [k for k in keys if normalized[k] == '**']
     if node_name:
-        wanted = node_name.lstrip('/')
-        if namespace and namespace != '/':
-            wanted = f"{namespace.strip('/')}/{wanted}"
+        from nodl_schema.naming import join_name
+
+        # launch_ros's keys have no leading '/'
+        wanted = join_name(namespace or '/', node_name.lstrip('/')).lstrip('/')
         out += [k for k in keys if normalized[k] == wanted and wanted != '**']
     return out
 

@@ -110,10 +110,12 @@ def prefix_namespace(base: str | None, namespace: str | None) -> str | None:
 
 
 def make_namespace_absolute(namespace: str | None) -> str | None:
-    """A leading ``/`` for a relative namespace."""
+    """A leading ``/`` for a relative namespace (as ``rcl_node_init`` takes it)."""
     if namespace is None:
         return None
-    return namespace if namespace.startswith('/') else '/' + namespace
+    from nodl_schema.naming import normalize_namespace
+
+    return normalize_namespace(namespace)
 
 
 class ParameterFileEntry:
@@ -237,7 +239,7 @@ class Node(Action):
         self.node_name: str | None = None
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        from nodl_schema.naming import namespace_error, node_name_error
+        from nodl_schema.naming import join_name, namespace_error, node_name_error
 
         name = None
         if self.name is not None:
@@ -257,7 +259,7 @@ class Node(Action):
                               include_chain=context.include_chain, namespace_given=namespace is not None)
         _ros_arguments(context, self, self.location, record)
         fully = name is not None and namespace is not None
-        fqn = ('' if namespace == '/' else (namespace or '')) + '/' + (name or '')
+        fqn = join_name(namespace or '/', name or '')
         self.node_name = fqn if name is not None else None
         record.parameters += _global_parameters(context, self.location)
         record.parameters += _own_parameters(context, self.parameters, self.location,

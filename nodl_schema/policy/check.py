@@ -48,7 +48,9 @@ class GrantedName(NamedTuple):
 
 
 def _fqn(namespace: str, node: str) -> str:
-    return (namespace if namespace.endswith('/') else namespace + '/') + node
+    from nodl_schema.naming import join_name
+
+    return join_name(namespace, node)
 
 
 def granted_names(parsed: ParsedPolicy) -> tuple[list[GrantedName], dict[str, XmlElement]]:

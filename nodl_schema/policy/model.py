@@ -151,7 +151,9 @@ class Profile:
     @property
     def fqn(self) -> str:
         """``/namespace/node``."""
-        return (self.namespace.rstrip('/') + '/' + self.node)
+        from nodl_schema.naming import join_name
+
+        return join_name(self.namespace, self.node)
 
     def grant(self, communication: str, access: str, name: str, source: Source | None = None) -> Grant:
         """Add (or extend) the grant of ``access`` on ``name``; returns it."""

@@ -64,7 +64,9 @@ class ParamsVerb(Verb):
         from nodl_schema.generate.definition import target_name
 
         if args.name is None:
-            return '/' + default_node_name(target_name(target))
+            from nodl_schema.naming import join_name
+
+            return join_name('/', default_node_name(target_name(target)))
         name: str = args.name
         from nodl_schema.naming.validation import full_name_error
 
