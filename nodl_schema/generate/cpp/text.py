@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 import re
+from functools import lru_cache
 from typing import Any, Iterable
 
 __all__ = ['string_literal', 'comment_lines', 'comment_text', 'cpp_value', 'CPP_TYPES',
@@ -29,8 +30,11 @@ _PLAIN = frozenset(range(0x20, 0x7f)) - {ord('"'), ord('\\'), ord('?')}
 _QUOTED = {ord('"'): '\\"', ord('\\'): '\\\\', ord('?'): '\\?', ord('\n'): '\\n', ord('\t'): '\\t'}
 
 
+@lru_cache(maxsize=4096)
 def string_literal(text: str) -> str:
     """A C++ narrow string literal holding ``text`` encoded as UTF-8."""
+    if text.isascii() and text.isprintable() and not any(c in text for c in '"\\?'):
+        return '"' + text + '"'
     out = []
     for byte in text.encode('utf-8', 'surrogatepass'):
         if byte in _PLAIN:
