@@ -164,9 +164,10 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL606': ('error', 'policy: the document breaks the structure SROS 2 requires (policy.xsd, version 0.2.0)'),
     'NODL607': ('error', 'policy check: the policy has no profile for a node of the system'),
     'NODL608': ('error', 'policy check: the policy has a profile for a node the system does not have'),
-    'NODL610': ('error', 'policy: enclave mapping problem (an invalid enclave path, a node no entry matches)'),
+    'NODL610': ('error', 'policy: enclave mapping problem (an invalid enclave path or entry, a node no entry or two enclaves match)'),
     'NODL611': ('error', 'policy: two nodes share one fully qualified name (DDS security cannot tell them apart)'),
     'NODL612': ('error', 'policy: the system has no nodes to write a policy for'),
+    'NODL613': ('warning', 'policy: a node name in the enclave mapping is no node of the system (a misspelt name?)'),
     # -- NODL8xx: dialects and conversion ----------------------------------
     'NODL801': ('error', 'legacy XML: an element, attribute or text the legacy format does not have'),
     # -- NODL70x: parameter files checked against definitions (nodl params check) --

@@ -14,13 +14,40 @@ def test_per_node_and_per_namespace():
         '/robot/camera': '/robot', '/robot/talker': '/robot', '/robot/listener': '/robot', '/lidar': '/'}
 
 
-def test_mapping_file_first_match_wins_and_unmatched_is_an_error():
+def test_mapping_file_places_nodes_and_unmatched_is_an_error():
     mapping, problems = load_enclave_mapping(str(POLICY / 'enclaves.yaml'))
     assert problems == [] and mapping is not None
     assigned, problems = assign_enclaves(NODES, mapping)
     assert assigned == {'/robot/camera': '/robot/sensing', '/robot/talker': '/robot/talking',
                         '/robot/listener': '/robot/talking'}
-    assert [d.code for d in problems] == ['NODL610'] and '/lidar' in problems[0].message
+    # /lidar is in no enclave; /robot/lidar (a name of the mapping) is no node of this system
+    assert [(d.code, d.severity.value, d.line) for d in problems] == [
+        ('NODL610', 'error', 2), ('NODL613', 'warning', 2)]
+    assert '/lidar' in problems[0].message and '/robot/lidar' in problems[1].message
+
+
+def _mapping(tmp_path, text):
+    file = tmp_path / 'enclaves.yaml'
+    file.write_text(text)
+    mapping, problems = load_enclave_mapping(str(file))
+    assert problems == [], problems
+    return mapping
+
+
+def test_a_node_in_two_enclaves_is_an_error(tmp_path):
+    """A node runs with one identity: no silent first-match between two enclaves."""
+    nodes = ['/robot/talker']
+    by_name = _mapping(tmp_path, '/a: [/robot/talker]\n/b: [/robot/other, /robot/talker]\n')
+    assigned, problems = assign_enclaves(nodes, by_name)
+    assert assigned == {}
+    assert [(d.code, d.line, d.column) for d in problems if d.code == 'NODL610'] == [('NODL610', 2, 20)]
+    assert "'/a' and '/b'" in problems[0].message
+    by_pattern = _mapping(tmp_path, '/a: [/robot/t*]\n/b: ["/robot/*"]\n')
+    assigned, problems = assign_enclaves(nodes, by_pattern)
+    assert assigned == {} and [(d.code, d.line) for d in problems] == [('NODL610', 2)]
+    # a name is more specific than a pattern: listed by name under one enclave, it belongs there
+    named = _mapping(tmp_path, '/a: ["/robot/*"]\n/b: [/robot/talker]\n')
+    assert assign_enclaves(nodes, named) == ({'/robot/talker': '/b'}, [])
 
 
 def test_bad_mapping_files(tmp_path):
@@ -29,4 +56,9 @@ def test_bad_mapping_files(tmp_path):
     mapping, problems = load_enclave_mapping(str(bad))
     assert mapping is None
     assert [(d.code, d.line) for d in problems] == [('NODL610', 1), ('NODL610', 2)]
+    bad.write_text('/a: [robot/talker, "/robot/*", /robot/bad-name]\n')
+    mapping, problems = load_enclave_mapping(str(bad))
+    assert mapping is None
+    assert [(d.code, d.line, d.column) for d in problems] == [('NODL610', 1, 6), ('NODL610', 1, 32)]
+    assert 'starting with /' in problems[0].message
     assert enclave_path_error('/a b') is not None and enclave_path_error('/a/b') is None

@@ -39,7 +39,8 @@ def _system(name):
     if enclaves.endswith('.yaml'):
         enclaves, _ = load_enclave_mapping(str(POLICY / enclaves))
     result = policy_for_instances(instances, enclaves=enclaves, notes=[f'test system {name}'])
-    assert result.diagnostics == []
+    # enclaves.yaml also lists /robot/lidar, which these systems do not have (NODL613, a warning)
+    assert [d for d in result.diagnostics if d.code != 'NODL613'] == []
     return instances, result.policy
 
 

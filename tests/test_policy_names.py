@@ -53,7 +53,7 @@ def test_dds_topics_of_each_permission():
     assert len(server) == 8
 
 
-@pytest.mark.parametrize('name', ['relay', 'shared_enclave'])
+@pytest.mark.parametrize('name', ['relay', 'shared_enclave', 'placements'])
 def test_same_dds_topics_as_sros2_transform(name):
     """Each enclave's DDS topics, computed by the toolkit from the policy, equal SROS 2's."""
     expected = json.loads((ORACLE / f'{name}.dds.json').read_text())

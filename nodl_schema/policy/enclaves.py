@@ -4,11 +4,17 @@
   so every node gets its own identity and exactly its own permissions;
 * ``namespace``: the nodes of one namespace share an enclave named after it;
 * a mapping file (YAML): ``enclave path: [node name or pattern, ...]``,
-  e.g. ``/robot/sensors: [/robot/lidar, /robot/camera_*]``.  Patterns are
-  shell-style (``*``, ``?``, ``[...]``) on fully qualified node names; the
-  first enclave (in file order) with a matching entry wins.  A node no entry
-  matches is an error (NODL610), as is an enclave path that is not a valid
-  absolute ROS namespace, which is what SROS 2 requires of enclave names.
+  e.g. ``/robot/sensors: [/robot/lidar, /robot/camera_*]``.  Entries are
+  fully qualified node names or shell-style patterns (``*``, ``?``,
+  ``[...]``) of them.  A node listed by name belongs to that enclave; a node
+  only patterns match belongs to the enclave of those patterns.  Every
+  ambiguity is an error (NODL610), since a node runs with exactly one
+  identity: a node listed by name under two enclaves, or matched by patterns
+  of two enclaves and listed by name under none; so are a node no entry
+  matches, an enclave path that is not a valid absolute ROS namespace (what
+  SROS 2 requires of enclave names) and an entry that is not an absolute
+  name or pattern.  A name that matches no node of the system is a warning
+  (NODL613: a typo there would let a pattern place the node elsewhere).
 
 Several nodes in one enclave keep a profile each; DDS grants the enclave the
 union of its profiles.
@@ -43,6 +49,27 @@ class EnclaveMapping(NamedTuple):
 
     file: str
     entries: list[tuple[str, list[str], tuple[int, int]]]
+    #: ``(enclave path, entry)`` -> ``(line, column)`` of the entry (empty: unknown).
+    places: dict[tuple[str, str], tuple[int, int]] = {}
+
+    def place(self, path: str, entry: str) -> tuple[int, int]:
+        """Where the entry ``entry`` of enclave ``path`` is written, else where the enclave is."""
+        found = self.places.get((path, entry))
+        if found is not None:
+            return found
+        return next((where for key, _, where in self.entries if key == path), (0, 0))
+
+
+def entry_error(entry: str) -> str | None:
+    """Why ``entry`` of a mapping file is neither a fully qualified node name nor a pattern of one."""
+    from nodl_schema.naming import full_name_error
+    from nodl_schema.policy.names import has_wildcard
+
+    if not entry.startswith('/'):
+        return 'entries are fully qualified node names or patterns, starting with /'
+    if has_wildcard(entry):
+        return None
+    return full_name_error(entry)
 
 
 def _problem(file: str, message: str, line: int = 0, column: int = 0) -> Diagnostic:
@@ -68,6 +95,7 @@ def load_enclave_mapping(path: str) -> tuple[EnclaveMapping | None, list[Diagnos
         return None, [_problem(path, 'an enclave mapping is a mapping of enclave paths to lists of '
                                'node names or patterns, e.g. "/robot/sensors: [/robot/lidar]"', 1, 1)]
     entries = []
+    places: dict[tuple[str, str], tuple[int, int]] = {}
     problems = []
     for key, value in data.items():
         line, column = doc.position((key,), 'key')
@@ -85,10 +113,18 @@ def load_enclave_mapping(path: str) -> tuple[EnclaveMapping | None, list[Diagnos
             problems.append(_problem(path, f'the nodes of enclave {key!r} are a list of node names '
                                      'or patterns', vline, vcolumn))
             continue
+        for index, entry in enumerate(patterns):
+            eline, ecolumn = doc.position((key, index)) if isinstance(value, list) else \
+                doc.position((key,))
+            places[(key, entry)] = (eline, ecolumn)
+            error = entry_error(entry)
+            if error is not None:
+                problems.append(_problem(path, f'{entry!r} (enclave {key!r}) is not a node name or '
+                                         f'pattern: {error}', eline, ecolumn))
         entries.append((key, patterns, (line, column)))
     if problems:
         return None, problems
-    return EnclaveMapping(path, entries), []
+    return EnclaveMapping(path, entries, places), []
 
 
 def assign_enclaves(fqns: Iterable[str], how: str | EnclaveMapping = 'node'
@@ -96,15 +132,14 @@ def assign_enclaves(fqns: Iterable[str], how: str | EnclaveMapping = 'node'
     """Node fully qualified name -> enclave path, and the nodes no mapping entry matches."""
     out: dict[str, str] = {}
     problems: list[Diagnostic] = []
+    fqns = list(fqns)
     for fqn in fqns:
         if isinstance(how, EnclaveMapping):
-            found = next((path for path, patterns, _ in how.entries
-                          if any(fnmatch.fnmatchcase(fqn, p) for p in patterns)), None)
-            if found is None:
-                problems.append(_problem(how.file, f'no enclave of {os.path.basename(how.file)} '
-                                         f'lists the node {fqn}: add it (or a pattern matching it)'))
-                continue
-            out[fqn] = found
+            found, problem = _mapped(how, fqn)
+            if problem is not None:
+                problems.append(problem)
+            if found is not None:
+                out[fqn] = found
         elif how == 'namespace':
             out[fqn] = fqn.rsplit('/', 1)[0] or '/'
         elif how == 'node':
@@ -112,4 +147,53 @@ def assign_enclaves(fqns: Iterable[str], how: str | EnclaveMapping = 'node'
         else:
             raise ValueError(f'unknown enclave mode {how!r}; expected one of: {", ".join(ENCLAVE_MODES)} '
                              'or a mapping file')
+    if isinstance(how, EnclaveMapping):
+        problems += _unused_names(how, set(fqns))
     return out, problems
+
+
+def _mapped(mapping: EnclaveMapping, fqn: str) -> tuple[str | None, Diagnostic | None]:
+    """The enclave of ``fqn`` in ``mapping`` (None and why when there is not exactly one)."""
+    from nodl_schema.policy.names import has_wildcard
+
+    by_name: dict[str, str] = {}  # enclave path -> the entry naming the node
+    by_pattern: dict[str, str] = {}  # enclave path -> the first pattern matching the node
+    for path, entries, _ in mapping.entries:
+        for entry in entries:
+            if not has_wildcard(entry):
+                if entry == fqn:
+                    by_name.setdefault(path, entry)
+            elif fnmatch.fnmatchcase(fqn, entry):
+                by_pattern.setdefault(path, entry)
+    found = by_name or by_pattern
+    if len(found) == 1:
+        return next(iter(found)), None
+    file = os.path.basename(mapping.file)
+    if not found:
+        line, column = mapping.entries[0][2] if mapping.entries else (0, 0)
+        return None, _problem(mapping.file, f'no enclave of {file} lists the node {fqn}: add it (or a '
+                              'pattern matching it)', line, column)
+    (first, first_entry), (second, second_entry) = list(found.items())[:2]
+    line, column = mapping.place(second, second_entry)
+    how = 'lists it by name' if by_name else 'has a pattern matching it'
+    fix = 'list it under one enclave only' if by_name else         'list it by name under the one it belongs to, or make the patterns disjoint'
+    return None, _problem(mapping.file, f'the node {fqn} is in two enclaves of {file}: {first!r} and '
+                          f'{second!r} each {how} ({first_entry!r} at line '
+                          f'{mapping.place(first, first_entry)[0]}, {second_entry!r} here); a node runs '
+                          f'with one identity: {fix}', line, column)
+
+
+def _unused_names(mapping: EnclaveMapping, fqns: set[str]) -> list[Diagnostic]:
+    """A warning for each node name of ``mapping`` that is no node of the system."""
+    from nodl_schema.policy.names import has_wildcard
+
+    out = []
+    for path, entries, _ in mapping.entries:
+        for entry in entries:
+            if not has_wildcard(entry) and entry not in fqns:
+                line, column = mapping.place(path, entry)
+                out.append(Diagnostic(
+                    Severity.WARNING, f'{entry} (enclave {path!r}) is no node of the system: a '
+                    'misspelt name leaves its node to a pattern or unassigned', (), mapping.file,
+                    line, column, code='NODL613'))
+    return out

@@ -98,7 +98,7 @@ def policy_for_instances(instances: Iterable[NodeInstance], *,
         path = assignment.get(fqn)
         if path is not None:
             policy.enclave(path).profiles.append(profile)
-    if not policy.enclaves:
+    if not merged:  # (nodes the enclave mapping leaves out are reported above)
         diagnostics.append(Diagnostic(Severity.ERROR, 'the system has no nodes to write a policy for '
                                       '(a policy needs at least one enclave)', (), '<system>',
                                       code='NODL612'))
