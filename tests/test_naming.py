@@ -169,6 +169,25 @@ def test_full_names_that_rmw_refuses(name: str) -> None:
     assert problem is not None and problem.split(',')[0].split("'")[0] in str(by_rmw.value)
 
 
+def test_full_name_error_accepts_exactly_what_rmw_accepts() -> None:
+    # full_name_error accepts the common valid name by a pattern before its rule-by-rule
+    # checks: both must accept exactly what rmw accepts, at every length around the limit.
+    import random
+
+    from rclpy.exceptions import InvalidTopicNameException
+    from rclpy.validate_full_topic_name import validate_full_topic_name
+
+    rng = random.Random(5)
+    names = [''.join(rng.choice('//aZ_1.~') for _ in range(rng.randint(0, 8))) for _ in range(5000)]
+    names += ['/' + 'x' * n for n in (245, 246, 247, 248)] + ['/a\n', '/é']
+    for name in names:
+        try:
+            accepted = bool(validate_full_topic_name(name))
+        except InvalidTopicNameException:
+            accepted = False
+        assert (full_name_error(name) is None) == accepted, name
+
+
 @pytest.mark.parametrize('namespace', ['/', '/a', '/a/b', '', 'a', '/a/', '//', '/1', '/a b'])
 def test_namespaces_as_rmw_validates_them(namespace: str) -> None:
     from rclpy.exceptions import InvalidNamespaceException

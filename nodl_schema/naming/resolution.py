@@ -118,13 +118,29 @@ class NodeNames:
         """``/namespace/name``."""
         return join_name(self.namespace, self.name)
 
+    def _checked_namespace(self) -> str:
+        """The node's namespace, its name and namespace checked once (:func:`expand_name`
+        checks them for every name; a node expands many)."""
+        checked: str | None = self.__dict__.get('_checked')
+        if checked is None:
+            checked = checked_namespace(self.name, self.namespace)
+            object.__setattr__(self, '_checked', checked)
+        return checked
+
     def expand(self, name: str) -> str:
         """``name`` expanded for this node (no remapping); see :func:`expand_name`."""
-        return expand_name(name, self.name, self.namespace)
+        problem = topic_name_error(name)
+        if problem:
+            raise InvalidNameError('topic name', name, problem)
+        return _expand(name, self.name, self._checked_namespace())
 
     def rule_for(self, name: str, *, service: bool = False) -> RemapRule | None:
         """The rule that remaps ``name`` (a topic, or a service) for this node, if one does."""
-        expanded = self.expand(name)
+        return self._rule_for_expanded(self.expand(name), service)
+
+    def _rule_for_expanded(self, expanded: str, service: bool) -> RemapRule | None:
+        if not self.rules:
+            return None
         wanted = 'service' if service else 'topic'
         for rule in self.rules:
             if rule.kind in ('name', wanted) and rule.applies_to(self.name):
@@ -150,8 +166,9 @@ class NodeNames:
 
         An action's name resolves as a topic name (as ``rcl_action`` does).
         """
-        rule = self.rule_for(name, service=service)
-        resolved = self.expand(name) if rule is None else \
+        expanded = self.expand(name)
+        rule = self._rule_for_expanded(expanded, service)
+        resolved = expanded if rule is None else \
             _expand(rule.replacement, self.name, self.namespace)
         problem = full_name_error(resolved)
         if problem:

@@ -6,6 +6,9 @@ name breaks, or ``None``; :class:`InvalidNameError` carries that wording.
 
 from __future__ import annotations
 
+import re
+from functools import lru_cache
+
 __all__ = ['InvalidNameError', 'topic_name_error', 'full_name_error', 'namespace_error',
            'node_name_error', 'normalize_namespace', 'checked_namespace']
 
@@ -13,6 +16,10 @@ __all__ = ['InvalidNameError', 'topic_name_error', 'full_name_error', 'namespace
 TOPIC_MAX_LENGTH = 255 - 8
 NAMESPACE_MAX_LENGTH = TOPIC_MAX_LENGTH - 2
 NODE_NAME_MAX_LENGTH = 255
+
+#: A valid fully qualified name, as :func:`full_name_error` accepts it: tokens of
+#: alphanumerics and ``_``, none starting with a digit, each after one ``/``.
+_VALID_FULL_NAME = re.compile(r'(?:/[A-Za-z_][A-Za-z0-9_]*)+')
 
 ALNUM = frozenset('abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789')
 DIGITS = frozenset('0123456789')
@@ -33,6 +40,7 @@ class InvalidNameError(ValueError):
 # -- validation (rcl_validate_topic_name, rmw_validate_*) --------------------------------------
 
 
+@lru_cache(maxsize=4096)  # the same few names are declared by many nodes (every base's)
 def topic_name_error(name: str) -> str | None:
     """Why rcl rejects ``name`` as a topic/service name before expansion, or ``None``."""
     if not name:
@@ -82,6 +90,8 @@ def topic_name_error(name: str) -> str | None:
 
 def full_name_error(name: str) -> str | None:
     """Why rmw rejects ``name`` as a fully qualified topic/service name, or ``None``."""
+    if len(name) <= TOPIC_MAX_LENGTH and _VALID_FULL_NAME.fullmatch(name):
+        return None  # what the checks below accept, at once
     if not name:
         return 'topic name must not be empty'
     if name[0] != '/':

@@ -12,8 +12,7 @@ from __future__ import annotations
 from typing import Any, Iterable, Mapping, NamedTuple
 
 from nodl_schema.naming import (
-    RemapArgs, RemapRule, node_fqn, node_name_after_remaps, node_namespace_after_remaps,
-    normalize_namespace, parse_remap_rules, resolve_name)
+    NodeNames, RemapArgs, RemapRule, normalize_namespace, parse_remap_rules)
 from nodl_schema.system.entities import Entity, EntityKind, Location, Provider
 from nodl_schema.system.resolved import ResolvedNode
 
@@ -67,10 +66,12 @@ class NodeInstance:
         #: The name and namespace the node is created with (before ``__node``/``__ns``).
         self.created_name = name
         self.created_namespace = normalize_namespace(namespace)
+        #: The node's final name and namespace with its rules (resolves names as the node does).
+        self.names = NodeNames.create(name, namespace, self.remap_rules)
         #: The node's final name, namespace and fully qualified name.
-        self.name = node_name_after_remaps(name, self.remap_rules)
-        self.namespace = node_namespace_after_remaps(name, namespace, self.remap_rules)
-        self.fqn = node_fqn(name, namespace, self.remap_rules)
+        self.name = self.names.name
+        self.namespace = self.names.namespace
+        self.fqn = self.names.fqn
         #: The parameter values given to the instance (declared or not).
         self.parameter_overrides: dict[str, Any] = dict(parameter_overrides or {})
         #: Where the instance is declared (a launch file entry), if known.
@@ -80,8 +81,7 @@ class NodeInstance:
             if entity.is_parameter:
                 entities.append(InstanceEntity(self, entity, entity.name))
                 continue
-            final = resolve_name(entity.name, name, namespace, self.remap_rules,
-                                 service=entity.kind.communication == 'service')
+            final = self.names.resolve(entity.name, service=entity.kind.communication == 'service')
             entities.append(InstanceEntity(self, entity, final))
         #: Every entity with its final name, in the resolved node's order.
         self.entities: tuple[InstanceEntity, ...] = tuple(entities)
