@@ -81,6 +81,15 @@ def test_the_examples_parse_too(tmp_path: Path) -> None:
         assert parse_errors(user, [tmp_path]) == []
 
 
+def test_a_nested_namespace(tmp_path: Path) -> None:
+    base, user = generate_into(GENERATE / 'managed_camera.nodl.yaml', tmp_path,
+                               namespace='vision::camera')
+    assert '#ifndef VISION__CAMERA__MANAGED_CAMERA_BASE_HPP_' in \
+        (tmp_path / 'managed_camera_base.hpp').read_text(encoding='utf-8')
+    assert parse_errors(base, [tmp_path]) == []
+    assert parse_errors(user, [tmp_path]) == []
+
+
 def test_a_component_subclass_registers(tmp_path: Path) -> None:
     _, user = generate_into(GENERATE / 'talker.nodl.yaml', tmp_path, component=True)
     user.write_text(user.read_text(encoding='utf-8') +

@@ -168,7 +168,7 @@ def _banner(node: CppNode, header: bool = True) -> list[str]:
 
 
 def _guard(node: CppNode) -> str:
-    return f'{node.namespace}__{node.stem}_HPP_'.upper()
+    return f'{node.namespace.replace("::", "__")}__{node.stem}_HPP_'.upper()
 
 
 def _handle_type(node: CppNode, endpoint: CppEndpoint) -> str:
