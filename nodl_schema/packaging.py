@@ -25,7 +25,8 @@ In ``setup.py``::
 
 The definitions are validated when the package is built (the kind enforced,
 mixin references resolved, also ``nodl://<this package>/...``); an invalid
-file stops the build with ``FILE:LINE:COL`` diagnostics.  The build then
+file stops the build with ``FILE:LINE:COL`` diagnostics (:class:`NodlBuildError`;
+warnings of valid files go to the ``nodl_schema.packaging`` logger).  The build then
 needs this toolkit importable (``pip install --no-build-isolation``, or the
 toolkit in ``[build-system] requires``).  Without that, use the plain recipe
 in the README, which needs nothing at build time.
@@ -37,15 +38,37 @@ import os
 import posixpath
 import re
 import shutil
-import sys
-from typing import Mapping
+from typing import Mapping, Sequence
 
+from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, resource_name
 
-__all__ = ['nodl_data_files', 'relative_mixins', 'NODE_RESOURCE', 'INTERFACE_RESOURCE']
+__all__ = ['nodl_data_files', 'relative_mixins', 'NodlBuildError', 'NODE_RESOURCE',
+           'INTERFACE_RESOURCE']
 
 _KEY = re.compile(r'[A-Za-z0-9_][A-Za-z0-9_.-]*')
 _INDEX = 'share/ament_index/resource_index'
+
+
+class NodlBuildError(SystemExit):
+    """Raised by :func:`nodl_data_files` when the definitions cannot be registered.
+
+    ``str(error)`` is every problem, one a line: a wrong argument, or the
+    diagnostics of the invalid definitions (``FILE:LINE:COL: severity: message
+    [CODE]``) followed by ``<package>: invalid NoDL definitions: FILE, ...``;
+    :attr:`diagnostics` holds those diagnostics (empty for a wrong argument).
+
+    It is a :class:`SystemExit` on purpose: ``setup.py`` runs the helper while
+    the build describes the package, and an exception of this kind is
+    setuptools' (and Python's) way to stop it with exactly these lines and
+    status 1, where any other exception would print a traceback for what is a
+    user's error.  Catch it to handle the failure yourself.
+    """
+
+    def __init__(self, message: str, diagnostics: Sequence[Diagnostic] = ()) -> None:
+        super().__init__(message)
+        #: The diagnostics of the definitions (errors and warnings), in file order.
+        self.diagnostics: list[Diagnostic] = list(diagnostics)
 
 
 def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
@@ -64,6 +87,8 @@ def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
     :param plugins: executable -> the composable node class (``pkg::ClassName``) its
         definition describes (``nodl analyse`` matches ``ComposableNode(plugin=...)``)
     :param node_names: executable -> the name it gives its node when launched without one
+    :raises NodlBuildError: a wrong argument, a file that is missing, or (``validate``) an
+        invalid definition: the message lists every problem
     """
     nodes = dict(nodes or {})
     interfaces = dict(interfaces or {})
@@ -79,7 +104,7 @@ def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
             problems.append(f'nodl_data_files: {installed[name]} and {file} would both be installed '
                             f'as share/{package}/nodl/{name}; rename one')
     if problems:
-        raise SystemExit('\n'.join(problems))
+        raise NodlBuildError('\n'.join(problems))
 
     entries: dict[str, list[str]] = {}
     for resource_type, registry in ((NODE_RESOURCE, nodes), (INTERFACE_RESOURCE, interfaces)):
@@ -115,7 +140,7 @@ def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
             if source not in entries.setdefault(posixpath.dirname(target), []):
                 entries[posixpath.dirname(target)].append(source)
     if problems:
-        raise SystemExit('\n'.join(problems))
+        raise NodlBuildError('\n'.join(problems))
     if validate:
         _validate(package, nodes, interfaces, staging_dir)
     return sorted(entries.items())
@@ -146,12 +171,13 @@ def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, s
     os.environ['AMENT_PREFIX_PATH'] = os.pathsep.join(p for p in (stage, previous) if p)
     try:
         failures = []
+        shown: list[Diagnostic] = []
         for kind, registry in ((Kind.INTERFACE, interfaces), (Kind.NODE, nodes)):
             # one file may serve several keys: check (and report) it once
             for result in check_paths(list(dict.fromkeys(registry.values())), kind, resolve=True):
-                shown = without_info(result.diagnostics)
-                if shown:
-                    sys.stderr.write(format_text(shown))
+                shown += without_info(result.diagnostics)
+                if result.problem:
+                    shown.append(Diagnostic(Severity.ERROR, result.problem, file=result.path))
                 if result.problem or failed(result, strict=False):
                     failures.append(result.path)
     finally:
@@ -160,7 +186,12 @@ def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, s
         else:
             os.environ['AMENT_PREFIX_PATH'] = previous
     if failures:
-        raise SystemExit(f'{package}: invalid NoDL definitions: {", ".join(failures)}')
+        raise NodlBuildError(f'{format_text(shown)}{package}: invalid NoDL definitions: '
+                             f'{", ".join(failures)}', shown)
+    if shown:  # warnings only: the build goes on, and whoever runs it decides what is shown
+        import logging
+
+        logging.getLogger(__name__).warning('%s', format_text(shown).rstrip('\n'))
 
 
 def relative_mixins(node_file: str | os.PathLike[str]) -> list[str]:
@@ -239,4 +270,4 @@ def _node_info(package: str, nodes: Mapping[str, str], plugins: dict[str, str],
             f.write(content)
         entries.setdefault(f'{_INDEX}/{NODE_INFO_RESOURCE}', []).append(marker)
     if problems:
-        raise SystemExit('\n'.join(problems))
+        raise NodlBuildError('\n'.join(problems))

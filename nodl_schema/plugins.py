@@ -15,7 +15,10 @@ a subclass of :class:`ExtensionPoint`) with
   (then by name).
 
 A plugin that cannot be imported, declares an incompatible version or fails
-to instantiate is reported (one line) and skipped: it never stops the tool.
+to instantiate is reported and skipped: it never stops the tool.  The library
+never prints: a loader hands each :class:`PluginError` to its ``on_error``
+callback or, without one, keeps it for :func:`take_plugin_errors`, which the
+``nodl`` command calls to write each as one warning line on standard error.
 ``NODL_EXTENSION_BLOCKLIST`` names extensions to leave out, separated by
 commas (or the path separator): ``nodl.verbs.describe`` leaves out one
 extension, ``nodl.resolvers`` a whole group.
@@ -52,6 +55,7 @@ __all__ = [
     'iter_entry_points',
     'load_plugins',
     'instantiate_extensions',
+    'take_plugin_errors',
 ]
 
 #: The environment variable listing extensions (``group.name``) or groups to leave out.
@@ -291,11 +295,33 @@ def iter_entry_points(group: str, *, include_blocked: bool = False) -> list[Entr
 # --------------------------------------------------------------------------
 # Loading
 
+#: Plugin errors reported without an ``on_error`` callback, until :func:`take_plugin_errors`.
+_pending: list[PluginError] = []
+#: (group, name, error) of every error kept so far: each broken plugin is kept once per process.
+_kept: set[tuple[str, str, str]] = set()
+
+
 def _report(error: PluginError, on_error: Callable[[PluginError], None] | None) -> None:
-    if on_error is None:
-        print(error, file=sys.stderr)
-    else:
+    if on_error is not None:
         on_error(error)
+        return
+    key = (error.group, error.name, str(error.error))
+    if key not in _kept:
+        _kept.add(key)
+        _pending.append(error)
+
+
+def take_plugin_errors() -> list[PluginError]:
+    """The plugin errors reported since the last call by loaders given no ``on_error`` callback.
+
+    Each broken plugin appears once per process, however often its group is
+    loaded (every composition loads the resolvers).  The library never prints
+    them; a program shows them (``nodl`` writes ``str(error)``, one warning
+    line, on standard error when the verb ends).
+    """
+    taken = list(_pending)
+    del _pending[:]
+    return taken
 
 
 def _priority(item: tuple[str, Any]) -> tuple[int, str]:
@@ -312,8 +338,8 @@ def load_plugins(
     """Load the entry points of ``group`` (optionally only ``names``), ordered by priority.
 
     A plugin that fails to import or declares an incompatible
-    ``EXTENSION_POINT_VERSION`` is reported through ``on_error`` (default: a
-    warning line on stderr) and skipped; it never stops the tool.
+    ``EXTENSION_POINT_VERSION`` is reported through ``on_error`` (default:
+    kept for :func:`take_plugin_errors`) and skipped; it never stops the tool.
     """
     wanted = None if names is None else set(names)
     loaded: dict[str, Any] = {}

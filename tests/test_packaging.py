@@ -11,7 +11,8 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema.packaging import INTERFACE_RESOURCE, NODE_RESOURCE, nodl_data_files, relative_mixins
+from nodl_schema.packaging import (INTERFACE_RESOURCE, NODE_RESOURCE, NodlBuildError, nodl_data_files,
+                                   relative_mixins)
 
 PACKAGES = FIXTURES / 'python_packages'
 INDEX = Path('share') / 'ament_index' / 'resource_index'
@@ -232,11 +233,14 @@ def test_one_file_may_serve_two_keys(pkg: Path) -> None:
 
 def test_a_file_serving_two_keys_is_reported_once(pkg: Path,
                                                   capsys: pytest.CaptureFixture[str]) -> None:
-    with pytest.raises(SystemExit) as exc:
+    with pytest.raises(NodlBuildError) as exc:
         nodl_data_files('py_talker', nodes={'a': 'nodl/talker.nodl.yaml',
                                             'b': 'nodl/talker.nodl.yaml'})
-    assert str(exc.value) == 'py_talker: invalid NoDL definitions: nodl/talker.nodl.yaml'
-    assert capsys.readouterr().err.count(': error: ') == 1
+    lines = str(exc.value).splitlines()
+    assert lines[-1] == 'py_talker: invalid NoDL definitions: nodl/talker.nodl.yaml'
+    assert [line for line in lines if ': error: ' in line] == [str(d) for d in exc.value.diagnostics]
+    assert len(exc.value.diagnostics) == 1
+    assert capsys.readouterr() == ('', '')  # the library prints nothing: the exception says it
 
 
 def test_a_custom_staging_dir(pkg: Path) -> None:
@@ -283,10 +287,12 @@ def test_validation_failure_reports_positions(pkg: Path, capsys: pytest.CaptureF
                                               monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.delenv('AMENT_PREFIX_PATH', raising=False)
     # the node's mixin nodl://py_talker/chatter is not registered
-    with pytest.raises(SystemExit) as exc:
+    with pytest.raises(NodlBuildError) as exc:
         nodl_data_files('py_talker', nodes={'talker': 'nodl/talker.nodl.yaml'})
-    assert str(exc.value) == 'py_talker: invalid NoDL definitions: nodl/talker.nodl.yaml'
-    err = capsys.readouterr().err
+    assert isinstance(exc.value, SystemExit)  # setup.py stops with these lines, no traceback
+    assert str(exc.value).endswith('\npy_talker: invalid NoDL definitions: nodl/talker.nodl.yaml')
+    assert capsys.readouterr().err == ''
+    err = str(exc.value)
     assert err.startswith("nodl/talker.nodl.yaml:4:5: error: cannot resolve mixin "
                           "'nodl://py_talker/chatter': package 'py_talker' registers no "
                           'interface definitions')
@@ -294,12 +300,25 @@ def test_validation_failure_reports_positions(pkg: Path, capsys: pytest.CaptureF
 
 
 def test_the_kind_is_enforced(pkg: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    with pytest.raises(SystemExit):
+    with pytest.raises(NodlBuildError) as exc:
         nodl_data_files('py_talker', interfaces={'talker': 'nodl/talker.nodl.yaml'},
                         nodes={'chatter': 'nodl/chatter.nodl.yaml'})
-    err = capsys.readouterr().err
+    err = str(exc.value)
     assert 'nodl/talker.nodl.yaml:1:1: error: expected an interface definition' in err
     assert 'nodl/chatter.nodl.yaml:1:1: error: expected a node definition' in err
+
+
+def test_warnings_of_a_valid_build_are_logged_not_printed(
+        pkg: Path, capsys: pytest.CaptureFixture[str], caplog: pytest.LogCaptureFixture) -> None:
+    chatter = pkg / 'nodl' / 'chatter.nodl.yaml'
+    chatter.write_text(chatter.read_text().replace('    description: Greetings.\n', ''))
+    with caplog.at_level('WARNING', logger='nodl_schema.packaging'):
+        nodl_data_files('py_talker', nodes={'talker': 'nodl/talker.nodl.yaml'},
+                        interfaces={'chatter': 'nodl/chatter.nodl.yaml'})
+    assert capsys.readouterr() == ('', '')
+    [record] = caplog.records
+    assert record.levelname == 'WARNING' and record.name == 'nodl_schema.packaging'
+    assert record.getMessage().startswith('nodl/chatter.nodl.yaml:4:5: warning: ')
 
 
 def test_validate_false_skips_validation(pkg: Path) -> None:

@@ -260,3 +260,7 @@ def test_readme_documents_every_extension_point() -> None:
     assert plugins.BLOCKLIST_VARIABLE in readme
     for group, spec in plugins.EXTENSION_POINTS.items():
         assert f'`{group}`' in readme, group
+        # the base class the README names for the group is the one extensions must subclass
+        base = (spec.base or 'nodl_schema.plugins:ExtensionPoint').replace(':', '.')
+        rows = [line for line in readme.splitlines() if line.startswith('| ') and f'`{group}`' in line]
+        assert len(rows) == 1 and f'`{base}`' in rows[0], (group, base, rows)

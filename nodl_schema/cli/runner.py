@@ -62,7 +62,8 @@ def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb',
     # An explicit prog spares argparse building a help formatter on every run.
     subparsers = parser.add_subparsers(title='verbs', metavar='VERB', dest=dest,
                                        prog=parser.prog)
-    for name, verb in sorted(instantiate_extensions(VERB_GROUP, names=wanted).items()):
+    verbs_found = instantiate_extensions(VERB_GROUP, names=wanted, on_error=_warn_plugin)
+    for name, verb in sorted(verbs_found.items()):
         try:
             text = help_text(verb)
             sub = subparsers.add_parser(name, help=text, description=text,
@@ -127,6 +128,26 @@ def run_verb(parser: argparse.ArgumentParser, args: argparse.Namespace, dest: st
             _report(f'internal error in {name}: {type(exc).__name__}: {exc} (this is a bug in '
                     'the toolkit or a plugin; please report it with the command and the input files)')
             return EXIT_INTERNAL
+        finally:
+            _show_plugin_errors()
+
+
+def _warn_plugin(error: object) -> None:
+    """A plugin the command skips: one warning line on standard error."""
+    print(error, file=sys.stderr)
+
+
+def _show_plugin_errors() -> None:
+    """The plugins (resolvers, generators, ...) the library skipped while the verb ran."""
+    if 'nodl_schema.plugins' not in sys.modules:
+        return  # nothing was loaded through it (and importing it costs start-up time)
+    from nodl_schema.plugins import take_plugin_errors
+
+    for error in take_plugin_errors():
+        try:
+            print(error, file=sys.stderr)
+        except Exception:  # noqa: BLE001 - stderr closed or broken: nowhere left to say it
+            return
 
 
 def _report(line: str) -> None:
