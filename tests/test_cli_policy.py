@@ -60,6 +60,9 @@ def test_usage_errors_exit_2():
     assert nodl('--live', f'{POLICY}/talker.nodl.yaml').returncode == 2
     result = nodl(f'{POLICY}/talker.nodl.yaml', '--distro', 'foxy')
     assert result.returncode == 2 and "unknown distribution 'foxy'" in result.stderr
+    assert "expected one of: humble, iron, jazzy, kilted, rolling" in result.stderr
+    result = nodl(f'{POLICY}/talker.nodl.yaml', '--distro', '')  # not the default in disguise
+    assert result.returncode == 2 and "unknown distribution ''" in result.stderr
     result = nodl(f'{POLICY}/talker.nodl.yaml', '--name', '/a', '--name', '/b')
     assert result.returncode == 2 and '2 --name options for 1 definitions' in result.stderr
     result = nodl(f'{POLICY}/talker.nodl.yaml', '--name', '/bad name')

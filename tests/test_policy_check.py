@@ -47,6 +47,17 @@ def test_names_compare_by_final_name_whatever_their_form(expected):
     assert _check(text, expected) == []
 
 
+def test_white_space_around_a_name_is_part_of_it_as_for_sros2(expected):
+    """SROS 2's transform takes the element's text as it is: `<topic> chatter\n</topic>` grants
+    'rt/ chatter\n' (checked with sros2's permissions.xsl), so the node would lack /chatter."""
+    text = write_policy(expected).replace('<topic>chatter</topic> <!-- publisher',
+                                          '<topic> chatter\n            </topic> <!-- publisher')
+    found = _check(text, expected)
+    assert [(d.code, d.line) for d in found] == [
+        ('NODL604', _line(text, '<profile ns="/" node="talker">')), ('NODL605', _line(text, '> chatter'))]
+    assert 'white space included' in found[1].message and '/chatter' in found[0].message
+
+
 def test_wildcards_deny_and_profiles(expected):
     text = write_policy(expected)
     widened = text.replace('<topic>chatter</topic> <!-- publisher', '<topic>/chat*</topic> <!--')

@@ -72,6 +72,16 @@ def test_round_trip_of_final_names(name):
     round_trip(instances, write_policy(policy))
 
 
+@pytest.mark.parametrize('name', ['namespaces_remaps', 'one_enclave'])
+def test_the_order_of_the_nodes_does_not_matter(name):
+    instances, policy = _system(name)
+    enclaves = SYSTEMS[name][3]
+    if enclaves.endswith('.yaml'):
+        enclaves, _ = load_enclave_mapping(str(POLICY / enclaves))
+    reordered = policy_for_instances(reversed(instances), enclaves=enclaves, notes=[f'test system {name}'])
+    assert write_policy(reordered.policy) == write_policy(policy)
+
+
 def test_two_nodes_in_one_enclave_keep_their_profiles():
     _, policy = _system('one_enclave')
     assert [(e.path, p.fqn) for e, p in policy.profiles()] == [

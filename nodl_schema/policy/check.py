@@ -81,13 +81,22 @@ def granted_names(parsed: ParsedPolicy) -> tuple[list[GrantedName], dict[str, Xm
                             if qualifier is None:
                                 continue
                             for item in permissions.children:
-                                written = parsed.text_of(item)
+                                # as SROS 2 reads it: the text as written, white space included
+                                written = parsed.text_of(item, strip=False)
                                 line, column = item.line, item.column
                                 out.append(GrantedName(
                                     fqn, kind.communication, access, qualifier.value, written,
                                     resolve_policy_name(written, ns.value, node.value), line, column,
                                     path.value if path is not None else ''))
     return out, profiles
+
+
+def _spaced(written: str) -> str:
+    """A hint when ``written`` has white space around it, which SROS 2 keeps in the name."""
+    if written == written.strip():
+        return ''
+    return (f'; SROS 2 takes the text between the tags as it is, white space included: write '
+            f'<...>{written.strip()}</...> with nothing around the name')
 
 
 def _diagnostic(file: str, severity: Severity, message: str, line: int, column: int,
@@ -154,7 +163,8 @@ def check_parsed_policy(parsed: ParsedPolicy, expected: Policy) -> list[Diagnost
             elif (g.communication, g.access, g.name) not in needed:
                 out.append(_diagnostic(
                     file, Severity.ERROR, f'extra: {fqn} is granted {g.communication} {g.access} on '
-                    f'{g.name}, which it does not need (over-privilege)', g.line, g.column, 'NODL605'))
+                    f'{g.name!r}, which it does not need (over-privilege)' + _spaced(g.written),
+                    g.line, g.column, 'NODL605'))
     for fqn, element in profiles.items():
         if fqn not in needed_nodes:
             out.append(_diagnostic(

@@ -53,8 +53,11 @@ class ParsedPolicy(NamedTuple):
         """The root element (None if the file could not be read)."""
         return self.tree.root
 
-    def text_of(self, element: XmlElement) -> str:
-        """The text directly inside ``element`` up to its first child or end ('' if none)."""
+    def text_of(self, element: XmlElement, strip: bool = True) -> str:
+        """The text directly inside ``element`` up to its first child or end ('' if none).
+
+        ``strip=False`` keeps the white space around it, as SROS 2 reads a name.
+        """
         if element.text_at is None:
             return ''
         line, column = element.text_at
@@ -66,7 +69,8 @@ class ParsedPolicy(NamedTuple):
         start = self.text.rfind('>', 0, at) + 1
         end = self.text.find('<', start)
         raw = self.text[start:end if end >= 0 else len(self.text)]
-        return html.unescape(raw).strip()
+        text = html.unescape(raw)
+        return text.strip() if strip else text
 
 
 def read_policy(source: str | os.PathLike[str], file: str | None = None) -> ParsedPolicy:

@@ -80,11 +80,11 @@ class PolicyVerb(Verb):
         from nodl_schema.policy.distros import DEFAULT_DISTRO, check_distro
 
         try:
-            check_distro(args.distro or DEFAULT_DISTRO)
+            check_distro(DEFAULT_DISTRO if args.distro is None else args.distro)
             options = DiagnosticPolicy(args, 'nodl policy')
         except (ValueError, PolicyError) as exc:
             return _usage(str(exc).removeprefix('nodl policy: error: '))
-        args.distro = args.distro or DEFAULT_DISTRO
+        args.distro = DEFAULT_DISTRO if args.distro is None else args.distro
         targets, values = [], {}
         for token in args.targets:
             pair = _name_value(token)
