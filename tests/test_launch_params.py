@@ -82,3 +82,6 @@ def test_a_bad_parameter_file_is_coded(tmp_path: Path) -> None:
     (problem,) = load_parameter_file(path).diagnostics
     assert (problem.code, problem.line) == ('NODL517', 2)
     assert load_parameter_file(tmp_path / 'missing.yaml').diagnostics[0].code == 'NODL517'
+    # a path that exists but cannot be read is a diagnostic too, not an escaping OSError
+    (folder,) = load_parameter_file(tmp_path).diagnostics
+    assert folder.code == 'NODL517' and 'Is a directory' in folder.message

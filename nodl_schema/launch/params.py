@@ -299,7 +299,12 @@ def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
     from nodl_schema.frontends.source import SourceText, decode, read_limited
     from nodl_schema.frontends.yaml_json import parse_document
 
-    text, problem = decode(read_limited(name), name)
+    try:
+        data = read_limited(name)
+    except OSError as exc:  # a directory, no permission: said like a missing file
+        return ParameterFile(name, [], [Diagnostic(Severity.ERROR, f'cannot read the parameter file: '
+                                                   f'{exc.strerror or exc}', (), name, code='NODL517')])
+    text, problem = decode(data, name)
     if text is None:
         assert problem is not None
         result = ParameterFile(name, [], [problem])
