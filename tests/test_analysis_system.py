@@ -79,3 +79,8 @@ def test_analysis_is_deterministic(name: str) -> None:
     one = analysis_to_dict(analyse_launch(LAUNCH / name, prefixes=PREFIX))
     two = analysis_to_dict(analyse_launch(LAUNCH / name, prefixes=PREFIX))
     assert one == two
+
+
+def test_an_unknown_client_library_is_refused_before_anything_is_read() -> None:
+    with pytest.raises(ValueError, match="unknown client library 'rclcp'; expected one of: rclpy, rclcpp"):
+        analyse_launch(LAUNCH / 'system.launch.xml', prefixes=PREFIX, client_library='rclcp')

@@ -79,18 +79,24 @@ def analyse_entries(entries: Iterable[LaunchEntry | Any], *, client_library: str
 
     ``entries``: :class:`LaunchEntry` objects or the launch reader's records.
     ``client_library`` forces the base's client library (default: each
-    package's build type).  ``checks``: the checks to run (default: every
-    registered ``nodl.checks`` extension).
+    package's build type; ValueError for an unknown one).  ``checks``: the
+    checks to run (default: every registered ``nodl.checks`` extension).
     """
+    if client_library is not None:
+        from nodl_schema.composition.bases import check_client_library
+
+        check_client_library(client_library)
     from nodl_schema.analysis.checks import run_checks
     from nodl_schema.analysis.matching import DefinitionMatcher
+    from nodl_schema.index import ament
 
-    matcher = DefinitionMatcher(client_library, prefixes)
     findings: list[Finding] = list(launch_findings)
-    nodes = [build_node(entry, matcher.match(entry), findings)
-             for entry in entries_from_launch(entries)]
-    context = AnalysisContext(nodes, settings or AnalysisSettings(), matcher.prefixes)
-    findings.extend(run_checks(context, dict(checks) if checks is not None else None))
+    with ament.snapshot():  # the index is listed once, not looked up file by file per node
+        matcher = DefinitionMatcher(client_library, prefixes)
+        nodes = [build_node(entry, matcher.match(entry), findings)
+                 for entry in entries_from_launch(entries)]
+        context = AnalysisContext(nodes, settings or AnalysisSettings(), matcher.prefixes)
+        findings.extend(run_checks(context, dict(checks) if checks is not None else None))
     findings.sort(key=_sort_key)
     return Analysis(nodes, findings, launch_file, context)
 
