@@ -68,7 +68,8 @@ def _from_resolved(resolved: ResolvedNode | None, diagnostics: list[Diagnostic],
 
 def show_file(path: str, client_library: str | None = None) -> Shown:
     """The resolved interface of the definition in ``path`` (a node is composed with the
-    base of ``client_library``, rclpy by default; ValueError for an unknown library)."""
+    base of ``client_library``, rclpy by default; ValueError for an unknown library;
+    OSError if ``path`` cannot be read)."""
     from pathlib import Path
 
     from nodl_schema.system.resolved import resolve_report
