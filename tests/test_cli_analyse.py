@@ -56,6 +56,10 @@ def test_formats_to_a_file(tmp_path: Path, fmt: str) -> None:
         import xml.etree.ElementTree as ET
 
         ET.fromstring(text)
+    elif fmt == 'sarif':
+        from sarif_shape import assert_sarif_2_1_0
+
+        assert_sarif_2_1_0(json.loads(text))
     else:
         json.loads(text)
 

@@ -198,6 +198,9 @@ def test_drift_as_sarif(files: dict[str, Path]) -> None:
     assert result.returncode == 1, result.stderr
     log = json.loads(result.stdout)
     assert log['version'] == '2.1.0' and log['$schema'].endswith('sarif-2.1.0.json')
+    from sarif_shape import assert_sarif_2_1_0
+
+    assert_sarif_2_1_0(log)
     run, = log['runs']
     rules = [r['id'] for r in run['tool']['driver']['rules']]
     assert len(rules) == len(set(rules))  # one rule per code

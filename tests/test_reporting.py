@@ -83,3 +83,59 @@ def test_sarif_from_the_command_line_is_json_with_a_summary_on_stderr() -> None:
     results = log['runs'][0]['results']
     assert len(results) == 7 and all(r['ruleId'].startswith('NODL') for r in results)
     assert result.stderr == '1 file, 7 errors, 0 warnings\n'
+
+
+def test_sarif_of_validate_has_the_shape_sarif_2_1_0_defines(tmp_path) -> None:
+    """Every object the standard allows and nothing else, for a log with related locations,
+    standard input, an unreadable path and relative and absolute files."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from sarif_shape import assert_sarif_2_1_0
+
+    repo = Path(__file__).resolve().parent.parent
+    overrides = repo / 'tests' / 'fixtures' / 'composition' / 'overrides'
+    result = subprocess.run(
+        [sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', '--format', 'sarif',
+         'examples/mistakes/', str(overrides / 'base_redefined.nodl.yaml'),
+         str(tmp_path / 'missing.nodl.yaml'), '-'],
+        cwd=repo, capture_output=True, text=True, timeout=60, input='nodl_version: 2\nx: 1\n')
+    assert result.returncode == 2, result.stderr  # the missing path
+    log = json.loads(result.stdout)
+    assert_sarif_2_1_0(log)
+    results = log['runs'][0]['results']
+    assert any('relatedLocations' in r for r in results)
+    assert {r['ruleId'] for r in results} >= {'NODL020', 'NODL101', 'NODL307'}
+    uris = {r['locations'][0]['physicalLocation']['artifactLocation']['uri']
+            for r in results if 'locations' in r and 'physicalLocation' in r['locations'][0]}
+    assert any(u.startswith('file:///') for u in uris) and any(u.startswith('examples/') for u in uris)
+
+
+def test_the_sarif_shape_check_rejects_what_the_standard_rejects() -> None:
+    import copy
+
+    import pytest
+    from sarif_shape import assert_sarif_2_1_0
+
+    from nodl_schema.reporting.sarif import sarif_log
+
+    from typing import Any
+
+    good = sarif_log([D1.replace(code='NODL101'), D2.replace(code='NODL216')])
+    assert_sarif_2_1_0(good)
+
+    def broken(change: Any) -> dict[str, Any]:
+        log = copy.deepcopy(good)
+        change(log['runs'][0])
+        return log
+
+    for bad in (broken(lambda run: run['results'][0].update(severity='error')),  # not a SARIF key
+                broken(lambda run: run['results'][0].update(level='info')),  # SARIF says note
+                broken(lambda run: run['tool']['driver'].pop('name')),
+                broken(lambda run: run['results'][0].pop('message')),
+                broken(lambda run: run['results'][0].update(ruleIndex=5)),
+                broken(lambda run: run['tool']['driver']['rules'].append(
+                    run['tool']['driver']['rules'][0]))):
+        with pytest.raises(AssertionError):
+            assert_sarif_2_1_0(bad)
