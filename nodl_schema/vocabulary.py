@@ -34,7 +34,7 @@ __all__ = [
     # document kinds
     'Kind', 'NODE_KEYS', 'INTERFACE_KEYS',
     # ament index
-    'NODE_RESOURCE', 'INTERFACE_RESOURCE', 'LEGACY_RESOURCE', 'RESOURCE_TYPES',
+    'NODE_RESOURCE', 'INTERFACE_RESOURCE', 'LEGACY_RESOURCE', 'NODE_INFO_RESOURCE', 'RESOURCE_TYPES',
     'RESOURCE_SEPARATOR', 'resource_name',
     # parameter types
     'SCALAR_TYPES', 'ARRAY_TYPES', 'FIXED_BASES', 'PARAMETER_TYPES', 'ALL_TYPE_WORDS',
@@ -157,6 +157,9 @@ NODE_RESOURCE = 'nodl_nodes'
 INTERFACE_RESOURCE = 'nodl_interfaces'
 #: Resource type of the legacy marker (spec 001: ``nodl_desc/<package>``).
 LEGACY_RESOURCE = 'nodl_desc'
+#: Resource type of what a registered node records besides its file (its plugin class, its
+#: default node name: ``nodl_node_info/<package>__<executable>``, see :mod:`nodl_schema.index.node_info`).
+NODE_INFO_RESOURCE = 'nodl_node_info'
 #: Document kind -> resource type it is registered under.
 RESOURCE_TYPES: dict[Kind, str] = {Kind.NODE: NODE_RESOURCE, Kind.INTERFACE: INTERFACE_RESOURCE}
 #: Between the package and the executable (or interface name) in a resource name.

@@ -117,6 +117,12 @@ def test_cmake_registers_under_the_python_resource_types() -> None:
     calls = dict(re.findall(r'_ament_nodl_register\((node|interface) (\w+) ', text))
     assert calls == {kind.value: resource for kind, resource in v.RESOURCE_TYPES.items()}
     assert '${PROJECT_NAME}' + v.RESOURCE_SEPARATOR + '${key}' in text
+    # every resource type the CMake functions register is one of the vocabulary's
+    literal = set(re.findall(r'ament_index_register_resource\((\w+)', text)) - {'resource_type'}
+    assert literal == {v.NODE_INFO_RESOURCE}
+    from nodl_schema.index import node_info
+
+    assert node_info.NODE_INFO_RESOURCE is v.NODE_INFO_RESOURCE
 
 
 def test_python_consumers_use_the_resource_types() -> None:
@@ -137,3 +143,28 @@ def test_vocabulary_imports_nothing_heavy() -> None:
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
                          cwd=ROOT, timeout=60, check=True).stdout
     assert out.strip() == "['nodl_schema', 'nodl_schema.vocabulary']"
+
+
+def test_every_table_keyed_by_parameter_type_covers_the_vocabulary() -> None:
+    """Per-language and per-ROS tables keyed by parameter type: none missing, none extra."""
+    from rcl_interfaces.msg import ParameterType
+
+    from nodl_schema.generate.cpp.text import CPP_TYPES
+    from nodl_schema.generate.parameters import ROS_TYPES
+    from nodl_schema.generate.python import _PY_TYPES
+    from nodl_schema.live.observe import _PARAMETER_TYPES
+
+    assert set(ROS_TYPES) == set(_PY_TYPES) == set(v.PARAMETER_TYPES)
+    # a C++ field of type none is an rclcpp::ParameterValue (generate/cpp/parameters.py)
+    assert set(CPP_TYPES) == set(v.PARAMETER_TYPES) - {'none'}
+    # the numbers the live observation reads are rcl_interfaces' constants of those names
+    assert _PARAMETER_TYPES == {getattr(ParameterType, ROS_TYPES[word]): word for word in ROS_TYPES}
+
+
+def test_tables_beside_the_validator_table_name_its_rows() -> None:
+    from nodl_schema.generate.parameters import _RANGE_VALIDATORS
+    from nodl_schema.validation.parameters import _CONFLICTS
+    from nodl_schema.validation.validators import VALIDATORS
+
+    named = set(_RANGE_VALIDATORS) | {name for pair in _CONFLICTS for name in (pair[0], *pair[1])}
+    assert named <= set(VALIDATORS), named - set(VALIDATORS)

@@ -19,13 +19,11 @@ import re
 from typing import NamedTuple
 
 from nodl_schema.index import ament
-from nodl_schema.vocabulary import resource_name
+from nodl_schema.vocabulary import NODE_INFO_RESOURCE, resource_name
 
 __all__ = ['NODE_INFO_RESOURCE', 'NODE_INFO_ATTRIBUTES', 'NodeInfo', 'parse_node_info',
            'read_node_info', 'find_plugin', 'format_node_info', 'plugin_key']
 
-#: The resource type of the entries.
-NODE_INFO_RESOURCE = 'nodl_node_info'
 #: The attributes an entry may hold, and what each is.
 NODE_INFO_ATTRIBUTES = {
     'plugin': 'the composable node class (pkg::ClassName) the definition describes',

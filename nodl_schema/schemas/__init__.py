@@ -18,10 +18,12 @@ if TYPE_CHECKING:
     from pathlib import Path
     from typing import Any
 
+from nodl_schema.vocabulary import Kind
+
 __all__ = ['KINDS', 'schema_path', 'load_schema', 'bundled_schema']
 
-#: The kinds of NoDL document, each with a schema file.
-KINDS = ('parameter', 'interface', 'node')
+#: The kinds of NoDL document, each with a schema file (the vocabulary's :class:`Kind`).
+KINDS: tuple[str, ...] = tuple(kind.value for kind in Kind)
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
 

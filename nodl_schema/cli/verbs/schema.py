@@ -14,7 +14,9 @@ class SchemaVerb(Verb):
     failure = None
 
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
-        parser.add_argument('kind', nargs='?', choices=('parameter', 'interface', 'node'),
+        from nodl_schema.vocabulary import Kind
+
+        parser.add_argument('kind', nargs='?', choices=[kind.value for kind in Kind],
                             default='node', help='which schema (default: node)')
         parser.add_argument('-o', '--output', metavar='FILE',
                             help='write the schema to FILE instead of standard output')

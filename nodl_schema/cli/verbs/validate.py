@@ -21,7 +21,9 @@ class ValidateVerb(Verb):
         parser.add_argument('paths', nargs='+', metavar='PATH',
                             help='files (any extension), directories (searched for *.nodl.yaml, '
                                  '*.nodl.yml, *.nodl.json) or - for standard input')
-        parser.add_argument('--kind', choices=('parameter', 'interface', 'node'),
+        from nodl_schema.vocabulary import Kind
+
+        parser.add_argument('--kind', choices=[kind.value for kind in Kind],
                             help='require this kind of document (default: detect it)')
         parser.add_argument('--format', choices=('text', 'json', 'sarif'), default='text',
                             help='how to print diagnostics (default: text; sarif: SARIF 2.1.0 '
