@@ -45,6 +45,8 @@ class GrantedName(NamedTuple):
     line: int
     column: int
     enclave: str
+    #: The file it is written in, if not the policy file itself (an included file).
+    file: str = ''
 
 
 def _fqn(namespace: str, node: str) -> str:
@@ -87,7 +89,7 @@ def granted_names(parsed: ParsedPolicy) -> tuple[list[GrantedName], dict[str, Xm
                                 out.append(GrantedName(
                                     fqn, kind.communication, access, qualifier.value, written,
                                     resolve_policy_name(written, ns.value, node.value), line, column,
-                                    path.value if path is not None else ''))
+                                    path.value if path is not None else '', parsed.file_of(item)))
     return out, profiles
 
 
@@ -142,7 +144,7 @@ def check_parsed_policy(parsed: ParsedPolicy, expected: Policy) -> list[Diagnost
             deny = next((g for g in denied if covers(g, *key)), None)
             if deny is not None:
                 out.append(_diagnostic(
-                    file, Severity.ERROR, f'missing: {fqn} needs {grant.communication} '
+                    deny.file or file, Severity.ERROR, f'missing: {fqn} needs {grant.communication} '
                     f'{grant.access} on {grant.name}, which this DENY rule takes away',
                     deny.line, deny.column, 'NODL604'))
                 continue
@@ -157,12 +159,12 @@ def check_parsed_policy(parsed: ParsedPolicy, expected: Policy) -> list[Diagnost
         for g in allowed:
             if has_wildcard(g.written):
                 out.append(_diagnostic(
-                    file, Severity.WARNING, f'{fqn}: the {g.communication} pattern {g.written!r} '
+                    g.file or file, Severity.WARNING, f'{fqn}: the {g.communication} pattern {g.written!r} '
                     f'grants {g.access} on every matching name; list the names the node needs '
                     'instead', g.line, g.column, 'NODL603'))
             elif (g.communication, g.access, g.name) not in needed:
                 out.append(_diagnostic(
-                    file, Severity.ERROR, f'extra: {fqn} is granted {g.communication} {g.access} on '
+                    g.file or file, Severity.ERROR, f'extra: {fqn} is granted {g.communication} {g.access} on '
                     f'{g.name!r}, which it does not need (over-privilege)' + _spaced(g.written),
                     g.line, g.column, 'NODL605'))
     for fqn, element in profiles.items():
@@ -170,7 +172,7 @@ def check_parsed_policy(parsed: ParsedPolicy, expected: Policy) -> list[Diagnost
             out.append(_diagnostic(
                 file, Severity.ERROR, f'extra: a profile for {fqn}, which the system does not have '
                 '(over-privilege for whoever holds its enclave)', element.line, element.column, 'NODL608'))
-    out.sort(key=lambda d: (d.line, d.column, d.code, d.message))
+    out.sort(key=lambda d: (d.file != file, d.file, d.line, d.column, d.code, d.message))
     return out
 
 

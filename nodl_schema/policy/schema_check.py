@@ -20,6 +20,9 @@ before it uses it.  What that schema requires, in words:
 
 The document is read with the toolkit's safe XML reader (no DTD, no entity
 expansion, size limits), keeping positions for every diagnostic (NODL606).
+Like SROS 2, it expands XInclude first (:mod:`nodl_schema.policy.xinclude`),
+so hand-written policies that share permissions through included files are
+checked as SROS 2 sees them, and findings name the file a grant is in.
 """
 
 from __future__ import annotations
@@ -27,11 +30,14 @@ from __future__ import annotations
 import html
 import os
 import re
-from typing import Iterator, NamedTuple
+from typing import TYPE_CHECKING, Iterator, NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.frontends.legacy_xml import XmlElement, XmlTree, load_xml
 from nodl_schema.policy.model import PERMISSIONS, POLICY_VERSION, QUALIFIERS
+
+if TYPE_CHECKING:
+    from nodl_schema.policy.xinclude import Origin, Origins
 
 __all__ = ['ParsedPolicy', 'read_policy', 'check_policy_structure', 'check_policy_text']
 
@@ -47,6 +53,18 @@ class ParsedPolicy(NamedTuple):
     tree: XmlTree
     #: Offsets of the start of each line (to take text out of the file by position).
     line_starts: list[int]
+    #: Where included elements come from (None: nothing was included).
+    origins: Origins | None = None
+
+    def _origin(self, element: XmlElement) -> tuple[str, str, list[int]]:
+        found: Origin | None = self.origins.get(id(element)) if self.origins else None
+        if found is None:
+            return self.file, self.text, self.line_starts
+        return found.file, found.text, found.line_starts
+
+    def file_of(self, element: XmlElement) -> str:
+        """The file ``element`` is written in (an included file, or this one)."""
+        return self._origin(element)[0]
 
     @property
     def root(self) -> XmlElement | None:
@@ -61,14 +79,15 @@ class ParsedPolicy(NamedTuple):
         if element.text_at is None:
             return ''
         line, column = element.text_at
-        if line > len(self.line_starts):
+        _, source, line_starts = self._origin(element)
+        if line > len(line_starts):
             return ''
         # The reader places text where the parser reported it (its start or its end): the
         # text is what lies between the tags around that place.
-        at = self.line_starts[line - 1] + column - 1
-        start = self.text.rfind('>', 0, at) + 1
-        end = self.text.find('<', start)
-        raw = self.text[start:end if end >= 0 else len(self.text)]
+        at = line_starts[line - 1] + column - 1
+        start = source.rfind('>', 0, at) + 1
+        end = source.find('<', start)
+        raw = source[start:end if end >= 0 else len(source)]
         text = html.unescape(raw)
         return text.strip() if strip else text
 
@@ -86,7 +105,13 @@ def read_policy(source: str | os.PathLike[str], file: str | None = None) -> Pars
         return ParsedPolicy(problem.file, '', XmlTree(problem.file, None, [problem]), [0])
     tree = load_xml(read.text, read.file)
     starts = [0] + [m.end() for m in _LINE_BREAK.finditer(read.text)]
-    return ParsedPolicy(read.file, read.text, tree, starts)
+    origins = None
+    if tree.root is not None and 'XInclude' in read.text:
+        from nodl_schema.policy.xinclude import Origin, Origins, expand_includes
+
+        origins = Origins()
+        expand_includes(tree.root, Origin(read.file, read.text, starts), origins, tree.diagnostics)
+    return ParsedPolicy(read.file, read.text, tree, starts, origins)
 
 
 def _error(file: str, element: XmlElement, message: str, line: int = 0, column: int = 0) -> Diagnostic:
@@ -105,7 +130,7 @@ class _Checker:
         self.out: list[Diagnostic] = []
 
     def error(self, element: XmlElement, message: str, line: int = 0, column: int = 0) -> None:
-        self.out.append(_error(self.file, element, message, line, column))
+        self.out.append(_error(self.parsed.file_of(element), element, message, line, column))
 
     def attributes(self, element: XmlElement, required: tuple[str, ...],
                    optional: tuple[str, ...] = ()) -> None:
