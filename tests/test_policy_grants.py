@@ -54,6 +54,9 @@ def test_clock_only_when_use_sim_time_can_be_true():
     assert clock not in _profile('talker.nodl.yaml')
     assert clock in _profile('talker.nodl.yaml', params={'use_sim_time': True})
     assert clock not in _profile('talker.nodl.yaml', params={'use_sim_time': False})
+    # the definition's default counts, and a launched value overrides it
+    assert clock in _profile('sim_default.nodl.yaml')
+    assert clock not in _profile('sim_default.nodl.yaml', params={'use_sim_time': False})
     assert [use_sim_time_can_be_true(v) for v in (True, False, None, 'false', '$(var sim)')] == \
         [True, False, False, False, True]
 

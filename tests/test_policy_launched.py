@@ -44,3 +44,19 @@ def test_the_three_frontends_give_one_policy():
 def test_missing_launch_file_is_an_os_error(tmp_path):
     with pytest.raises(OSError):
         launch_policy(tmp_path / 'none.launch.xml')
+
+
+def test_clock_when_use_sim_time_can_be_true_at_start():
+    """set_parameter applies to every later node; a node's own <param> or parameter file after it
+    wins (launch_ros's order); a launch argument decides; the writable parameter alone grants nothing."""
+    launch = REPO / 'tests' / 'fixtures' / 'policy' / 'sim_time.launch.xml'
+    clock = ('topic', 'subscribe', '/clock')
+
+    def with_clock(arguments):
+        result = launch_policy(launch, arguments, prefixes=PREFIX)
+        assert result.ok, result.diagnostics
+        return {p.fqn for _, p in result.policy.profiles() if clock in p.grants}
+
+    assert with_clock({}) == {'/s/global'}
+    assert with_clock({'sim': 'true'}) == {'/s/global', '/s/by_argument'}
+

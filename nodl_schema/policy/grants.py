@@ -7,7 +7,10 @@ client -> call) on its final name.  The base's entities are granted as the
 client library creates them on the chosen distribution
 (:mod:`nodl_schema.policy.distros`): ``~/get_type_description`` only where
 it exists and while ``start_type_description_service`` is not false, and
-``/clock`` (subscribe) only when ``use_sim_time`` can be true.
+``/clock`` (subscribe) only when ``use_sim_time`` can be true when the node
+starts (its launched value, else its default, is true or not known to be
+false).  That the parameter is writable (as in every node) grants nothing:
+a switch to simulation time at runtime is denied ``/clock`` (fails closed).
 """
 
 from __future__ import annotations
