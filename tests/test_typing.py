@@ -88,3 +88,16 @@ def test_the_public_names_are_imported_for_type_checkers() -> None:
 
 def test_the_package_is_marked_typed() -> None:
     assert (REPO / 'nodl_schema' / 'py.typed').is_file()
+
+
+def test_the_consumer_script_imports_every_public_name() -> None:
+    """A name added to nodl_schema.__all__ is type-checked as a user would use it."""
+    import ast
+
+    import nodl_schema
+
+    tree = ast.parse(CONSUMER.read_text(encoding='utf-8'))
+    imported = {alias.asname or alias.name for node in ast.walk(tree)
+                if isinstance(node, ast.ImportFrom) and node.module == 'nodl_schema'
+                for alias in node.names}
+    assert sorted(set(nodl_schema.__all__) - imported) == []
