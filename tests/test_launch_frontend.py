@@ -35,6 +35,9 @@ def _diagnostics(tmp_path: Path, name: str, text: str) -> list[Any]:
      ('NODL504', 2, 3, "both 'if' and 'unless'")),
     ('a.launch.xml', '<launch>\n  <group scoped="maybe"/>\n</launch>\n', ('NODL504', 2, 10, 'true or false')),
     ('a.launch.xml', '<lunch/>\n', ('NODL501', 1, 1, '<launch>')),
+    # launch_xml splits a list only with NAME-sep: 'sep' alone is an unexpected attribute there.
+    ('a.launch.xml', '<launch>\n  <node pkg="p" exec="e">\n    <param name="l" value="1,2" sep=","/>\n'
+     '  </node>\n</launch>\n', ('NODL502', 3, 33, "did you mean 'value-sep'?")),
 ])
 def test_unknown_or_wrong_entities_are_placed(tmp_path: Path, name: str, text: str,
                                              expected: tuple[str, int, int, str]) -> None:
@@ -104,3 +107,19 @@ def test_scoped_and_unscoped_groups(tmp_path: Path) -> None:
     result = load_launch(main, {})
     assert result.ok, [str(d) for d in result.diagnostics]
     assert [(n.name, n.namespace) for n in result.nodes] == [('a0', '/'), ('n2', '/out')]
+
+
+def test_ros_timer_actions_and_plain_processes(tmp_path: Path) -> None:
+    """<ros_timer> (launch_ros) runs its actions; <executable> is said at its line: a warning
+    when the command starts ROS nodes, a note otherwise."""
+    main = tmp_path / 'a.launch.xml'
+    main.write_text('<launch>\n'
+                    '  <ros_timer period="2.0">\n    <node pkg="p" exec="late" name="late"/>\n  </ros_timer>\n'
+                    '  <executable cmd="ros2 run p helper --ros-args -r a:=b" respawn_max_retries="2"/>\n'
+                    '  <executable cmd="$(find-exec true)" on_exit="shutdown"/>\n'
+                    '</launch>\n', encoding='utf-8')
+    result = load_launch(main, {})
+    assert [n.name for n in result.nodes] == ['late']
+    assert [(d.code, d.severity.value, d.line) for d in result.diagnostics] == [
+        ('NODL512', 'warning', 5), ('NODL512', 'info', 6)]
+    assert 'ROS nodes it starts are missing from the analysis' in result.diagnostics[0].message

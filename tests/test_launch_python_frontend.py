@@ -6,6 +6,7 @@ from __future__ import annotations
 import sys
 import textwrap
 from pathlib import Path
+from typing import Any
 
 from nodl_schema.launch import load_launch
 
@@ -63,3 +64,88 @@ def test_unnamed_node_records_say_the_name_was_not_given(tmp_path: Path) -> None
     (node,) = load_launch(main, {}).nodes
     assert (node.name, node.name_given, node.fqn, node.namespace) == (None, False, None, '/ns')
     assert node.to_dict()['name_given'] is False
+
+
+REAL_WORLD = Path(__file__).parent / 'fixtures' / 'launch' / 'real_world'
+
+
+def _rover(tmp_path: Path, prefix: Path, **arguments: str) -> Any:
+    return load_launch(REAL_WORLD / 'rover_stack.launch.py', {'scratch': str(tmp_path), **arguments},
+                       prefixes=[str(prefix)])
+
+
+def test_a_stack_style_launch_file_with_installed_helpers_is_read_faithfully(tmp_path: Path) -> None:
+    """Helper substitutions installed under the ament prefix (lib/python*/site-packages) import
+    and run against the stand-ins (launch.utilities, context.launch_configurations), names used
+    only by main() or in hints import, submodule imports give the same classes,
+    PathSubstitution joins, FindPackageShare.find works; a $(command) parameter keeps its node."""
+    from nodl_schema.launch import parameter_overrides
+    from nodl_schema.launch.params import RuntimeValue
+
+    path_before, modules_before = list(sys.path), set(sys.modules)
+    result = _rover(tmp_path, REAL_WORLD / 'prefix')
+    assert [(d.code, d.severity.value, d.line) for d in result.diagnostics] == [
+        ('NODL513', 'warning', 35), ('NODL512', 'info', 48)]
+    assert 'the node is analysed without this value' in result.diagnostics[0].message
+    assert [(n.kind, n.name, n.namespace, n.container) for n in result.nodes] == [
+        ('node', 'describer', '/rover1', None), ('container', 'stack', '/rover1', None),
+        ('composable', 'planner', '/rover1', '/rover1/stack')]
+    describer, _, planner = result.nodes
+    values = {k: v.value for k, v in parameter_overrides(describer).items()}
+    assert values['rate'] == 5.0 and isinstance(values['description'], RuntimeValue)
+    assert {k: v.value for k, v in parameter_overrides(planner).items()} == {'horizon': 2.5, 'frame': 'map'}
+    assert sys.path == path_before
+    assert not {m for m in set(sys.modules) - modules_before
+                if m.partition('.')[0] in ('launch', 'launch_ros', 'rover_launch_tools')}
+
+
+def test_conditions_through_helper_substitutions_and_ros_processes(tmp_path: Path) -> None:
+    result = _rover(tmp_path, REAL_WORLD / 'prefix', mode='processes', record='on', robot='r2')
+    assert [(n.kind, n.name, n.namespace) for n in result.nodes] == [
+        ('node', 'describer', '/r2'), ('node', 'planner', '/r2')]
+    process = [d for d in result.diagnostics if d.line == 47]
+    assert [(d.code, d.severity.value) for d in process] == [('NODL512', 'warning')]
+    assert "'ros2 bag record -a'" in process[0].message and 'missing from the analysis' in process[0].message
+
+
+def test_a_helper_package_that_is_not_installed_is_a_located_error(tmp_path: Path) -> None:
+    import shutil
+
+    prefix = tmp_path / 'prefix'
+    shutil.copytree(REAL_WORLD / 'prefix' / 'share', prefix / 'share')  # no lib/python*/
+    problem, unread = _rover(tmp_path, prefix).diagnostics
+    assert (problem.code, problem.severity.value, problem.line) == ('NODL516', 'error', 16)
+    assert unread.code == 'NODL520'  # 'scratch' is declared by the file that could not run
+    assert "'rover_launch_tools'" in problem.message and 'missing from the analysis' in problem.message
+
+
+def test_a_package_not_found_by_ament_index_python_is_nodl511(tmp_path: Path) -> None:
+    main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
+        from ament_index_python.packages import get_package_share_directory
+        from launch import LaunchDescription
+        def generate_launch_description():
+            get_package_share_directory('no_such_package_here')
+            return LaunchDescription([])
+        ''')})
+    (problem,) = load_launch(main, {}, prefixes=[str(tmp_path)]).diagnostics
+    assert (problem.code, problem.line) == ('NODL511', 4)
+    assert problem.message.startswith("package 'no_such_package_here' not found")
+
+
+def test_unevaluable_values_say_what_is_missing(tmp_path: Path) -> None:
+    main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
+        from launch import LaunchDescription
+        from launch.actions import IncludeLaunchDescription
+        from launch.substitutions import Command, LaunchLogDir
+        from launch_ros.actions import Node
+        def generate_launch_description():
+            return LaunchDescription([
+                Node(package='p', executable='e', name=Command('hostname')),
+                IncludeLaunchDescription(LaunchLogDir()),
+                Node(package='p', executable='f', parameters=[{'log': LaunchLogDir()}])])
+        ''')})
+    result = load_launch(main, {})
+    assert [(d.code, d.line) for d in result.diagnostics] == [('NODL513', 7), ('NODL513', 8), ('NODL513', 9)]
+    assert result.diagnostics[0].message.endswith('this node is missing from the analysis')
+    assert 'nodes of the included launch file are missing' in result.diagnostics[1].message
+    assert [n.executable for n in result.nodes] == ['f']

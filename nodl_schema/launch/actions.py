@@ -23,7 +23,7 @@ if TYPE_CHECKING:
 __all__ = ['Action', 'LaunchDescription', 'DeclareLaunchArgument', 'SetLaunchConfiguration',
            'UnsetLaunchConfiguration', 'GroupAction', 'IncludeLaunchDescription',
            'SetEnvironmentVariable', 'UnsetEnvironmentVariable', 'AppendEnvironmentVariable',
-           'Unevaluated', 'Ignored']
+           'ExecuteProcess', 'Unevaluated', 'Ignored']
 
 
 class Action:
@@ -202,6 +202,37 @@ class AppendEnvironmentVariable(Action):
         if old:
             value = f'{value}{self.separator}{old}' if self.prepend else f'{old}{self.separator}{value}'
         context.environment[name] = value
+        return None
+
+
+class ExecuteProcess(Action):
+    """``executable`` (``ExecuteProcess``): a plain process, not looked into.  Said at its line
+    (a warning when the command starts ROS nodes: ``ros2 ...``, ``--ros-args``, an executable
+    of a package; else a note), so nodes it may start are not silently missing."""
+
+    def __init__(self, *, cmd: Any = (), **_: Any) -> None:
+        parts = cmd if isinstance(cmd, (list, tuple)) else [cmd]
+        self.cmd = [normalize(part) for part in parts]
+
+    def execute(self, context: LaunchContext) -> list[Action] | None:
+        import re
+
+        from nodl_schema.diagnostics import Diagnostic, Severity
+        from nodl_schema.launch.substitutions import ExecutableInPackage
+
+        try:
+            text = ' '.join(perform(context, part) for part in self.cmd)
+        except LaunchProblem:
+            text = ' '.join(''.join(s.describe() for s in part) for part in self.cmd)
+        ros = any(isinstance(s, ExecutableInPackage) for part in self.cmd for s in part) or bool(
+            re.search(r'(^|[\s/])ros2\s|--ros-args', text))
+        shown = text if len(text) <= 80 else text[:77] + '...'
+        what = ('the ROS nodes it starts are missing from the analysis' if ros else
+                'if it starts ROS nodes, they are missing from the analysis')
+        context.report(Diagnostic(Severity.WARNING if ros else Severity.INFO,
+                                  f"'{shown}' runs as a plain process, which the analyser does not "
+                                  f'look into; {what} (launch them with <node>/Node to analyse them)',
+                                  (), *self.location, code='NODL512'))
         return None
 
 

@@ -48,6 +48,16 @@ class LaunchContext:
         self._anonymous: dict[str, str] = {}
         self._seen_diagnostics: set[tuple[str, int, int, str]] = set()
 
+    # -- what launch.LaunchContext offers to substitutions written in helper packages ------
+    @property
+    def launch_configurations(self) -> dict[str, Any]:
+        """``launch.LaunchContext.launch_configurations``: the configurations of the scope."""
+        return self.configurations
+
+    def perform_substitution(self, substitution: Any) -> str:
+        """``launch.LaunchContext.perform_substitution``."""
+        return str(substitution.perform(self))
+
     # -- scoping -------------------------------------------------------------------------
     def push_configurations(self) -> None:
         """Start a scope (a shallow copy, as launch makes)."""

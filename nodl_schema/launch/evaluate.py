@@ -14,7 +14,7 @@ from typing import Any
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch.actions import Action, DeclareLaunchArgument, GroupAction, LaunchDescription
 from nodl_schema.launch.context import LaunchContext
-from nodl_schema.launch.errors import MAX_INCLUDE_DEPTH, LaunchProblem
+from nodl_schema.launch.errors import MAX_INCLUDE_DEPTH, LaunchProblem, Unevaluable
 from nodl_schema.launch.model import LaunchResult, SourceLocation
 from nodl_schema.launch.substitutions import perform
 
@@ -192,6 +192,20 @@ def include(context: LaunchContext, action: Any) -> list[Action] | None:
     return [description, _Leave(*saved)]
 
 
+def _what_is_missing(entity: Action) -> str:
+    """What the analysis lacks when a value only the running launch knows stops ``entity``."""
+    from nodl_schema.launch.actions import IncludeLaunchDescription
+    from nodl_schema.launch.ros_actions import LoadComposableNodes, Node
+
+    if isinstance(entity, Node):
+        return '; this node is missing from the analysis'
+    if isinstance(entity, LoadComposableNodes):
+        return '; these composable nodes are missing from the analysis'
+    if isinstance(entity, IncludeLaunchDescription):
+        return '; the nodes of the included launch file are missing from the analysis'
+    return '; nodes that depend on it may be missing from the analysis'
+
+
 def _visit(context: LaunchContext, root: Action) -> None:
     """Depth-first, as launch visits entities (iterative: deep nesting cannot overflow)."""
     stack: list[Any] = [root]
@@ -210,6 +224,10 @@ def _visit(context: LaunchContext, root: Action) -> None:
             if entity.condition is not None and not entity.condition.evaluate(context):
                 continue
             children = entity.execute(context)
+        except Unevaluable as problem:
+            problem.message += _what_is_missing(entity)
+            context.problem(problem, entity.location)
+            continue
         except LaunchProblem as problem:
             context.problem(problem, entity.location)
             continue

@@ -21,7 +21,8 @@ from nodl_schema.launch.substitution_grammar import parse_if_substitutions, pars
 __all__ = ['Attribute', 'Entity', 'TAGS', 'build_description']
 
 _PROCESS = ('cwd', 'shell', 'emulate_tty', 'additional_env', 'launch-prefix', 'output', 'respawn',
-            'respawn_delay', 'sigterm_timeout', 'sigkill_timeout', 'exec_name', 'log_cmd')
+            'respawn_delay', 'respawn_max_retries', 'on_exit', 'sigterm_timeout', 'sigkill_timeout',
+            'exec_name', 'log_cmd')
 _NODE = ('pkg', 'exec*', 'name', 'namespace', 'args', 'ros_args', 'node-name', *_PROCESS)
 _NODE_LISTS = ('param', 'remap', 'env')
 _CONDITION = ('if', 'unless')
@@ -46,6 +47,7 @@ TAGS: dict[str, tuple[tuple[str, ...], tuple[str, ...], bool]] = {
     'executable': (('cmd*', 'name', *_PROCESS, *_CONDITION), ('env',), False),
     'log': (('message*', 'level', *_CONDITION), (), False),
     'timer': (('period*', *_CONDITION), (), True),
+    'ros_timer': (('period*', *_CONDITION), (), True),
     'shutdown': (('reason', *_CONDITION), (), False),
     'set_use_sim_time': (('value*', *_CONDITION), (), False),
     'set_ros_log_dir': (('new_log_dir*', *_CONDITION), (), False),
@@ -57,7 +59,7 @@ NESTED: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     'env': (('name*', 'value*'), ()),
     'remap': (('from*', 'to*'), ()),
     'extra_arg': (('name*', 'value*'), ()),
-    'param': (('name', 'value', 'type', 'value-sep', 'from', 'allow_substs', 'sep'), ('param',)),
+    'param': (('name', 'value', 'type', 'value-sep', 'from', 'allow_substs'), ('param',)),
     'composable_node': (('pkg*', 'plugin*', 'name*', 'namespace', *_CONDITION),
                         ('param', 'remap', 'extra_arg')),
 }
@@ -133,8 +135,10 @@ def _check(entity: Entity, attributes: tuple[str, ...], lists: tuple[str, ...], 
     ok = True
     for name, attribute in entity.attributes.items():
         if name not in allowed and not name.startswith(('xmlns', 'xsi:')):
+            hint = did_you_mean(name, allowed | set(lists)) or next(  # 'sep' -> 'value-sep'
+                (f"; did you mean '{a}'?" for a in sorted(allowed) if a.endswith('-' + name)), '')
             problems.append(Diagnostic(Severity.ERROR, f"unknown attribute '{name}' of <{entity.tag}>"
-                                       f'{did_you_mean(name, allowed | set(lists))}; expected '
+                                       f'{hint}; expected '
                                        f'{", ".join(sorted(allowed))}', (), entity.location.file,
                                        attribute.line, attribute.column, code='NODL502'))
             ok = False
@@ -221,7 +225,7 @@ def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
                                        '<param>', *param.location)
     data_type = type_from_identifier(identifier) if identifier is not None else None
     raw = value.value
-    separator = param.text('value-sep') or param.text('sep')
+    separator = param.text('value-sep')
     try:
         if isinstance(raw, str):
             typed = get_typed_value(raw.split(separator) if separator else raw, data_type)
@@ -355,8 +359,10 @@ def _make(entity: Entity, tag: str, problems: list[Diagnostic]) -> A.Action:
         return R.LoadComposableNodes(
             composable_node_descriptions=[_composable(c) for c in entity.nested.get('composable_node', [])],
             target_container=s('target'))
-    if tag == 'timer':
+    if tag in ('timer', 'ros_timer'):
         return A.Ignored(actions=_children(entity, problems))
+    if tag == 'executable':
+        return A.ExecuteProcess(cmd=s('cmd'))
     return A.Ignored()
 
 

@@ -208,10 +208,18 @@ def rcl_yaml_value(text: str) -> Any:
     return text if value is None else value
 
 
+def _known_at_run_time(value: Any) -> bool:
+    from nodl_schema.launch.params import RuntimeValue
+
+    return isinstance(value, RuntimeValue)
+
+
 def as_rcl_reads_dump(value: Any) -> Any:
     """What rcl reads back from ``yaml.dump(value)`` (launch_ros writes node dicts and
     ``Parameter`` values that way): PyYAML leaves ``'y'`` or ``'1e5'`` unquoted, rcl reads a
     bool and a double."""
+    if _known_at_run_time(value):
+        return value
     if isinstance(value, str) or (isinstance(value, list) and any(isinstance(v, str) for v in value)):
         import yaml
 
@@ -222,6 +230,8 @@ def as_rcl_reads_dump(value: Any) -> Any:
 def as_rcl_reads_text(value: Any) -> Any:
     """What rcl reads from ``-p NAME:={value}`` (launch_ros passes ``set_parameter`` values
     formatted by Python: ``'1'`` becomes the int 1, ``True`` the bool true)."""
+    if _known_at_run_time(value):
+        return value
     if isinstance(value, (bool, int, float)) and not isinstance(value, str):
         return value
     if isinstance(value, (list, tuple)):

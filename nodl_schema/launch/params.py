@@ -19,7 +19,7 @@ from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch.errors import LaunchProblem
 from nodl_schema.launch.overrides import match_composable_parameter_keys, match_parameter_file_nodes
 
-__all__ = ['ParameterValue', 'coerce_to_type', 'get_typed_value', 'evaluate_value',
+__all__ = ['ParameterValue', 'RuntimeValue', 'coerce_to_type', 'get_typed_value', 'evaluate_value',
            'ParameterFileNode', 'ParameterFile', 'load_parameter_file',
            'match_parameter_file_nodes', 'match_composable_parameter_keys', 'flatten_parameters',
            'SCALAR_TYPES']
@@ -145,6 +145,11 @@ class ParameterValue:
         self.value = value
         self.value_type = value_type
         self.dict_rules = dict_rules
+
+
+class RuntimeValue(str):
+    """A parameter value only the running launch knows (``$(command ...)``...): the node is
+    analysed with this parameter set, its value unchecked; the text says where it comes from."""
 
 
 def _is_subs(value: Any) -> bool:

@@ -15,6 +15,8 @@ nodes may be missing.  Running a Python launch file is running its code, as
 
 from __future__ import annotations
 
+import importlib.abc
+import importlib.util
 import os
 import sys
 import types
@@ -26,7 +28,7 @@ from nodl_schema.launch import conditions as C
 from nodl_schema.launch import params as P
 from nodl_schema.launch import ros_actions as R
 from nodl_schema.launch import substitutions as S
-from nodl_schema.launch.errors import LaunchProblem
+from nodl_schema.launch.errors import LaunchProblem, Unevaluable
 from nodl_schema.launch.model import SourceLocation
 
 TYPE_CHECKING = False
@@ -72,14 +74,75 @@ def _unknown(module: str) -> Any:
     def factory(name: str) -> Any:
         if name.startswith('__'):
             raise AttributeError(name)
-
-        class Unknown(A.Unevaluated):
-            def __init__(self, *args: Any, **kwargs: Any) -> None:
-                super().__init__(f'{module}.{name}')
-                self.location = _caller()
-        Unknown.__name__ = name
-        return Unknown
+        return _placeholder(f'{module}.{name}')
     return factory
+
+
+def _placeholder(qualified: str) -> type:
+    """A stand-in for a name the stand-in modules do not define.
+
+    Importing it works (launch files import many names they use only in ``main()`` or in
+    type hints); used as an action it is a NODL512 warning at its line, performed as a
+    substitution a NODL513 warning: both say what cannot be known without running the launch.
+    """
+    class Unknown(A.Unevaluated, S.Substitution):
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            A.Unevaluated.__init__(self, qualified)
+            self.location = _caller()
+
+        def perform(self, context: LaunchContext) -> str:
+            raise Unevaluable(f'{qualified} is not part of what the analyser evaluates; its value '
+                              'is known only when the launch runs')
+
+        def describe(self) -> str:
+            return qualified
+
+        def __getattr__(self, name: str) -> Any:
+            if name.startswith('__'):
+                raise AttributeError(name)
+            return _placeholder(f'{qualified}().{name}')
+
+    Unknown.__name__ = Unknown.__qualname__ = qualified.rpartition('.')[2]
+    return Unknown
+
+
+class _Finder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
+    """Any other submodule of the stand-in packages imports as a module of placeholders."""
+
+    def find_spec(self, fullname: str, path: Any, target: Any = None) -> Any:
+        if fullname.partition('.')[0] not in _STAND_IN_PACKAGES or fullname in sys.modules:
+            return None
+        return importlib.util.spec_from_loader(fullname, self, is_package=True)
+
+    def create_module(self, spec: Any) -> types.ModuleType:
+        # launch's packages re-export what their submodules define: a submodule
+        # (``launch.substitutions.launch_configuration``) offers its package's stand-ins.
+        parent = spec.name.rpartition('.')[0]
+        members = {k: v for k, v in vars(sys.modules[parent]).items() if not k.startswith('__')} \
+            if parent in sys.modules else {}
+        return _module(spec.name, members, unknown=True)
+
+    def exec_module(self, module: types.ModuleType) -> None:
+        return None
+
+
+_STAND_IN_PACKAGES = ('launch', 'launch_ros')
+
+
+def _python_paths(context: LaunchContext) -> list[str]:
+    """Where a sourced workspace puts Python packages: ``<prefix>/lib/pythonX.Y/site-packages``
+    (and ``local/lib/.../dist-packages``) of every ament prefix, so launch helpers installed
+    with a package (``nav2_common.launch``...) import as they do under ``ros2 launch``."""
+    import glob
+
+    found = []
+    for prefix in context.prefixes:
+        for pattern in ('lib/python3*/site-packages', 'local/lib/python3*/dist-packages',
+                        'lib/python3*/dist-packages'):
+            for path in sorted(glob.glob(os.path.join(glob.escape(prefix), pattern))):
+                if os.path.isdir(path) and path not in sys.path and path not in found:
+                    found.append(path)
+    return found
 
 
 class _Source:
@@ -159,11 +222,49 @@ def _package_prefix(package: str) -> str:
     try:
         return str(context.package_prefix(package))
     except LaunchProblem as problem:
-        raise _PackageNotFoundError(problem.message)
+        raise PackageNotFoundError(problem.message)
 
 
-class _PackageNotFoundError(KeyError):
-    pass
+class PackageNotFoundError(KeyError):
+    """``ament_index_python.PackageNotFoundError`` (a ``KeyError``, as there)."""
+
+    def __str__(self) -> str:
+        return str(self.args[0]) if self.args else ''
+
+
+class _FindPackageShare(S.FindPackageShare):
+    @staticmethod
+    def find(package_name: str) -> str:
+        """``FindPackageShare.find``: the share folder, found at once (no substitution)."""
+        return _package_share(package_name)
+
+
+class _FindPackagePrefix(S.FindPackagePrefix):
+    @staticmethod
+    def find(package_name: str) -> str:
+        """``FindPackagePrefix.find``: the prefix, found at once."""
+        return _package_prefix(package_name)
+
+
+def _perform_substitutions(context: Any, subs: Any) -> str:
+    """``launch.utilities.perform_substitutions`` for substitutions written in helper packages."""
+    return S.perform(context, subs)
+
+
+def _perform_typed_substitution(context: Any, value: Any, data_type: Any) -> Any:
+    from nodl_schema.launch.params import get_typed_value
+
+    return get_typed_value(S.perform(context, value), data_type)
+
+
+def _ensure_argument_type(*args: Any, **kwargs: Any) -> None:
+    return None
+
+
+def _expose(*args: Any, **kwargs: Any) -> Any:
+    """``launch.frontend.expose_action``/``expose_substitution``: the frontends here have
+    their own table of tags; a decorated class stays usable from Python."""
+    return lambda cls: cls
 
 
 def _module(name: str, members: dict[str, Any], unknown: bool = False) -> types.ModuleType:
@@ -188,8 +289,8 @@ def shim_modules() -> dict[str, types.ModuleType]:
         SetEnvironmentVariable=L(A.SetEnvironmentVariable),
         UnsetEnvironmentVariable=L(A.UnsetEnvironmentVariable),
         AppendEnvironmentVariable=L(A.AppendEnvironmentVariable),
-        LogInfo=L(A.Ignored, 'LogInfo'), ExecuteProcess=L(A.Ignored, 'ExecuteProcess'),
-        ExecuteLocal=L(A.Ignored, 'ExecuteLocal'), EmitEvent=L(A.Ignored, 'EmitEvent'),
+        LogInfo=L(A.Ignored, 'LogInfo'), ExecuteProcess=L(A.ExecuteProcess),
+        ExecuteLocal=L(A.ExecuteProcess, 'ExecuteLocal'), EmitEvent=L(A.Ignored, 'EmitEvent'),
         Shutdown=L(A.Ignored, 'Shutdown'), TimerAction=L(_Timer, 'TimerAction'),
         RegisterEventHandler=L(_RegisterEventHandler, 'RegisterEventHandler'),
         OpaqueFunction=L(_Opaque, 'OpaqueFunction'), OpaqueCoroutine=L(_Opaque, 'OpaqueCoroutine'),
@@ -219,24 +320,43 @@ def shim_modules() -> dict[str, types.ModuleType]:
     def set_use_sim_time(self: Any, value: Any, **kwargs: Any) -> None:
         set_parameter.__init__(self, 'use_sim_time', value, **kwargs)
     ros_actions['SetUseSimTime'] = type('SetUseSimTime', (set_parameter,), {'__init__': set_use_sim_time})
-    ros_subs = dict(FindPackageShare=S.FindPackageShare, FindPackagePrefix=S.FindPackagePrefix,
+    ros_subs = dict(FindPackageShare=_FindPackageShare, FindPackagePrefix=_FindPackagePrefix,
                     ExecutableInPackage=S.ExecutableInPackage, Parameter=S.ParameterSubstitution)
     ament = dict(get_package_share_directory=_package_share, get_package_prefix=_package_prefix,
-                 PackageNotFoundError=_PackageNotFoundError)
+                 PackageNotFoundError=PackageNotFoundError)
+    utilities = dict(perform_substitutions=_perform_substitutions,
+                     normalize_to_list_of_substitutions=S.normalize,
+                     perform_typed_substitution=_perform_typed_substitution,
+                     ensure_argument_type=_ensure_argument_type)
+    types_tuple = (str, S.Substitution, list, tuple)
     launch = dict(LaunchDescription=A.LaunchDescription, Action=A.Action, Substitution=S.Substitution,
-                  Condition=C.Condition, LaunchContext=object, SomeSubstitutionsType=object)
+                  Condition=C.Condition, LaunchContext=object, SomeSubstitutionsType=object,
+                  SomeSubstitutionsType_types_tuple=types_tuple, LaunchDescriptionEntity=object)
     modules = {
-        'launch': _module('launch', launch),
+        'launch': _module('launch', launch, unknown=True),
+        'launch.utilities': _module('launch.utilities', utilities, unknown=True),
+        'launch.some_substitutions_type': _module('launch.some_substitutions_type', dict(
+            SomeSubstitutionsType=object, SomeSubstitutionsType_types_tuple=types_tuple)),
+        'launch.substitution': _module('launch.substitution', dict(Substitution=S.Substitution)),
+        'launch.action': _module('launch.action', dict(Action=A.Action)),
+        'launch.launch_context': _module('launch.launch_context', dict(LaunchContext=object)),
+        'launch.launch_description': _module('launch.launch_description',
+                                             dict(LaunchDescription=A.LaunchDescription)),
+        'launch.condition': _module('launch.condition', dict(Condition=C.Condition)),
+        'launch.frontend': _module('launch.frontend', dict(expose_action=_expose,
+                                                           expose_substitution=_expose), unknown=True),
         'launch.actions': _module('launch.actions', actions, unknown=True),
         'launch.substitutions': _module('launch.substitutions', subs, unknown=True),
-        'launch.conditions': _module('launch.conditions', conditions),
-        'launch.launch_description_sources': _module('launch.launch_description_sources', sources),
-        'launch.event_handlers': _module('launch.event_handlers', handlers),
+        'launch.conditions': _module('launch.conditions', conditions, unknown=True),
+        'launch.launch_description_sources': _module('launch.launch_description_sources', sources,
+                                                     unknown=True),
+        'launch.event_handlers': _module('launch.event_handlers', handlers, unknown=True),
         'launch.events': _module('launch.events', {}, unknown=True),
-        'launch_ros': _module('launch_ros', {}),
+        'launch_ros': _module('launch_ros', {}, unknown=True),
         'launch_ros.actions': _module('launch_ros.actions', ros_actions, unknown=True),
-        'launch_ros.descriptions': _module('launch_ros.descriptions', descriptions),
-        'launch_ros.parameter_descriptions': _module('launch_ros.parameter_descriptions', descriptions),
+        'launch_ros.descriptions': _module('launch_ros.descriptions', descriptions, unknown=True),
+        'launch_ros.parameter_descriptions': _module('launch_ros.parameter_descriptions', descriptions,
+                                                     unknown=True),
         'launch_ros.substitutions': _module('launch_ros.substitutions', ros_subs, unknown=True),
         'ament_index_python': _module('ament_index_python', ament),
         'ament_index_python.packages': _module('ament_index_python.packages', ament),
@@ -248,6 +368,16 @@ def shim_modules() -> dict[str, types.ModuleType]:
     return modules
 
 
+def _forget_modules(paths: list[str]) -> None:
+    """Drop the modules imported from ``paths`` (they hold the stand-ins of this evaluation)."""
+    if not paths:
+        return
+    roots = tuple(os.path.join(p, '') for p in paths)
+    for name, module in list(sys.modules.items()):
+        if (getattr(module, '__file__', None) or '').startswith(roots):
+            del sys.modules[name]
+
+
 def _problem(path: str, exc: BaseException) -> Diagnostic:
     import traceback
 
@@ -255,8 +385,17 @@ def _problem(path: str, exc: BaseException) -> Diagnostic:
     for frame in traceback.extract_tb(exc.__traceback__):
         if frame.filename == path:
             line = frame.lineno or 0
+    missing = '; the nodes this launch file would start are missing from the analysis'
+    if isinstance(exc, PackageNotFoundError):
+        return Diagnostic(Severity.ERROR, f'{exc}{missing}', (), path, line, 1 if line else 0,
+                          code='NODL511')
+    if isinstance(exc, ModuleNotFoundError) and exc.name:
+        return Diagnostic(Severity.ERROR, f"the Python launch file imports '{exc.name}', which is not "
+                          'installed here (neither on the Python path nor in the Python folders of an '
+                          'ament prefix); install or source the package that provides it'
+                          f'{missing}', (), path, line, 1 if line else 0, code='NODL516')
     return Diagnostic(Severity.ERROR, f'the Python launch file raised {type(exc).__name__}: {exc}'
-                      .split('\n')[0], (), path, line, 1 if line else 0, code='NODL516')
+                      .split('\n')[0] + missing, (), path, line, 1 if line else 0, code='NODL516')
 
 
 def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription | None:
@@ -275,7 +414,14 @@ def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription
         return None
     shims = shim_modules()
     saved = {name: sys.modules.get(name) for name in shims}
+    stale = [name for name in sys.modules if name.partition('.')[0] in _STAND_IN_PACKAGES
+             and name not in shims]
+    saved.update((name, sys.modules.pop(name)) for name in stale)  # e.g. a real launch's modules
     sys.modules.update(shims)
+    finder = _Finder()
+    sys.meta_path.insert(0, finder)
+    python_paths = _python_paths(context)
+    sys.path.extend(python_paths)
     _CURRENT.append((context, path))
     namespace: dict[str, Any] = {'__file__': path, '__name__': '__nodl_launch__'}
     try:
@@ -303,6 +449,13 @@ def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription
         return None
     finally:
         _CURRENT.pop()
+        sys.meta_path.remove(finder)
+        for python_path in python_paths:
+            sys.path.remove(python_path)
+        _forget_modules(python_paths)
+        for name in [n for n in sys.modules if n.partition('.')[0] in _STAND_IN_PACKAGES]:
+            if name not in saved:  # placeholders made by the finder
+                del sys.modules[name]
         for name, module in saved.items():
             if module is None:
                 sys.modules.pop(name, None)

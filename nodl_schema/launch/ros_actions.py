@@ -15,9 +15,9 @@ from typing import Any
 
 from nodl_schema.launch.actions import Action
 from nodl_schema.launch.conditions import Condition
-from nodl_schema.launch.errors import LaunchProblem
+from nodl_schema.launch.errors import LaunchProblem, Unevaluable
 from nodl_schema.launch.model import LaunchedNode, ParameterSource, SourceLocation
-from nodl_schema.launch.params import ParameterValue, evaluate_value, normalize_python_dict
+from nodl_schema.launch.params import ParameterValue, RuntimeValue, evaluate_value, normalize_python_dict
 from nodl_schema.launch.substitutions import normalize, perform
 
 TYPE_CHECKING = False
@@ -73,7 +73,7 @@ class SetParameter(Action):
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
         name = perform(context, self.name)
-        value = evaluate_value(context, self.value, name)
+        value = evaluate_parameter(context, self.value, name, self.location)
         params = context.configurations.get('global_params', [])
         params.append((name, value))
         context.configurations['global_params'] = params
@@ -196,6 +196,17 @@ def _global_parameters(context: LaunchContext, location: SourceLocation) -> list
     return out
 
 
+def evaluate_parameter(context: LaunchContext, spec: Any, name: str, location: SourceLocation) -> Any:
+    """A parameter's value, or a :class:`RuntimeValue` (with a warning) when only the running
+    launch can know it: the node stays in the analysis, this one value unchecked."""
+    try:
+        return evaluate_value(context, spec, name)
+    except Unevaluable as problem:
+        context.warn('NODL513', f"parameter '{name}': {problem.message}; the node is analysed "
+                                'without this value', location)
+        return RuntimeValue(f'<{name}: known at run time>')
+
+
 def _own_parameters(context: LaunchContext, parameters: list[Any], location: SourceLocation,
                     node_key: str) -> list[ParameterSource]:
     out = []
@@ -210,12 +221,12 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
             name, spec = item.nodl_parameter
             pname = perform(context, name)
             out.append(ParameterSource('values', 'node', location,
-                                       values={pname: evaluate_value(context, spec, pname)}))
+                                       values={pname: evaluate_parameter(context, spec, pname, location)}))
         else:
             values: dict[str, Any] = {}
             for name, spec in item:
                 pname = perform(context, name)
-                values[pname] = evaluate_value(context, spec, pname)
+                values[pname] = evaluate_parameter(context, spec, pname, location)
             out.append(ParameterSource('values', 'node', location, values=values, node_key=node_key))
     return out
 

@@ -30,8 +30,8 @@ __all__ = [
     'FindPackageShare', 'FindPackagePrefix', 'PythonExpression', 'ThisLaunchFileDir',
     'ThisLaunchFile', 'AnonName', 'NotSubstitution', 'AndSubstitution', 'OrSubstitution',
     'AnySubstitution', 'AllSubstitution', 'EqualsSubstitution', 'NotEqualsSubstitution',
-    'IfElseSubstitution', 'PathJoinSubstitution', 'Command', 'FindExecutable', 'FileContent',
-    'ExecutableInPackage', 'LaunchLogDir', 'ParameterSubstitution', 'normalize', 'perform',
+    'IfElseSubstitution', 'PathJoinSubstitution', 'PathSubstitution', 'Command', 'FindExecutable',
+    'FileContent', 'ExecutableInPackage', 'LaunchLogDir', 'ParameterSubstitution', 'normalize', 'perform',
     'to_bool', 'yaml_bool',
 ]
 
@@ -349,6 +349,19 @@ class PathJoinSubstitution(Substitution):
         joined = PathJoinSubstitution([])
         joined.parts = [*self.parts, normalize(other)]
         return joined
+
+
+class PathSubstitution(Substitution):
+    """``PathSubstitution(path)``: a path that joins with ``/`` (``... / 'config' / 'x.yaml'``)."""
+
+    def __init__(self, path: Any) -> None:
+        self.path = normalize(path)
+
+    def perform(self, context: LaunchContext) -> str:
+        return perform(context, self.path)
+
+    def __truediv__(self, other: Any) -> PathJoinSubstitution:
+        return PathJoinSubstitution([self, other])
 
 
 class Command(Substitution):

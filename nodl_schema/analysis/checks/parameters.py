@@ -18,6 +18,7 @@ from typing import Any, Iterator
 from nodl_schema.analysis.checks import CheckExtension
 from nodl_schema.analysis.context import AnalysisContext
 from nodl_schema.analysis.findings import Finding, make_finding
+from nodl_schema.launch.params import RuntimeValue
 from nodl_schema.model.parameter_types import TypeSpec
 
 __all__ = ['ParameterCheck', 'launch_value_fits', 'value_type_words']
@@ -111,8 +112,8 @@ class ParameterCheck(CheckExtension):
                         parameter=name)
                     continue
                 spec = entity.type
-                if not isinstance(spec, TypeSpec):
-                    continue
+                if not isinstance(spec, TypeSpec) or isinstance(setting.value, RuntimeValue):
+                    continue  # a value only the running launch knows is not checked
                 if not launch_value_fits(setting.value, spec):
                     yield make_finding(
                         'parameter-type', f"{fqn}: parameter '{name}' is declared "
