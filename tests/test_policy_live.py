@@ -18,6 +18,7 @@ def graph():
     try:
         started.append(NodeProcess('full_node.py', 'full', '/live_p'))
         started.append(NodeProcess('action_nodes.py', 'fib', '/live_p'))
+        started.append(NodeProcess('full_node.py', '_hidden', '/live_p'))  # a tool's node
         yield started
     finally:
         for node in started:
@@ -42,6 +43,9 @@ def test_live_policy_of_real_nodes(graph):
     assert ('service', 'reply', '/live_p/full/get_parameters') in full.grants  # base
     text = write_policy(policy)
     assert '<actions execute="ALLOW">\n            <action>~/fibonacci</action>' in text
+    # what is not observed is listed, not silently dropped
+    assert '/live_p/_hidden' not in live.nodes and policy.profile('/live_p/_hidden') is None
+    assert '/live_p/_hidden: a hidden node, left out' in live.unobserved
 
 
 def test_live_cli_writes_the_policy(graph, tmp_path):
@@ -50,3 +54,4 @@ def test_live_cli_writes_the_policy(graph, tmp_path):
                              '-o', str(out)], cwd=REPO, text=True, capture_output=True, timeout=120)
     assert result.returncode == 0, result.stderr
     assert '<profile ns="/live_p" node="fib_client">' in out.read_text()
+    assert 'nodl policy: not observed: /live_p/_hidden: a hidden node, left out' in result.stderr
