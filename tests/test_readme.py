@@ -51,3 +51,72 @@ def test_quoted_policy_example_is_what_the_tool_writes(tmp_path) -> None:  # typ
                             text=True, capture_output=True, timeout=60)
     assert result.returncode == 1
     assert result.stdout + result.stderr == check.group(1)
+
+
+def _api_blocks() -> list[str]:
+    section = README[README.index('## The Python API'):README.index('## File formats')]
+    return re.findall(r'```python\n(.*?)```', section, re.S)
+
+
+def _result_comment(lines: list[str], end_line: int) -> str | None:
+    """The comment after an expression (on its last line, or alone on the next line)."""
+    last = lines[end_line - 1]
+    if '  # ' in last:
+        return last.split('  # ', 1)[1].strip()
+    following = lines[end_line].strip() if end_line < len(lines) else ''
+    return following[2:].strip() if following.startswith('# ') else None
+
+
+def _check_result(value: object, comment: str, namespace: dict[str, object]) -> str | None:
+    """Why ``value`` is not what ``comment`` says (None: it is, or the comment is prose)."""
+    try:
+        expected = eval(comment, dict(namespace))  # noqa: S307 - the README's own text
+    except Exception:  # noqa: BLE001 - not an expression: a repr, an abridged repr or prose
+        if '...' in comment and re.match(r'\[?[\w.]+\(', comment):
+            prefix = comment.split('...', 1)[0].rstrip(', ')
+            return None if repr(value).startswith(prefix) else f'{value!r} does not start with {prefix}'
+        if re.match(r'\[?[\w.]+\(', comment):
+            return None if repr(value) == comment else f'{value!r} != {comment}'
+        return None  # prose
+    return None if value == expected else f'{value!r} != {comment}'
+
+
+def test_python_api_examples_run_and_give_the_results_they_show(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """Every example of the README's Python API section runs, in order, in a folder holding
+    the examples and the talker/listener it names; each `expression  # result` is checked."""
+    import ast
+    import contextlib
+    import io
+    import shutil
+
+    for name in ('talker.nodl.yaml', 'listener.nodl.yaml'):
+        shutil.copy(REPO / 'tests' / 'fixtures' / 'readme' / name, tmp_path / name)
+    (tmp_path / 'examples').symlink_to(REPO / 'examples')
+    blocks = _api_blocks()
+    assert len(blocks) >= 5, 'the API section lost its examples (model, names, system, QoS, diagnostics)'
+    namespace: dict[str, object] = {}
+    problems: list[str] = []
+    checked = 0
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        for number, block in enumerate(blocks):
+            lines = block.splitlines()
+            for statement in ast.parse(block).body:
+                where = f'block {number}, line {statement.lineno}'
+                with contextlib.redirect_stdout(io.StringIO()):
+                    if isinstance(statement, ast.Expr):
+                        value = eval(compile(ast.Expression(statement.value), where, 'eval'), namespace)
+                    else:
+                        exec(compile(ast.Module([statement], []), where, 'exec'), namespace)
+                        continue
+                comment = _result_comment(lines, statement.end_lineno or statement.lineno)
+                if comment is not None:
+                    checked += 1
+                    problem = _check_result(value, comment, namespace)
+                    if problem:
+                        problems.append(f'{where}: {problem}')
+    finally:
+        os.chdir(cwd)
+    assert not problems, '\n'.join(problems)
+    assert checked >= 20
