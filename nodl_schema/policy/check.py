@@ -93,6 +93,11 @@ def granted_names(parsed: ParsedPolicy) -> tuple[list[GrantedName], dict[str, Xm
     return out, profiles
 
 
+def _shown(g: GrantedName) -> str:
+    """The name as SROS 2 resolves it, quoted when white space around it is part of it."""
+    return repr(g.name) if g.written != g.written.strip() else g.name
+
+
 def _spaced(written: str) -> str:
     """A hint when ``written`` has white space around it, which SROS 2 keeps in the name."""
     if written == written.strip():
@@ -165,7 +170,7 @@ def check_parsed_policy(parsed: ParsedPolicy, expected: Policy) -> list[Diagnost
             elif (g.communication, g.access, g.name) not in needed:
                 out.append(_diagnostic(
                     g.file or file, Severity.ERROR, f'extra: {fqn} is granted {g.communication} {g.access} on '
-                    f'{g.name!r}, which it does not need (over-privilege)' + _spaced(g.written),
+                    f'{_shown(g)}, which it does not need (over-privilege)' + _spaced(g.written),
                     g.line, g.column, 'NODL605'))
     for fqn, element in profiles.items():
         if fqn not in needed_nodes:
