@@ -264,3 +264,22 @@ def test_readme_documents_every_extension_point() -> None:
         base = (spec.base or 'nodl_schema.plugins:ExtensionPoint').replace(':', '.')
         rows = [line for line in readme.splitlines() if line.startswith('| ') and f'`{group}`' in line]
         assert len(rows) == 1 and f'`{base}`' in rows[0], (group, base, rows)
+
+
+BROKEN_EXTENSIONS = FIXTURES / 'plugins' / 'broken_extensions'
+
+
+def test_a_broken_generator_and_check_are_reported_and_skipped(tmp_path: Path) -> None:
+    """Plug-ins loaded by the library (not the command): the command reports them, once."""
+    generated = _nodl_with(BROKEN_EXTENSIONS, 'generate', str(FIXTURES / 'generate' / 'talker.nodl.yaml'),
+                           '--language', 'python', '-o', str(tmp_path))
+    assert generated.returncode == 0, generated.stderr
+    assert (tmp_path / 'talker_base.py').is_file()
+    assert generated.stderr.count("warning: skipped plugin 'gone' of group 'nodl.generators' "
+                                  '(from broken-nodl-extensions): ModuleNotFoundError') == 1
+    analysed = _nodl_with(BROKEN_EXTENSIONS, 'analyse',
+                          str(FIXTURES / 'analysis' / 'launch' / 'system.launch.xml'))
+    assert 'Traceback' not in analysed.stderr
+    assert "check 'exploding' (module_that_does_not_exist:Check) skipped: ModuleNotFoundError" \
+        in analysed.stdout + analysed.stderr
+    assert '[NODL567]' in analysed.stdout + analysed.stderr
