@@ -113,3 +113,13 @@ def test_graph_dot_svg_html(tmp_path: Path) -> None:
         and 'shape=doubleoctagon' in dot
     bad = run('analyse', str(LAUNCH / 'checks.launch.xml'), '--graph', str(tmp_path / 'x.png'))
     assert bad.returncode == 2 and '.dot, .svg or .html' in bad.stderr
+
+
+def test_json_output_stays_json_when_a_python_launch_file_prints(tmp_path: Path) -> None:
+    launch = tmp_path / 'talkative.launch.py'
+    launch.write_text('from launch import LaunchDescription\nprint("starting up")\n'
+                      'def generate_launch_description():\n    return LaunchDescription([])\n')
+    done = run('analyse', str(launch), '--format', 'json')
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout)['nodes'] == []
+    assert 'starting up' in done.stderr

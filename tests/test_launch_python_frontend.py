@@ -149,3 +149,34 @@ def test_unevaluable_values_say_what_is_missing(tmp_path: Path) -> None:
     assert result.diagnostics[0].message.endswith('this node is missing from the analysis')
     assert 'nodes of the included launch file are missing' in result.diagnostics[1].message
     assert [n.executable for n in result.nodes] == ['f']
+
+
+def test_sys_exit_in_the_launch_file_is_a_finding_not_an_exit(tmp_path: Path) -> None:
+    at_import = _write(tmp_path, {'a.launch.py': 'import sys\n\nsys.exit(3)\n'})
+    [problem] = load_launch(at_import, {}).diagnostics
+    assert (problem.code, problem.line) == ('NODL516', 3)
+    assert problem.message.startswith('the Python launch file exits (sys.exit(3)) before it gives')
+    generating = _write(tmp_path, {'b.launch.py': textwrap.dedent('''\
+        import sys
+        def generate_launch_description():
+            sys.exit('no robot here')
+        ''')})
+    [problem] = load_launch(generating, {}).diagnostics
+    assert (problem.code, problem.line) == ('NODL516', 3)
+    assert "sys.exit('no robot here')" in problem.message
+
+
+def test_what_the_launch_file_prints_goes_to_standard_error(tmp_path: Path, capsys: Any) -> None:
+    main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
+        from launch import LaunchDescription
+        from launch_ros.actions import Node
+        print('configuring the robot')
+        def generate_launch_description():
+            print('generating')
+            return LaunchDescription([Node(package='p', executable='e', name='n')])
+        ''')})
+    result = load_launch(main, {})
+    assert len(result.nodes) == 1 and not result.diagnostics
+    out, err = capsys.readouterr()
+    assert out == ''  # standard output is the tools' (nodl analyse --format json)
+    assert err == 'configuring the robot\ngenerating\n'

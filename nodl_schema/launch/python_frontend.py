@@ -389,6 +389,10 @@ def _problem(path: str, exc: BaseException) -> Diagnostic:
     if isinstance(exc, PackageNotFoundError):
         return Diagnostic(Severity.ERROR, f'{exc}{missing}', (), path, line, 1 if line else 0,
                           code='NODL511')
+    if isinstance(exc, SystemExit):
+        return Diagnostic(Severity.ERROR, f'the Python launch file exits (sys.exit({exc.code!r})) '
+                          f'before it gives its launch description{missing}', (), path, line,
+                          1 if line else 0, code='NODL516')
     if isinstance(exc, ModuleNotFoundError) and exc.name:
         return Diagnostic(Severity.ERROR, f"the Python launch file imports '{exc.name}', which is not "
                           'installed here (neither on the Python path nor in the Python folders of an '
@@ -424,16 +428,24 @@ def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription
     sys.path.extend(python_paths)
     _CURRENT.append((context, path))
     namespace: dict[str, Any] = {'__file__': path, '__name__': '__nodl_launch__'}
+    import contextlib
+
     try:
-        code = compile(text, path, 'exec')
-        exec(code, namespace)  # noqa: S102 - running the launch file, as ros2 launch does
-        generate = namespace.get('generate_launch_description')
-        if not callable(generate):
-            context.report(Diagnostic(Severity.ERROR, 'the Python launch file has no '
-                                      'generate_launch_description() function', (), path, 1, 1,
-                                      code='NODL516'))
-            return None
-        description = generate()
+        # What the launch file itself prints goes to standard error, as ros2 launch shows it:
+        # standard output carries the reports of the tools (--format json, sarif).
+        with contextlib.redirect_stdout(sys.stderr):
+            code = compile(text, path, 'exec')
+            exec(code, namespace)  # noqa: S102 - running the launch file, as ros2 launch does
+            generate = namespace.get('generate_launch_description')
+            if not callable(generate):
+                context.report(Diagnostic(Severity.ERROR, 'the Python launch file has no '
+                                          'generate_launch_description() function', (), path, 1, 1,
+                                          code='NODL516'))
+                return None
+            description = generate()
+    except SystemExit as exc:  # sys.exit() in the user's code ends the launch, not the analysis
+        context.report(_problem(path, exc))
+        return None
     except SyntaxError as exc:
         context.report(Diagnostic(Severity.ERROR, f'Python syntax error: {exc.msg}', (), path,
                                   exc.lineno or 0, exc.offset or 0, code='NODL516'))
