@@ -208,3 +208,41 @@ def test_required_arguments_of_nested_includes_are_checked_as_launch_does(tmp_pa
     (missing,) = [d for d in result.diagnostics if d.code == 'NODL506']
     assert 'declared in a file it includes' not in missing.message
     assert (missing.file, missing.line) == (str(inner), 2) and [n.executable for n in result.nodes] == ['m']
+
+
+def test_a_configuration_known_only_at_run_time_keeps_the_nodes_that_use_it(tmp_path: Path) -> None:
+    """<let value="$(command ...)"> (the xacro idiom), an argument default and an include
+    argument from $(command): the nodes that use them stay, the value is unchecked and the
+    warning is at the use; a condition on such a value says what may be missing."""
+    from nodl_schema.launch.params import RuntimeValue
+
+    main = _write(tmp_path, {
+        'main.launch.xml': textwrap.dedent('''\
+            <launch>
+              <let name="description" value="$(command 'xacro robot.xacro')"/>
+              <arg name="mode" default="$(command 'cat mode.txt')"/>
+              <node pkg="p" exec="publisher" name="publisher">
+                <param name="robot_description" value="$(var description)"/>
+              </node>
+              <include file="$(dirname)/inner.launch.xml">
+                <arg name="model" value="$(command 'xacro robot.xacro')"/>
+              </include>
+              <node pkg="p" exec="maybe" name="maybe" if="$(var mode)"/>
+            </launch>'''),
+        'inner.launch.xml': textwrap.dedent('''\
+            <launch>
+              <arg name="model"/>
+              <node pkg="p" exec="viewer" name="viewer">
+                <param name="model" value="$(var model)"/>
+              </node>
+            </launch>''')})
+    result = load_launch(main, {})
+    assert [n.name for n in result.nodes] == ['publisher', 'viewer']
+    for node in result.nodes:
+        (values,) = [p.values for p in node.parameters]
+        assert all(isinstance(v, RuntimeValue) for v in values.values())
+    assert [(d.code, d.severity.value, os.path.basename(d.file), d.line) for d in result.diagnostics] == [
+        ('NODL513', 'warning', 'main.launch.xml', 4), ('NODL513', 'warning', 'inner.launch.xml', 3),
+        ('NODL513', 'warning', 'main.launch.xml', 10)]
+    assert "launch configuration 'description'" in result.diagnostics[0].message
+    assert result.diagnostics[2].message.endswith('this node is missing from the analysis')

@@ -14,7 +14,7 @@ from typing import Any
 from nodl_schema.launch.conditions import Condition
 from nodl_schema.launch.errors import LaunchProblem
 from nodl_schema.launch.model import LaunchArgument, SourceLocation
-from nodl_schema.launch.substitutions import normalize, perform
+from nodl_schema.launch.substitutions import Deferred, normalize, perform, perform_or_defer
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -67,21 +67,21 @@ class DeclareLaunchArgument(Action):
         value = context.configurations.get(self.name)
         argument = LaunchArgument(self.name, self.location, None, self.description,
                                   tuple(self.choices) if self.choices is not None else None)
-        if not isinstance(value, str):
+        if not isinstance(value, (str, Deferred)):
             if self.default_value is None:
                 context.declare(argument)
                 raise LaunchProblem('NODL506', f"required launch argument '{self.name}' was not "
                                                f'provided; pass {self.name}:=VALUE')
-            value = perform(context, self.default_value)
+            value = perform_or_defer(context, self.default_value)
             context.configurations[self.name] = value
         if self.default_value is not None:
             try:
                 argument.default = perform(context, self.default_value)
             except LaunchProblem:
                 argument.default = None
-        argument.value = value
+        argument.value = value if isinstance(value, str) else None
         context.declare(argument)
-        if self.choices is not None and value not in self.choices:
+        if self.choices is not None and isinstance(value, str) and value not in self.choices:
             from nodl_schema.validation.messages import did_you_mean
 
             raise LaunchProblem('NODL505', f"argument '{self.name}' has value '{value}', which is "
@@ -97,7 +97,7 @@ class SetLaunchConfiguration(Action):
         self.name, self.value = normalize(name), normalize(value)
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        context.configurations[perform(context, self.name)] = perform(context, self.value)
+        context.configurations[perform(context, self.name)] = perform_or_defer(context, self.value)
         return None
 
 
@@ -117,7 +117,7 @@ class _Push(Action):
         self.forwarding, self.keep = forwarding, keep
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        values = [(perform(context, k), perform(context, v)) for k, v in self.keep]
+        values = [(perform(context, k), perform_or_defer(context, v)) for k, v in self.keep]
         context.push_configurations()
         context.push_environment()
         if not self.forwarding:

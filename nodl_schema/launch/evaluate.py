@@ -16,7 +16,7 @@ from nodl_schema.launch.actions import Action, DeclareLaunchArgument, GroupActio
 from nodl_schema.launch.context import LaunchContext
 from nodl_schema.launch.errors import MAX_INCLUDE_DEPTH, LaunchProblem, Unevaluable
 from nodl_schema.launch.model import LaunchResult, SourceLocation
-from nodl_schema.launch.substitutions import perform
+from nodl_schema.launch.substitutions import perform, perform_or_defer
 
 __all__ = ['load_launch', 'include', 'read_launch_file', 'launch_format']
 
@@ -182,7 +182,7 @@ def include(context: LaunchContext, action: Any) -> list[Action] | None:
     missing = _missing_required_argument(context, description, [name for name, _ in arguments], path)
     if missing is not None:
         raise missing
-    values = [(name, perform(context, value)) for name, value in arguments]
+    values = [(name, perform_or_defer(context, value)) for name, value in arguments]
     for name, value in values:
         context.configurations[name] = value
     context.current_file = path

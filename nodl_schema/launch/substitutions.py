@@ -31,7 +31,7 @@ __all__ = [
     'ThisLaunchFile', 'AnonName', 'NotSubstitution', 'AndSubstitution', 'OrSubstitution',
     'AnySubstitution', 'AllSubstitution', 'EqualsSubstitution', 'NotEqualsSubstitution',
     'IfElseSubstitution', 'PathJoinSubstitution', 'PathSubstitution', 'Command', 'FindExecutable',
-    'FileContent', 'ExecutableInPackage', 'LaunchLogDir', 'ParameterSubstitution', 'normalize', 'perform',
+    'FileContent', 'ExecutableInPackage', 'Deferred', 'perform_or_defer', 'LaunchLogDir', 'ParameterSubstitution', 'normalize', 'perform',
     'to_bool', 'yaml_bool',
 ]
 
@@ -109,6 +109,22 @@ class TextSubstitution(Substitution):
         return repr(self.text)
 
 
+class Deferred:
+    """A launch configuration only the running launch knows (``<let value="$(command ...)">``):
+    where it is used, the value is :class:`~nodl_schema.launch.errors.Unevaluable` again."""
+
+    def __init__(self, message: str) -> None:
+        self.message = message
+
+
+def perform_or_defer(context: LaunchContext, value: Any) -> str | Deferred:
+    """``perform`` for a value stored as a configuration: unknowable values are deferred."""
+    try:
+        return perform(context, value)
+    except Unevaluable as problem:
+        return Deferred(problem.message)
+
+
 class LaunchConfiguration(Substitution):
     """``$(var NAME [DEFAULT])``: a launch configuration (argument, ``let``)."""
 
@@ -121,6 +137,8 @@ class LaunchConfiguration(Substitution):
         value = context.configurations.get(name)
         if isinstance(value, str):
             return value
+        if isinstance(value, Deferred):
+            raise Unevaluable(f"launch configuration '{name}': {value.message}")
         if self.default is not None:
             return perform(context, self.default)
         context.note_missing_configuration(name)
