@@ -355,8 +355,6 @@ _NOT_ROS_NAMES = {
     # SROS 2's own resolution of the names written in a policy profile (its XSL templates)
     ('nodl_schema/policy/names.py', "return namespace if namespace.endswith('/') else namespace + '/'"),
     ('nodl_schema/policy/names.py', "own = _delimited(namespace) + node + '/'"),
-    # scaffold (in progress by its helper): the generated test's node at the root namespace
-    ('nodl_schema/scaffold/common.py', "return defaults_yaml(node.node, '/' + node.executable)"),
 }
 
 

@@ -165,9 +165,10 @@ def _launch(package: str, nodes: list[NodeSource]) -> str:
 
 
 def _params(node: NodeSource) -> str:
+    from nodl_schema.naming import join_name
     from nodl_schema.params.defaults import defaults_yaml
 
-    return defaults_yaml(node.node, '/' + node.executable)
+    return defaults_yaml(node.node, join_name('/', node.executable))
 
 
 def _conformance_test(package: str, nodes: list[NodeSource]) -> str:
