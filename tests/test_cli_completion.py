@@ -44,7 +44,7 @@ def test_verbs_options_choices_and_paths_complete() -> None:
     assert {'validate', 'check', 'describe', 'show', 'schema'} <= set(complete('nodl '))
     assert complete('nodl valid') == ['validate']
     assert '--format' in complete('nodl validate --fo')
-    assert set(complete('nodl validate --format ')) == {'text', 'json', 'sarif'}
+    assert set(complete('nodl validate --format ')) == {'text', 'json', 'sarif', 'junit'}
     assert complete('nodl validate exampl') == ['examples/']
 
 

@@ -172,3 +172,32 @@ def test_resolve_composes_the_base_of_the_chosen_client_library() -> None:
                                 '(rcl_interfaces/msg/ParameterEvent -> std_msgs/msg/String)')
     unknown = nodl('validate', '--resolve', '--client-library', 'rclcppp', fixture)
     assert unknown.returncode == 2 and 'rclcppp' in unknown.stderr
+
+
+def test_junit_has_one_test_case_per_file() -> None:
+    import xml.etree.ElementTree as ElementTree
+
+    warning_only = rel(CLI / 'warning_only.nodl.yaml')
+    paths = ['examples/mistakes/typos.yaml', 'examples/camera_lifecycle.nodl.yaml', warning_only,
+             'missing.nodl.yaml']
+    lenient, strict = nodl('validate', '--format', 'junit', *paths), \
+        nodl('validate', '--format', 'junit', '--strict', *paths)
+    assert (lenient.returncode, strict.returncode) == (2, 2)  # the missing path
+    assert lenient.stderr.endswith('3 files, 7 errors, 1 warning, 1 unreadable path\n')
+    for result, failed in ((lenient, ['examples/mistakes/typos.yaml']),
+                           (strict, ['examples/mistakes/typos.yaml', warning_only])):
+        suite = ElementTree.fromstring(result.stdout)
+        cases = {case.get('name'): case for case in suite.iter('testcase')}
+        assert list(cases) == paths
+        assert [name for name, case in cases.items() if case.find('failure') is not None] == failed
+        assert [name for name, case in cases.items() if case.find('error') is not None] == \
+            ['missing.nodl.yaml']
+        assert (suite.get('tests'), suite.get('failures'), suite.get('errors')) == \
+            ('4', str(len(failed)), '1')
+    typos = ElementTree.fromstring(lenient.stdout).find("testcase[@name='examples/mistakes/typos.yaml']")
+    assert typos is not None
+    failure = typos.find('failure')
+    assert failure is not None and failure.text is not None
+    assert failure.text.splitlines()[0].startswith('examples/mistakes/typos.yaml:4:7: error: ')
+    warned = ElementTree.fromstring(lenient.stdout).find(f"testcase[@name='{warning_only}']")
+    assert warned is not None and '[NODL216]' in (warned.findtext('system-out') or '')

@@ -139,3 +139,23 @@ def test_the_sarif_shape_check_rejects_what_the_standard_rejects() -> None:
                     run['tool']['driver']['rules'][0]))):
         with pytest.raises(AssertionError):
             assert_sarif_2_1_0(bad)
+
+
+def test_junit_escapes_what_documents_hold() -> None:
+    import xml.etree.ElementTree as ElementTree
+
+    from nodl_schema.reporting.junit import JUnitCase, format_junit
+
+    hostile = Diagnostic(Severity.ERROR, 'bad <key> & "quote"\x01\x1b[31m', (), 'a&b.yaml', 1, 2,
+                         code='NODL101')
+    text = format_junit([JUnitCase('a&b.yaml', [hostile], True),
+                         JUnitCase('ok.yaml', [], False),
+                         JUnitCase('gone.yaml', [hostile.replace(message='cannot be read')], True, True)],
+                        'suite <x>')
+    suite = ElementTree.fromstring(text)  # well-formed although the message held control characters
+    assert (suite.get('name'), suite.get('tests'), suite.get('failures'), suite.get('errors')) == \
+        ('suite <x>', '3', '1', '1')
+    failure = suite.find("testcase[@name='a&b.yaml']/failure")
+    assert failure is not None and 'bad <key> & "quote"\ufffd\ufffd[31m' in (failure.text or '')
+    assert suite.find("testcase[@name='ok.yaml']/failure") is None
+    assert suite.find("testcase[@name='gone.yaml']/error").get('message') == 'cannot be read'  # type: ignore[union-attr]

@@ -25,9 +25,10 @@ class ValidateVerb(Verb):
 
         parser.add_argument('--kind', choices=[kind.value for kind in Kind],
                             help='require this kind of document (default: detect it)')
-        parser.add_argument('--format', choices=('text', 'json', 'sarif'), default='text',
+        parser.add_argument('--format', choices=('text', 'json', 'sarif', 'junit'), default='text',
                             help='how to print diagnostics (default: text; sarif: SARIF 2.1.0 '
-                                 'for code scanning)')
+                                 'for code scanning; junit: JUnit XML for CI, one test case '
+                                 'per file)')
         parser.add_argument('--strict', action='store_true',
                             help='treat warnings as errors')
         parser.add_argument('--resolve', action='store_true',
@@ -66,6 +67,7 @@ class ValidateVerb(Verb):
             return EXIT_USAGE
         tally = Tally()
         unreadable: list[Diagnostic] = []
+        cases: list[tuple[str, list[Diagnostic], bool, bool]] = []  # for --format junit
         invalid = False
         out = sys.stderr if args.stderr else sys.stdout
         text = args.format == 'text'
@@ -86,6 +88,7 @@ class ValidateVerb(Verb):
                 problem = Diagnostic(Severity.ERROR, result.problem or 'cannot be read',
                                      file=result.path, code=UNREADABLE_CODE)
                 unreadable.append(problem)
+                cases.append((result.path, [problem], True, True))
                 print(problem, file=sys.stderr)
                 sys.stderr.flush()
                 continue
@@ -97,6 +100,8 @@ class ValidateVerb(Verb):
                 return EXIT_USAGE
             tally.files += 1
             tally.add(result.diagnostics)
+            cases.append((result.path, without_info(result.diagnostics), failed(result, args.strict),
+                          False))
             if failed(result, args.strict):
                 invalid = True
             elif text and not args.quiet and result.report is not None:
@@ -115,6 +120,11 @@ class ValidateVerb(Verb):
             from nodl_schema.reporting.sarif import format_sarif
 
             out.write(format_sarif(tally.diagnostics + unreadable))
+            print(summary, file=sys.stderr)
+        elif args.format == 'junit':
+            from nodl_schema.reporting.junit import JUnitCase, format_junit
+
+            out.write(format_junit([JUnitCase(*case) for case in cases], 'nodl validate'))
             print(summary, file=sys.stderr)
         elif not text:
             out.write(format_json(tally.diagnostics + unreadable))
