@@ -100,3 +100,55 @@ def test_reading_needs_no_ros(tmp_path: Path) -> None:
                             capture_output=True, timeout=60)
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == '[]'
+
+
+def test_a_snapshot_answers_as_the_index_does() -> None:
+    outside = ([ament.get_resource('nodl_interfaces', n, BOTH) for n in
+                ('alpha__chatter', 'zeta__x', '')], ament.get_resources('packages', BOTH),
+               ament.package_share_directory('beta', BOTH))
+    with ament.snapshot():
+        for _ in range(2):  # listed, then remembered
+            inside = ([ament.get_resource('nodl_interfaces', n, BOTH) for n in
+                       ('alpha__chatter', 'zeta__x', '')], ament.get_resources('packages', BOTH),
+                      ament.package_share_directory('beta', BOTH))
+            assert inside == outside
+
+
+def test_a_snapshot_lists_each_folder_once_and_ends_with_its_block(tmp_path: Path) -> None:
+    folder = tmp_path / INDEX / 'nodl_nodes'
+    (folder / 'p__a_folder').mkdir(parents=True)
+    (folder / 'p__one').write_text('1')
+    prefixes = [str(tmp_path)]
+    with ament.snapshot():
+        assert ament.get_resource('nodl_nodes', 'p__one', prefixes).content == '1'  # type: ignore[union-attr]
+        (folder / 'p__two').write_text('2')  # after the listing: not seen in this run
+        (folder / 'p__one').write_text('changed')  # already read: the run keeps what it read
+        with ament.snapshot():  # a nested block shares the outer snapshot
+            assert ament.get_resource('nodl_nodes', 'p__two', prefixes) is None
+            assert ament.get_resources('nodl_nodes', prefixes) == {'p__one': str(tmp_path)}
+        assert ament.get_resource('nodl_nodes', 'p__one', prefixes).content == '1'  # type: ignore[union-attr]
+        assert ament.get_resource('nodl_nodes', 'p__a_folder', prefixes) is None
+    assert ament.get_resource('nodl_nodes', 'p__two', prefixes).content == '2'  # type: ignore[union-attr]
+    assert ament.get_resource('nodl_nodes', 'p__one', prefixes).content == 'changed'  # type: ignore[union-attr]
+
+
+def test_a_snapshot_looks_a_name_with_a_separator_up_as_a_path(tmp_path: Path) -> None:
+    (tmp_path / INDEX / 'nodl_nodes' / 'sub').mkdir(parents=True)
+    (tmp_path / INDEX / 'nodl_nodes' / 'sub' / 'x').write_text('deep')
+    outside = ament.get_resource('nodl_nodes', os.path.join('sub', 'x'), [str(tmp_path)])
+    with ament.snapshot():
+        assert ament.get_resource('nodl_nodes', os.path.join('sub', 'x'), [str(tmp_path)]) == outside
+
+
+def test_remembered_computes_once_per_key_inside_a_snapshot_only() -> None:
+    calls: list[str] = []
+
+    def compute() -> int:
+        calls.append('x')
+        return len(calls)
+
+    assert [ament.remembered('k', compute) for _ in range(2)] == [1, 2]
+    with ament.snapshot():
+        assert [ament.remembered('k', compute) for _ in range(3)] == [3, 3, 3]
+        assert ament.remembered('other', compute) == 4
+    assert ament.remembered('k', compute) == 5

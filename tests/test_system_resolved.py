@@ -88,6 +88,23 @@ def test_locations_point_at_the_winning_declaration(talker: ResolvedNode) -> Non
     assert rosout.location.line == line_of(Path(base_file('node')), '  - name: /rosout')
 
 
+def test_locations_are_placed_on_first_use_only(tmp_path: Path) -> None:
+    # Placing a declaration reads its file's node tree: resolving does not (an analysis of a
+    # thousand nodes prints few locations); the first use does, and keeps the result.
+    file = tmp_path / 'n.nodl.yaml'
+    file.write_text('nodl_version: 2\nbase: node\nmain:\n  nodl_version: 2\n  description: N.\n'
+                    '  publishers:\n    - {name: out, type: std_msgs/msg/String, description: O., qos:'
+                    ' {history: KEEP_LAST, depth: 1, reliability: RELIABLE, durability: VOLATILE,'
+                    ' liveliness: AUTOMATIC}}\n')
+    fresh = resolve_node(file)
+    main = fresh.composed.layer('main')
+    parsed = main._place.__self__._parsed  # type: ignore[union-attr]
+    assert parsed is not None and not parsed._composed
+    first = fresh.entity('publisher', 'out').location
+    assert parsed._composed and fresh.entity('publisher', 'out').location is first
+    assert fresh.diagnostics == [] and first == Location(str(file), 7, 7)
+
+
 def test_lookups(talker: ResolvedNode) -> None:
     assert talker.get('publisher', 'nope') is None
     with pytest.raises(KeyError, match="no subscription 'nope'"):

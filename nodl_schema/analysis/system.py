@@ -87,11 +87,14 @@ def analyse_entries(entries: Iterable[LaunchEntry | Any], *, client_library: str
 
         check_client_library(client_library)
     from nodl_schema.analysis.checks import run_checks
+    from nodl_schema.analysis.gc_tuning import batch_collection
     from nodl_schema.analysis.matching import DefinitionMatcher
     from nodl_schema.index import ament
 
     findings: list[Finding] = list(launch_findings)
-    with ament.snapshot():  # the index is listed once, not looked up file by file per node
+    # The index is listed once (not looked up file by file per node), and the collector
+    # does not rescan, every 700 allocations, what the analysis keeps until its end.
+    with ament.snapshot(), batch_collection():
         matcher = DefinitionMatcher(client_library, prefixes)
         nodes = [build_node(entry, matcher.match(entry), findings)
                  for entry in entries_from_launch(entries)]
@@ -110,11 +113,16 @@ def analyse_launch(launch_file: str | os.PathLike[str], arguments: Mapping[str, 
                    settings: AnalysisSettings | None = None,
                    checks: Mapping[str, object] | None = None) -> Analysis:
     """Analyse the system a launch file (XML, YAML or Python) starts, with launch
-    ``arguments`` (``name -> value``, as ``name:=value`` on the command line)."""
+    ``arguments`` (``name -> value``, as ``name:=value`` on the command line).
+
+    ``prefixes``: the ament prefixes every look-up searches (``$(find-pkg-share)``, the
+    nodes' definitions and their ``nodl://`` mixins); default: ``AMENT_PREFIX_PATH``."""
+    from nodl_schema.analysis.gc_tuning import batch_collection
     from nodl_schema.launch import load_launch
 
     path = os.fspath(launch_file)
-    result = load_launch(path, dict(arguments or {}))
+    with batch_collection():
+        result = load_launch(path, dict(arguments or {}), prefixes=prefixes)
     records, diagnostics, unreadable = _launch_result(result, path)
     analysis = analyse_entries(records, client_library=client_library, prefixes=prefixes,
                                settings=settings, checks=checks,

@@ -24,7 +24,12 @@ __all__ = ['AmentIndexResolver', 'read_registered', 'INTERFACE_RESOURCE', 'NODE_
 
 
 def read_registered(resource: ament.Resource, package: str) -> Resolved:
-    """The document a registration resource points at (or holds)."""
+    """The document a registration resource points at (or holds); read once per entry
+    within an :func:`nodl_schema.index.ament.snapshot`."""
+    return ament.remembered(('registered', resource, package), lambda: _read(resource, package))
+
+
+def _read(resource: ament.Resource, package: str) -> Resolved:
     content = resource.content.strip()
     # A path is one line; a document held in the entry may be one line too (flow YAML
     # or minified JSON: '{...}', or 'key: value').
@@ -50,13 +55,18 @@ class AmentIndexResolver(ResolverExtension):
         if parsed is None:
             raise ResolutionError(f'{reference!r} is not of the form nodl://<package>/<name>')
         package, name = parsed
-        prefixes = ament.prefix_paths()
+        # The caller's prefixes (an analysis with prefixes=...), else AMENT_PREFIX_PATH's.
+        given = context.prefixes
+        prefixes = list(given) if given is not None else ament.prefix_paths()
+        where = 'prefixes searched' if given is not None else 'AMENT_PREFIX_PATH'
         key = resource_name(package, name)
         resource = ament.get_resource(INTERFACE_RESOURCE, key, prefixes)
         if resource is not None:
             return read_registered(resource, package)
         searched = [ament.resource_file(p, INTERFACE_RESOURCE, key) for p in prefixes]
         if not prefixes:
+            if given is not None:
+                raise ResolutionError('no ament prefix was given to search, so no package can be found')
             raise ResolutionError('AMENT_PREFIX_PATH is empty, so no package can be found; '
                                   'source the workspace (install/setup.bash) first')
         prefix = resource_name(package, '')
@@ -67,5 +77,5 @@ class AmentIndexResolver(ResolverExtension):
                                   f"'{name}' (it registers: {', '.join(available)})", searched)
         if ament.package_share_directory(package, prefixes) is None:
             raise ResolutionError(f"package '{package}' is not in the ament index "
-                                  f"(AMENT_PREFIX_PATH: {os.pathsep.join(prefixes)})", searched)
+                                  f"({where}: {os.pathsep.join(prefixes)})", searched)
         raise ResolutionError(f"package '{package}' registers no interface definitions", searched)

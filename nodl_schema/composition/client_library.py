@@ -31,7 +31,17 @@ class ClientLibraryChoice(NamedTuple):
 
 
 def package_build_type(package: str, prefixes: list[str] | None = None) -> str | None:
-    """The ``<export><build_type>`` of an installed package's package.xml (None if unknown)."""
+    """The ``<export><build_type>`` of an installed package's package.xml (None if unknown).
+
+    Read once per package within an :func:`nodl_schema.index.ament.snapshot`.
+    """
+    from nodl_schema.index import ament
+
+    key = ('build_type', package, tuple(prefixes) if prefixes is not None else None)
+    return ament.remembered(key, lambda: _read_build_type(package, prefixes))
+
+
+def _read_build_type(package: str, prefixes: list[str] | None) -> str | None:
     from nodl_schema.index import ament
 
     share = ament.package_share_directory(package, prefixes)

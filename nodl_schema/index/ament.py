@@ -9,12 +9,80 @@ wins, as with ``ament_index_python``.  Reading it needs no ROS package.
 from __future__ import annotations
 
 import os
-from typing import NamedTuple
+from contextlib import contextmanager
+from contextvars import ContextVar
+from typing import Any, Callable, Iterator, NamedTuple, TypeVar
 
 __all__ = ['Resource', 'prefix_paths', 'get_resource', 'get_resources', 'package_share_directory',
-           'resource_file']
+           'resource_file', 'snapshot', 'remembered']
 
 _INDEX = os.path.join('share', 'ament_index', 'resource_index')
+_T = TypeVar('_T')
+
+
+class _Snapshot:
+    """What one run has read of the index: each resource folder listed once, each entry read
+    once, and facts derived from the index (see :func:`remembered`)."""
+
+    def __init__(self) -> None:
+        self.listings: dict[str, frozenset[str]] = {}
+        self.contents: dict[str, str] = {}
+        self.facts: dict[Any, Any] = {}
+
+    def files(self, folder: str) -> frozenset[str]:
+        """The names of the files (symbolic links followed) in ``folder`` (empty if none)."""
+        found = self.listings.get(folder)
+        if found is None:
+            try:
+                with os.scandir(folder) as entries:
+                    found = frozenset(e.name for e in entries if e.is_file())
+            except OSError:
+                found = frozenset()
+            self.listings[folder] = found
+        return found
+
+    def read(self, path: str) -> str:
+        """The text of an index entry."""
+        text = self.contents.get(path)
+        if text is None:
+            with open(path, encoding='utf-8') as f:
+                text = self.contents[path] = f.read()
+        return text
+
+
+_SNAPSHOT: ContextVar[_Snapshot | None] = ContextVar('nodl_ament_snapshot', default=None)
+
+
+@contextmanager
+def snapshot() -> Iterator[None]:
+    """Within the block the index is read as it was when first looked at: one listing per
+    resource folder, each entry read once, and :func:`remembered` facts kept.
+
+    For one run over many nodes (an analysis of a launched system): looking a thousand
+    nodes up would otherwise cost several file system calls each.  Nested blocks share
+    the outer snapshot.
+    """
+    if _SNAPSHOT.get() is not None:
+        yield
+        return
+    token = _SNAPSHOT.set(_Snapshot())
+    try:
+        yield
+    finally:
+        _SNAPSHOT.reset(token)
+
+
+def remembered(key: Any, compute: Callable[[], _T]) -> _T:
+    """``compute()``, computed once per ``key`` inside a :func:`snapshot` (each time outside
+    one): for facts derived from installed files, such as a package's build type."""
+    current = _SNAPSHOT.get()
+    if current is None:
+        return compute()
+    if key in current.facts:
+        found: _T = current.facts[key]
+        return found
+    value = current.facts[key] = compute()
+    return value
 
 
 class Resource(NamedTuple):
@@ -43,8 +111,15 @@ def resource_file(prefix: str, resource_type: str, name: str) -> str:
 def get_resource(resource_type: str, name: str,
                  prefixes: list[str] | None = None) -> Resource | None:
     """The first resource ``resource_type/name`` found, or None."""
+    current = _SNAPSHOT.get()
+    if current is not None and (os.sep in name or name in ('', '.', '..')):
+        current = None  # not an entry of the folder itself: looked up as a path, as outside
     for prefix in prefixes if prefixes is not None else prefix_paths():
         path = resource_file(prefix, resource_type, name)
+        if current is not None:
+            if name in current.files(os.path.join(prefix, _INDEX, resource_type)):
+                return Resource(current.read(path), prefix, path)
+            continue
         if os.path.isfile(path):
             with open(path, encoding='utf-8') as f:
                 return Resource(f.read(), prefix, path)
@@ -54,8 +129,14 @@ def get_resource(resource_type: str, name: str,
 def get_resources(resource_type: str, prefixes: list[str] | None = None) -> dict[str, str]:
     """Every resource name of ``resource_type`` -> the prefix it is found in (first wins)."""
     found: dict[str, str] = {}
+    current = _SNAPSHOT.get()
     for prefix in prefixes if prefixes is not None else prefix_paths():
         folder = os.path.join(prefix, _INDEX, resource_type)
+        if current is not None:
+            for name in sorted(current.files(folder)):
+                if not name.startswith('.'):
+                    found.setdefault(name, prefix)
+            continue
         try:
             names = sorted(os.listdir(folder))
         except OSError:

@@ -57,8 +57,10 @@ def yaml_value(text: str) -> Any:
         from yaml.nodes import ScalarNode
         from yaml.resolver import Resolver
 
-        tag = Resolver().resolve(ScalarNode, text, (True, False))
-        return SafeConstructor().construct_document(ScalarNode(tag, text))
+        resolver: Any = Resolver()
+        constructor: Any = SafeConstructor()
+        return constructor.construct_document(
+            ScalarNode(resolver.resolve(ScalarNode, text, (True, False)), text))
     return yaml.safe_load(text)
 
 

@@ -44,9 +44,7 @@ class EntityKind(str, enum.Enum):
     @property
     def section(self) -> str:
         """The document section that holds entities of this kind."""
-        if self is EntityKind.PARAMETER:
-            return 'parameters'
-        return _SECTION_OF[self.value]
+        return _SECTION_OF[self]
 
     @property
     def word(self) -> str:
@@ -56,19 +54,25 @@ class EntityKind(str, enum.Enum):
     @property
     def communication(self) -> str | None:
         """``topic``, ``service`` or ``action`` (None for a parameter)."""
-        if self is EntityKind.PARAMETER:
-            return None
-        return SECTION_BY_KEY[self.section].kind
+        return _COMMUNICATION_OF[self]
 
     @property
     def offers(self) -> bool:
         """True for the side that offers the communication: publisher, service/action server."""
-        return self is not EntityKind.PARAMETER and \
-            SECTION_BY_KEY[self.section].role in ('publisher', 'server')
+        return _OFFERS[self]
 
 
-#: kind value -> section, derived from the one table of sections.
-_SECTION_OF = {s.word.replace(' ', '_'): s.key for s in SECTIONS}
+# Derived from the one table of sections, once (asked for every entity of every node).
+#: kind -> section.
+_SECTION_OF = {EntityKind.PARAMETER: 'parameters',
+               **{EntityKind(s.word.replace(' ', '_')): s.key for s in SECTIONS}}
+#: kind -> topic, service or action (None for a parameter).
+_COMMUNICATION_OF = {EntityKind.PARAMETER: None,
+                     **{EntityKind(s.word.replace(' ', '_')): s.kind for s in SECTIONS}}
+#: kind -> whether it offers the communication (publisher, service/action server).
+_OFFERS = {EntityKind.PARAMETER: False,
+           **{EntityKind(s.word.replace(' ', '_')): s.role in ('publisher', 'server')
+              for s in SECTIONS}}
 
 
 class Provider(str, enum.Enum):
