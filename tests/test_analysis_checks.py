@@ -8,7 +8,7 @@ import pytest
 
 from nodl_schema.analysis import KINDS, AnalysisSettings, analyse_launch
 from nodl_schema.analysis.checks import load_checks
-from nodl_schema.analysis.checks.parameters import launch_value_fits
+from nodl_schema.analysis.checks.parameters import launch_value_fits, launch_value_verdict
 from nodl_schema.model.parameter_types import parse_type
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
@@ -111,3 +111,65 @@ def test_parameter_types_are_as_strict_as_a_node(value, type_name: str, ok: bool
     spec = parse_type(type_name)
     assert spec is not None
     assert launch_value_fits(value, spec) is ok
+
+
+#: (NoDL type, the value as written in a parameter file): rclpy decides, the analysis must agree.
+RCLPY_TYPE_CASES = [
+    ('double', '1'), ('double', '1.0'), ('double', '1e5'), ('double', '.5'), ('int', '1.0'),
+    ('int', '0x10'), ('int', 'true'), ('string', 'true'), ('string', '5'), ('string', "'5'"),
+    ('string', '!!str 5'), ('string', '~'), ('bool', 'on'), ('bool', 'yes'), ('bool', '1'),
+    ('double_array', '[1, 2]'), ('double_array', '[1.0, 2.5]'), ('int_array', '[1.0]'),
+    ('int_array', '[1, 2]'), ('string_array', '[a, b]'), ('bool_array', '[true, off]'),
+    ('byte_array', '[1, 2]'), ('none', 'hello'), ('none', '[1.5]'), ('string_array', '[]'),
+    ('double_array', '[]'), ('int', '[]'),
+]
+_RCLPY_TYPES = {'bool': 'BOOL', 'int': 'INTEGER', 'double': 'DOUBLE', 'string': 'STRING',
+                'byte_array': 'BYTE_ARRAY', 'bool_array': 'BOOL_ARRAY', 'int_array': 'INTEGER_ARRAY',
+                'double_array': 'DOUBLE_ARRAY', 'string_array': 'STRING_ARRAY'}
+
+
+def _rclpy_verdict(type_name: str, params_file: Path) -> str:
+    """What a real rclpy node does when it declares ``x`` of ``type_name`` with that file."""
+    import rclpy
+    from rcl_interfaces.msg import ParameterDescriptor
+    from rclpy.exceptions import InvalidParameterTypeException, ParameterUninitializedException
+    from rclpy.node import Node
+    from rclpy.parameter import Parameter
+
+    context = rclpy.Context()
+    rclpy.init(context=context, args=[])
+    try:
+        node = Node('typing_oracle', context=context,
+                    cli_args=['--ros-args', '--params-file', str(params_file)])
+        try:
+            if type_name == 'none':
+                node.declare_parameter('x', 0, ParameterDescriptor(dynamic_typing=True))
+            else:
+                node.declare_parameter('x', getattr(Parameter.Type, _RCLPY_TYPES[type_name]))
+            node.get_parameter('x').value
+            return 'accepted'
+        except InvalidParameterTypeException:
+            return 'refused'
+        except ParameterUninitializedException:
+            return 'unset'
+        finally:
+            node.destroy_node()
+    finally:
+        rclpy.shutdown(context=context)
+
+
+@pytest.mark.parametrize(('type_name', 'written'), RCLPY_TYPE_CASES,
+                         ids=[f'{t}={w}' for t, w in RCLPY_TYPE_CASES])
+def test_parameter_type_verdicts_agree_with_rclpy(type_name: str, written: str, tmp_path: Path) -> None:
+    """parameter-type against the oracle: the value as rcl reads the file, then the check's verdict
+    must be rclpy's (refused by declare_parameter: parameter-type; an empty list leaves the
+    parameter unset, reading it raises: parameter-invalid; accepted: no finding)."""
+    from nodl_schema.launch import load_parameter_file
+
+    params_file = tmp_path / 'params.yaml'
+    params_file.write_text(f'/**:\n  ros__parameters:\n    x: {written}\n', encoding='utf-8')
+    oracle = _rclpy_verdict(type_name, params_file)
+    (entry,) = load_parameter_file(params_file).nodes
+    spec = parse_type(type_name)
+    assert spec is not None
+    assert launch_value_verdict(entry.rcl_parameters['x'], spec) == oracle, (entry.rcl_parameters['x'], oracle)

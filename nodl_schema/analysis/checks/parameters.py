@@ -21,16 +21,18 @@ from nodl_schema.analysis.findings import Finding, make_finding
 from nodl_schema.launch.params import RuntimeValue
 from nodl_schema.model.parameter_types import TypeSpec
 
-__all__ = ['ParameterCheck', 'launch_value_fits', 'value_type_words']
+__all__ = ['ParameterCheck', 'launch_value_fits', 'launch_value_verdict', 'value_type_words']
 
 
 def _element_fits(value: Any, element: str) -> bool:
     if element == 'bool':
         return isinstance(value, bool)
-    if element in ('int', 'byte'):
-        if isinstance(value, bool) or not isinstance(value, int):
-            return False
-        return element == 'int' or 0 <= value <= 255
+    if element == 'int':
+        return isinstance(value, int) and not isinstance(value, bool)
+    if element == 'byte':
+        # rcl's parameter YAML has no bytes and launch_ros sends integer lists as integer
+        # arrays: a byte_array parameter refuses every launch value (real rclpy raises).
+        return False
     if element == 'double':
         return isinstance(value, float)
     if element == 'string':
@@ -52,6 +54,16 @@ def launch_value_fits(value: Any, spec: TypeSpec) -> bool:
     if spec.size is not None and isinstance(value, str) and len(value) > spec.size:
         return False
     return _element_fits(value, spec.element)
+
+
+def launch_value_verdict(value: Any, spec: TypeSpec) -> str:
+    """What a node declaring a parameter of type ``spec`` makes of ``value`` as its override:
+    ``accepted``, ``refused`` (rclcpp and rclpy raise ``InvalidParameterTypeException``) or
+    ``unset`` (an empty list is no value for rcl: a statically typed parameter ends up
+    unset, its default lost, and reading it raises ``ParameterUninitializedException``)."""
+    if isinstance(value, list) and not value and spec.element != 'none':
+        return 'unset'
+    return 'accepted' if launch_value_fits(value, spec) else 'refused'
 
 
 def value_type_words(value: Any) -> str:
@@ -114,7 +126,15 @@ class ParameterCheck(CheckExtension):
                 spec = entity.type
                 if not isinstance(spec, TypeSpec) or isinstance(setting.value, RuntimeValue):
                     continue  # a value only the running launch knows is not checked
-                if not launch_value_fits(setting.value, spec):
+                verdict = launch_value_verdict(setting.value, spec)
+                if verdict == 'unset':
+                    yield make_finding(
+                        'parameter-invalid', f"{fqn}: parameter '{name}' ({spec.category}) is set to "
+                        'an empty list, which rcl passes as no value: the parameter ends up unset '
+                        '(its default is lost) and the node fails when it reads it', where, [fqn],
+                        parameter=name, related=_declared_here(entity))
+                    continue
+                if verdict == 'refused':
                     yield make_finding(
                         'parameter-type', f"{fqn}: parameter '{name}' is declared "
                         f'{spec.category} but is set to {_show(setting.value)} '
@@ -136,6 +156,7 @@ class ParameterCheck(CheckExtension):
                 where = entity.location
                 yield make_finding(
                     'missing-parameter', f"{fqn}: parameter '{name}' ({entity.type_name}) has no "
-                    'default and the launch does not set it; the node cannot start without it',
+                    'default and the launch does not set it; an rclcpp node throws when it declares '
+                    'it, an rclpy node when it reads it',
                     node.location, [fqn], parameter=name,
                     related=[(where.file, where.line, where.column, f"'{name}' is declared here")])
