@@ -62,3 +62,27 @@ def test_bad_mapping_files(tmp_path):
     assert [(d.code, d.line, d.column) for d in problems] == [('NODL610', 1, 6), ('NODL610', 1, 32)]
     assert 'starting with /' in problems[0].message
     assert enclave_path_error('/a b') is not None and enclave_path_error('/a/b') is None
+
+
+def test_composable_nodes_are_in_their_containers_enclave(tmp_path):
+    """A container's nodes share its process, whose context has one enclave."""
+    nodes = ['/robot/container', '/robot/camera', '/robot/rectifier', '/robot/lidar']
+    containers = {'/robot/camera': '/robot/container', '/robot/rectifier': '/robot/container'}
+    assigned, problems = assign_enclaves(nodes, 'node', containers)
+    assert problems == [] and assigned == {
+        '/robot/container': '/robot/container', '/robot/camera': '/robot/container',
+        '/robot/rectifier': '/robot/container', '/robot/lidar': '/robot/lidar'}
+    # a mapping may list them with their container, or not at all
+    mapping = _mapping(tmp_path, '/robot/vision: [/robot/container, /robot/camera]\n'
+                                 '/robot/ranging: [/robot/lidar]\n')
+    assigned, problems = assign_enclaves(nodes, mapping, containers)
+    assert problems == [] and {assigned[n] for n in nodes[:3]} == {'/robot/vision'}
+    # ... but not elsewhere: the process cannot be in two enclaves
+    mapping = _mapping(tmp_path, '/robot/vision: [/robot/container]\n'
+                                 '/robot/ranging: [/robot/lidar, /robot/rectifier]\n')
+    assigned, problems = assign_enclaves(nodes, mapping, containers)
+    assert '/robot/rectifier' not in assigned
+    assert [(d.code, d.line, d.column) for d in problems] == [('NODL610', 2, 32)]
+    assert 'loaded into the container /robot/container' in problems[0].message
+    # a container that is not part of the system (loaded into from elsewhere) changes nothing
+    assert assign_enclaves(['/robot/camera'], 'node', containers)[0] == {'/robot/camera': '/robot/camera'}

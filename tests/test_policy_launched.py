@@ -60,3 +60,23 @@ def test_clock_when_use_sim_time_can_be_true_at_start():
     assert with_clock({}) == {'/s/global'}
     assert with_clock({'sim': 'true'}) == {'/s/global', '/s/by_argument'}
 
+
+
+def test_a_composable_node_is_in_its_containers_enclave():
+    result = launch_policy(ANALYSIS / 'launch' / 'checks.launch.xml', prefixes=PREFIX, allow_missing=True)
+    enclaves = {p.fqn: e.path for e, p in result.policy.profiles()}
+    # (a composable node does not take its container's namespace: it is /camera)
+    assert enclaves['/camera'] == enclaves['/robot/box'] == '/robot/box'
+    camera = result.policy.profile('/camera')
+    assert camera is not None and any('loaded into the container /robot/box' in n for n in camera.notes)
+
+
+def test_the_prefixes_given_resolve_nodl_mixins_too(monkeypatch):
+    """A definition whose publisher comes from a nodl:// mixin, in a prefix that is given but not
+    in AMENT_PREFIX_PATH: its profile is written (it was a NODL566 gap before)."""
+    monkeypatch.setenv('AMENT_PREFIX_PATH', PREFIX[0])   # no package 'mixed' there
+    result = launch_policy(ANALYSIS / 'launch' / 'mixin.launch.xml',
+                           prefixes=[str(ANALYSIS / 'mixin_prefix')])
+    assert result.ok, result.diagnostics
+    talker = result.policy.profile('/demo/talker')
+    assert talker is not None and ('topic', 'publish', '/demo/chatter') in talker.names()

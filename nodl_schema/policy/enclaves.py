@@ -18,13 +18,18 @@
 
 Several nodes in one enclave keep a profile each; DDS grants the enclave the
 union of its profiles.
+
+A composable node runs in its container's process, and a process has one
+enclave (its context's, shared by every node in it): whatever the mode, a
+composable node is in its container's enclave.  A mapping may list it there
+or not at all; listing it under another enclave is an error (NODL610).
 """
 
 from __future__ import annotations
 
 import fnmatch
 import os
-from typing import Iterable, NamedTuple
+from typing import Iterable, Mapping, NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
@@ -127,13 +132,24 @@ def load_enclave_mapping(path: str) -> tuple[EnclaveMapping | None, list[Diagnos
     return EnclaveMapping(path, entries, places), []
 
 
-def assign_enclaves(fqns: Iterable[str], how: str | EnclaveMapping = 'node'
+def assign_enclaves(fqns: Iterable[str], how: str | EnclaveMapping = 'node',
+                    containers: Mapping[str, str] | None = None
                     ) -> tuple[dict[str, str], list[Diagnostic]]:
-    """Node fully qualified name -> enclave path, and the nodes no mapping entry matches."""
+    """Node fully qualified name -> enclave path, and the nodes no mapping entry matches.
+
+    ``containers`` maps composable nodes to the container they are loaded
+    into: each is put in its container's enclave (when the container is one
+    of ``fqns``).
+    """
     out: dict[str, str] = {}
     problems: list[Diagnostic] = []
     fqns = list(fqns)
+    present = set(fqns)
+    hosted = {node: container for node, container in (containers or {}).items()
+              if node in present and container in present and node != container}
     for fqn in fqns:
+        if fqn in hosted:
+            continue
         if isinstance(how, EnclaveMapping):
             found, problem = _mapped(how, fqn)
             if problem is not None:
@@ -147,13 +163,29 @@ def assign_enclaves(fqns: Iterable[str], how: str | EnclaveMapping = 'node'
         else:
             raise ValueError(f'unknown enclave mode {how!r}; expected one of: {", ".join(ENCLAVE_MODES)} '
                              'or a mapping file')
+    for fqn, container in hosted.items():
+        target = out.get(container)
+        if target is None:
+            continue  # the container has no enclave: reported for the container
+        if isinstance(how, EnclaveMapping):
+            found, problem = _mapped(how, fqn, required=False)
+            if problem is not None or (found is not None and found != target):
+                problems.append(problem or _problem(
+                    how.file, f'{fqn} is loaded into the container {container}, whose enclave is '
+                    f'{target!r}, but {os.path.basename(how.file)} puts it in {found!r}: a process '
+                    'has one enclave, shared by every node in it; list it with its container or '
+                    'not at all', *how.place(found or '', fqn)))
+                continue
+        out[fqn] = target
     if isinstance(how, EnclaveMapping):
         problems += _unused_names(how, set(fqns))
     return out, problems
 
 
-def _mapped(mapping: EnclaveMapping, fqn: str) -> tuple[str | None, Diagnostic | None]:
-    """The enclave of ``fqn`` in ``mapping`` (None and why when there is not exactly one)."""
+def _mapped(mapping: EnclaveMapping, fqn: str, required: bool = True
+            ) -> tuple[str | None, Diagnostic | None]:
+    """The enclave of ``fqn`` in ``mapping`` (None and why when there is not exactly one;
+    no problem when there is none and ``required`` is false)."""
     from nodl_schema.policy.names import has_wildcard
 
     by_name: dict[str, str] = {}  # enclave path -> the entry naming the node
@@ -169,6 +201,8 @@ def _mapped(mapping: EnclaveMapping, fqn: str) -> tuple[str | None, Diagnostic |
     if len(found) == 1:
         return next(iter(found)), None
     file = os.path.basename(mapping.file)
+    if not found and not required:
+        return None, None
     if not found:
         line, column = mapping.entries[0][2] if mapping.entries else (0, 0)
         return None, _problem(mapping.file, f'no enclave of {file} lists the node {fqn}: add it (or a '

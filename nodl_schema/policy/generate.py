@@ -11,7 +11,7 @@ two instances with one name (NODL611: DDS cannot tell them apart).
 
 from __future__ import annotations
 
-from typing import Iterable, NamedTuple, Sequence
+from typing import Iterable, Mapping, NamedTuple, Sequence
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.policy.distros import DEFAULT_DISTRO
@@ -49,8 +49,13 @@ class PolicyResult(NamedTuple):
 def policy_for_instances(instances: Iterable[NodeInstance], *,
                          missing: Sequence[MissingNode] = (), distro: str = DEFAULT_DISTRO,
                          enclaves: str | EnclaveMapping = 'node', allow_missing: bool = False,
-                         notes: Sequence[str] = ()) -> PolicyResult:
-    """The least-privilege policy of ``instances`` (plus ``missing`` nodes, as gaps)."""
+                         notes: Sequence[str] = (), containers: Mapping[str, str] | None = None
+                         ) -> PolicyResult:
+    """The least-privilege policy of ``instances`` (plus ``missing`` nodes, as gaps).
+
+    ``containers`` maps composable nodes to their container (fully qualified
+    names): they share its process, hence its enclave.
+    """
     from nodl_schema.policy.grants import display_path, profile_for_instance
 
     instances = list(instances)
@@ -91,8 +96,12 @@ def policy_for_instances(instances: Iterable[NodeInstance], *,
                 for source in grant.sources or [None]:  # type: ignore[list-item]
                     first.grant(grant.communication, grant.access, grant.name, source)
             first.notes.extend(profile.notes)
-    assignment, problems = assign_enclaves(merged, enclaves)
+    assignment, problems = assign_enclaves(merged, enclaves, containers)
     diagnostics.extend(problems)
+    for fqn, container in (containers or {}).items():
+        if fqn in merged and container in merged and assignment.get(fqn) == assignment.get(container):
+            merged[fqn].notes.append(f'loaded into the container {container}: runs in its process, '
+                                     'so in its enclave')
     policy = Policy(notes=list(notes))
     for fqn, profile in merged.items():
         path = assignment.get(fqn)

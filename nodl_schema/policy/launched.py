@@ -52,8 +52,10 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
         else:
             reason = f'{node.executable_label}: its name or remapping cannot be resolved'
         missing.append(MissingNode(node.fqn, reason, node.location))
+    containers = {node.fqn: node.entry.container for node in analysis.nodes if node.entry.container}
     result = policy_for_instances(
         instances, missing=missing, distro=distro, enclaves=enclaves, allow_missing=allow_missing,
+        containers=containers,
         notes=[f'Least-privilege SROS 2 policy written by nodl policy for the system '
                f'{display_path(os.path.abspath(path))} launches.'])
     return result._replace(diagnostics=launch_problems + result.diagnostics)
