@@ -88,23 +88,28 @@ def show_file(path: str, client_library: str | None = None) -> Shown:
                                    code='NODL305')], path)
 
 
-def show_registered(package: str, executable: str, client_library: str | None = None) -> Shown:
+def show_registered(package: str, executable: str, client_library: str | None = None,
+                    prefixes: list[str] | None = None) -> Shown:
     """The resolved interface of the node definition registered for ``package``'s ``executable``
-    (the client library defaults to the one of the package's build type)."""
+    (the client library defaults to the one of the package's build type), looked up with its
+    mixins in ``prefixes`` (default: ``AMENT_PREFIX_PATH``)."""
     from nodl_schema.system.resolved import resolve_registered
 
     resolved, diagnostics, source = resolve_registered(package, executable,
-                                                       client_library=client_library)
+                                                       client_library=client_library,
+                                                       prefixes=prefixes)
     return _from_resolved(resolved, diagnostics, source)
 
 
-def show_reference(reference: str) -> Shown:
-    """The registered interface definition ``nodl://<package>/<name>``, as ``show`` prints it."""
+def show_reference(reference: str, prefixes: list[str] | None = None) -> Shown:
+    """The registered interface definition ``nodl://<package>/<name>``, as ``show`` prints it
+    (looked up in ``prefixes``, default: ``AMENT_PREFIX_PATH``)."""
     from nodl_schema.composition.ament_resolver import AmentIndexResolver
     from nodl_schema.composition.resolvers import ResolutionError, ResolveContext
 
     try:
-        resolved = AmentIndexResolver().resolve(reference, ResolveContext(None, None))
+        resolved = AmentIndexResolver().resolve(
+            reference, ResolveContext(None, None, tuple(prefixes) if prefixes is not None else None))
     except ResolutionError as exc:
         searched = f' (searched: {", ".join(exc.searched)})' if exc.searched else ''
         return Shown(None, [Diagnostic(Severity.ERROR, f"cannot resolve '{reference}': "

@@ -14,6 +14,7 @@ from nodl_schema.analysis.report import analysis_to_dict, format_junit, format_s
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
 PREFIX = [str(FIXTURES / 'prefix')]
+MIXIN_PREFIX = [str(FIXTURES / 'mixin_prefix')]
 LAUNCH = FIXTURES / 'launch'
 
 
@@ -84,3 +85,17 @@ def test_analysis_is_deterministic(name: str) -> None:
 def test_an_unknown_client_library_is_refused_before_anything_is_read() -> None:
     with pytest.raises(ValueError, match="unknown client library 'rclcp'; expected one of: rclpy, rclcpp"):
         analyse_launch(LAUNCH / 'system.launch.xml', prefixes=PREFIX, client_library='rclcp')
+
+
+def test_the_prefixes_given_serve_every_look_up_mixins_included(monkeypatch: pytest.MonkeyPatch) -> None:
+    # $(find-pkg-share mixed), the registered definition and its nodl://mixed/chatter mixin
+    # are all in MIXIN_PREFIX; AMENT_PREFIX_PATH points elsewhere (no package 'mixed')
+    monkeypatch.setenv('AMENT_PREFIX_PATH', PREFIX[0])
+    analysis = analyse_launch(LAUNCH / 'mixin.launch.xml', prefixes=MIXIN_PREFIX)
+    assert [f.code for f in analysis.findings] == ['NODL558']   # orphan-publisher, nothing else
+    [talker] = analysis_to_dict(analysis)['nodes']
+    assert talker['name'] == '/demo/talker'
+    assert ['chatter', '/demo/chatter'] in talker['endpoints']['publishers']
+    # without prefixes=, AMENT_PREFIX_PATH is searched, as before
+    monkeypatch.setenv('AMENT_PREFIX_PATH', MIXIN_PREFIX[0])
+    assert analysis_to_dict(analyse_launch(LAUNCH / 'mixin.launch.xml'))['nodes'] == [talker]

@@ -286,6 +286,26 @@ def test_nodl_references_resolve_relative_inline_and_one_line_entries(
         ('~/json_client', 'nodl://fixture_pkg/inline_json')]
 
 
+def test_nodl_references_resolve_in_the_prefixes_given_not_ament_prefix_path(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv('AMENT_PREFIX_PATH', str(FIXTURES / 'analysis' / 'prefix'))  # no fixture_pkg
+    composed = compose(COMPOSITION / 'uses_index.nodl.yaml', prefixes=[str(PREFIX)])
+    assert [l.label for l in composed.layers][1:-1] == [
+        'nodl://fixture_pkg/relative', 'nodl://fixture_pkg/inline', 'nodl://fixture_pkg/inline_json']
+    # the default stays AMENT_PREFIX_PATH, which does not hold the package
+    with pytest.raises(ValidationError) as exc:
+        compose(COMPOSITION / 'uses_index.nodl.yaml')
+    assert all("package 'fixture_pkg' is not in the ament index (AMENT_PREFIX_PATH: " in d.message
+               for d in errors_of(exc))
+    # prefixes given: the message names them, not the variable
+    with pytest.raises(ValidationError) as exc:
+        compose(COMPOSITION / 'uses_index.nodl.yaml', prefixes=[str(FIXTURES / 'analysis' / 'prefix')])
+    assert all('(prefixes searched: ' in d.message for d in errors_of(exc))
+    with pytest.raises(ValidationError) as exc:
+        compose(COMPOSITION / 'uses_index.nodl.yaml', prefixes=[])
+    assert all('no ament prefix was given' in d.message for d in errors_of(exc))
+
+
 def test_an_absolute_path_in_the_index_entry_is_read(tmp_path: Path,
                                                      monkeypatch: pytest.MonkeyPatch) -> None:
     prefix = tmp_path / 'prefix'

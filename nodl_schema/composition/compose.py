@@ -11,7 +11,7 @@ searched; the referenced file's own diagnostics follow with their positions.
 from __future__ import annotations
 
 import os
-from typing import Callable
+from typing import Callable, Sequence
 
 from nodl_schema.composition.bases import DEFAULT_CLIENT_LIBRARY, base_layer, check_client_library
 from nodl_schema.composition.layers import MAIN, Layer
@@ -69,11 +69,11 @@ class ComposedNode:
         raise KeyError(label)
 
 
-def _context(report: Report) -> ResolveContext:
-    file = report.file
+def _context(file: str, prefixes: tuple[str, ...] | None) -> ResolveContext:
+    """What the resolvers know of the document ``file`` refers from."""
     if not os.path.isfile(file):
-        return ResolveContext(None, None)
-    return ResolveContext(file, package_root(os.path.dirname(os.path.abspath(file))))
+        return ResolveContext(None, None, prefixes)
+    return ResolveContext(file, package_root(os.path.dirname(os.path.abspath(file))), prefixes)
 
 
 class _IncludeTree:
@@ -87,8 +87,11 @@ class _IncludeTree:
     """
 
     def __init__(self, resolvers: dict[str, Resolver], out: list[Diagnostic],
-                 root_file: str | None, root_is_include: bool) -> None:
+                 root_file: str | None, root_is_include: bool,
+                 prefixes: tuple[str, ...] | None = None) -> None:
         self.resolvers = resolvers
+        #: The ament prefixes every document of the tree resolves ``nodl://`` in.
+        self.prefixes = prefixes
         self.out = out
         self.root_keys: tuple[str, ...] = (os.path.realpath(root_file),) if root_file else ()
         self.root_is_include = root_is_include
@@ -172,8 +175,7 @@ def _included_layers(sub: Report, label: str, file: str, tree: _IncludeTree, cha
     included: Node = sub.model()  # type: ignore[assignment]
     if included.base is not None:
         tree.bases.append((included.base.value, label))
-    context = (ResolveContext(file, package_root(os.path.dirname(os.path.abspath(file))))
-               if os.path.isfile(file) else ResolveContext(None, None))
+    context = _context(file, tree.prefixes)
     layers: list[Layer] = []
     complete = True
     for index, mixin in enumerate(included.mixins or []):
@@ -190,12 +192,14 @@ def _included_layers(sub: Report, label: str, file: str, tree: _IncludeTree, cha
 
 
 def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None, *,
-                   client_library: str = DEFAULT_CLIENT_LIBRARY
+                   client_library: str = DEFAULT_CLIENT_LIBRARY,
+                   prefixes: Sequence[str] | None = None
                    ) -> tuple[ComposedNode | None, list[Diagnostic]]:
     """Compose a checked node definition; returns the result (None on errors) and all diagnostics.
 
     The base is the one of ``client_library`` (``rclpy`` or ``rclcpp``; ValueError
-    for another).  An override the policy forbids (see
+    for another).  ``prefixes``: the ament prefixes ``nodl://`` mixins (nested ones
+    included) are looked up in (default: ``AMENT_PREFIX_PATH``).  An override the policy forbids (see
     :mod:`nodl_schema.composition.merge`) is an error diagnostic and gives None.
     """
     check_client_library(client_library)
@@ -211,9 +215,10 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None,
     layers: list[Layer] = []
     tree: _IncludeTree | None = None
     if node.mixins:
-        context = _context(report)
+        searched = tuple(prefixes) if prefixes is not None else None
+        context = _context(report.file, searched)
         available = resolvers if resolvers is not None else load_resolvers()
-        tree = _IncludeTree(available, errors, context.node_file, report.dialect == INCLUDE)
+        tree = _IncludeTree(available, errors, context.node_file, report.dialect == INCLUDE, searched)
         for index, mixin in enumerate(node.mixins):
             if isinstance(mixin, str):
                 found = _mixin_layers(mixin, ('mixins', index), report.place, context, tree)
@@ -245,14 +250,16 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None,
 
 def compose(source: Source, *, file: str | None = None,
             resolvers: dict[str, Resolver] | None = None,
-            client_library: str = DEFAULT_CLIENT_LIBRARY) -> ComposedNode:
-    """Load a node definition and compose it: base (of ``client_library``), mixins, main.
+            client_library: str = DEFAULT_CLIENT_LIBRARY,
+            prefixes: Sequence[str] | None = None) -> ComposedNode:
+    """Load a node definition and compose it: base (of ``client_library``), mixins, main
+    (``nodl://`` mixins looked up in ``prefixes``, default ``AMENT_PREFIX_PATH``).
 
     Raises :class:`~nodl_schema.diagnostics.ValidationError` with every
     diagnostic if the node or any mixin is invalid or cannot be resolved.
     """
     composed, diagnostics = compose_report(check_source(source, kind=Kind.NODE, file=file), resolvers,
-                                           client_library=client_library)
+                                           client_library=client_library, prefixes=prefixes)
     if composed is None:
         raise ValidationError(diagnostics)
     return composed

@@ -32,6 +32,9 @@ class ResolveContext(NamedTuple):
     node_file: str | None
     #: The folder references may not leave (the package root), or None.
     boundary: str | None
+    #: The ament prefixes ``nodl://`` references are looked up in, in order; None:
+    #: those of ``AMENT_PREFIX_PATH`` (what a caller's ``prefixes=`` is passed on as).
+    prefixes: tuple[str, ...] | None = None
 
 
 class Resolved(NamedTuple):

@@ -15,17 +15,20 @@ from nodl_schema.system import ResolvedNode
 __all__ = ['resolve_target', 'target_name']
 
 
-def resolve_target(target: Sequence[str] | str, client_library: str | None = None
+def resolve_target(target: Sequence[str] | str, client_library: str | None = None,
+                   prefixes: list[str] | None = None
                    ) -> tuple[ResolvedNode | None, list[Diagnostic], str]:
     """Resolve ``FILE`` or ``PACKAGE EXECUTABLE``: ``(node or None, diagnostics, source file)``.
 
-    OSError for a file that cannot be read; ValueError for an unknown client library.
+    The registration and ``nodl://`` mixins are looked up in ``prefixes`` (default:
+    ``AMENT_PREFIX_PATH``).  OSError for a file that cannot be read; ValueError for an unknown client library.
     """
     parts = [target] if isinstance(target, str) else list(target)
     if len(parts) == 2:
         from nodl_schema.system import resolve_registered
 
-        return resolve_registered(parts[0], parts[1], client_library=client_library)
+        return resolve_registered(parts[0], parts[1], client_library=client_library,
+                                  prefixes=prefixes)
     if len(parts) != 1:
         raise ValueError('give a definition FILE or PACKAGE EXECUTABLE')
     from pathlib import Path
@@ -38,7 +41,7 @@ def resolve_target(target: Sequence[str] | str, client_library: str | None = Non
     if not os.path.isfile(path):
         raise OSError(f'{path}: no such file')
     report = check_source(Path(path), kind=Kind.NODE, file=path)
-    node, diagnostics = resolve_report(report, client_library=client_library)
+    node, diagnostics = resolve_report(report, client_library=client_library, prefixes=prefixes)
     return node, diagnostics, path
 
 

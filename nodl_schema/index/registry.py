@@ -120,7 +120,8 @@ def describe_missing(package: str, executable: str, prefixes: list[str] | None =
 def compose_registered(package: str, executable: str, prefixes: list[str] | None = None,  # type: ignore[no-untyped-def]
                        client_library: str = 'rclpy'):
     """Find and compose the node definition registered for ``package``'s ``executable``
-    (with the base of ``client_library``).
+    (with the base of ``client_library``), its ``nodl://`` mixins looked up in the same
+    ``prefixes`` (default: ``AMENT_PREFIX_PATH``).
 
     Returns ``(composed or None, diagnostics, source)``; a legacy node is
     converted to v2 in memory first.  Never raises for a missing or broken
@@ -147,5 +148,5 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
         return None, [Diagnostic(Severity.ERROR, exc.message, (), where, code='NODL015')], where
     composed, diagnostics = compose_report(
         check_source(resolved.text, kind=Kind.NODE, file=resolved.file),
-        client_library=client_library)
+        client_library=client_library, prefixes=prefixes)
     return composed, diagnostics, resolved.file

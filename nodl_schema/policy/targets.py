@@ -90,9 +90,12 @@ def split_node_name(text: str) -> tuple[str, str]:
 
 def instances_from_definitions(definitions: Sequence[Definition], names: Sequence[str] = (), *,
                                remaps: Sequence[str] = (), parameters: Mapping[str, Any] | None = None,
-                               client_library: str | None = None
+                               client_library: str | None = None, prefixes: list[str] | None = None
                                ) -> tuple[list[NodeInstance], list[Diagnostic]]:
     """Resolve each definition and place it (the i-th name places the i-th definition).
+
+    Registered definitions and every ``nodl://`` mixin are looked up in ``prefixes``
+    (default: ``AMENT_PREFIX_PATH``).
 
     Definitions that cannot be resolved give their diagnostics and no instance.
     ValueError for more names than definitions, or a name or rule rcl would reject.
@@ -107,14 +110,16 @@ def instances_from_definitions(definitions: Sequence[Definition], names: Sequenc
     for index, definition in enumerate(definitions):
         if definition.file is not None:
             try:
-                resolved = resolve_node(Path(definition.file), client_library=client_library)
+                resolved = resolve_node(Path(definition.file), client_library=client_library,
+                                        prefixes=prefixes)
             except ValidationError as exc:
                 diagnostics.extend(exc.diagnostics)
                 continue
         else:
             assert definition.package is not None and definition.executable is not None
             found, problems, source = resolve_registered(definition.package, definition.executable,
-                                                         client_library=client_library)
+                                                         client_library=client_library,
+                                                         prefixes=prefixes)
             if found is None:
                 diagnostics.extend(problems or [Diagnostic(
                     Severity.ERROR, f'no node definition for {definition}', (), source or '<index>',

@@ -184,16 +184,19 @@ class ResolvedNode:
 
 
 def resolve_report(report: Report, *, client_library: str | ClientLibraryChoice | None = None,
-                   resolvers: dict[str, Resolver] | None = None
+                   resolvers: dict[str, Resolver] | None = None,
+                   prefixes: list[str] | None = None
                    ) -> tuple[ResolvedNode | None, list[Diagnostic]]:
     """Resolve a checked node definition (a :class:`~nodl_schema.loading.Report`).
 
     Returns the resolved node (None on errors) and every diagnostic.
+    ``prefixes``: where ``nodl://`` mixins are looked up (default ``AMENT_PREFIX_PATH``).
     ValueError for an unknown client library.
     """
     choice = client_library if isinstance(client_library, ClientLibraryChoice) \
         else choose_client_library(client_library)
-    composed, diagnostics = compose_report(report, resolvers, client_library=choice.name)
+    composed, diagnostics = compose_report(report, resolvers, client_library=choice.name,
+                                           prefixes=prefixes)
     if composed is None:
         return None, diagnostics
     return ResolvedNode(composed, choice.reason), diagnostics
@@ -201,11 +204,13 @@ def resolve_report(report: Report, *, client_library: str | ClientLibraryChoice 
 
 def resolve_node(source: ComposedNode | Source, *, file: str | None = None,
                  client_library: str | ClientLibraryChoice | None = None,
-                 resolvers: dict[str, Resolver] | None = None) -> ResolvedNode:
+                 resolvers: dict[str, Resolver] | None = None,
+                 prefixes: list[str] | None = None) -> ResolvedNode:
     """The resolved node of a node definition (YAML/JSON text, bytes, a path) or a composition.
 
     ``client_library``: ``rclpy`` or ``rclcpp`` (default rclpy) picks the base's
-    variant.  Raises :class:`~nodl_schema.diagnostics.ValidationError` with every
+    variant; ``nodl://`` mixins are looked up in ``prefixes`` (default
+    ``AMENT_PREFIX_PATH``).  Raises :class:`~nodl_schema.diagnostics.ValidationError` with every
     diagnostic if the definition or a mixin is invalid, cannot be resolved, or
     overrides what its base forbids; ValueError for an unknown client library.
     """
@@ -218,7 +223,8 @@ def resolve_node(source: ComposedNode | Source, *, file: str | None = None,
     if file is None and isinstance(source, os.PathLike):
         file = os.fspath(source)
     resolved, diagnostics = resolve_report(check_source(source, kind=Kind.NODE, file=file),
-                                           client_library=client_library, resolvers=resolvers)
+                                           client_library=client_library, resolvers=resolvers,
+                                           prefixes=prefixes)
     if resolved is None:
         raise ValidationError(diagnostics)
     return resolved
@@ -230,9 +236,11 @@ def resolve_registered(package: str, executable: str, *, client_library: str | N
     """Resolve the node definition registered for ``package``'s ``executable``.
 
     The client library defaults to the one of the package's build type
-    (``ament_python`` -> rclpy, ``ament_cmake`` -> rclcpp; else rclpy).
-    Returns ``(resolved or None, diagnostics, source file)``; never raises for a
-    missing or broken registration (ValueError for an unknown client library).
+    (``ament_python`` -> rclpy, ``ament_cmake`` -> rclcpp; else rclpy).  The
+    definition, its package and its ``nodl://`` mixins are all looked up in ``prefixes``
+    (default ``AMENT_PREFIX_PATH``).  Returns ``(resolved or None, diagnostics, source
+    file)``; never raises for a missing or broken registration (ValueError for an unknown
+    client library).
     """
     from nodl_schema.index.registry import compose_registered
 
