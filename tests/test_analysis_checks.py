@@ -173,3 +173,25 @@ def test_parameter_type_verdicts_agree_with_rclpy(type_name: str, written: str, 
     spec = parse_type(type_name)
     assert spec is not None
     assert launch_value_verdict(entry.rcl_parameters['x'], spec) == oracle, (entry.rcl_parameters['x'], oracle)
+
+
+def test_unused_remap_follows_rcl(tmp_path: Path) -> None:
+    """Base entities (/rosout, /parameter_events, ~/get_parameters) are remappable (real rclpy
+    remaps them), so rules for them are used; a node-scoped rule for another launched node (a
+    set_remap gives it to every node in scope) is that node's; one for no launched node is a typo."""
+    launch = tmp_path / 'remaps.launch.xml'
+    launch.write_text(
+        '<launch>\n'
+        '  <set_remap from="second:cmd_vel" to="/x"/>\n'
+        '  <node pkg="nav" exec="planner" name="first">\n'
+        '    <remap from="/rosout" to="/log"/><remap from="/parameter_events" to="/events"/>\n'
+        '    <remap from="~/get_parameters" to="/gp"/>\n'
+        '  </node>\n'
+        '  <node pkg="nav" exec="planner" name="second"/>\n'
+        '  <node pkg="nav" exec="planner" name="third">\n'
+        '    <remap from="thrid:cmd_vel" to="/y"/>\n'
+        '  </node>\n'
+        '</launch>\n', encoding='utf-8')
+    (finding,) = _of(analyse_launch(launch, prefixes=PREFIX), 'unused-remap')
+    assert (finding.nodes, finding.diagnostic.line) == (('/third',), 8)
+    assert "'thrid'" in finding.message and 'no launched node has that name' in finding.message

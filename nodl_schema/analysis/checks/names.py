@@ -44,7 +44,12 @@ class UnusedRemapCheck(CheckExtension):
     kinds = ('unused-remap',)
 
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
-        """One finding per unused rule of every node with a definition."""
+        """One finding per unused rule of every node with a definition.
+
+        A node-scoped rule (``other:chatter:=x``) for another node is not this node's to use
+        (``set_remap`` gives it to every node in scope; rcl applies it to the node of that
+        name only): it is a finding only when no launched node has that name (a typo)."""
+        launched_names = {n.fqn.rpartition('/')[2] for n in context.nodes}
         for node in context.analysed():
             names = node.names
             assert node.instance is not None and names is not None
@@ -58,7 +63,10 @@ class UnusedRemapCheck(CheckExtension):
                 if rule.kind in ('node', 'namespace') or id(rule) in used:
                     continue
                 if not rule.applies_to(names.name):
-                    why = f'it is for the node {rule.node!r}, and this node is {names.name!r}'
+                    if rule.node in launched_names:
+                        continue  # the rule of the node of that name (checked there)
+                    why = (f'it is for the node {rule.node!r}, and no launched node has that name '
+                           f'(this node is {names.name!r})')
                 else:
                     what = _WHAT.get(rule.kind, 'topic, service or action')
                     why = f'the node has no {what} {names.expand(rule.match or "")!r}'
