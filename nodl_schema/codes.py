@@ -164,6 +164,7 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL606': ('error', 'policy: the document breaks the structure SROS 2 requires (policy.xsd, version 0.2.0)'),
     'NODL607': ('error', 'policy check: the policy has no profile for a node of the system'),
     'NODL608': ('error', 'policy check: the policy has a profile for a node the system does not have'),
+    'NODL609': ('error', 'policy check: a node\'s profile is in another enclave than the one the node runs in'),
     'NODL610': ('error', 'policy: enclave mapping problem (an invalid enclave path or entry, a node no entry or two enclaves match)'),
     'NODL611': ('error', 'policy: two nodes share one fully qualified name (DDS security cannot tell them apart)'),
     'NODL612': ('error', 'policy: the system has no nodes to write a policy for'),

@@ -5,6 +5,7 @@ from pathlib import Path
 import pytest
 
 from nodl_schema.policy.check import check_parsed_policy, check_policy_file
+from nodl_schema.policy.enclaves import EnclaveMapping
 from nodl_schema.policy.generate import policy_for_instances
 from nodl_schema.policy.schema_check import read_policy
 from nodl_schema.policy.targets import Definition, instances_from_definitions
@@ -66,6 +67,25 @@ def test_wildcards_deny_and_profiles(expected):
     assert [d.code for d in _check(denied, expected)] == ['NODL604']
     no_listener = text.replace('node="listener"', 'node="lister"')
     assert sorted(d.code for d in _check(no_listener, expected)) == ['NODL607', 'NODL608']
+
+
+def test_a_profile_in_another_enclave_is_misplaced(expected):
+    """Permissions belong to enclaves: the talker started with its own enclave would get none
+    of the grants written for it under the listener's enclave (and the listener would)."""
+    text = write_policy(expected)
+    swapped = text.replace('<enclave path="/talker">', '<enclave path="/tmp">').replace(
+        '<enclave path="/listener">', '<enclave path="/talker">').replace(
+        '<enclave path="/tmp">', '<enclave path="/listener">')
+    found = _check(swapped, expected)
+    assert [(d.code, d.line) for d in found] == [
+        ('NODL609', _line(swapped, '<profile ns="/" node="listener">')),
+        ('NODL609', _line(swapped, '<profile ns="/" node="talker">'))]
+    assert "the profile of /listener is in enclave '/talker'" in found[0].message
+    # the same layout is right when the system is started that way
+    instances, _ = instances_from_definitions(
+        [Definition(file=str(POLICY / 'talker.nodl.yaml')), Definition(file=str(POLICY / 'listener.nodl.yaml'))])
+    crossed = EnclaveMapping('m.yaml', [('/talker', ['/listener'], (1, 1)), ('/listener', ['/talker'], (2, 1))])
+    assert _check(swapped, policy_for_instances(instances, enclaves=crossed).policy) == []
 
 
 def test_structure_problems_come_alone(expected, tmp_path):

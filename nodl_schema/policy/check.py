@@ -8,8 +8,12 @@ resolved as SROS 2 resolves them (:func:`~nodl_schema.policy.names.resolve_polic
 so ``chatter``, ``/chatter`` and ``~/x`` compare by their final names.  A
 name DDS reads as a pattern (``*``) satisfies what it matches but is reported
 as widening access (NODL603); a ``DENY`` rule that matches a needed grant
-takes it away (DDS applies deny rules first).  Each finding is placed in the
-policy file; missing grants at the profile that should hold them.
+takes it away (DDS applies deny rules first).  Permissions belong to
+enclaves, not nodes: a node's profile in another enclave than the one the
+node runs in (as ``--enclave-per``/``--enclave-map`` say the system is
+started) is NODL609, since the node lacks those grants and whoever holds
+that enclave has them.  Each finding is placed in the policy file; missing
+grants at the profile that should hold them.
 """
 
 from __future__ import annotations
@@ -98,6 +102,21 @@ def _shown(g: GrantedName) -> str:
     return repr(g.name) if g.written != g.written.strip() else g.name
 
 
+def _enclaves_of(root: XmlElement, fqn: str) -> list[tuple[str, XmlElement]]:
+    """``(enclave path, profile element)`` of every profile of ``fqn`` in the policy."""
+    out = []
+    for enclaves in root.children:
+        for enclave in enclaves.children:
+            path = enclave.get('path')
+            for group in enclave.children:
+                for profile in group.children:
+                    ns, node = profile.get('ns'), profile.get('node')
+                    if profile.tag == 'profile' and ns is not None and node is not None and \
+                            _fqn(ns.value, node.value) == fqn:
+                        out.append((path.value if path is not None else '', profile))
+    return out
+
+
 def _spaced(written: str) -> str:
     """A hint when ``written`` has white space around it, which SROS 2 keeps in the name."""
     if written == written.strip():
@@ -125,10 +144,18 @@ def check_parsed_policy(parsed: ParsedPolicy, expected: Policy) -> list[Diagnost
         by_node.setdefault(name.node, []).append(name)
     out = list(structure)
     needed_nodes = set()
-    for _, profile in expected.profiles():
+    for enclave, profile in expected.profiles():
         fqn = profile.fqn
         needed_nodes.add(fqn)
         element = profiles.get(fqn)
+        for place, where in _enclaves_of(root, fqn):
+            if place != enclave.path:
+                out.append(_diagnostic(
+                    file, Severity.ERROR, f'misplaced: the profile of {fqn} is in enclave {place!r}, '
+                    f'but the node runs in enclave {enclave.path!r} (as the enclave options given '
+                    'place it: say how the processes are started with --enclave-per or '
+                    f'--enclave-map): {fqn} would lack these grants, and whoever holds {place!r} '
+                    'has them', where.line, where.column, 'NODL609'))
         if element is None:
             if profile.grants:
                 out.append(_diagnostic(

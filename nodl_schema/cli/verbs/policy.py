@@ -247,10 +247,13 @@ def _check(args: argparse.Namespace, expected: Any, options: Any, failed: bool) 
     shown = _report(found, args, options, sys.stdout)
     missing = sum(d.code in ('NODL604', 'NODL607') for d in shown)
     extra = sum(d.code in ('NODL605', 'NODL608') for d in shown)
+    misplaced = sum(d.code == 'NODL609' for d in shown)
     errors = sum(d.severity is Severity.ERROR for d in shown)
     summary = f'{args.check}: {missing} missing, {extra} extra'
-    if errors - missing - extra:
-        summary += f', {errors - missing - extra} other errors'
+    if misplaced:
+        summary += f', {misplaced} in another enclave'
+    if errors - missing - extra - misplaced:
+        summary += f', {errors - missing - extra - misplaced} other errors'
     if not errors and not failed:
         summary += ': the policy grants exactly what the system needs'
     print(summary, file=sys.stderr)
