@@ -70,3 +70,15 @@ def test_html_page_is_self_contained_and_complete(tmp_path: Path) -> None:
     # balanced braces and parentheses at least (no JavaScript engine needed)
     stripped = re.sub(r"'(?:\\.|[^'\\])*'|/(?:\\.|[^/\\\n])+/[gimsuy]*", '', script)
     assert stripped.count('{') == stripped.count('}') and stripped.count('(') == stripped.count(')')
+
+
+def test_a_wide_graph_scrolls_instead_of_shrinking_its_labels() -> None:
+    """Looked at in headless Chromium: an LR layout of a real system is several times wider
+    than the panel; scaled to fit, its labels were unreadable dots. The page keeps at least 60%
+    of the natural size (the panel scrolls) and wraps long locations in the findings."""
+    page = render_graph(_analysis(), 'html')
+    svg = re.search(r'<svg[^>]*>', page).group(0)
+    natural = float(re.search(r'viewBox="[\d.]+ [\d.]+ ([\d.]+)', svg).group(1))
+    least = float(re.search(r'min-width:([\d.]+)pt', svg).group(1))
+    assert abs(least - 0.6 * natural) <= 1 and ' width=' not in svg
+    assert 'min-height:100%' not in page and 'overflow-wrap:anywhere' in page

@@ -29,8 +29,13 @@ def _inline_svg(svg: str) -> str:
     start = svg.find('<svg')
     svg = svg[start:] if start >= 0 else svg
     svg = re.sub(r'<!--.*?-->', '', svg, flags=re.S)
-    # scale to the panel (the viewBox keeps the proportions)
-    return re.sub(r'<svg([^>]*?)\swidth="[^"]*"\s+height="[^"]*"', r'<svg\1', svg, count=1)
+    # scale to the panel (the viewBox keeps the proportions), but never below 60% of the
+    # natural size: a wide system scrolls instead of shrinking its labels to unreadable dots
+    def sized(match: re.Match[str]) -> str:
+        number = re.match(r'[\d.]+', match.group(2))
+        least = f' style="min-width:{float(number.group()) * 0.6:.0f}pt"' if number else ''
+        return f'<svg{match.group(1)}{least}'
+    return re.sub(r'<svg([^>]*?)\swidth="([^"]*)"\s+height="[^"]*"', sized, svg, count=1)
 
 
 _CSS = """
@@ -44,7 +49,7 @@ header .file{color:#5f6368;font-family:ui-monospace,Menlo,Consolas,monospace;fon
 .pill.error{background:#fce8e6;color:#c5221f}.pill.warning{background:#fef7e0;color:#b06000}.pill.info{background:#e8f0fe;color:#1967d2}
 main{display:grid;grid-template-columns:1fr 380px;height:calc(100vh - 50px)}
 #canvas{overflow:auto;background:#fff;position:relative}
-#canvas svg{width:100%;height:auto;min-height:100%;display:block}
+#canvas svg{width:100%;height:auto;display:block}
 #canvas g.node,#canvas g.edge{cursor:pointer}
 #canvas g.node.selected polygon,#canvas g.node.selected ellipse{stroke:#1a73e8;stroke-width:3.5}
 #canvas g.dim{opacity:.25}
@@ -59,7 +64,8 @@ code{font-family:ui-monospace,Menlo,Consolas,monospace;font-size:12px}
 .finding{border-left:4px solid #dadce0;background:#f8f9fa;padding:6px 8px;margin:6px 0;border-radius:0 6px 6px 0;font-size:12.5px}
 .finding.error{border-color:#d93025;background:#fce8e6}.finding.warning{border-color:#e37400;background:#fef7e0}.finding.info{border-color:#1a73e8;background:#e8f0fe}
 .finding .code{font-weight:600;font-size:11px;color:#5f6368}
-.finding .where{color:#5f6368;font-size:11px;font-family:ui-monospace,Menlo,Consolas,monospace}
+.finding{overflow-wrap:anywhere}
+.finding .where{color:#5f6368;font-size:11px;font-family:ui-monospace,Menlo,Consolas,monospace;word-break:break-all}
 .hint{color:#5f6368}
 .legend{display:flex;gap:14px;flex-wrap:wrap;font-size:12px;color:#5f6368;margin-top:8px}
 .legend span::before{content:"";display:inline-block;width:14px;height:10px;margin-right:5px;vertical-align:-1px;border:1.5px solid #5f6368;background:#fff}
