@@ -73,7 +73,7 @@ def test_a_type_that_is_not_installed_is_named_before_the_node_is_created() -> N
     from nodl_schema.runtime import NodlNode
 
     with pytest.raises(RuntimeDefinitionError) as raised:
-        NodlNode(FIXTURES / 'missing_type.nodl.yaml')
+        NodlNode(FIXTURES.parent / 'runtime' / 'missing_type.nodl.yaml')
     message = str(raised.value)
     assert 'missing_type.nodl.yaml:8:7:' in message
     assert 'nodl_absent_msgs/msg/Nothing' in message and 'is not installed' in message
