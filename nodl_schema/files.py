@@ -27,7 +27,7 @@ if TYPE_CHECKING:
     from typing import Iterable, Iterator
 
 __all__ = ['NODL_SUFFIXES', 'STDIN', 'IGNORE_MARKERS', 'BUILD_OUTPUT_DIRS', 'Target',
-           'find_nodl_files', 'iter_nodl_files', 'special_file_kind']
+           'find_nodl_files', 'iter_nodl_files', 'special_file_kind', 'tidy_path']
 
 #: What a directory search looks for.
 NODL_SUFFIXES = ('.nodl.yaml', '.nodl.yml', '.nodl.json')
@@ -54,6 +54,25 @@ class Target(namedtuple('Target', ['path', 'problem', 'special', 'skipped'],
 
 _SPECIAL_KINDS = ((stat.S_ISFIFO, 'named pipe'), (stat.S_ISCHR, 'character device'),
                   (stat.S_ISBLK, 'block device'), (stat.S_ISSOCK, 'socket'))
+
+
+def tidy_path(path: str) -> str:
+    """``path`` without ``.`` and ``..`` steps or doubled separators, as a user would write it.
+
+    ``launch/../config/x.yaml`` becomes ``config/x.yaml``; a relative path stays relative.
+    A ``..`` after a symbolic link to a folder leads where the link points, not where the
+    text suggests, so a ``..`` is only taken out when the tidy path names the same file
+    (or neither exists); otherwise the path is kept as it is.
+    """
+    if not path:
+        return path
+    tidy = os.path.normpath(path)
+    if tidy == path or '..' not in path.split(os.sep):
+        return tidy
+    try:
+        return tidy if os.path.samefile(path, tidy) else path
+    except OSError:
+        return path if os.path.lexists(path) or os.path.lexists(tidy) else tidy
 
 
 def special_file_kind(mode: int) -> str | None:

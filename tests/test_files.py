@@ -100,3 +100,30 @@ def test_a_dangling_link_named_like_a_nodl_file_is_reported(tmp_path) -> None:
     os.symlink(os.path.join(ws, 'nowhere.yaml'), link)
     problems = [t for t in find_nodl_files([ws]) if t.problem]
     assert problems == [Target(link, 'a symbolic link to a file or directory that does not exist')]
+
+
+def test_tidy_path_takes_out_dot_steps_and_keeps_relative_paths_relative(tmp_path) -> None:
+    from nodl_schema.files import tidy_path
+
+    (tmp_path / 'launch').mkdir()
+    (tmp_path / 'config').mkdir()
+    (tmp_path / 'config' / 'x.yaml').write_text('{}')
+    assert tidy_path(str(tmp_path / 'launch' / '..' / 'config' / '.' / 'x.yaml')) == \
+        str(tmp_path / 'config' / 'x.yaml')
+    assert tidy_path('launch/../config//x.yaml') == os.path.join('config', 'x.yaml')
+    assert tidy_path('./x.yaml') == 'x.yaml'
+    assert tidy_path('') == ''
+    assert tidy_path(str(tmp_path / 'gone' / '..' / 'none.yaml')) == str(tmp_path / 'none.yaml')
+
+
+def test_tidy_path_keeps_a_dot_dot_that_a_symbolic_link_makes_lead_elsewhere(tmp_path) -> None:
+    from nodl_schema.files import tidy_path
+
+    (tmp_path / 'real' / 'deep').mkdir(parents=True)
+    (tmp_path / 'real' / 'x.yaml').write_text('{}')      # what link/../x.yaml opens
+    (tmp_path / 'link').symlink_to(tmp_path / 'real' / 'deep')
+    through_link = str(tmp_path / 'link' / '..' / 'x.yaml')
+    assert os.path.isfile(through_link) and not os.path.exists(tmp_path / 'x.yaml')
+    assert tidy_path(through_link) == through_link
+    (tmp_path / 'x.yaml').write_text('{}')                # a different file of the same name
+    assert tidy_path(through_link) == through_link

@@ -246,3 +246,47 @@ def test_a_configuration_known_only_at_run_time_keeps_the_nodes_that_use_it(tmp_
         ('NODL513', 'warning', 'main.launch.xml', 10)]
     assert "launch configuration 'description'" in result.diagnostics[0].message
     assert result.diagnostics[2].message.endswith('this node is missing from the analysis')
+
+
+def test_included_and_parameter_file_paths_are_tidy(tmp_path: Path) -> None:
+    """'$(dirname)/../config/x.yaml' is reported as '<dir>/config/x.yaml' (the file a user would
+    name), across formats; sources, include chains and parameter files alike."""
+    (tmp_path / 'launch').mkdir()
+    (tmp_path / 'config').mkdir()
+    (tmp_path / 'config' / 'p.yaml').write_text('/**:\n  ros__parameters:\n    a: 1\n')
+    main = _write(tmp_path / 'launch', {
+        'main.launch.xml': textwrap.dedent('''\
+            <launch>
+              <node pkg="p" exec="x" name="x"><param from="$(dirname)/../config/./p.yaml"/></node>
+              <include file="$(dirname)/../launch/./sub.launch.yaml"/>
+            </launch>
+            '''),
+        'sub.launch.yaml': textwrap.dedent('''\
+            launch:
+              - node: {pkg: p, exec: y, name: y, param: [{from: $(dirname)/../config/p.yaml}]}
+              - include: {file: $(dirname)//../launch/sub.launch.py}
+            '''),
+        'sub.launch.py': textwrap.dedent('''\
+            import os
+            from launch import LaunchDescription
+            from launch_ros.actions import Node
+            def generate_launch_description():
+                here = os.path.dirname(__file__)
+                return LaunchDescription([Node(
+                    package='p', executable='z', name='z',
+                    parameters=[os.path.join(here, '..', 'config', 'p.yaml')],
+                    ros_arguments=['--params-file', os.path.join(here, '..', 'config', 'p.yaml')])])
+            ''')})
+    result = load_launch(main, {})
+    assert result.ok, [str(d) for d in result.diagnostics]
+    params = str(tmp_path / 'config' / 'p.yaml')
+    launch = tmp_path / 'launch'
+    assert result.files == [str(launch / n) for n in ('main.launch.xml', 'sub.launch.yaml',
+                                                      'sub.launch.py')]
+    x, y, z = result.nodes
+    assert [n.source.file for n in (x, y, z)] == [
+        str(launch / 'main.launch.xml'), str(launch / 'sub.launch.yaml'), str(launch / 'sub.launch.py')]
+    assert [s.file for s in z.include_chain] == [str(launch / 'main.launch.xml'),
+                                                 str(launch / 'sub.launch.yaml')]
+    for node in (x, y, z):
+        assert [p.path for p in node.parameters if p.kind == 'file'] == [params] * (1 + (node is z))

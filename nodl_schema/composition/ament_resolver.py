@@ -34,8 +34,10 @@ def _read(resource: ament.Resource, package: str) -> Resolved:
     # A path is one line; a document held in the entry may be one line too (flow YAML
     # or minified JSON: '{...}', or 'key: value').
     if content and '\n' not in content and not content.startswith('{') and ': ' not in content:
-        candidates = [content] if os.path.isabs(content) else [
-            os.path.join(resource.prefix, 'share', package, content)]
+        from nodl_schema.files import tidy_path
+
+        candidates = [tidy_path(content if os.path.isabs(content) else
+                                os.path.join(resource.prefix, 'share', package, content))]
         for candidate in candidates:
             if os.path.isfile(candidate):
                 return Resolved(read_limited(candidate), candidate)

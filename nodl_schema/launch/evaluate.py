@@ -156,7 +156,10 @@ class _Leave(Action):
 
 def include(context: LaunchContext, action: Any) -> list[Action] | None:
     """Execute an include: read the file, check cycles and required arguments, set its arguments."""
-    path = perform(context, action.path)
+    from nodl_schema.files import tidy_path
+
+    # Absolute and tidy ('launch/../x.launch.xml' as 'x.launch.xml'): the file findings name.
+    path = tidy_path(perform(context, action.path))
     if not os.path.isabs(path):
         path = os.path.abspath(path)
     real = os.path.realpath(path)

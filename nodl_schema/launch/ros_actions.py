@@ -212,7 +212,9 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
     out = []
     for item in parameters:
         if isinstance(item, ParameterFileEntry):
-            path = perform(context, item.path)
+            from nodl_schema.files import tidy_path
+
+            path = tidy_path(perform(context, item.path))  # '$(dirname)/../config/x.yaml' tidied
             if not os.path.isfile(path):
                 context.warn('NODL517', f"parameter file '{path}' is not a file; launch skips it", location)
                 continue
