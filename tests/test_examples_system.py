@@ -109,10 +109,11 @@ def report(build: Build) -> dict:  # type: ignore[type-arg]
 
 @pytest.fixture(scope='module')
 def workspace(build: Build):  # type: ignore[no-untyped-def]
-    """The built workspace, sourced: the nodl:// mixins of its definitions resolve through
-    AMENT_PREFIX_PATH (the resolvers do not take the analysis's prefixes)."""
+    """The built workspace, NOT sourced: AMENT_PREFIX_PATH holds the virtual environment only,
+    so what the analyses below find of the workspace (the launch files' find-pkg-share, the
+    definitions and their nodl:// mixins) comes from the prefixes= they are given."""
     with pytest.MonkeyPatch.context() as patch:
-        patch.setenv('AMENT_PREFIX_PATH', os.pathsep.join(build.prefixes))
+        patch.setenv('AMENT_PREFIX_PATH', str(VENV))
         yield build
 
 
