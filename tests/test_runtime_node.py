@@ -198,3 +198,81 @@ def test_runtime_every_kind_of_callback(ros_node: Any, client: Client) -> None:
                                ('gain', 0.0, 'must be greater than 0.0')):
         answer = client.set_parameter(node.fqn, name, value)
         assert not answer.successful and words in answer.reason, answer.reason
+
+
+# -- a name two kinds share; local set_parameters ---------------------------------------------
+
+
+def test_a_name_two_kinds_share_needs_its_kind() -> None:
+    from nodl_schema.runtime import NodlNode
+
+    shared = FIXTURES.parent / 'runtime' / 'shared_name.nodl.yaml'
+    with pytest.raises(RuntimeDefinitionError) as ambiguous:
+        NodlNode(shared, callbacks={'~/reset': print})
+    assert "names more than one entity: key it by kind and name (('service_server', '~/reset'), " \
+        "('subscription', '~/reset'))" in str(ambiguous.value)
+    with pytest.raises(RuntimeDefinitionError) as missing:
+        NodlNode(shared, callbacks={('subscription', '~/reset'): print})
+    assert "service server '~/reset' has no callback: pass callbacks={('service_server', '~/reset'): ...}" \
+        in str(missing.value)
+    assert "subscription '~/reset' has no callback" not in str(missing.value)
+    with pytest.raises(RuntimeDefinitionError) as wrong_kind:
+        NodlNode(shared, callbacks={('action_server', '~/reset'): print, ('topic', '~/reset'): print})
+    assert "('action_server', '~/reset'), which the definition does not declare" in str(wrong_kind.value)
+    assert "'topic' is not an entity kind" in str(wrong_kind.value)
+
+
+def test_callbacks_keyed_by_kind_and_local_set_parameters_give_the_validators_words(client: Client) -> None:
+    import std_msgs.msg
+    import std_srvs.srv
+    from rclpy.parameter import Parameter
+
+    from nodl_schema.runtime import NodlNode
+
+    shared = FIXTURES.parent / 'runtime' / 'shared_name.nodl.yaml'
+    messages: list[str] = []
+
+    def reset(request: Any, response: Any) -> Any:
+        response.success = True
+        response.message = 'by request'
+        return response
+
+    node = NodlNode(shared, 'shared', namespace='/rt', context=client.context,
+                    callbacks={('subscription', '~/reset'): lambda msg: messages.append(msg.data),
+                               ('service_server', '~/reset'): reset})
+
+    class Decorated(NodlNode):
+        @callback('~/reset', kind='subscription')
+        def on_message(self, msg: Any) -> None:
+            messages.append('decorated:' + msg.data)
+
+        @callback('~/reset', kind='service_server')
+        def on_request(self, request: Any, response: Any) -> Any:
+            return reset(request, response)
+    decorated = Decorated(shared, 'decorated', namespace='/rt', context=client.context)
+    try:
+        client.executor.add_node(node)
+        client.executor.add_node(decorated)
+        assert node.endpoint('~/reset', 'subscription') is not node.endpoint('~/reset', 'service_server')
+        pub = client.node.create_publisher(std_msgs.msg.String, '/rt/shared/reset', 1)
+        dpub = client.node.create_publisher(std_msgs.msg.String, '/rt/decorated/reset', 1)
+
+        def received() -> bool:
+            pub.publish(std_msgs.msg.String(data='m'))
+            dpub.publish(std_msgs.msg.String(data='m'))
+            client.executor.spin_once(timeout_sec=0.1)
+            return 'm' in messages and 'decorated:m' in messages
+        assert client.spin_until(received, 15), messages
+        for fqn in ('/rt/shared', '/rt/decorated'):
+            answer = client.call(std_srvs.srv.Trigger, f'{fqn}/reset', std_srvs.srv.Trigger.Request())
+            assert answer.success and answer.message == 'by request'
+        # a local call gets the validator's words too (not rclpy's range message), value unchanged
+        [local] = node.set_parameters([Parameter('rate', value=20.0)])
+        assert not local.successful and 'must be between 0.5 and 10.0' in local.reason, local.reason
+        assert node.params.rate == 2.0
+        [fine] = node.set_parameters([Parameter('rate', value=4.0)])
+        assert fine.successful and node.params.rate == 4.0
+    finally:
+        for n in (node, decorated):
+            client.executor.remove_node(n)
+            n.destroy_node()

@@ -7,8 +7,10 @@ generated code: descriptors, required parameters, every validator at start-up
 and at set time (the validator table's predicates), a typed snapshot
 ``node.params``, ``is_old``/``try_update`` and an on-change hook.
 
-Callbacks are bound by a mapping (declared name -> callable) or by decorating
-methods of a subclass with :func:`callback`; a declared subscription, service
+Callbacks are bound by a mapping (declared name -> callable; ``(kind, name)`` ->
+callable when a subscription, service server or action server share the name) or
+by decorating methods of a subclass with :func:`callback` (``kind=`` for such a
+name); a declared subscription, service
 server or action server without one is an error, and every interface type is
 imported before the node is created.  Handles are reachable by declared name:
 ``node.endpoint('~/scan')`` (``kind=`` when two kinds share a name) and

@@ -97,13 +97,14 @@ class _Prepared:
                 self.types[entity.key] = _import_type(entity)
             except RuntimeDefinitionError as exc:
                 problems.append(str(exc))
-        servers = {e.name for e in self.endpoints if e.kind is EntityKind.ACTION_SERVER}
-        self.callbacks = collect_callbacks(owner, callbacks, servers)
-        needed = {e.name: e.kind.word for e in self.endpoints if e.kind in _NEEDS_CALLBACK}
-        problems += missing_callbacks(needed, self.callbacks)
-        unknown = sorted(set(self.callbacks) - set(needed))
-        problems += [f'a callback is given for {name!r}, which the definition declares as no '
-                     'subscription, service server or action server' for name in unknown]
+        needed = {(e.kind, e.name): e.kind.word for e in self.endpoints if e.kind in _NEEDS_CALLBACK}
+        try:
+            self.callbacks = collect_callbacks(owner, callbacks, needed)
+        except RuntimeDefinitionError as exc:
+            problems.append(str(exc))
+            self.callbacks = {}
+        else:
+            problems += missing_callbacks(needed, self.callbacks)
         self.custom = dict(custom_validators or {})
         problems += custom_validator_problems(self.plan, self.custom)
         if problems:
@@ -132,7 +133,7 @@ class _NodlMixin:
                 kind = getattr(Parameter.Type, parameter.ros_type[len('PARAMETER_'):])
                 node.declare_parameter(parameter.name, kind, descriptor)
                 if not parameter.required and self._nodl_initial(parameter.name) is None:
-                    node.set_parameters([Parameter(parameter.name, kind, [])])
+                    super().set_parameters([Parameter(parameter.name, kind, [])])  # type: ignore[misc]
             else:
                 node.declare_parameter(parameter.name, python_default(parameter), descriptor)
         values = {p.name: self._nodl_initial(p.name) for p in plan.parameters}
@@ -181,6 +182,10 @@ class _NodlMixin:
         answer: SetParametersResult = super().set_parameters_atomically(parameter_list)  # type: ignore[misc]
         return answer
 
+    def set_parameters(self, parameter_list: list[Parameter[Any]]) -> list[SetParametersResult]:
+        """One at a time, each as :meth:`set_parameters_atomically`: a rejection gives the validator's reason."""
+        return [self.set_parameters_atomically([parameter]) for parameter in parameter_list]
+
     def is_old(self, params: ParameterSnapshot) -> bool:
         """True if ``params`` is not the newest snapshot."""
         return bool(getattr(params, '_nodl_stamp', -1) != getattr(self.params, '_nodl_stamp', -2))
@@ -216,7 +221,7 @@ class _NodlMixin:
         for entity in self._nodl.endpoints:
             msg_type = self._nodl.types[entity.key]
             qos = _qos(entity)
-            bound = self._nodl.callbacks.get(entity.name)
+            bound = self._nodl.callbacks.get((entity.kind, entity.name))
             kind = entity.kind
             if kind is EntityKind.PUBLISHER:
                 create = node.create_lifecycle_publisher if lifecycle else node.create_publisher
@@ -267,8 +272,10 @@ def _node_name(prepared: _Prepared, node_name: str | None) -> str:
 class NodlNode(_NodlMixin, Node):
     """An rclpy node built from a definition (see :mod:`nodl_schema.runtime`).
 
-    ``callbacks``: declared name -> callable (an action server: a callable for
-    ``execute`` or :class:`~nodl_schema.runtime.ActionCallbacks`);
+    ``callbacks``: declared name -> callable, or ``(kind, name)`` -> callable when
+    entities of two kinds share the name (``('service_server', '~/x')``; a name that is
+    ambiguous is an error that says so); an action server takes a callable for
+    ``execute`` or :class:`~nodl_schema.runtime.ActionCallbacks`;
     ``custom_validators``: custom validator name (``ns::fn``) -> ``fn(value,
     arguments) -> None | why``; ``on_parameters_changed(old, new)``; other
     keyword arguments go to rclpy's Node.  Raises
