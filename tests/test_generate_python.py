@@ -212,6 +212,7 @@ def test_every_kind_of_callback(ros_node: Any, module_dir: Path, client: Client)
     import std_msgs.msg
     import std_srvs.srv
     import test_msgs.action
+    from action_msgs.msg import GoalStatus
     from rclpy.action import ActionClient
 
     node = _start(ros_node, module_dir, 'everything', 'everything', '-p', 'required_scale:=1.5')
@@ -242,6 +243,16 @@ def test_every_kind_of_callback(ros_node: Any, module_dir: Path, client: Client)
     rejected = action.send_goal_async(test_msgs.action.Fibonacci.Goal(order=99))
     assert client.spin_until(rejected.done, 10)
     assert not rejected.result().accepted
+    # the cancel callback: a goal that runs until it is cancelled
+    running = action.send_goal_async(test_msgs.action.Fibonacci.Goal(order=42))
+    assert client.spin_until(running.done, 10) and running.result().accepted
+    cancel = running.result().cancel_goal_async()
+    assert client.spin_until(cancel.done, 10)
+    assert len(cancel.result().goals_canceling) == 1
+    cancelled = running.result().get_result_async()
+    assert client.spin_until(cancelled.done, 10)
+    assert cancelled.result().status == GoalStatus.STATUS_CANCELED
+    assert list(cancelled.result().result.sequence) == [42]
     action.destroy()
     # the custom validator is called through the user's hook
     odd = client.set_parameter(node.fqn, 'checked', 3)
@@ -256,3 +267,91 @@ def test_every_kind_of_callback(ros_node: Any, module_dir: Path, client: Client)
         assert not answer.successful, name
         assert words in answer.reason, answer.reason
     assert client.set_parameter(node.fqn, 'bytes', [b'\x07']).successful
+
+
+# -- parameters of a generated node, in this process (a real rclpy node, real parameter services) --
+
+
+@pytest.fixture
+def talker_class(module_dir: Path) -> Iterator[Any]:
+    import importlib
+
+    sys.path.insert(0, str(module_dir))
+    try:
+        module = importlib.import_module('talker_base')
+
+        class Talker(module.TalkerBase):  # type: ignore[misc, name-defined]
+            def on_command(self, msg: Any) -> None:
+                pass
+        yield Talker
+    finally:
+        sys.path.remove(str(module_dir))
+        sys.modules.pop('talker_base', None)
+
+
+def test_parameters_descriptors_batches_and_a_later_rejecting_callback(talker_class: Any,
+                                                                      client: Client) -> None:
+    from rcl_interfaces.msg import SetParametersResult
+    from rcl_interfaces.srv import DescribeParameters, SetParametersAtomically
+    from rclpy.parameter import Parameter
+
+    changes: list[tuple[float, float]] = []
+
+    class Observed(talker_class):  # type: ignore[misc, valid-type]
+        def on_parameters_changed(self, old: Any, new: Any) -> None:
+            changes.append((old.rate, new.rate))
+
+    node = Observed('observed', namespace='/gen', context=client.context)
+    client.executor.add_node(node)
+    try:
+        # descriptors as `ros2 param describe` shows them, through a real parameter client
+        described = client.call(DescribeParameters, '/gen/observed/describe_parameters',
+                                DescribeParameters.Request(names=['rate', 'greeting']))
+        rate, greeting = described.descriptors
+        assert rate.description == 'Greetings per second.'
+        assert [(r.from_value, r.to_value) for r in rate.floating_point_range] == [(0.5, 10.0)]
+        assert greeting.description == 'The text of each greeting.'
+        # a local call gets the validator's words too (rclpy alone would give its range message)
+        [local] = node.set_parameters([Parameter('rate', value=20.0)])
+        assert not local.successful and 'must be between 0.5 and 10.0' in local.reason, local.reason
+        # the whole batch is rejected: the valid rate is not set either
+        batch = [Parameter('rate', value=4.0).to_parameter_msg(), Parameter('greeting', value='').to_parameter_msg()]
+        answer = client.call(SetParametersAtomically, '/gen/observed/set_parameters_atomically',
+                             SetParametersAtomically.Request(parameters=batch)).result
+        assert not answer.successful and "parameter 'greeting' = '': " in answer.reason, answer.reason
+        assert node.get_parameter('rate').value == 2.0 and node.params.rate == 2.0 and changes == []
+        # is_old / try_update and the on-change hook
+        first = node.params
+        assert not node.is_old(first) and node.try_update(first) is first
+        [ok] = node.set_parameters([Parameter('rate', value=4.0)])
+        assert ok.successful and node.params.rate == 4.0 and changes == [(2.0, 4.0)]
+        assert node.is_old(first) and node.try_update(first) is node.params and first.rate == 2.0
+        # a later on-set callback that rejects: the snapshot is not committed (no stale value)
+        node.add_on_set_parameters_callback(
+            lambda params: SetParametersResult(successful=False, reason='vetoed by the user'))
+        [vetoed] = node.set_parameters([Parameter('rate', value=6.0)])
+        assert not vetoed.successful and vetoed.reason == 'vetoed by the user'
+        assert node.get_parameter('rate').value == 4.0 and node.params.rate == 4.0
+        assert not node.is_old(node.params) and changes == [(2.0, 4.0)]
+    finally:
+        client.executor.remove_node(node)
+        node.destroy_node()
+
+
+def test_generated_code_runs_without_the_toolkit(module_dir: Path, tmp_path: Path) -> None:
+    """No runtime dependency: the generated base imports and runs with nodl_schema unimportable."""
+    code = ('import sys\n'
+            'sys.modules["nodl_schema"] = None  # any import of the toolkit fails\n'
+            f'sys.path.insert(0, {str(module_dir)!r})\n'
+            'import rclpy, everything_base, talker_base, managed_camera_base\n'
+            'class T(talker_base.TalkerBase):\n'
+            '    def on_command(self, msg): pass\n'
+            'rclpy.init()\n'
+            'node = T()\n'
+            'print(node.get_name(), node.params.rate, [m for m, v in sys.modules.items() if v and "nodl" in m])\n'
+            'node.destroy_node()\n'
+            'rclpy.shutdown()\n')
+    run = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, timeout=60,
+                         cwd=tmp_path)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert run.stdout.split() == ['talker', '2.0', '[]']

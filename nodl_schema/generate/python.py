@@ -336,7 +336,7 @@ class _Module:
                 out += f'        self.declare_parameter({literal(p.name)}, {type_arg}, descriptor)\n'
                 if not p.required:
                     out += (f'        if self._nodl_initial_value({literal(p.name)}) is None:\n'
-                            f'            self.set_parameters([Parameter({literal(p.name)}, {type_arg}, [])])\n')
+                            f'            super().set_parameters([Parameter({literal(p.name)}, {type_arg}, [])])\n')
             else:
                 out += (f'        self.declare_parameter({literal(p.name)}, '
                         f'{literal(python_value(p.default, p.type.base))}, descriptor)\n')
@@ -404,6 +404,10 @@ class _Module:
         if not result.successful:
             return result
         return super().set_parameters_atomically(parameter_list)
+
+    def set_parameters(self, parameter_list: list[Parameter[Any]]) -> list[SetParametersResult]:
+        """One at a time, each as set_parameters_atomically: a rejection gives the validator's reason."""
+        return [self.set_parameters_atomically([parameter]) for parameter in parameter_list]
 
     def is_old(self, params: {params_class}) -> bool:
         """True if ``params`` is not the newest snapshot."""

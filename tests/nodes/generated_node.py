@@ -71,10 +71,20 @@ def everything(module):  # type: ignore[no-untyped-def]
             return GoalResponse.ACCEPT if goal.order < 50 else GoalResponse.REJECT
 
         def on_fibonacci_cancel(self, goal_handle):  # type: ignore[no-untyped-def]
+            if getattr(self, 'waiting', None) is not None:
+                self.waiting.set_result(True)
             return CancelResponse.ACCEPT
 
-        def execute_fibonacci(self, goal_handle):  # type: ignore[no-untyped-def]
+        async def execute_fibonacci(self, goal_handle):  # type: ignore[no-untyped-def]
             result = module.test_msgs.action.Fibonacci.Result()
+            if goal_handle.request.order == 42:  # runs until cancelled (async: the executor stays free)
+                from rclpy.task import Future
+
+                self.waiting = Future()
+                await self.waiting
+                goal_handle.canceled()
+                result.sequence = [42]
+                return result
             sequence = [0, 1]
             for _ in range(goal_handle.request.order - 1):
                 sequence.append(sequence[-1] + sequence[-2])
