@@ -245,3 +245,23 @@ def test_merged_result_round_trips_as_an_interface_definition() -> None:
                               layer('c', C, 'c.yaml')])
     again = load_interface(dump_nodl(merged))
     assert again == merged
+
+
+def test_merged_entities_are_stamped_copies_of_every_field() -> None:
+    # Merging copies each entity field by field (quicker than copy.copy) for the model's
+    # classes: every class is copied that way, every field is kept, the layer's is untouched.
+    import dataclasses
+
+    from nodl_schema.composition.merge import _SLOTS
+    from nodl_schema.model.interface import ActionEndpoint, ServiceEndpoint, TopicEndpoint
+    from nodl_schema.model.parameter import ParameterDefinition
+
+    assert set(_SLOTS) == {TopicEndpoint, ServiceEndpoint, ActionEndpoint, ParameterDefinition}
+    a = load_interface(A)
+    merged, _ = merge_layers([Layer('a', a)])
+    originals = list((a.parameters or {}).values()) + a.endpoints('publishers')
+    copies = list((merged.parameters or {}).values()) + merged.endpoints('publishers')
+    for original, copy in zip(originals, copies):
+        assert copy is not original and copy.origin == 'a' and original.origin is None
+        assert [getattr(copy, f.name) for f in dataclasses.fields(copy) if f.name != 'origin'] == \
+            [getattr(original, f.name) for f in dataclasses.fields(original) if f.name != 'origin']

@@ -24,6 +24,8 @@ from typing import Any, NamedTuple, Sequence
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.composition.layers import Layer
 from nodl_schema.model import ENDPOINT_SECTIONS, Interface
+from nodl_schema.model.interface import ActionEndpoint, ServiceEndpoint, TopicEndpoint
+from nodl_schema.model.parameter import ParameterDefinition
 from nodl_schema.validation.interfaces import SECTIONS
 
 __all__ = ['Declaration', 'MergeResult', 'merge_layers', 'merge_traced', 'PARAMETERS']
@@ -57,9 +59,35 @@ class MergeResult(NamedTuple):
 
 
 def _stamp(entity: Any, label: str) -> Any:
-    stamped = copy.copy(entity)
+    """A shallow copy of ``entity`` whose ``origin`` is ``label``."""
+    cls = type(entity)
+    fields = _SLOTS.get(cls)
+    if fields is None:
+        stamped = copy.copy(entity)
+    else:  # the model's slotted dataclasses: field by field (copy.copy goes through pickling)
+        stamped = object.__new__(cls)
+        for name in fields:
+            object.__setattr__(stamped, name, getattr(entity, name))
     stamped.origin = label
     return stamped
+
+
+def _slotted(cls: type) -> tuple[str, ...] | None:
+    """The fields of a slotted dataclass of the model without a base class, else None."""
+    import dataclasses
+
+    if cls.__bases__ != (object,) or not dataclasses.is_dataclass(cls) or '__dict__' in dir(cls):
+        return None
+    fields = tuple(f.name for f in dataclasses.fields(cls))
+    return fields if set(fields) == set(getattr(cls, '__slots__', ())) else None
+
+
+#: Entity class -> its fields, for the classes a shallow copy may be made field by field.
+_SLOTS: dict[type, tuple[str, ...]] = {}
+for _cls in (TopicEndpoint, ServiceEndpoint, ActionEndpoint, ParameterDefinition):
+    _found = _slotted(_cls)
+    if _found is not None:
+        _SLOTS[_cls] = _found
 
 
 def _related(earlier: Declaration, anchor: str) -> tuple[str, int, int, str]:

@@ -76,8 +76,14 @@ def list_registrations(package: str | None = None, prefixes: list[str] | None = 
 
 def find_node(package: str, executable: str,
               prefixes: list[str] | None = None) -> Registration | None:
-    """The node definition registered for ``package``'s ``executable`` (v2 first, then legacy)."""
+    """The node definition registered for ``package``'s ``executable`` (v2 first, then legacy);
+    looked up once within an :func:`nodl_schema.index.ament.snapshot`."""
     prefixes = prefixes if prefixes is not None else ament.prefix_paths()
+    return ament.remembered(('find_node', package, executable, tuple(prefixes)),
+                            lambda: _find_node(package, executable, prefixes))
+
+
+def _find_node(package: str, executable: str, prefixes: list[str]) -> Registration | None:
     resource = ament.get_resource(NODE_RESOURCE, resource_name(package, executable), prefixes)
     if resource is not None:
         try:

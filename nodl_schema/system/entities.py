@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any, Callable, NamedTuple, Union
 
 from nodl_schema.model import QoSProfile
@@ -207,6 +208,18 @@ class Entity:
 
 def parse_entity_type(kind: EntityKind, type_name: str) -> EntityType:
     """The parsed type of an entity of ``kind`` written as ``type_name`` (None if unparsable)."""
+    try:
+        return _parsed_type(kind, type_name)
+    except TypeError:  # not hashable: not a type name either
+        return _parse_entity_type(kind, type_name)
+
+
+@lru_cache(maxsize=4096)  # the same types (every base's, std_msgs...) recur in every node
+def _parsed_type(kind: EntityKind, type_name: str) -> EntityType:
+    return _parse_entity_type(kind, type_name)
+
+
+def _parse_entity_type(kind: EntityKind, type_name: str) -> EntityType:
     if kind is EntityKind.PARAMETER:
         return parse_type(type_name)
     try:

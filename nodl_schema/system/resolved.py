@@ -36,14 +36,17 @@ def _location(declaration: Declaration, parameter: bool) -> Location:
     return Location(placed.file, placed.line, placed.column)
 
 
+_PARAMETER = EntityKind.PARAMETER
+
+
 def _entity(kind: EntityKind, name: str, merged: object,
             trace: Sequence[Declaration], layers: Sequence[Layer]) -> Entity:
-    parameter = kind is EntityKind.PARAMETER
+    parameter = kind is _PARAMETER
     location: Location | Callable[[], Location]
     if trace:
         first, last = trace[0].layer, trace[-1]
         location = partial(_location, last, parameter)  # placed on first use (see Entity.location)
-        labels = tuple(d.layer.label for d in trace)
+        labels = (first.label,) if len(trace) == 1 else tuple(d.layer.label for d in trace)
         layer = last.layer
     else:  # a ComposedNode built by hand, without traced declarations
         label = getattr(merged, 'origin', None) or ''
