@@ -355,3 +355,29 @@ def test_generated_code_runs_without_the_toolkit(module_dir: Path, tmp_path: Pat
                          cwd=tmp_path)
     assert run.returncode == 0, run.stdout + run.stderr
     assert run.stdout.split() == ['talker', '2.0', '[]']
+
+
+def test_cli_generate_package_executable(tmp_path: Path) -> None:
+    """``nodl generate PACKAGE EXECUTABLE``: the registered definition, names from the executable."""
+    import os
+
+    prefix = Path(__file__).parent / 'fixtures' / 'index' / 'first'
+    env = {**os.environ, 'AMENT_PREFIX_PATH': str(prefix)}
+    run = [sys.executable, '-m', 'nodl_schema', 'generate', 'alpha', 'talker', '-o', str(tmp_path)]
+    for language in ('python', 'cpp'):
+        done = subprocess.run(run + ['--language', language], capture_output=True, text=True,
+                              timeout=60, env=env, cwd=tmp_path)
+        assert done.returncode == 0, done.stderr
+    text = (tmp_path / 'talker_base.py').read_text(encoding='utf-8')
+    assert 'from talker.nodl.yaml' in text and 'class TalkerBase(Node' in text
+    assert "_PARAMETER_NAMES = frozenset({'period'})" in text
+    assert 'class TalkerBase : public rclcpp::Node' in (tmp_path / 'talker_base.hpp').read_text(encoding='utf-8')
+    check = subprocess.run(run + ['--language', 'python', '--check'], capture_output=True, timeout=60,
+                           env=env, cwd=tmp_path)
+    assert check.returncode == 0
+    unknown = subprocess.run([*run[:-4], 'alpha', 'talkr', '--language', 'python', '-o', str(tmp_path)],
+                             capture_output=True, text=True, timeout=60, env=env, cwd=tmp_path)
+    assert unknown.returncode == 1
+    assert "package 'alpha' registers no node definition for 'talkr' (it has: inline, talker) [NODL306]" \
+        in unknown.stderr
+    assert 'Traceback' not in unknown.stderr
