@@ -45,11 +45,54 @@ CASES: list[tuple[str, Any, str, list[Any]]] = [
     ('element_bounds', [0, 200], 'byte_array', [[1, 200], [201]]),
     ('lower_element_bounds', [0], 'int_array', [[0, 1], [-1]]),
     ('upper_element_bounds', [2], 'double_array', [[1.0, 2.0], [3.0]]),
+    # every other type each validator applies to (test_every_applicable_type_is_covered)
+    ('lt', [2.5], 'double', [2.4, 2.5, 2.6]),
+    ('lt_eq', [3], 'int', [2, 3, 4]),
+    ('gt_eq', [3], 'int', [2, 3, 4]),
+    ('not_empty', None, 'bool_array', [[], [False]]),
+    ('not_empty', None, 'double_array', [[], [0.0]]),
+    ('not_empty', None, 'string_array', [[], ['']]),
+    ('not_empty', None, 'byte_array', [[], [0]]),
+    ('fixed_size', [2], 'bool_array', [[True, False], [True]]),
+    ('fixed_size', [2], 'int_array', [[1, 2], [1, 2, 3]]),
+    ('fixed_size', [2], 'string_array', [['a', 'b'], []]),
+    ('fixed_size', [2], 'byte_array', [[1, 2], [1]]),
+    ('size_gt', [1], 'string', ['a', 'ab']),
+    ('size_gt', [1], 'bool_array', [[True], [True, False]]),
+    ('size_gt', [1], 'int_array', [[1], [1, 2]]),
+    ('size_gt', [1], 'double_array', [[1.0], [1.0, 2.0]]),
+    ('size_gt', [1], 'byte_array', [[1], [1, 2]]),
+    ('size_lt', [2], 'bool_array', [[True], [True, True]]),
+    ('size_lt', [2], 'int_array', [[1], [1, 2]]),
+    ('size_lt', [2], 'double_array', [[], [1.0, 2.0]]),
+    ('size_lt', [2], 'string_array', [['a'], ['a', 'b']]),
+    ('size_lt', [2], 'byte_array', [[1], [1, 2]]),
+    ('unique', None, 'double_array', [[1.0, 2.0], [1.5, 1.5]]),
+    ('unique', None, 'byte_array', [[1, 2], [3, 3]]),
+    ('subset_of', [[True]], 'bool_array', [[True, True], [False]]),
+    ('subset_of', [[0.5, 1]], 'double_array', [[0.5, 1.0], [2.0]]),
+    ('subset_of', [[1, 2]], 'byte_array', [[1], [3]]),
+    ('element_bounds', [0, 10], 'int_array', [[0, 10], [11], [-1]]),
+    ('lower_element_bounds', [0.5], 'double_array', [[0.5], [0.4]]),
+    ('lower_element_bounds', [10], 'byte_array', [[10], [9]]),
+    ('upper_element_bounds', [2], 'int_array', [[2], [3]]),
+    ('upper_element_bounds', [200], 'byte_array', [[200], [201]]),
 ]
 
 
 def test_every_builtin_validator_is_covered() -> None:
     assert {c[0] for c in CASES} == set(BUILTIN_NAMES) == set(CPP_PREDICATES)
+
+
+def test_every_applicable_type_is_covered() -> None:
+    """Each validator is exercised on every parameter type the validator table lets it validate."""
+    from nodl_schema.model.parameter_types import parse_type
+    from nodl_schema.vocabulary import ARRAY_TYPES, SCALAR_TYPES
+
+    types = [t for t in (*SCALAR_TYPES, *ARRAY_TYPES) if t != 'none']
+    needed = {(name, t) for name in BUILTIN_NAMES for t in types if VALIDATORS[name].applies_to(parse_type(t))}
+    assert needed - {(c[0], c[2]) for c in CASES} == set()
+    assert {(c[0], c[2]) for c in CASES} <= needed
 
 
 def test_cpp_translations_agree_with_the_table(tmp_path: Path) -> None:
