@@ -38,6 +38,26 @@ def _diagnostics(tmp_path: Path, name: str, text: str) -> list[Any]:
     # launch_xml splits a list only with NAME-sep: 'sep' alone is an unexpected attribute there.
     ('a.launch.xml', '<launch>\n  <node pkg="p" exec="e">\n    <param name="l" value="1,2" sep=","/>\n'
      '  </node>\n</launch>\n', ('NODL502', 3, 33, "did you mean 'value-sep'?")),
+    # launch_yaml reads no NAME-sep (a list is a YAML list) and rejects every key it did not read
+    ('a.launch.yaml', 'launch:\n  - node:\n      pkg: p\n      exec: e\n      param:\n'
+     '        - {name: l, value: "1,2", value-sep: ","}\n',
+     ('NODL502', 6, 35, "unknown attribute 'value-sep' of <param>; did you mean 'value'? ('value-sep' is "
+      "launch_xml's: in a YAML launch file a list value is a YAML list")),
+    ('a.launch.yaml', 'launch:\n  - node_container:\n      pkg: p\n      exec: e\n      name: c\n'
+     '      composable_node:\n        - pkg: q\n          plugin: q::C\n          name: n\n'
+     '          param:\n            - {name: l, value: "a;b", value-sep: ";"}\n',
+     ('NODL502', 11, 39, "unknown attribute 'value-sep' of <param>")),
+    ('a.launch.yaml', 'launch:\n  - node:\n      pkg: p\n      exec: e\n      xmlns: x\n',
+     ('NODL502', 5, 7, "unknown attribute 'xmlns' of <node>")),
+    # launch_yaml checks a YAML value against 'type' (no conversion): 1 is not a float there
+    ('a.launch.yaml', 'launch:\n  - node:\n      pkg: p\n      exec: e\n      param:\n'
+     '        - {name: f, value: 1, type: float}\n', ('NODL518', 6, 21, "is not of type 'float'")),
+    ('a.launch.yaml', 'launch:\n  - node:\n      pkg: p\n      exec: e\n      param:\n'
+     '        - {name: f, value: [1, 2], type: list_of_str}\n', ('NODL518', 6, 21, "type 'list_of_str'")),
+    ('a.launch.yaml', 'launch:\n  - node:\n      pkg: p\n      exec: e\n      param:\n'
+     '        - {name: f, value: {a: 1}}\n', ('NODL518', 6, 21, 'is not a parameter value')),
+    ('a.launch.yaml', 'launch:\n  - node:\n      pkg: p\n      exec: e\n      param:\n'
+     '        - {name: f, value: ~}\n', ('NODL503', 6, 21, "needs a 'value'")),
 ])
 def test_unknown_or_wrong_entities_are_placed(tmp_path: Path, name: str, text: str,
                                              expected: tuple[str, int, int, str]) -> None:
@@ -81,8 +101,11 @@ def test_yaml_parameters_are_typed_as_launch_types_them(tmp_path: Path) -> None:
         - {name: g, value: "true"}
         - {name: h, value: [a, b]}
         - {name: i, value: '7', type: str}
+        - {name: j, value: '7', type: float}
+        - {name: k, value: [a, b], type: list_of_str}
 ''')
-    assert values == {'a': True, 'b': 1, 'c': 1.0, 'd': [1, 2], 'e': 1, 'g': True, 'h': ['a', 'b'], 'i': '7'}
+    assert values == {'a': True, 'b': 1, 'c': 1.0, 'd': [1, 2], 'e': 1, 'g': True, 'h': ['a', 'b'], 'i': '7',
+                      'j': 7.0, 'k': ['a', 'b']}
 
 
 @pytest.mark.parametrize('param, code', [

@@ -63,6 +63,9 @@ NESTED: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     'composable_node': (('pkg*', 'plugin*', 'name*', 'namespace', *_CONDITION),
                         ('param', 'remap', 'extra_arg')),
 }
+#: Attributes only launch_xml reads (it splits ``NAME`` by ``NAME-sep``); launch_yaml reads
+#: no separator (a list is a YAML list) and rejects any key it did not read.
+XML_ONLY = frozenset({'value-sep'})
 
 
 class Attribute(NamedTuple):
@@ -76,8 +79,11 @@ class Attribute(NamedTuple):
 class Entity:
     """A frontend entity: its tag, attributes, nested entity lists and child actions."""
 
-    def __init__(self, tag: str, file: str, line: int, column: int) -> None:
+    def __init__(self, tag: str, file: str, line: int, column: int, *, yaml: bool = False) -> None:
         self.tag = tag
+        #: True for an entity of a YAML launch file (launch_yaml's rules: no ``NAME-sep``,
+        #: values are checked against ``type``, not coerced).
+        self.yaml = yaml
         self.location = SourceLocation(file, line, column)
         self.attributes: dict[str, Attribute] = {}
         self.nested: dict[str, list[Entity]] = {}
@@ -132,11 +138,16 @@ def _check(entity: Entity, attributes: tuple[str, ...], lists: tuple[str, ...], 
     from nodl_schema.validation.messages import did_you_mean
 
     allowed = {a.rstrip('*') for a in attributes}
+    if entity.yaml:
+        allowed -= XML_ONLY
     ok = True
     for name, attribute in entity.attributes.items():
-        if name not in allowed and not name.startswith(('xmlns', 'xsi:')):
+        if name not in allowed and not (name.startswith(('xmlns', 'xsi:')) and not entity.yaml):
             hint = did_you_mean(name, allowed | set(lists)) or next(  # 'sep' -> 'value-sep'
                 (f"; did you mean '{a}'?" for a in sorted(allowed) if a.endswith('-' + name)), '')
+            if entity.yaml and name in XML_ONLY:
+                hint += (f" ('{name}' is launch_xml's: in a YAML launch file a list value is a "
+                         'YAML list, [a, b])')
             problems.append(Diagnostic(Severity.ERROR, f"unknown attribute '{name}' of <{entity.tag}>"
                                        f'{hint}; expected '
                                        f'{", ".join(sorted(allowed))}', (), entity.location.file,
@@ -225,6 +236,14 @@ def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
                                        '<param>', *param.location)
     data_type = type_from_identifier(identifier) if identifier is not None else None
     raw = value.value
+    if param.yaml:
+        if raw is None:  # launch_yaml reads 'value: ~' as no value
+            raise LaunchProblem('NODL503', f"<param name=\"{param.text('name')}\"> needs a 'value' or "
+                                           'nested <param>', param.location.file, value.line, value.column)
+        problem = _yaml_value_problem(raw, data_type, identifier)
+        if problem:
+            raise LaunchProblem('NODL518', f"parameter '{param.text('name')}': {problem}",
+                                param.location.file, value.line, value.column)
     separator = param.text('value-sep')
     try:
         if isinstance(raw, str):
@@ -234,6 +253,30 @@ def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
         return [(name, ParameterValue(parse_if_substitutions(typed), data_type))]
     except LaunchProblem as problem:
         raise LaunchProblem(problem.code, problem.message, param.location.file, value.line, value.column)
+
+
+def _yaml_value_problem(raw: Any, data_type: Any, identifier: str | None) -> str | None:
+    """launch_yaml's check of a YAML ``value`` (it converts nothing: text may still hold
+    substitutions, any other YAML value must already be of the ``type``), or None."""
+    from nodl_schema.launch.params import SCALAR_TYPES, _uniform
+
+    shown = f'{raw!r} ({type(raw).__name__})'
+    if data_type is None:
+        if isinstance(raw, list):
+            if _uniform(raw, True):
+                return None
+            return f'the list {raw!r} mixes types; a parameter list is uniform'
+        if isinstance(raw, SCALAR_TYPES):
+            return None
+        return (f'the value {shown} is not a parameter value; expected a bool, int, float, '
+                'string or a uniform list of them')
+    if isinstance(data_type, tuple):
+        if isinstance(raw, list) and all(isinstance(x, (str, data_type[1])) for x in raw):
+            return None
+    elif isinstance(raw, (str, data_type)):
+        return None
+    return (f"the value {shown} is not of type '{identifier}': launch_yaml checks a YAML value "
+            'against the type, it does not convert it (quote it to have it converted)')
 
 
 def _remaps(entity: Entity) -> list[tuple[Any, Any]]:

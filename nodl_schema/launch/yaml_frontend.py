@@ -47,7 +47,7 @@ def read_yaml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnost
 
     def entity(tag: str, key_node: Any, value_node: Any, data: Any) -> Entity:
         line, column = at(key_node)
-        result = Entity(tag, path, line, column)
+        result = Entity(tag, path, line, column, yaml=True)
         if isinstance(value_node, SequenceNode):  # the entity's value is its child list
             result.children = entities(value_node, data)
             return result
@@ -80,7 +80,7 @@ def read_yaml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnost
         return out
 
     (key, value), = root.value
-    top = Entity(str(key.value), path, *at(key))
+    top = Entity(str(key.value), path, *at(key), yaml=True)
     if isinstance(value, SequenceNode):
         top.children = entities(value, doc.data.get(key.value) if isinstance(doc.data, dict) else None)
     elif not (isinstance(value, ScalarNode) and value.value in ('', '~', 'null')):
