@@ -36,6 +36,11 @@ def test_a_shared_name_warns_in_describe_and_check_refuses(ros_node, tmp_path: P
     described = nodl('describe', first.fqn, '--timeout', '10', '-o', str(tmp_path / 'twin.nodl.yaml'))
     assert described.returncode == 0, described.stderr
     assert 'warning: 2 nodes in the graph are named /ux/twin' in described.stderr
+    header = [l for l in (tmp_path / 'twin.nodl.yaml').read_text().splitlines() if l.startswith('#')]
+    assert '# Warning: 2 nodes in the graph are named /ux/twin: what was observed is all of them ' \
+        'together (give each node a unique name).' in header
+    # a warning line of its own, not an item of what could not be observed
+    assert not any(l.startswith('#   - ') and '/ux/twin' in l for l in header)
     checked = nodl('check', first.fqn, str(tmp_path / 'twin.nodl.yaml'), '--timeout', '10')
     assert checked.returncode == 2
     assert '2 nodes in the graph are named /ux/twin' in checked.stderr

@@ -211,6 +211,28 @@ def test_header_lists_every_note() -> None:
     assert not render_description(description, 'json').startswith('#')
 
 
+def test_a_shared_name_is_a_warning_line_not_an_unobservable_note() -> None:
+    node = ObservedNode('twin', '/ux', instances=2)
+    node.warnings = ['2 nodes in the graph are named /ux/twin: what was observed is all of '
+                     'them together (give each node a unique name)']
+    node.publishers = [ObservedEndpoint('/chatter', 'std_msgs/msg/String',
+                                        {'history': 'KEEP_LAST', 'depth': 10,
+                                         'reliability': 'RELIABLE'}, [])]
+    description = describe_observed(node)
+    assert description.warnings == node.warnings
+    assert description.notes == []
+    header = [line for line in render_description(description).splitlines() if line.startswith('#')]
+    assert header[2] == ('# Warning: 2 nodes in the graph are named /ux/twin: what was observed '
+                         'is all of them together (give each node a unique name).')
+    assert not any('Not observable' in line for line in header)
+    node.notes = ['parameters could not be read (the node serves no parameter services, or they '
+                  'did not answer in time)']
+    text = render_description(describe_observed(node))
+    listed = text.split('# Not observable, so not stated here:\n', 1)[1].split('# nodl:', 1)[0]
+    assert 'named /ux/twin' not in listed and 'parameters could not be read' in listed
+    assert text.index('# Warning: 2 nodes') < text.index('# Not observable')
+
+
 def test_file_names_of_describe_all() -> None:
     from nodl_schema.live.describe_all import file_name_for
 

@@ -14,8 +14,8 @@ from typing import Iterator
 import pytest
 
 from conftest import NodeProcess
-from nodl_schema.live.observe import (ACTION_INFIX, ObservedNode, list_nodes, observe_node,
-                                     wait_for_node)
+from nodl_schema.live.observe import (ACTION_INFIX, DISCOVERY_WINDOW, ObservedNode, list_nodes,
+                                     observe_node, wait_for_node)
 from nodl_schema.live.session import LiveError, NodeNotFound, ros_session
 
 SECTIONS = ('publishers', 'subscriptions', 'service_servers', 'service_clients', 'action_servers',
@@ -214,6 +214,45 @@ def test_node_that_never_appears_is_not_found_within_the_timeout() -> None:
 def test_node_name_without_leading_slash_is_in_the_root_namespace() -> None:
     with pytest.raises(NodeNotFound, match="'/never_there'"):
         observe_node('never_there', timeout=0.5)
+
+
+def test_namesakes_are_counted_after_the_discovery_window_of_a_fresh_session(ros_node) -> None:
+    """Two nodes of one name: the second participant is often discovered seconds after the
+    first (Fast DDS: at its next announcement), so a fresh session counts both only once
+    discovery has had DISCOVERY_WINDOW seconds; the name is a warning, not a note."""
+    first = ros_node('plain_node.py', 'twin', '/obs_twin')
+    ros_node('plain_node.py', 'twin', '/obs_twin')
+    for _ in range(2):  # either participant may be the late one: twice from a fresh session
+        start = time.monotonic()
+        observed = observe_node(first.fqn, timeout=10, parameters=False)
+        assert time.monotonic() - start < 10 + 3
+        assert observed.instances == 2
+        assert observed.warnings == ['2 nodes in the graph are named /obs_twin/twin: what was '
+                                     'observed is all of them together (give each node a '
+                                     'unique name)']
+        assert not any('/obs_twin/twin' in note for note in observed.notes)
+
+
+def test_the_discovery_window_counts_from_the_session_start_within_the_timeout(ros_node) -> None:
+    node = ros_node('plain_node.py', 'alone', '/obs_twin')
+    with ros_session('window_tests') as session:
+        wait_for_node(session, node.fqn, 10)
+        # a session that has only just started discovering waits out the window ...
+        session.nodl_started = time.monotonic()
+        start = time.monotonic()
+        observed = observe_node(node.fqn, timeout=10, parameters=False, session=session)
+        assert DISCOVERY_WINDOW <= time.monotonic() - start < 10 + 3
+        assert observed.instances == 1 and observed.warnings == []
+        # ... but never beyond the timeout
+        session.nodl_started = time.monotonic()
+        start = time.monotonic()
+        observe_node(node.fqn, timeout=1.0, parameters=False, session=session)
+        assert time.monotonic() - start < DISCOVERY_WINDOW
+        # and a session that has discovered long enough does not wait again
+        session.nodl_started = time.monotonic() - DISCOVERY_WINDOW
+        start = time.monotonic()
+        observe_node(node.fqn, timeout=10, parameters=False, session=session)
+        assert time.monotonic() - start < DISCOVERY_WINDOW
 
 
 def test_node_that_has_exited_is_a_live_error(ros_node) -> None:

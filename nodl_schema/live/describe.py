@@ -5,7 +5,9 @@ services, else ``node``) and the base's own entities are left out of
 ``main``.  Names under the node become ``~/x``, names under its namespace
 relative, others stay absolute.  What the middleware cannot report is not
 invented: it is listed in the header comment and returned as notes (topic
-history and depth on some middlewares, service QoS).
+history and depth on some middlewares, service QoS).  What makes the
+observation itself doubtful (a name several nodes share) is a warning, on a
+header line of its own.
 """
 
 from __future__ import annotations
@@ -33,14 +35,19 @@ def _lifecycle_services() -> list[str]:
 
 class Description:
     """A described node: the definition (a typed :class:`~nodl_schema.model.Node`), what
-    could not be observed, and the client library whose base entities were left out."""
+    could not be observed, what makes the observation doubtful, and the client library
+    whose base entities were left out."""
 
     def __init__(self, fqn: str, node: Node, notes: list[str],
-                 client_library: ClientLibraryChoice | None = None) -> None:
+                 client_library: ClientLibraryChoice | None = None,
+                 warnings: list[str] | None = None) -> None:
         self.fqn = fqn
         #: The node definition, typed.
         self.node = node
+        #: What could not be observed, so is not stated (one line each).
         self.notes = notes
+        #: What makes the observation itself doubtful (several nodes share the name).
+        self.warnings = list(warnings or [])
         self.client_library = client_library or ClientLibraryChoice('rclpy', 'the default')
 
     @property
@@ -141,7 +148,8 @@ def describe_observed(observed: ObservedNode, client_library: str | None = None)
     if main.service_servers or main.service_clients:
         notes.append('service QoS cannot be observed (no graph API reports it): left out')
     definition = Node(main, 2, Base(base))
-    return Description(observed.fully_qualified_name, definition, notes, library)
+    return Description(observed.fully_qualified_name, definition, notes, library,
+                       list(observed.warnings))
 
 
 def describe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
@@ -165,6 +173,8 @@ def render_description(description: Description, format: str = 'yaml') -> str:
               # one line whatever the reason holds: a comment cannot break out
               f'# Left out: what the base gives an {description.client_library.name} node '
               f'({description.client_library.reason}).'.replace('\n', ' ').replace('\r', ' ')]
+    header += [f'# Warning: {warning}.'.replace('\n', ' ').replace('\r', ' ')
+               for warning in description.warnings]
     if description.notes:
         header.append('# Not observable, so not stated here:')
         header += [f'#   - {note}' for note in description.notes]

@@ -7,7 +7,7 @@ import time
 from typing import Any
 
 from nodl_schema.live.describe import describe_node, render_description
-from nodl_schema.live.observe import list_nodes
+from nodl_schema.live.observe import DISCOVERY_WINDOW, list_nodes
 from nodl_schema.live.session import LiveError, ros_session
 
 __all__ = ['describe_all', 'file_name_for']
@@ -42,7 +42,7 @@ def _discover(node: Any, timeout: float, settle: float, quiet: float = 0.5) -> l
 
 
 def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = True,
-                 format: str = 'yaml', settle: float = 3.5,
+                 format: str = 'yaml', settle: float = DISCOVERY_WINDOW,
                  client_library: str | None = None) -> list[tuple[str, str, list[str]]]:
     """Describe every node in the graph into ``directory``; returns (node, file, notes) per node.
 
@@ -65,5 +65,5 @@ def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = Tru
             path = os.path.join(directory, file_name_for(fqn, format))
             with open(path, 'w', encoding='utf-8') as f:
                 f.write(render_description(description, format))
-            written.append((fqn, path, description.notes))
+            written.append((fqn, path, description.warnings + description.notes))
     return written

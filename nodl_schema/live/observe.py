@@ -17,9 +17,14 @@ from nodl_schema.live.session import LiveError, NodeNotFound, did_you_mean, ros_
 from nodl_schema.vocabulary import SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
-           'wait_for_node', 'list_nodes', 'count_nodes', 'ACTION_INFIX']
+           'wait_for_node', 'list_nodes', 'count_nodes', 'ACTION_INFIX', 'DISCOVERY_WINDOW']
 
 ACTION_INFIX = '/_action/'
+#: How long a session must have been discovering before the graph is taken as complete.
+#: Remote participants are discovered one by one: one that misses our first announcements
+#: is seen only at its own next periodic announcement (Fast DDS: every 3 s), so a second
+#: node of the same name can show up seconds after the first.
+DISCOVERY_WINDOW = 3.5
 _PARAMETER_TYPES = {0: 'none', 1: 'bool', 2: 'int', 3: 'double', 4: 'string', 5: 'byte_array',
                     6: 'bool_array', 7: 'int_array', 8: 'double_array', 9: 'string_array'}
 
@@ -65,6 +70,8 @@ class ObservedNode:
     parameters: dict[str, ObservedParameter] | None = None
     #: Things that could not be observed, in words.
     notes: list[str] = field(default_factory=list)
+    #: What makes the observation itself doubtful, in words (several nodes share the name).
+    warnings: list[str] = field(default_factory=list)
     #: How many nodes in the graph have this name (more than one: what is observed is all of them).
     instances: int = 1
 
@@ -269,10 +276,15 @@ def observe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
     """Observe the running node ``fqn`` (``/namespace/name``).
 
     Waits up to ``timeout`` seconds for the node to appear and its endpoints
-    to settle (no change for ``quiet`` seconds).  Raises :class:`LiveError`
+    to settle (no change for ``quiet`` seconds).  The nodes that share its
+    name (:attr:`ObservedNode.instances`, a warning) are counted once the
+    session has been discovering for :data:`DISCOVERY_WINDOW` seconds (or
+    ``timeout`` seconds have passed): a namesake is often discovered seconds
+    after the first node of that name.  Raises :class:`LiveError`
     (:class:`NodeNotFound` if it never appears) with a message for the user.
     ``session`` is an observer node from :func:`ros_session` to reuse (its
-    discovery is then already under way); by default a session of its own.
+    discovery is then already under way, and no window is waited again); by
+    default a session of its own.
     """
     if session is None:
         with ros_session() as node:
@@ -288,10 +300,6 @@ def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float
     remaining = max(0.5, timeout - (time.monotonic() - start))
     raw = _settle(node, name, namespace, fqn, remaining, quiet)
     observed = ObservedNode(name, namespace)
-    observed.instances = max(1, count_nodes(node).get(fqn, 1))
-    if observed.instances > 1:
-        observed.notes.append(f'{observed.instances} nodes in the graph are named {fqn}: what was '
-                              'observed is all of them together (give each node a unique name)')
     for section, entries in raw.items():
         topic = section in TOPIC_SECTIONS
         endpoints = []
@@ -312,6 +320,21 @@ def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float
         if observed.parameters is None:
             observed.notes.append('parameters could not be read (the node serves no '
                                   'parameter services, or they did not answer in time)')
-    if fqn not in list_nodes(node):
+    # Namesakes are counted only once discovery has had its time (the first node of a name
+    # seen says nothing about a second one whose participant is not discovered yet).
+    discovering_since = getattr(node, 'nodl_started', start)
+    _spin_until(node, min(discovering_since + DISCOVERY_WINDOW, start + timeout))
+    counts = count_nodes(node)
+    if fqn not in counts:
         raise LiveError(f"node '{fqn}' disappeared while it was being observed")
+    observed.instances = counts[fqn]
+    if observed.instances > 1:
+        observed.warnings.append(f'{observed.instances} nodes in the graph are named {fqn}: what '
+                                 'was observed is all of them together (give each node a unique '
+                                 'name)')
     return observed
+
+
+def _spin_until(node: Any, deadline: float) -> None:
+    while time.monotonic() < deadline:
+        node.nodl_executor.spin_once(timeout_sec=min(0.05, max(0.0, deadline - time.monotonic())))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import time
 from typing import Any, Iterator
 from contextlib import contextmanager
 
@@ -89,6 +90,8 @@ def ros_session(name: str = 'nodl_observer') -> Iterator[Any]:
         executor = SingleThreadedExecutor(context=context)
         executor.add_node(node)
         node.nodl_executor = executor
+        #: When its discovery started (see nodl_schema.live.observe.DISCOVERY_WINDOW).
+        node.nodl_started = time.monotonic()
         yield node
     finally:
         if node is not None:

@@ -78,7 +78,7 @@ def live_policy(*, timeout: float = 5.0, settle: float = 3.5, distro: str = DEFA
             except LiveError as exc:
                 unobserved.append(f'{fqn}: {exc}')
                 continue
-            unobserved += [f'{fqn}: {note}' for note in observed.notes]
+            unobserved += [f'{fqn}: {note}' for note in observed.warnings + observed.notes]
             instances.append(_instance(observed, client_library))
             observed_names.append(fqn)
     if not instances:

@@ -80,7 +80,7 @@ class DescribeVerb(Verb):
         if args.format == 'json':  # YAML says it in its header; JSON has no comments
             print(f'nodl describe: note: client library {description.client_library}',
                   file=sys.stderr)
-        for note in description.notes:
+        for note in description.warnings + description.notes:
             print(f'nodl describe: warning: {note}', file=sys.stderr)
         if not args.output:
             sys.stdout.write(text)
