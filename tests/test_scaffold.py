@@ -178,3 +178,36 @@ def test_the_cmake_package_configures_and_compiles(tmp_path: Path) -> None:
                               capture_output=True, timeout=600)
     assert compiled.returncode == 0, compiled.stdout + compiled.stderr
     assert 'warning' not in compiled.stderr, compiled.stderr
+
+
+def test_component_packages_register_each_node_and_compile(tmp_path: Path) -> None:
+    """``nodl new --component``: each node a library whose class registers itself as a component,
+    run alone by the executable rclcpp_components_register_node makes (real configure, stand-ins)."""
+    with pytest.raises(ScaffoldError, match='--component needs --build-type ament_cmake'):
+        plan_package('demo_nodes', load_nodes(SOURCES, 'ament_python'), 'ament_python', component=True)
+    result = plan_package('demo_nodes', load_nodes(SOURCES[:2], 'ament_cmake'), 'ament_cmake',
+                          component=True)
+    files = {f.path: f.text for f in result.files}
+    assert '<depend>rclcpp_components</depend>' in files['package.xml']
+    assert 'rclcpp_components' not in {f.path: f.text for f in plan('ament_cmake').files}['package.xml']
+    for exe, cls in (('talker', 'Talker'), ('managed_camera', 'ManagedCamera')):
+        assert files[f'src/{exe}.cpp'].endswith(f'RCLCPP_COMPONENTS_REGISTER_NODE(demo_nodes::{cls})\n')
+        assert 'int main(' not in files[f'src/{exe}.cpp']
+    write_package(result, str(tmp_path / 'src'))
+    source, build = tmp_path / 'src' / 'demo_nodes', tmp_path / 'build'
+    env = dict(os.environ)
+    env.pop('MAKEFLAGS', None)
+    env.update(AMENT_PREFIX_PATH=str(VENV),
+               CMAKE_PREFIX_PATH=os.pathsep.join([str(GENERATE / 'cpp_stub_packages'), str(VENV)]),
+               PATH=os.pathsep.join([str(VENV / 'bin'), env.get('PATH', '')]))
+    configure = subprocess.run(['cmake', '-S', str(source), '-B', str(build), '-G', 'Unix Makefiles',
+                                '-DBUILD_TESTING=OFF', f'-DPython3_EXECUTABLE={sys.executable}'],
+                               env=env, text=True, capture_output=True, timeout=300)
+    assert configure.returncode == 0, configure.stdout + configure.stderr
+    assert (build / 'rclcpp_components_registered.txt').read_text().splitlines() == [
+        'demo_nodes::Talker talker_component talker',
+        'demo_nodes::ManagedCamera managed_camera_component managed_camera']
+    compiled = subprocess.run(['make', '-C', str(build), 'src/talker.cpp.o', 'src/managed_camera.cpp.o'],
+                              env=env, text=True, capture_output=True, timeout=600)
+    assert compiled.returncode == 0, compiled.stdout + compiled.stderr
+    assert 'warning' not in compiled.stderr, compiled.stderr

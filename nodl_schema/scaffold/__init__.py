@@ -18,7 +18,9 @@ Build types:
 * ``ament_cmake``: ``CMakeLists.txt`` generates each base at build time
   (``ament_nodl_generate_cpp``), builds ``src/<exe>.cpp`` (the user's
   subclass with ``main``) and registers the definitions
-  (``ament_nodl_register_node``).
+  (``ament_nodl_register_node``); with ``component``, each node is a
+  component library registered with ``RCLCPP_COMPONENTS_REGISTER_NODE``
+  and run alone by the executable ``rclcpp_components_register_node`` makes.
 """
 
 from __future__ import annotations
@@ -136,23 +138,33 @@ def load_nodes(sources: Sequence[Sequence[str]], build_type: str) -> list[NodeSo
     return nodes
 
 
-def plan_package(package: str, nodes: Sequence[NodeSource], build_type: str) -> PackagePlan:
-    """Every file of the package ``package`` holding ``nodes`` (see the module docstring)."""
+def plan_package(package: str, nodes: Sequence[NodeSource], build_type: str, *,
+                 component: bool = False) -> PackagePlan:
+    """Every file of the package ``package`` holding ``nodes`` (see the module docstring).
+
+    ``component`` (ament_cmake only): every node is an rclcpp component.
+    """
+    if component and build_type != 'ament_cmake':
+        raise ScaffoldError('--component needs --build-type ament_cmake (rclcpp components)')
     if not _PACKAGE_NAME.fullmatch(package):
         raise ScaffoldError(f'{package!r} is not a valid ROS package name: lowercase letters, '
                             'digits and _, starting with a letter')
-    if build_type == 'ament_python':
-        from nodl_schema.scaffold.python_package import python_files as files_of
-    elif build_type == 'ament_cmake':
-        from nodl_schema.scaffold.cmake_package import cmake_files as files_of
-    else:
+    if build_type not in BUILD_TYPES:
         raise ScaffoldError(f'unknown build type {build_type!r}; expected one of: '
                             f'{", ".join(BUILD_TYPES)}')
     from nodl_schema.generate import GenerationError
     from nodl_schema.scaffold.common import common_files
 
     try:
-        files = common_files(package, list(nodes), build_type) + files_of(package, list(nodes))
+        files = common_files(package, list(nodes), build_type, component)
+        if build_type == 'ament_python':
+            from nodl_schema.scaffold.python_package import python_files
+
+            files += python_files(package, list(nodes))
+        else:
+            from nodl_schema.scaffold.cmake_package import cmake_files
+
+            files += cmake_files(package, list(nodes), component)
     except GenerationError as exc:
         raise ScaffoldError(str(exc)) from None
     files.sort(key=lambda f: f.path)

@@ -14,33 +14,51 @@ from nodl_schema.scaffold.common import definition_path
 __all__ = ['cmake_files', 'cpp_options']
 
 
-def cpp_options(package: str, node: NodeSource) -> GenerateOptions:
+def cpp_options(package: str, node: NodeSource, component: bool = False) -> GenerateOptions:
     """How a node's base is generated: class from the executable, the package as namespace."""
-    return GenerateOptions(default_class_name(node.executable), node.executable, namespace=package)
+    return GenerateOptions(default_class_name(node.executable), node.executable, namespace=package,
+                           component=component)
 
 
 def _cmake_string(text: str) -> str:
     return '"' + text.replace('\\', '\\\\').replace('"', '\\"').replace('$', '\\$') + '"'
 
 
-def _cmakelists(package: str, nodes: list[NodeSource]) -> str:
+def _cmakelists(package: str, nodes: list[NodeSource], component: bool) -> str:
     lines = ['cmake_minimum_required(VERSION 3.8)', f'project({package})', '',
              'if(CMAKE_COMPILER_IS_GNUCXX OR CMAKE_CXX_COMPILER_ID MATCHES "Clang")',
              '  add_compile_options(-Wall -Wextra -Wpedantic)', 'endif()', '',
-             'find_package(ament_cmake REQUIRED)', 'find_package(ament_nodl REQUIRED)', '']
+             'find_package(ament_cmake REQUIRED)', 'find_package(ament_nodl REQUIRED)']
+    if component:
+        lines.append('find_package(rclcpp_components REQUIRED)')
+    lines.append('')
     for node in nodes:
-        options = cpp_options(package, node)
+        options = cpp_options(package, node, component)
         exe, definition = node.executable, _cmake_string(definition_path(node))
         lines += [f'# {exe}: the base generated from its definition, and your subclass',
                   f'ament_nodl_generate_cpp({exe}_base {definition}',
                   f'  CLASS_NAME {options.class_name} NODE_NAME {options.node_name} '
-                  f'NAMESPACE {options.namespace})',
-                  f'add_executable({exe} src/{exe}.cpp)',
-                  f'target_link_libraries({exe} {exe}_base)',
-                  f'ament_nodl_register_node({exe} FILE {definition})', '']
-    targets = ' '.join(n.executable for n in nodes)
-    lines += [f'install(TARGETS {targets} DESTINATION lib/${{PROJECT_NAME}})',
-              'install(DIRECTORY config launch DESTINATION share/${PROJECT_NAME})', '',
+                  f'NAMESPACE {options.namespace}{" COMPONENT" if component else ""})']
+        if component:
+            lines += [f'# a component library (load it into a container), and the executable {exe} '
+                      'that runs it alone',
+                      f'add_library({exe}_component SHARED src/{exe}.cpp)',
+                      f'target_link_libraries({exe}_component {exe}_base)',
+                      f'rclcpp_components_register_node({exe}_component',
+                      f'  PLUGIN "{options.namespace}::{options.class_name}" EXECUTABLE {exe})']
+        else:
+            lines += [f'add_executable({exe} src/{exe}.cpp)',
+                      f'target_link_libraries({exe} {exe}_base)']
+        lines += [f'ament_nodl_register_node({exe} FILE {definition})', '']
+    if component:
+        libraries = ' '.join(f'{n.executable}_component' for n in nodes)
+        lines += ['# rclcpp_components_register_node installs the executables',
+                  f'install(TARGETS {libraries}',
+                  '  ARCHIVE DESTINATION lib LIBRARY DESTINATION lib RUNTIME DESTINATION bin)']
+    else:
+        targets = ' '.join(n.executable for n in nodes)
+        lines.append(f'install(TARGETS {targets} DESTINATION lib/${{PROJECT_NAME}})')
+    lines += ['install(DIRECTORY config launch DESTINATION share/${PROJECT_NAME})', '',
               'if(BUILD_TESTING)',
               '  find_package(ament_lint_auto REQUIRED)',
               '  # Remove these two once the files carry a license and copyright notice',
@@ -53,14 +71,15 @@ def _cmakelists(package: str, nodes: list[NodeSource]) -> str:
     return '\n'.join(lines) + '\n'
 
 
-def cmake_files(package: str, nodes: list[NodeSource]) -> list[PlannedFile]:
-    """CMakeLists.txt and ``src/<exe>.cpp`` per node."""
+def cmake_files(package: str, nodes: list[NodeSource], component: bool = False) -> list[PlannedFile]:
+    """CMakeLists.txt and ``src/<exe>.cpp`` per node (``component``: each node an rclcpp component
+    registered with ``RCLCPP_COMPONENTS_REGISTER_NODE``, and an executable that runs it alone)."""
     from nodl_schema.generate.cpp import plan_cpp
     from nodl_schema.generate.cpp.user import render_user_source
 
-    files = [PlannedFile('CMakeLists.txt', _cmakelists(package, nodes), False)]
+    files = [PlannedFile('CMakeLists.txt', _cmakelists(package, nodes, component), False)]
     for node in nodes:
-        options = cpp_options(package, node)
+        options = cpp_options(package, node, component)
         plan = plan_cpp(node.node, options)
         files.append(PlannedFile(f'src/{node.executable}.cpp',
                                  render_user_source(plan, options.class_name), False))

@@ -97,7 +97,7 @@ def _definitions(nodes: list[NodeSource]) -> list[PlannedFile]:
     return [PlannedFile(target, text, generated=True) for target, (_, text) in files.items()]
 
 
-def _package_xml(package: str, nodes: list[NodeSource], build_type: str) -> str:
+def _package_xml(package: str, nodes: list[NodeSource], build_type: str, component: bool = False) -> str:
     descriptions = [n.node.node.main.description for n in nodes if n.node.node.main.description]
     description = ' '.join(descriptions) or f'The nodes {", ".join(n.executable for n in nodes)}.'
     lines = ['<?xml version="1.0"?>',
@@ -120,6 +120,8 @@ def _package_xml(package: str, nodes: list[NodeSource], build_type: str) -> str:
         if any(e.kind in (EntityKind.ACTION_SERVER, EntityKind.ACTION_CLIENT)
                for n in nodes for e in n.node.implementation_entities()):
             depends.add('rclcpp_action')
+        if component:
+            depends.add('rclcpp_components')
         depends.update(interface_packages(nodes))
         lines += [f'  <depend>{d}</depend>' for d in sorted(depends)]
     else:
@@ -306,10 +308,11 @@ def _lint_test(module: str, function: str, marker: str, argv: str, message: str)
             f"    rc = main(argv={argv})\n    assert rc == 0, '{message}'\n")
 
 
-def common_files(package: str, nodes: list[NodeSource], build_type: str) -> list[PlannedFile]:
+def common_files(package: str, nodes: list[NodeSource], build_type: str,
+                 component: bool = False) -> list[PlannedFile]:
     """The files of the package that do not depend on its build type's build files."""
     files = _definitions(nodes)
-    files += [PlannedFile('package.xml', _package_xml(package, nodes, build_type), False),
+    files += [PlannedFile('package.xml', _package_xml(package, nodes, build_type, component), False),
               PlannedFile(f'launch/{package}.launch.xml', _launch(package, nodes), False),
               PlannedFile('README.md', _readme(package, nodes, build_type), False),
               PlannedFile('test/test_conformance.py', _conformance_test(package, nodes), False)]

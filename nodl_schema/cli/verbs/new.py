@@ -24,6 +24,10 @@ class NewVerb(Verb):
                             help='ament_python (rclpy nodes) or ament_cmake (rclcpp nodes)')
         parser.add_argument('-o', '--destination-directory', dest='output', default='.',
                             metavar='DIR', help='the package is created as DIR/PACKAGE (default: .)')
+        parser.add_argument('--component', action='store_true',
+                            help='ament_cmake: make each node an rclcpp component (a library '
+                                 'registered with RCLCPP_COMPONENTS_REGISTER_NODE, and an '
+                                 'executable that runs it alone)')
         parser.add_argument('--update', action='store_true',
                             help='the package exists: regenerate its generated files, add missing '
                                  'ones, keep every file of yours')
@@ -48,7 +52,7 @@ class NewVerb(Verb):
                 sources.extend([item] for item in group)
         try:
             nodes = load_nodes(sources, args.build_type)
-            plan = plan_package(args.package, nodes, args.build_type)
+            plan = plan_package(args.package, nodes, args.build_type, component=args.component)
             report = write_package(plan, args.output, update=args.update, force=args.force)
         except ScaffoldError as exc:
             if exc.diagnostics:

@@ -52,7 +52,8 @@ def _plain(name: str) -> str:
 
 
 def render_user_source(node: CppNode, class_name: str) -> str:
-    """``src/<executable>.cpp``: the subclass ``class_name`` of the base, and ``main``."""
+    """``src/<executable>.cpp``: the subclass ``class_name`` of the base, and ``main`` (for a
+    component, generated with ``component=True``: its ``RCLCPP_COMPONENTS_REGISTER_NODE`` instead)."""
     lines = comment_lines(f'The implementation of {node.node_name}, written once by `nodl new`: '
                           'yours to edit (regenerating never touches it).', '', '//')
     lines += ['', '#include <memory>', '#include <string>', '', f'#include "{node.stem}.hpp"', '']
@@ -65,8 +66,13 @@ def render_user_source(node: CppNode, class_name: str) -> str:
     methods = _methods(node)
     if methods:
         lines += ['', 'protected:'] + methods
-    lines += ['};', '', f'}}  // namespace {node.namespace}', '',
-              'int main(int argc, char ** argv)', '{', '  rclcpp::init(argc, argv);',
+    lines += ['};', '', f'}}  // namespace {node.namespace}', '']
+    if node.component:
+        lines += comment_lines('A component: load it into a container, or run the executable '
+                               'of the package that runs it alone.', '', '//')
+        lines.append(f'RCLCPP_COMPONENTS_REGISTER_NODE({node.namespace}::{class_name})')
+        return '\n'.join(lines) + '\n'
+    lines += ['int main(int argc, char ** argv)', '{', '  rclcpp::init(argc, argv);',
               f'  auto node = std::make_shared<{node.namespace}::{class_name}>();']
     lines.append('  rclcpp::spin(node->get_node_base_interface());' if node.lifecycle
                  else '  rclcpp::spin(node);')
