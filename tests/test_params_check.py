@@ -104,3 +104,26 @@ def test_launch_nodes_get_the_files_under_their_final_names(tmp_path: Path) -> N
     empty = tmp_path / 'empty.launch.xml'
     empty.write_text('<launch/>\n')
     assert [d.code for d in check_launch_parameters(str(empty), [str(params)], prefixes=prefixes)] == ['NODL706']
+
+
+def test_cli_launch_and_a_file_no_key_of_which_applies(tmp_path: Path) -> None:
+    import os
+
+    params = tmp_path / 'robot.yaml'
+    params.write_text('/rover/imu:\n  ros__parameters:\n    gain: 1\n    gian: 0.5\n')
+    env = {**os.environ, 'AMENT_PREFIX_PATH': str(FIXTURES / 'analysis' / 'prefix')}
+    launch = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(params), '--launch',
+                             str(FIXTURES / 'analysis' / 'launch' / 'system.launch.xml')],
+                            capture_output=True, text=True, timeout=120, cwd=REPO, env=env)
+    assert launch.returncode == 1, launch.stdout + launch.stderr
+    assert f'{params}:3:5: error: ' in launch.stdout and '[NODL702]' in launch.stdout
+    assert f"{params}:4:5: error: /rover/imu does not declare a parameter 'gian'" in launch.stdout
+    other = tmp_path / 'other.yaml'
+    other.write_text('/other:\n  ros__parameters:\n    count: 3\n')
+    talker = str(FIXTURES / 'generate' / 'talker.nodl.yaml')
+    unmatched = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(other),
+                                '--definition', talker, '--name', '/talker'],
+                               capture_output=True, text=True, timeout=60, cwd=REPO)
+    assert unmatched.returncode == 0  # a warning: the file may be meant for other nodes
+    assert f'{other}:1:1: warning: no node key of the parameter file(s) applies to /talker' in unmatched.stdout
+    assert '[NODL705]' in unmatched.stdout
