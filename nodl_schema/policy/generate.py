@@ -56,9 +56,19 @@ def policy_for_instances(instances: Iterable[NodeInstance], *,
     ``containers`` maps composable nodes to their container (fully qualified
     names): they share its process, hence its enclave.
     """
+    from nodl_schema.analysis.gc_tuning import batch_collection
+
+    # a large system allocates many objects that live until the end: collect less often
+    with batch_collection():
+        return _policy_for_instances(list(instances), missing, distro, enclaves, allow_missing, notes,
+                                     containers)
+
+
+def _policy_for_instances(instances: list[NodeInstance], missing: Sequence[MissingNode], distro: str,
+                          enclaves: str | EnclaveMapping, allow_missing: bool, notes: Sequence[str],
+                          containers: Mapping[str, str] | None) -> PolicyResult:
     from nodl_schema.policy.grants import display_path, profile_for_instance
 
-    instances = list(instances)
     diagnostics: list[Diagnostic] = []
     profiles: list[Profile] = []
     seen: dict[str, NodeInstance] = {}

@@ -15,6 +15,7 @@ a switch to simulation time at runtime is denied ``/clock`` (fails closed).
 
 from __future__ import annotations
 
+import functools
 import os
 
 from nodl_schema.diagnostics import Diagnostic, Severity
@@ -35,8 +36,13 @@ def display_path(path: str) -> str:
     """``path`` relative to the current directory when it is below it (stable comments)."""
     if not path or path.startswith('<') or not os.path.isabs(path):
         return path
+    return _relative(path, os.getcwd())
+
+
+@functools.lru_cache(maxsize=4096)
+def _relative(path: str, cwd: str) -> str:
     try:
-        relative = os.path.relpath(path)
+        relative = os.path.relpath(path, cwd)
     except ValueError:
         return path
     return path if relative.startswith('..') else relative

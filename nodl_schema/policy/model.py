@@ -195,15 +195,18 @@ class Policy:
     enclaves: list[Enclave] = field(default_factory=list)
     #: Remarks for the top of the document (what it was generated from).
     notes: list[str] = field(default_factory=list)
+    _by_path: dict[str, Enclave] = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def enclave(self, path: str) -> Enclave:
         """The enclave at ``path``, created if needed."""
-        for enclave in self.enclaves:
-            if enclave.path == path:
-                return enclave
-        created = Enclave(path)
-        self.enclaves.append(created)
-        return created
+        found = self._by_path.get(path)
+        if found is None or found.path != path or len(self._by_path) != len(self.enclaves):
+            self._by_path = {e.path: e for e in reversed(self.enclaves)}  # (the list was changed)
+            found = self._by_path.get(path)
+        if found is None:
+            found = self._by_path[path] = Enclave(path)
+            self.enclaves.append(found)
+        return found
 
     def sorted_enclaves(self) -> list[Enclave]:
         """Enclaves ordered by path."""

@@ -92,6 +92,13 @@ def _profile_lines(profile: Profile, problems: list[Diagnostic]) -> list[str]:
 
 def write_policy(policy: Policy) -> str:
     """The policy document as text (UTF-8 XML); :class:`PolicyNotWritable` if SROS 2 would reject it."""
+    from nodl_schema.analysis.gc_tuning import batch_collection
+
+    with batch_collection():  # the lines, and the tree the self-check reads, live until the end
+        return _write_policy(policy)
+
+
+def _write_policy(policy: Policy) -> str:
     problems: list[Diagnostic] = []
     lines = ['<?xml version="1.0" encoding="UTF-8"?>']
     for note in policy.notes:
