@@ -42,7 +42,7 @@ def test_the_builtin_checks_are_registered_extensions() -> None:
     ('orphan-service-client', 5, ['/planner'], '/get_map', 'no node serves it'),
     ('orphan-action-client', 5, ['/planner'], '/dock', 'no node serves it'),
     ('orphan-publisher', 14, ['/camera'], '/camera/image', 'no node subscribes'),
-    ('unused-remap', 5, ['/planner'], '/odm', "'odm:=odom' is never used"),
+    ('unused-remap', 8, ['/planner'], '/odm', "'odm:=odom' is never used"),  # the <remap>
     ('unknown-parameter', 5, ['/planner'], 'sped', "did you mean 'speed'"),
     ('parameter-type', 5, ['/planner'], 'speed', 'declared double but is set to 1 (int)'),
     ('parameter-invalid', 14, ['/camera'], 'fps', 'outside [1.0, 120.0]'),
@@ -193,5 +193,95 @@ def test_unused_remap_follows_rcl(tmp_path: Path) -> None:
         '  </node>\n'
         '</launch>\n', encoding='utf-8')
     (finding,) = _of(analyse_launch(launch, prefixes=PREFIX), 'unused-remap')
-    assert (finding.nodes, finding.diagnostic.line) == (('/third',), 8)
+    assert (finding.nodes, finding.diagnostic.line) == (('/third',), 9)
     assert "'thrid'" in finding.message and 'no launched node has that name' in finding.message
+
+
+#: The same unused rules written in each format: (file name, text, {rule: (line, column)}).
+#: A finding about a rule points at the rule (the <remap>, the set_remap, the args with -r),
+#: its related place at the node's entry.
+REMAP_PLACES = [
+    ('r.launch.xml',
+     '<launch>\n'
+     '  <set_remap from="scna" to="/a"/>\n'
+     '  <node pkg="nav" exec="planner" name="planner"\n'
+     '        ros_args="--log-level info -r gte_map:=/m">\n'
+     '    <remap from="scan" to="/scan2"/>\n'
+     '    <remap from="odm" to="/odom"/>\n'
+     '  </node>\n'
+     '  <node_container pkg="rclcpp_components" exec="component_container" name="box" namespace="/">\n'
+     '    <composable_node pkg="sensors" plugin="sensors::CameraDriver" name="camera">\n'
+     '      <remap from="imgae" to="/i"/>\n'
+     '    </composable_node>\n'
+     '  </node_container>\n'
+     '</launch>\n',
+     {'/planner': (3, 3), '/camera': (9, 5)},
+     {('/planner', 'scna:=/a'): (2, 3), ('/planner', 'gte_map:=/m'): (4, 9),
+      ('/planner', 'odm:=/odom'): (6, 5), ('/camera', 'scna:=/a'): (2, 3), ('/camera', 'imgae:=/i'): (10, 7)}),
+    ('r.launch.yaml',
+     'launch:\n'
+     '  - set_remap: {from: scna, to: /a}\n'
+     '  - node:\n'
+     '      pkg: nav\n'
+     '      exec: planner\n'
+     '      name: planner\n'
+     '      ros_args: --log-level info -r gte_map:=/m\n'
+     '      remap:\n'
+     '        - {from: scan, to: /scan2}\n'
+     '        - {from: odm, to: /odom}\n'
+     '  - node_container:\n'
+     '      pkg: rclcpp_components\n'
+     '      exec: component_container\n'
+     '      name: box\n'
+     '      namespace: /\n'
+     '      composable_node:\n'
+     '        - pkg: sensors\n'
+     '          plugin: sensors::CameraDriver\n'
+     '          name: camera\n'
+     '          remap:\n'
+     '            - {from: imgae, to: /i}\n',
+     {'/planner': (3, 5), '/camera': (17, 11)},
+     {('/planner', 'scna:=/a'): (2, 5), ('/planner', 'gte_map:=/m'): (7, 7),
+      ('/planner', 'odm:=/odom'): (10, 11), ('/camera', 'scna:=/a'): (2, 5), ('/camera', 'imgae:=/i'): (21, 15)}),
+    ('r.launch.py',
+     'from launch import LaunchDescription\n'
+     'from launch_ros.actions import ComposableNodeContainer, Node, SetRemap\n'
+     'from launch_ros.descriptions import ComposableNode\n'
+     '\n'
+     '\n'
+     'def generate_launch_description():\n'
+     '    return LaunchDescription([\n'
+     "        SetRemap(src='scna', dst='/a'),\n"
+     "        Node(package='nav', executable='planner', name='planner',\n"
+     "             ros_arguments=['--log-level', 'info', '-r', 'gte_map:=/m'],\n"
+     "             remappings=[('scan', '/scan2'),\n"
+     "                         ('odm', '/odom')]),\n"
+     "        ComposableNodeContainer(package='rclcpp_components', executable='component_container',\n"
+     "                                name='box', namespace='/', composable_node_descriptions=[\n"
+     "            ComposableNode(package='sensors', plugin='sensors::CameraDriver', name='camera',\n"
+     "                           remappings=[('imgae', '/i')])]),\n"
+     '    ])\n',
+     {'/planner': (9, 9), '/camera': (15, 13)},
+     {('/planner', 'scna:=/a'): (8, 9), ('/planner', 'gte_map:=/m'): (10, 58),
+      ('/planner', 'odm:=/odom'): (12, 26), ('/camera', 'scna:=/a'): (8, 9), ('/camera', 'imgae:=/i'): (16, 40)}),
+]
+
+
+@pytest.mark.parametrize(('name', 'text', 'entries', 'expected'), REMAP_PLACES,
+                         ids=[p[0] for p in REMAP_PLACES])
+def test_a_finding_about_a_remap_points_at_the_rule(tmp_path: Path, name: str, text: str,
+                                                    entries: dict[str, tuple[int, int]],
+                                                    expected: dict[tuple[str, str], tuple[int, int]]) -> None:
+    launch = tmp_path / name
+    launch.write_text(text, encoding='utf-8')
+    analysis = analyse_launch(launch, prefixes=PREFIX)
+    found = {}
+    for finding in _of(analysis, 'unused-remap'):
+        (node,) = finding.nodes
+        rule = finding.message.split("'")[1]
+        d = finding.diagnostic
+        assert d.file == str(launch)
+        found[node, rule] = (d.line, d.column)
+        # the node's entry is the related place
+        assert [(r[1], r[2]) for r in d.related] == [entries[node]], d.related
+    assert found == expected

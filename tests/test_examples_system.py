@@ -46,7 +46,7 @@ PLANTED = [
      '/rover/gps/fix', ['/rover/localizer']),
     ('orphan-service-client', 'launch/navigation.launch.py', 25, "executable='planner'",
      '/rover/clear_costmap', ['/rover/planner']),
-    ('unused-remap', 'launch/rover.launch.xml', 18, 'exec="motor_controller"', '/rover/odom',
+    ('unused-remap', 'launch/rover.launch.xml', 20, '<remap from="odom" to="wheel_odom"/>', '/rover/odom',
      ['/rover/motor_controller']),
     ('qos-incompatible', 'launch/rover.launch.xml', 25, 'exec="safety_controller"', '/rover/scan',
      ['/rover/lidar', '/rover/safety_controller']),

@@ -62,6 +62,7 @@ def _normalized(path: Path) -> list[dict[str, Any]]:
     for node in result.nodes:
         view = node.to_dict()
         view.pop('source')
+        view.pop('remap_sources')  # lines differ between the formats
         for p in view['parameters']:
             p.pop('source')
         out.append(view)

@@ -63,6 +63,9 @@ class LaunchEntry:
     namespace: str = '/'
     #: ``(from, to)`` in the order rcl applies them (``set_remap`` rules first).
     remaps: list[tuple[str, str]] = field(default_factory=list)
+    #: Where each of ``remaps`` is written (the ``remap`` entry, ``set_remap``, the
+    #: ``args`` holding ``-r``); missing ones are at :attr:`location`.
+    remap_locations: list[Location] = field(default_factory=list)
     #: Parameter values and files, in the order they are applied (a later value wins).
     parameters: list[ParameterSetting | ParameterFile] = field(default_factory=list)
     #: The container a composable node is loaded into (its fully qualified name), if any.
@@ -70,6 +73,12 @@ class LaunchEntry:
     #: ``node`` (a process), ``container`` (a process hosting composable nodes) or
     #: ``composable`` (a node loaded into a container).
     role: str = 'node'
+
+    def remap_location(self, index: int) -> Location:
+        """Where rule ``index`` of :attr:`remaps` is written."""
+        if 0 <= index < len(self.remap_locations):
+            return self.remap_locations[index]
+        return self.location
 
     @property
     def composable(self) -> bool:
@@ -113,9 +122,12 @@ def entries_from_launch(records: Iterable[Any]) -> list[LaunchEntry]:
         if record.parameters:  # all sources at once: rcl merges them into one table
             parameters.append(ParameterFile(record.source.file, _resolved_settings(record),
                                             _location(record.source)))
+        from nodl_schema.launch.model import remap_source
+
         out.append(LaunchEntry(
             package=str(record.package or ''), executable=record.executable,
             location=_location(record.source), plugin=record.plugin, name=record.name,
             namespace=namespace, remaps=[(str(a), str(b)) for a, b in record.remaps],
+            remap_locations=[_location(remap_source(r, record.source)) for r in record.remaps],
             parameters=parameters, container=record.container, role=record.kind))
     return out

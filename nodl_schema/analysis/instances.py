@@ -39,6 +39,8 @@ class AnalysedNode:
         self.names = names
         #: Its remapping rules, parsed, in rcl's order (malformed ones left out).
         self.rules = rules
+        #: Where each of :attr:`rules` is written (set by :func:`build_node`).
+        self.rule_locations: list[Location] = []
         #: Every parameter setting it receives, in the order they are applied.
         self.settings = settings
         #: Its instance (None without a usable definition).
@@ -55,6 +57,13 @@ class AnalysedNode:
     def location(self) -> Location:
         """Where the node is launched."""
         return self.entry.location
+
+    def rule_location(self, rule: RemapRule) -> Location:
+        """Where ``rule`` (one of :attr:`rules` or of its names' rules) is written: the
+        ``remap`` entry, ``set_remap``, the ``args`` with ``-r``; else the node's entry."""
+        index = next((i for i, own in enumerate(self.rules) if own is rule),
+                     next((i for i, own in enumerate(self.rules) if own == rule), -1))
+        return self.rule_locations[index] if 0 <= index < len(self.rule_locations) else self.location
 
     @property
     def parameters(self) -> dict[str, ParameterSetting]:
@@ -92,11 +101,13 @@ def build_node(entry: LaunchEntry, match: Match, findings: list[Finding]) -> Ana
                 f'it: ament_nodl_register_node({match.key} FILE ... NODE_NAME <name>))', where,
                 ()))
     rules: list[RemapRule] = []
-    for source, target in entry.remaps:
+    rule_locations: list[Location] = []
+    for index, (source, target) in enumerate(entry.remaps):
         try:
             rules.append(parse_remap_rule(f'{source}:={target}'))
+            rule_locations.append(entry.remap_location(index))
         except ValueError as exc:
-            findings.append(make_finding('not-analysable', f'{label}: {exc}', where, ()))
+            findings.append(make_finding('not-analysable', f'{label}: {exc}', entry.remap_location(index), ()))
     names: NodeNames | None
     try:
         names = NodeNames.create(name, entry.namespace or '/', rules)
@@ -111,6 +122,7 @@ def build_node(entry: LaunchEntry, match: Match, findings: list[Finding]) -> Ana
         else:
             settings.append(item)
     node = AnalysedNode(entry, match, name, names, rules, settings, None)
+    node.rule_locations = rule_locations
     if match.resolved is None or names is None:
         if match.file is not None and match.resolved is None:
             first = match.problems[0] if match.problems else None

@@ -7,7 +7,7 @@ Both markup frontends build :class:`Entity` objects and call :func:`build_descri
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, TypeVar
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch import actions as A
@@ -283,12 +283,25 @@ def _remaps(entity: Entity) -> list[tuple[Any, Any]]:
     return [(r.subs('from'), r.subs('to')) for r in entity.nested.get('remap', [])]
 
 
+_Placed = TypeVar('_Placed', 'R.Node', 'R.ComposableNode')
+
+
+def _placed(node: _Placed, entity: Entity) -> _Placed:
+    """``node`` (a node action or composable node) told where its ``remap`` entries and its
+    ``args``/``ros_args`` are written: findings about a rule point there."""
+    node.remap_sources = [r.location for r in entity.nested.get('remap', [])]
+    if isinstance(node, R.Node):
+        node.word_sources = {name: SourceLocation(entity.location.file, a.line, a.column)
+                             for name, a in entity.attributes.items() if name in ('args', 'ros_args')}
+    return node
+
+
 def _composable(entity: Entity) -> R.ComposableNode:
     node = R.ComposableNode(package=entity.subs('pkg'), plugin=entity.subs('plugin'), name=entity.subs('name'),
                             namespace=entity.subs('namespace'), parameters=_parameters(entity),
                             remappings=_remaps(entity), condition=_condition(entity))
     node.location = entity.location
-    return node
+    return _placed(node, entity)
 
 
 def _node_kwargs(entity: Entity) -> dict[str, Any]:
@@ -393,11 +406,11 @@ def _make(entity: Entity, tag: str, problems: list[Diagnostic]) -> A.Action:
         return A.AppendEnvironmentVariable(s('name'), s('value'), prepend=bool(entity.boolean('prepend')),
                                            separator=entity.text('separator') or ':')
     if tag == 'node':
-        return R.Node(**_node_kwargs(entity))
+        return _placed(R.Node(**_node_kwargs(entity)), entity)
     if tag == 'node_container':
-        return R.ComposableNodeContainer(
+        return _placed(R.ComposableNodeContainer(
             composable_node_descriptions=[_composable(c) for c in entity.nested.get('composable_node', [])],
-            **_node_kwargs(entity))
+            **_node_kwargs(entity)), entity)
     if tag == 'load_composable_node':
         return R.LoadComposableNodes(
             composable_node_descriptions=[_composable(c) for c in entity.nested.get('composable_node', [])],

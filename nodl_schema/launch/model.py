@@ -15,7 +15,7 @@ from typing import Any, NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
-__all__ = ['SourceLocation', 'ParameterSource', 'LaunchedNode', 'LaunchArgument', 'LaunchResult',
+__all__ = ['SourceLocation', 'LaunchRemap', 'ParameterSource', 'LaunchedNode', 'LaunchArgument', 'LaunchResult',
            'NODE_KINDS', 'PARAMETER_ORIGINS']
 
 #: ``node`` (a process), ``container`` (a process that hosts composable nodes), ``composable``.
@@ -35,6 +35,31 @@ class SourceLocation(NamedTuple):
 
     def __str__(self) -> str:
         return f'{self.file}:{self.line}:{self.column}' if self.line else self.file
+
+
+class LaunchRemap(tuple):  # type: ignore[type-arg]
+    """A remapping rule ``(from, to)`` and where it is written (:attr:`source`): the
+    ``remap`` entry, the ``set_remap`` action, or the ``args``/``ros_args`` holding ``-r``.
+
+    It is the pair itself (it compares, unpacks and serialises as ``(from, to)``), so code
+    that reads rules as pairs keeps working; :func:`remap_source` reads the place.
+    """
+
+    source: SourceLocation
+
+    def __new__(cls, src: str, dst: str, source: SourceLocation) -> 'LaunchRemap':
+        self = super().__new__(cls, (src, dst))
+        self.source = source
+        return self
+
+    def __getnewargs__(self) -> tuple[str, str, SourceLocation]:
+        return self[0], self[1], self.source
+
+
+def remap_source(rule: Any, default: SourceLocation) -> SourceLocation:
+    """Where a remapping rule of a launched node is written (``default``, the node's entry,
+    for a plain pair)."""
+    return getattr(rule, 'source', None) or default
 
 
 @dataclass
@@ -87,6 +112,7 @@ class LaunchedNode:
     source: SourceLocation
     #: Remapping rules ``(from, to)`` in the order rcl applies them (the first match
     #: wins): those of ``args``/``ros_args``, then ``set_remap`` in scope, then the node's own.
+    #: The reader records each as a :class:`LaunchRemap` (with the place it is written).
     remaps: list[tuple[str, str]] = field(default_factory=list)
     parameters: list[ParameterSource] = field(default_factory=list)
     #: The plugin class of a composable node (``pkg::Class``).
@@ -143,6 +169,8 @@ class LaunchedNode:
             'plugin': self.plugin, 'container': self.container, 'name': self.name,
             'name_given': self.name is not None,
             'namespace': self.namespace, 'remaps': [list(r) for r in self.remaps],
+            'remap_sources': [{'file': s.file, 'line': s.line, 'column': s.column}
+                              for s in (remap_source(r, self.source) for r in self.remaps)],
             'parameters': [p.to_dict() for p in self.parameters],
             'ros_arguments': list(self.ros_arguments), 'arguments': list(self.arguments),
             'source': {'file': self.source.file, 'line': self.source.line,

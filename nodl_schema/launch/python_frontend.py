@@ -63,11 +63,31 @@ def _located(cls: type, name: str | None = None) -> type:
         init: Any = getattr(cls, '__init__')
         init(self, *args, **kwargs)
         self.location = _caller()
+        if hasattr(self, 'remap_sources'):
+            _place_remaps(self)
         if isinstance(self, A.Action):
             self.condition = condition
         elif condition is not None:
             self.condition = condition
     return type(name or cls.__name__, (cls,), {'__init__': __init__})
+
+
+def _place_remaps(node: Any) -> None:
+    """Where a node's ``remappings`` items (and ``arguments``/``ros_arguments`` words, for
+    ``-r``) are written in the launch file, when they are written out in the call."""
+    from nodl_schema.launch.python_places import keyword_places
+
+    places = keyword_places(node.location, 'remappings')
+    if isinstance(places, list) and len(places) == len(node.remappings):
+        node.remap_sources = places
+    elif isinstance(places, SourceLocation):
+        node.remap_sources = [places] * len(node.remappings)
+    if hasattr(node, 'word_sources'):
+        for keyword, key, words in (('arguments', 'args', node.arguments),
+                                    ('ros_arguments', 'ros_args', node.ros_arguments)):
+            where = keyword_places(node.location, keyword)
+            if isinstance(where, SourceLocation) or (isinstance(where, list) and len(where) == len(words)):
+                node.word_sources[key] = where
 
 
 def _unknown(module: str) -> Any:

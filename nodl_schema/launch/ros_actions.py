@@ -16,7 +16,7 @@ from typing import Any
 from nodl_schema.launch.actions import Action
 from nodl_schema.launch.conditions import Condition
 from nodl_schema.launch.errors import LaunchProblem, Unevaluable
-from nodl_schema.launch.model import LaunchedNode, ParameterSource, SourceLocation
+from nodl_schema.launch.model import LaunchedNode, LaunchRemap, ParameterSource, SourceLocation
 from nodl_schema.launch.params import ParameterValue, RuntimeValue, evaluate_value, normalize_python_dict
 from nodl_schema.launch.substitutions import normalize, perform
 
@@ -56,7 +56,7 @@ class SetRemap(Action):
         self.src, self.dst = normalize(src), normalize(dst)
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        rule = (perform(context, self.src), perform(context, self.dst))
+        rule = LaunchRemap(perform(context, self.src), perform(context, self.dst), self.location)
         remaps = context.configurations.get('ros_remaps', [])
         remaps.append(rule)  # in place, as launch_ros does (see context.py)
         context.configurations['ros_remaps'] = remaps
@@ -145,6 +145,7 @@ def _ros_arguments(context: LaunchContext, node: Any, location: SourceLocation,
                    record: LaunchedNode) -> None:
     """Split ``arguments`` + ``--ros-args`` + ``ros_arguments`` as rcl reads a command line."""
     words = [perform(context, a) for a in node.arguments]
+    first_ros = len(words)  # words from here on are ros_args (their place: ros_arguments_source)
     if node.ros_arguments:
         words += ['--ros-args', *[perform(context, a) for a in node.ros_arguments]]
     in_ros = False
@@ -165,7 +166,7 @@ def _ros_arguments(context: LaunchContext, node: Any, location: SourceLocation,
                     raise LaunchProblem('NODL519', f"invalid remapping rule '{value}' in the node's "
                                                    'arguments; expected FROM:=TO')
                 src, dst = value.split(':=', 1)
-                record.remaps.append((src, dst))
+                record.remaps.append(LaunchRemap(src, dst, _word_source(node, i, first_ros, location)))
             elif word in ('-p', '--param'):
                 if ':=' not in value:
                     raise LaunchProblem('NODL518', f"invalid parameter rule '{value}'; expected NAME:=VALUE")
@@ -184,6 +185,16 @@ def _ros_arguments(context: LaunchContext, node: Any, location: SourceLocation,
         else:
             record.ros_arguments.append(word)
         i += 1
+
+
+def _word_source(node: Any, index: int, first_ros: int, location: SourceLocation) -> SourceLocation:
+    """Where word ``index`` of a node's command line is written: its ``args``/``ros_args``
+    attribute, the item of a Python list written out, else the node's entry."""
+    key, offset = ('ros_args', index - first_ros - 1) if index > first_ros else ('args', index)
+    where = getattr(node, 'word_sources', {}).get(key)
+    if isinstance(where, list):
+        return where[offset] if 0 <= offset < len(where) else location
+    return where or location
 
 
 def _global_parameters(context: LaunchContext, location: SourceLocation) -> list[ParameterSource]:
@@ -250,6 +261,10 @@ class Node(Action):
         self.ros_arguments = list(ros_arguments or [])
         self.arguments = list(arguments or [])
         self.node_name: str | None = None
+        #: Where each of ``remappings`` is written (set by the frontends; the entry's
+        #: location when unknown), and where ``args``/``ros_args`` are (``-r`` rules).
+        self.remap_sources: list[SourceLocation] = []
+        self.word_sources: dict[str, SourceLocation | list[SourceLocation]] = {}
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
         from nodl_schema.naming import join_name, namespace_error, node_name_error
@@ -278,13 +293,20 @@ class Node(Action):
         record.parameters += _own_parameters(context, self.parameters, self.location,
                                              fqn if fully else '/**')
         record.remaps += list(context.configurations.get('ros_remaps') or [])
-        record.remaps += [(perform(context, a), perform(context, b)) for a, b in self.remappings]
+        record.remaps += _own_remaps(context, self.remappings, self.remap_sources, self.location)
         context.result.nodes.append(record)
         return self.after(context)
 
     def after(self, context: LaunchContext) -> list[Action] | None:
         """What follows the node (a container's composable nodes)."""
         return None
+
+
+def _own_remaps(context: LaunchContext, remappings: list[tuple[Any, Any]], sources: list[SourceLocation],
+                location: SourceLocation) -> list[tuple[str, str]]:
+    """A node's own remapping rules, each with where it is written."""
+    return [LaunchRemap(perform(context, a), perform(context, b), sources[i] if i < len(sources) else location)
+            for i, (a, b) in enumerate(remappings)]
 
 
 class ComposableNode:
@@ -300,6 +322,7 @@ class ComposableNode:
         self.remappings = [(normalize(a), normalize(b)) for a, b in (remappings or [])]
         self.condition = condition
         self.location = SourceLocation('', 0, 0)
+        self.remap_sources: list[SourceLocation] = []
 
 
 class LoadComposableNodes(Action):
@@ -335,7 +358,8 @@ def _load(context: LaunchContext, description: ComposableNode, container: str) -
                           container=container, include_chain=context.include_chain,
                           namespace_given=namespace is not None)
     record.remaps += list(context.configurations.get('ros_remaps') or [])
-    record.remaps += [(perform(context, a), perform(context, b)) for a, b in description.remappings]
+    record.remaps += _own_remaps(context, description.remappings, description.remap_sources,
+                                 description.location)
     record.parameters += _global_parameters(context, description.location)
     record.parameters += _own_parameters(context, description.parameters, description.location, '/**')
     context.result.nodes.append(record)

@@ -70,8 +70,12 @@ class UnusedRemapCheck(CheckExtension):
                 else:
                     what = _WHAT.get(rule.kind, 'topic, service or action')
                     why = f'the node has no {what} {names.expand(rule.match or "")!r}'
+                where = node.rule_location(rule)
+                related = [] if where == node.location else [
+                    (node.location.file, node.location.line, node.location.column,
+                     f'{node.fqn} is launched here')]
                 yield make_finding(
                     'unused-remap', f'{node.fqn}: the remapping rule {str(rule)!r} is never used: '
                     f'{why} (see nodl show {node.executable_label})',
-                    node.location, [node.fqn], endpoint=names.expand(rule.match or '')
-                    if rule.applies_to(names.name) else None)
+                    where, [node.fqn], endpoint=names.expand(rule.match or '')
+                    if rule.applies_to(names.name) else None, related=related)
