@@ -152,3 +152,30 @@ def test_registered_nodes_take_their_package_build_type(monkeypatch: pytest.Monk
     assert asked is not None and asked.client_library_reason == 'as requested'
     missing, diagnostics, _ = resolve_registered('cpp_pkg', 'nope')
     assert missing is None and diagnostics[0].code == 'NODL306'
+
+
+def test_nodes_resolved_in_one_run_share_their_base(tmp_path: Path) -> None:
+    # Inside an index snapshot (one analysis) every node of a base shares its layer and the
+    # entities only the base declares; what a node declares or refines stays its own, and
+    # outside a snapshot nothing is shared.
+    from nodl_schema.index import ament
+
+    files = []
+    for i, refine in enumerate(('', '  parameters:\n    use_sim_time: {type: bool, default_value: false,'
+                                    ' description: Refined.}\n')):
+        file = tmp_path / f'n{i}.nodl.yaml'
+        file.write_text('nodl_version: 2\nbase: node\nmain:\n  nodl_version: 2\n  description: N.\n'
+                        + refine)
+        files.append(file)
+    with ament.snapshot():
+        one, two = (resolve_node(f) for f in files)
+        assert one.layers[0] is two.layers[0]
+        assert one.entity('publisher', '/rosout') is two.entity('publisher', '/rosout')
+        assert one.entity('parameter', 'use_sim_time') is not two.entity('parameter', 'use_sim_time')
+        assert two.entity('parameter', 'use_sim_time').description == 'Refined.'
+        assert one.entity('parameter', 'use_sim_time').description != 'Refined.'
+    three = resolve_node(files[0])
+    assert three.layers[0] is not one.layers[0] and three.layers[0].shared is None
+    assert three.entity('publisher', '/rosout') is not one.entity('publisher', '/rosout')
+    assert [(e.key, e.location, e.provider, e.declared_in) for e in three.entities] == \
+        [(e.key, e.location, e.provider, e.declared_in) for e in one.entities]

@@ -26,7 +26,7 @@ from nodl_schema.model import Base, Interface
 from nodl_schema.vocabulary import CLIENT_LIBRARIES
 
 __all__ = ['BASES_DIR', 'CLIENT_LIBRARIES', 'DEFAULT_CLIENT_LIBRARY', 'base_file', 'base_files',
-           'base_layer', 'check_client_library']
+           'base_layer', 'shared_base_layer', 'check_client_library']
 
 BASES_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'bases')
 
@@ -138,3 +138,21 @@ def base_layer(base: Base | str, client_library: str = DEFAULT_CLIENT_LIBRARY) -
     data, placer = _assemble(name, check_client_library(client_library))
     # A fresh model each time: callers may stamp or edit what they get, the cache stays as shipped.
     return Layer(f'base:{name.value}', Interface.from_dict(data), placer, role='base')
+
+
+def shared_base_layer(base: Base | str, client_library: str = DEFAULT_CLIENT_LIBRARY) -> Layer:
+    """:func:`base_layer`, one for a whole run inside :func:`nodl_schema.index.ament.snapshot`
+    (an analysis of a launched system: every node of that base then shares one layer, and
+    the merged copies and resolved entities derived from it, see :attr:`Layer.shared`); a
+    fresh layer outside one.  Composition reads a base layer and never edits it."""
+    from nodl_schema.index import ament
+
+    name, library = Base(base), check_client_library(client_library)
+
+    def make() -> Layer:
+        layer = base_layer(name, library)
+        layer.shared = {}
+        return layer
+
+    return ament.remembered(('base layer', name, library), make) if ament.in_snapshot() \
+        else base_layer(name, library)

@@ -13,7 +13,8 @@ from __future__ import annotations
 import os
 from typing import Callable, Sequence
 
-from nodl_schema.composition.bases import DEFAULT_CLIENT_LIBRARY, base_layer, check_client_library
+from nodl_schema.composition.bases import (
+    DEFAULT_CLIENT_LIBRARY, check_client_library, shared_base_layer)
 from nodl_schema.composition.layers import MAIN, Layer
 from nodl_schema.composition.merge import Declaration, merge_traced
 from nodl_schema.composition.resolvers import (
@@ -236,7 +237,7 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None,
 
             node = dataclasses.replace(node, base=Base(strongest))
     if node.base is not None:
-        layers.insert(0, base_layer(node.base, client_library))
+        layers.insert(0, shared_base_layer(node.base, client_library))
     layers.append(Layer(MAIN, node.main, report.place, ('main',), role='main'))
     if errors:
         return None, diagnostics + errors

@@ -16,7 +16,7 @@ MAIN = 'main'
 class Layer:
     """One layer: ``base:<name>``, a mixin (its reference, or ``mixins[i]`` in place) or ``main``."""
 
-    __slots__ = ('label', 'interface', '_place', 'prefix', 'role')
+    __slots__ = ('label', 'interface', '_place', 'prefix', 'role', 'shared')
 
     def __init__(self, label: str, interface: Interface,
                  place: Callable[[Diagnostic], Diagnostic] | None = None,
@@ -30,6 +30,10 @@ class Layer:
         #: reference may look like a base or main label, e.g. a file called ``main``).
         self.role = role if role is not None else (
             'base' if label.startswith('base:') else 'main' if label == MAIN else 'mixin')
+        #: For a layer shared by every node of a run (a built-in base, see
+        #: :func:`nodl_schema.composition.bases.shared_base_layer`): what is derived from its
+        #: entities once for all those nodes (merged copies, resolved entities); else None.
+        self.shared: dict[Any, Any] | None = None
 
     def place(self, diagnostic: Diagnostic) -> Diagnostic:
         """Place a diagnostic whose path is relative to this layer's interface."""

@@ -155,7 +155,15 @@ def merge_traced(layers: Sequence[Layer]) -> MergeResult:
                     severity, message, path, anchor=anchor, code=code,
                     related=[_related(earlier, anchor)])))
         trace.append(Declaration(layer, path, entity))
-        merged[name] = _stamp(entity, layer.label)
+        shared = layer.shared
+        if shared is None:
+            merged[name] = _stamp(entity, layer.label)
+        else:  # a layer every node of the run shares: one copy for all of them
+            key = ('stamped', id(entity))
+            stamped = shared.get(key)
+            if stamped is None:
+                stamped = shared[key] = _stamp(entity, layer.label)
+            merged[name] = stamped
 
     for layer in layers:
         iface = layer.interface

@@ -14,7 +14,7 @@ from contextvars import ContextVar
 from typing import Any, Callable, Iterator, NamedTuple, TypeVar
 
 __all__ = ['Resource', 'prefix_paths', 'get_resource', 'get_resources', 'package_share_directory',
-           'resource_file', 'snapshot', 'remembered']
+           'resource_file', 'snapshot', 'in_snapshot', 'remembered']
 
 _INDEX = os.path.join('share', 'ament_index', 'resource_index')
 _T = TypeVar('_T')
@@ -70,6 +70,11 @@ def snapshot() -> Iterator[None]:
         yield
     finally:
         _SNAPSHOT.reset(token)
+
+
+def in_snapshot() -> bool:
+    """True inside a :func:`snapshot` block."""
+    return _SNAPSHOT.get() is not None
 
 
 def remembered(key: Any, compute: Callable[[], _T]) -> _T:

@@ -41,6 +41,20 @@ _PARAMETER = EntityKind.PARAMETER
 
 def _entity(kind: EntityKind, name: str, merged: object,
             trace: Sequence[Declaration], layers: Sequence[Layer]) -> Entity:
+    shared = trace[0].layer.shared if len(trace) == 1 else None
+    if shared is None:
+        return _new_entity(kind, name, merged, trace, layers)
+    # Declared by a layer every node of the run shares (a base) and by no other layer:
+    # the same entity for every node.
+    key = ('entity', kind, name, id(merged))
+    found: Entity | None = shared.get(key)
+    if found is None:
+        found = shared[key] = _new_entity(kind, name, merged, trace, layers)
+    return found
+
+
+def _new_entity(kind: EntityKind, name: str, merged: object,
+                trace: Sequence[Declaration], layers: Sequence[Layer]) -> Entity:
     parameter = kind is _PARAMETER
     location: Location | Callable[[], Location]
     if trace:
