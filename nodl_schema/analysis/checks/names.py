@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Iterator
+from typing import Any, Iterator
 
 from nodl_schema.analysis.checks import CheckExtension
 from nodl_schema.analysis.context import AnalysisContext
@@ -12,6 +12,24 @@ __all__ = ['DuplicateNodeCheck', 'UnusedRemapCheck']
 
 #: What a rule of each kind can remap (rostopic:// and rosservice:// rules are limited).
 _WHAT = {'topic': 'topic or action', 'service': 'service'}
+#: The names rcl gives an action's parts under ``<action>/_action/`` (rcl_action's names.c):
+#: part -> its communication.  rcl remaps an action as a whole by its name (a topic rule,
+#: before the parts are named); a rule for a part renames only that part.
+_ACTION_PARTS = {'send_goal': 'service', 'cancel_goal': 'service', 'get_result': 'service',
+                 'feedback': 'topic', 'status': 'topic'}
+
+
+def _action_part(node: Any, match: str, kind: str) -> tuple[str, str] | None:
+    """``(action, part's communication)`` when a rule of ``kind`` matching the expanded name
+    ``match`` would rename one internal part of one of the node's actions."""
+    action, sep, part = match.rpartition('/_action/')
+    communication = _ACTION_PARTS.get(part) if sep else None
+    if communication is None or kind not in ('name', communication):
+        return None
+    for bound in node.instance.endpoints:
+        if bound.entity.kind.communication == 'action' and bound.name == action:
+            return action, communication
+    return None
 
 
 class DuplicateNodeCheck(CheckExtension):
@@ -53,6 +71,8 @@ class UnusedRemapCheck(CheckExtension):
         for node in context.analysed():
             names = node.names
             assert node.instance is not None and names is not None
+            if not names.rules:
+                continue  # nothing to be unused (and nothing to expand every name for)
             used: set[int] = set()
             for bound in node.instance.endpoints:
                 rule = names.rule_for(bound.entity.name,
@@ -62,6 +82,7 @@ class UnusedRemapCheck(CheckExtension):
             for rule in names.rules:
                 if rule.kind in ('node', 'namespace') or id(rule) in used:
                     continue
+                verdict = 'is never used'
                 if not rule.applies_to(names.name):
                     if rule.node in launched_names:
                         continue  # the rule of the node of that name (checked there)
@@ -69,13 +90,20 @@ class UnusedRemapCheck(CheckExtension):
                            f'(this node is {names.name!r})')
                 else:
                     what = _WHAT.get(rule.kind, 'topic, service or action')
-                    why = f'the node has no {what} {names.expand(rule.match or "")!r}'
+                    expanded = names.expand(rule.match or '')
+                    why = f'the node has no {what} {expanded!r}'
+                    part = _action_part(node, expanded, rule.kind)
+                    if part is not None:
+                        verdict = 'renames no action'
+                        why = (f'it renames only the internal {part[1]} {expanded!r} of the action '
+                               f'{part[0]!r}, which splits the action (rcl remaps an action as a '
+                               f'whole by its name: remap {part[0]!r})')
                 where = node.rule_location(rule)
                 related = [] if where == node.location else [
                     (node.location.file, node.location.line, node.location.column,
                      f'{node.fqn} is launched here')]
                 yield make_finding(
-                    'unused-remap', f'{node.fqn}: the remapping rule {str(rule)!r} is never used: '
-                    f'{why} (see nodl show {node.executable_label})',
+                    'unused-remap', f'{node.fqn}: the remapping rule {str(rule)!r} {verdict}: {why}'
+                    f' (see nodl show {node.executable_label})',
                     where, [node.fqn], endpoint=names.expand(rule.match or '')
                     if rule.applies_to(names.name) else None, related=related)
