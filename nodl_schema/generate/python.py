@@ -22,7 +22,7 @@ from nodl_schema.generate import GeneratedFile, GenerateOptions, GenerationError
 from nodl_schema.generate.identifiers import PYTHON_KEYWORDS, IdentifierScope
 from nodl_schema.generate.parameters import ParameterPlan, ParametersPlan, StructPlan, plan_parameters
 from nodl_schema.generate.python_text import (
-    comment, docstring, literal, python_value, validator_expression)
+    LINE_LENGTH, comment, docstring, literal, mark_long_lines, python_value, validator_expression)
 from nodl_schema.system.entities import Entity, EntityKind, InterfaceType
 from nodl_schema.vocabulary import QOS_DURATIONS, QOS_ENUMS
 
@@ -146,7 +146,7 @@ class _Module:
         parts.append(self.qos_constants())
         parts.append(self.parameter_tables())
         parts.append(self.base_class())
-        return '\n\n\n'.join(p.rstrip('\n') for p in parts if p) + '\n'
+        return mark_long_lines('\n\n\n'.join(p.rstrip('\n') for p in parts if p) + '\n')
 
     def header(self) -> str:
         source = self.node.file.replace('\\', '/').rsplit('/', 1)[-1]
@@ -215,7 +215,10 @@ class _Module:
             return ''
         out = '\n# Declared name -> attribute of the generated class:\n'
         for e in self.endpoints:
-            out += f'#   {e.kind.word} {e.name!r} ({e.type_name}) -> self.{self.attributes[(e.kind, e.name)]}\n'
+            line = f'#   {e.kind.word} {e.name!r} ({e.type_name}) -> self.{self.attributes[(e.kind, e.name)]}'
+            if len(line) > LINE_LENGTH:
+                line = line.replace(') -> self.', ')\n#     -> self.', 1)
+            out += line + '\n'
         return out
 
     # -- parameters ----------------------------------------------------------------------
@@ -326,8 +329,10 @@ class _Module:
                 out += '            dynamic_typing=True,\n'
             if p.range is not None:
                 cls = 'IntegerRange' if p.range.kind == 'integer' else 'FloatingPointRange'
-                out += (f'            {p.range.kind}_range=[{cls}(from_value={literal(p.range.from_value)}, '
-                        f'to_value={literal(p.range.to_value)}, step={literal(p.range.step)})],\n')
+                out += _wrap(f'            {p.range.kind}_range=[{cls}(',
+                             [f'from_value={literal(p.range.from_value)},',
+                              f'to_value={literal(p.range.to_value)},', f'step={literal(p.range.step)},'],
+                             ')],') + '\n'
             out += '        )\n'
             type_arg = f'Parameter.Type.{p.ros_type[len("PARAMETER_"):]}'
             if p.dynamic_typing:
@@ -396,8 +401,9 @@ class _Module:
 
 '''
         params_class = self.struct_classes[()]
-        out += f'''    def set_parameters_atomically(self, parameter_list: list[Parameter[Any]]) -> SetParametersResult:
-        """Validate first, so that a rejection gives the validator's reason (then set as rclpy does)."""
+        out += f'''    def set_parameters_atomically(
+            self, parameter_list: list[Parameter[Any]]) -> SetParametersResult:
+        """Validate first: a rejection gives the validator's reason (then set as rclpy does)."""
         declared = [p for p in parameter_list if p.name in _PARAMETER_NAMES and p.value is not None
                     and p.type_ == self.get_parameter(p.name).type_]
         result = self._nodl_validate_parameters(declared)
@@ -406,7 +412,7 @@ class _Module:
         return super().set_parameters_atomically(parameter_list)
 
     def set_parameters(self, parameter_list: list[Parameter[Any]]) -> list[SetParametersResult]:
-        """One at a time, each as set_parameters_atomically: a rejection gives the validator's reason."""
+        """One by one as set_parameters_atomically (a rejection gives the validator's reason)."""
         return [self.set_parameters_atomically([parameter]) for parameter in parameter_list]
 
     def is_old(self, params: {params_class}) -> bool:
@@ -420,7 +426,8 @@ class _Module:
     def on_parameters_changed(self, old: {params_class}, new: {params_class}) -> None:
         """Called after parameters were set, with the previous and the new snapshot."""
 
-    def on_custom_validator(self, function: str, name: str, value: Any, arguments: Any) -> str | None:
+    def on_custom_validator(
+            self, function: str, name: str, value: Any, arguments: Any) -> str | None:
         """Check ``value`` with the custom validator ``function``: None if valid, else why not.
 
         Override it when the definition uses custom validators; until then they reject.

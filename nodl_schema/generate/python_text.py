@@ -14,7 +14,11 @@ import textwrap
 from typing import Any, Callable
 
 __all__ = ['literal', 'docstring', 'comment', 'VALIDATOR_EXPRESSIONS', 'validator_expression',
-           'python_value']
+           'python_value', 'LINE_LENGTH', 'mark_long_lines']
+
+#: The longest line generated code may have: ament_flake8's limit (the lint test ``nodl new`` and
+#: ``ros2 pkg create`` add to an ament_python package runs it on every file, generated ones too).
+LINE_LENGTH = 99
 
 
 def python_value(value: Any, base: str) -> Any:
@@ -43,11 +47,13 @@ def literal(value: Any) -> str:
 
 
 def docstring(text: str, indent: str = '') -> str:
-    """``text`` as a docstring (escaped: backslashes and quotes cannot end or change it)."""
-    width = max(40, 99 - len(indent))
+    """``text`` as a docstring (escaped: backslashes and quotes cannot end or change it), its
+    lines within :data:`LINE_LENGTH` with the quotes (a word longer than a line stays whole)."""
+    width = max(40, LINE_LENGTH - len(indent) - 7)  # the quotes, and an escaped closing quote
+    escaped = text.strip().replace('\\', '\\\\').replace('"""', '\\"\\"\\"')
     paragraphs = [textwrap.fill(p, width, break_long_words=False, break_on_hyphens=False)
-                  for p in text.strip().split('\n\n')]
-    body = '\n\n'.join(paragraphs).replace('\\', '\\\\').replace('"""', '\\"\\"\\"')
+                  for p in escaped.split('\n\n')]
+    body = '\n\n'.join(paragraphs)
     if body.endswith('"'):
         body = body[:-1] + '\\"'
     lines = body.splitlines() or ['']
@@ -57,6 +63,24 @@ def docstring(text: str, indent: str = '') -> str:
     for line in lines[1:]:
         out += f'{indent}{line.rstrip()}\n' if line.strip() else '\n'
     return out + f'{indent}"""\n'
+
+
+def mark_long_lines(text: str) -> str:
+    """``text`` (Python source) with ``  # noqa: E501`` after each line longer than
+    :data:`LINE_LENGTH` that is not inside a string: lines that hold data from a definition
+    (a long name, a long list of choices) and cannot be broken without changing what they say."""
+    import io
+    import tokenize
+
+    inside: set[int] = set()
+    for token in tokenize.generate_tokens(io.StringIO(text).readline):
+        if token.type == tokenize.STRING and token.end[0] > token.start[0]:
+            inside.update(range(token.start[0], token.end[0]))
+    lines = text.split('\n')
+    for number, line in enumerate(lines, 1):
+        if len(line) > LINE_LENGTH and number not in inside:
+            lines[number - 1] = line + '  # noqa: E501'
+    return '\n'.join(lines)
 
 
 def comment(text: str, indent: str = '') -> str:
