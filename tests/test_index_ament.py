@@ -105,12 +105,13 @@ def test_reading_needs_no_ros(tmp_path: Path) -> None:
 def test_a_snapshot_answers_as_the_index_does() -> None:
     outside = ([ament.get_resource('nodl_interfaces', n, BOTH) for n in
                 ('alpha__chatter', 'zeta__x', '')], ament.get_resources('packages', BOTH),
-               ament.package_share_directory('beta', BOTH))
+               ament.package_share_directory('beta', BOTH), ament.package_share_directory('zeta', BOTH))
     with ament.snapshot():
         for _ in range(2):  # listed, then remembered
             inside = ([ament.get_resource('nodl_interfaces', n, BOTH) for n in
                        ('alpha__chatter', 'zeta__x', '')], ament.get_resources('packages', BOTH),
-                      ament.package_share_directory('beta', BOTH))
+                      ament.package_share_directory('beta', BOTH),
+                      ament.package_share_directory('zeta', BOTH))
             assert inside == outside
 
 

@@ -55,6 +55,17 @@ def test_remap_rules_and_node_renames(talker) -> None:  # type: ignore[no-untype
         NodeInstance(talker, 'bad name!', '/')
 
 
+def test_an_instance_given_its_names_resolves_as_one_that_makes_them(talker) -> None:  # type: ignore[no-untyped-def]
+    from nodl_schema.naming import NodeNames, parse_remap_rules
+
+    rules = parse_remap_rules(['~/chatter:=/chat', '__ns:=/team', 'reset:=/r'])
+    made = NodeInstance(talker, 'talker', '/robot', rules)
+    names = NodeNames.create('talker', '/robot', rules)
+    given = NodeInstance(talker, 'talker', '/robot', rules, names=names)
+    assert given.names is names and given.fqn == made.fqn == '/team/talker'
+    assert [(b.entity, b.name) for b in given.entities] == [(b.entity, b.name) for b in made.entities]
+
+
 def test_parameter_values_are_defaults_overridden(talker) -> None:  # type: ignore[no-untyped-def]
     instance = NodeInstance(talker, 'talker', '/', parameter_overrides={'rate': 5.0, 'nope': 1})
     values = instance.parameter_values()

@@ -133,7 +133,7 @@ def build_node(entry: LaunchEntry, match: Match, findings: list[Finding]) -> Ana
         return node
     try:
         node.instance = NodeInstance(match.resolved, name, entry.namespace or '/', rules,
-                                     node.parameter_values(), where)
+                                     node.parameter_values(), where, names=names)
     except ValueError as exc:
         findings.append(make_finding('not-analysable', f'{fqn}: {exc}', where, (fqn,)))
     return node

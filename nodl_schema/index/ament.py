@@ -154,5 +154,11 @@ def get_resources(resource_type: str, prefixes: list[str] | None = None) -> dict
 
 def package_share_directory(package: str, prefixes: list[str] | None = None) -> str | None:
     """``<prefix>/share/<package>`` of a package in the index, or None."""
+    current = _SNAPSHOT.get()
+    if current is not None and os.sep not in package and package not in ('', '.', '..'):
+        # Only whether the marker exists matters (its content is not read).
+        prefix = next((p for p in (prefixes if prefixes is not None else prefix_paths())
+                       if package in current.files(os.path.join(p, _INDEX, 'packages'))), None)
+        return os.path.join(prefix, 'share', package) if prefix is not None else None
     resource = get_resource('packages', package, prefixes)
     return os.path.join(resource.prefix, 'share', package) if resource else None

@@ -52,13 +52,14 @@ class NodeInstance:
     or a whole ``--ros-args`` command line) may change both, as in rcl.
     Raises ``ValueError`` (:class:`~nodl_schema.naming.InvalidNameError` or
     :class:`~nodl_schema.naming.InvalidRemapRuleError`) for a name or rule
-    rcl would reject.
+    rcl would reject.  ``names``: the node's :class:`~nodl_schema.naming.NodeNames` if
+    the caller has already made them (``NodeNames.create(name, namespace, remap_rules)``).
     """
 
     def __init__(self, resolved: ResolvedNode, name: str, namespace: str = '/',
                  remap_rules: RemapArgs = None,
                  parameter_overrides: Mapping[str, Any] | None = None,
-                 location: Location | None = None) -> None:
+                 location: Location | None = None, *, names: NodeNames | None = None) -> None:
         #: The resolved node this is an instance of.
         self.resolved = resolved
         #: The rules, parsed (in order: the first matching one wins).
@@ -67,7 +68,8 @@ class NodeInstance:
         self.created_name = name
         self.created_namespace = normalize_namespace(namespace)
         #: The node's final name and namespace with its rules (resolves names as the node does).
-        self.names = NodeNames.create(name, namespace, self.remap_rules)
+        self.names = names if names is not None else NodeNames.create(name, namespace,
+                                                                      self.remap_rules)
         #: The node's final name, namespace and fully qualified name.
         self.name = self.names.name
         self.namespace = self.names.namespace
