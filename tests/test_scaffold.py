@@ -211,3 +211,15 @@ def test_component_packages_register_each_node_and_compile(tmp_path: Path) -> No
                               env=env, text=True, capture_output=True, timeout=600)
     assert compiled.returncode == 0, compiled.stdout + compiled.stderr
     assert 'warning' not in compiled.stderr, compiled.stderr
+
+
+def test_python_package_files_keep_ament_flake8s_line_length(tmp_path: Path) -> None:
+    """The lint test the package carries (ament_flake8: 99 columns) passes on every file
+    `nodl new` writes, generated bases included (checked with ruff's pycodestyle rules)."""
+    write_package(plan('ament_python'), str(tmp_path))
+    ruff = shutil.which('ruff', path=str(VENV / 'bin')) or shutil.which('ruff')
+    assert ruff, 'ruff is part of the test extra'
+    lint = subprocess.run([ruff, 'check', '--isolated', '--no-cache', '--select', 'E,W,F',
+                           '--line-length', '99', str(tmp_path / 'demo_nodes')],
+                          capture_output=True, text=True, timeout=120)
+    assert lint.returncode == 0, lint.stdout + lint.stderr

@@ -145,8 +145,7 @@ setup(
         ('share/' + package_name, ['package.xml']),
         ('share/' + package_name + '/config', glob('config/*.yaml')),
         ('share/' + package_name + '/launch', glob('launch/*.launch.xml')),
-        # The definitions: validated now, installed to share/{package}/nodl, registered in
-        # the ament index (nodl show / nodl check {package} EXECUTABLE find them).
+{_wrapped_comment(f'The definitions: validated now, installed to share/{package}/nodl, registered in the ament index (nodl show / nodl check {package} EXECUTABLE find them).', '        ')}
         *nodl_data_files(package_name,
                          nodes={{
 {registered},
@@ -173,15 +172,30 @@ def _setup_cfg(package: str) -> str:
             f'[install]\ninstall_scripts=$base/lib/{package}\n')
 
 
+def _wrapped(text: str, width: int = 95) -> str:
+    """``text`` as lines of at most ``width`` characters (ament_flake8 allows 99; a docstring's
+    first line has three quotes before it)."""
+    import textwrap
+
+    return textwrap.fill(text, width, break_long_words=False, break_on_hyphens=False)
+
+
+def _wrapped_comment(text: str, indent: str) -> str:
+    """``text`` as ``# `` comment lines at ``indent``, within ament_flake8's 99 columns."""
+    return '\n'.join(f'{indent}# {line}' for line in _wrapped(text, 99 - len(indent) - 2).splitlines())
+
+
 def _staleness_test(package: str, nodes: list[NodeSource]) -> str:
     entries = '\n'.join(f'    ({python_string(n.executable)}, '
                         f'{python_string(default_class_name(n.executable))}, '
                         f'{python_string(definition_path(n))}),' for n in nodes)
-    return f'''"""The generated bases of {package} are up to date with the definitions under nodl/.
+    doc = _wrapped(f'The generated bases of {package} are up to date with the definitions under nodl/.')
+    how = _wrapped(f'They are committed with the package; after changing a definition, regenerate them '
+                   f'with `nodl new {package} --from ... --build-type ament_python --update` or '
+                   f'`nodl generate nodl/FILE --language python -o {package}`.')
+    return f'''"""{doc}
 
-They are committed with the package; after changing a definition, regenerate
-them with `nodl new {package} --from ... --build-type ament_python --update` or
-`nodl generate nodl/FILE --language python -o {package}`.
+{how}
 """
 
 import os
@@ -203,7 +217,8 @@ def test_generated_base_is_up_to_date(executable, class_name, definition):
     assert nodl, 'the nodl command (NoDL toolkit) is not on PATH'
     result = subprocess.run(
         [nodl, 'generate', os.path.join(HERE, definition), '--language', 'python',
-         '--node-name', executable, '--class-name', class_name, '-o', os.path.join(HERE, {python_string(package)}), '--check'],
+         '--node-name', executable, '--class-name', class_name,
+         '-o', os.path.join(HERE, {python_string(package)}), '--check'],
         capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stderr
 '''
