@@ -9,6 +9,7 @@ import re
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -100,6 +101,22 @@ def test_log_file(tmp_path: Path) -> None:
     run('analyse', str(LAUNCH / 'checks.launch.xml'), '--log', str(log))
     text = log.read_text()
     assert '== System' in text and '== Findings' in text and '[NODL558]' in text  # info too
+
+
+@pytest.mark.parametrize('name', ['checks.launch.xml', 'renames.launch.xml'])
+def test_log_file_is_the_whole_report_and_deterministic(tmp_path: Path, name: str, golden: Any) -> None:
+    """The log holds every node (final name and how it came about, source, definition,
+    remapping rules with their places, parameters with their origin, final endpoint names)
+    then every finding with its place; two runs give the same bytes."""
+    from nodl_schema import __version__
+
+    logs = [tmp_path / 'one.log', tmp_path / 'two.log']
+    for log in logs:
+        run('analyse', str(LAUNCH / name), '--log', str(log))
+    text = logs[0].read_text(encoding='utf-8')
+    assert text == logs[1].read_text(encoding='utf-8')
+    portable = text.replace(f'{REPO}/', '').replace(f'nodl-toolkit {__version__}', 'nodl-toolkit VERSION')
+    golden.check(portable, FIXTURES / 'expected' / name.replace('.launch.xml', '.log'))
 
 
 def test_graph_dot_svg_html(tmp_path: Path) -> None:
