@@ -78,19 +78,26 @@ def test_readme_links_the_catalogue() -> None:
 def _output_or_exit(tree: object) -> list[tuple[int, str]]:
     """Every place in a module's code (not its docstrings) that prints, writes a standard
     stream or exits: print(...), sys.exit(...), sys.stdout/stderr/__stdout__... .write(...),
-    and any use of SystemExit."""
+    raising or making a SystemExit, and a class derived from it.  Catching one (the user's
+    code run by the launch reader may call sys.exit()) is not exiting."""
     import ast
+
+    def is_exit(node: object) -> bool:
+        target = node.func if isinstance(node, ast.Call) else node
+        return isinstance(target, ast.Name) and target.id == 'SystemExit'
 
     found = []
     for node in ast.walk(tree):  # type: ignore[arg-type]
         if isinstance(node, ast.Call):
             text = ast.unparse(node.func)
-            if text in ('print', 'sys.exit', 'exit', 'quit', 'os._exit') or re.fullmatch(
+            if text in ('print', 'sys.exit', 'exit', 'quit', 'os._exit', 'SystemExit') or re.fullmatch(
                     r'sys\.(__)?std(out|err)(__)?\.(write|writelines)', text):
                 found.append((node.lineno, text))
-        elif isinstance(node, ast.Name) and node.id == 'SystemExit':
-            found.append((node.lineno, 'SystemExit'))
-    return found
+        elif isinstance(node, ast.Raise) and node.exc is not None and is_exit(node.exc):
+            found.append((node.lineno, 'raise SystemExit'))
+        elif isinstance(node, ast.ClassDef) and any(is_exit(base) for base in node.bases):
+            found.append((node.lineno, 'a SystemExit class'))
+    return sorted(set(found))
 
 
 def test_library_never_prints_or_exits() -> None:
@@ -118,5 +125,7 @@ def test_the_output_check_finds_what_it_looks_for() -> None:
     import ast
 
     code = ('print(1)\nsys.exit(2)\nsys.stderr.write("x")\nsys.__stdout__.write("y")\n'
-            'raise SystemExit(3)\n"""print(4) in a docstring"""\n# print(5)\nfile.write("z")\n')
-    assert sorted(n for n, _ in _output_or_exit(ast.parse(code))) == [1, 2, 3, 4, 5]
+            'raise SystemExit(3)\n"""print(4) in a docstring"""\n# print(5)\nfile.write("z")\n'
+            'class Stop(SystemExit): pass\nraise SystemExit\n'
+            'try:\n    run()\nexcept SystemExit:\n    pass\nisinstance(e, SystemExit)\n')
+    assert sorted({n for n, _ in _output_or_exit(ast.parse(code))}) == [1, 2, 3, 4, 5, 9, 10]
