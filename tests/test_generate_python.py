@@ -264,10 +264,14 @@ def test_every_kind_of_callback(ros_node: Any, module_dir: Path, client: Client)
                                ('strings', ['a', 'z'], 'may only hold'),
                                ('doubles', [0.5, 3.0], 'every element must be between 0.0 and 2.0'),
                                ('limit.gt', 10, 'must be greater than 10'),
-                               ('gain', 0.0, 'must be greater than 0.0')):
+                               ('gain', 0.0, 'must be greater than 0.0'),
+                               # fixed sizes are maximum lengths, as for a parameter file
+                               ('fixed_ints', [1, 2, 3, 4], 'must hold at most 3 elements'),
+                               ('name', 'nine char', 'must hold at most 8 characters')):
         answer = client.set_parameter(node.fqn, name, value)
         assert not answer.successful, name
         assert words in answer.reason, answer.reason
+    assert client.set_parameter(node.fqn, 'fixed_ints', [1, 2, 3]).successful
     assert client.set_parameter(node.fqn, 'bytes', [b'\x07']).successful
 
 
@@ -312,7 +316,9 @@ def test_parameters_descriptors_batches_and_a_later_rejecting_callback(talker_cl
         rate, greeting = described.descriptors
         assert rate.description == 'Greetings per second.'
         assert [(r.from_value, r.to_value) for r in rate.floating_point_range] == [(0.5, 10.0)]
+        assert rate.additional_constraints == 'must be between 0.5 and 10.0'
         assert greeting.description == 'The text of each greeting.'
+        assert greeting.additional_constraints == 'must not be empty'
         # a local call gets the validator's words too (rclpy alone would give its range message)
         [local] = node.set_parameters([Parameter('rate', value=20.0)])
         assert not local.successful and 'must be between 0.5 and 10.0' in local.reason, local.reason

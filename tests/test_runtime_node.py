@@ -195,9 +195,12 @@ def test_runtime_every_kind_of_callback(ros_node: Any, client: Client) -> None:
     assert not odd.successful and 'must be even' in odd.reason
     for name, value, words in (('ints', [1, 1], 'must not hold any value twice'),
                                ('limit.gt', 10, 'must be greater than 10'),
-                               ('gain', 0.0, 'must be greater than 0.0')):
+                               ('gain', 0.0, 'must be greater than 0.0'),
+                               ('fixed_ints', [1, 2, 3, 4], 'must hold at most 3 elements'),
+                               ('name', 'nine char', 'must hold at most 8 characters')):
         answer = client.set_parameter(node.fqn, name, value)
         assert not answer.successful and words in answer.reason, answer.reason
+    assert client.set_parameter(node.fqn, 'fixed_ints', [1, 2, 3]).successful
 
 
 # -- a name two kinds share; local set_parameters ---------------------------------------------

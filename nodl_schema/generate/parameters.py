@@ -155,6 +155,24 @@ class ParameterPlan:
         """True for type ``none`` (a parameter of any type)."""
         return bool(self.type.base == 'none')
 
+    @property
+    def size_requirement(self) -> str | None:
+        """For a fixed-size type (``string_fixed_8``, ``int_array_fixed_3``): the maximum length as
+        a requirement (``must hold at most 8 characters``); None for other types."""
+        if self.type.size is None:
+            return None
+        return f'must hold at most {self.type.size} {"characters" if self.type.base == "string" else "elements"}'
+
+    @property
+    def constraints_text(self) -> str:
+        """The descriptor's ``additional_constraints``: the definition's own text, then every
+        validator's requirement, then a fixed size (what ``ros2 param describe`` shows)."""
+        parts = [self.additional_constraints] if self.additional_constraints else []
+        parts += [v.requirement for v in self.validators]
+        if self.size_requirement is not None:
+            parts.append(self.size_requirement)
+        return '; '.join(parts)
+
 
 @dataclass
 class StructPlan:

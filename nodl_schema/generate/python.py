@@ -265,6 +265,8 @@ class _Module:
             checks = [_wrap('        (', [f'lambda v: {validator_expression(v.name, v.argument)},',
                                          f'{literal(v.requirement)},'], '),')
                       for v in p.builtin_validators]
+            if p.type.size is not None:
+                checks.insert(0, f'        (lambda v: len(v) <= {p.type.size}, {literal(p.size_requirement)}),')
             if checks:
                 out += f'    {literal(p.name)}: (\n' + ''.join(f'{c}\n' for c in checks) + '    ),\n'
         out += '}\n\n#: Custom validators per parameter: (function name, arguments as written).\n'
@@ -321,8 +323,11 @@ class _Module:
             out += f'        descriptor = ParameterDescriptor(\n            type=ParameterType.{p.ros_type},\n'
             if p.description:
                 out += f'            description={literal(p.description)},\n'
-            if p.additional_constraints:
-                out += f'            additional_constraints={literal(p.additional_constraints)},\n'
+            if p.constraints_text:
+                line = f'            additional_constraints={literal(p.constraints_text)},\n'
+                out += line if len(line) <= LINE_LENGTH + 1 else (
+                    f'            additional_constraints=(\n                {literal(p.constraints_text)}\n'
+                    '            ),\n')
             if p.read_only:
                 out += '            read_only=True,\n'
             if p.dynamic_typing:

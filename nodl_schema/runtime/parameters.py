@@ -60,7 +60,7 @@ def descriptor_of(parameter: ParameterPlan) -> Any:
 
     descriptor = ParameterDescriptor(
         type=getattr(ParameterType, parameter.ros_type), description=parameter.description,
-        additional_constraints=parameter.additional_constraints, read_only=parameter.read_only,
+        additional_constraints=parameter.constraints_text, read_only=parameter.read_only,
         dynamic_typing=parameter.dynamic_typing)
     if parameter.dynamic_typing:
         descriptor.type = ParameterType.PARAMETER_NOT_SET
@@ -95,6 +95,8 @@ def problems_of(plan: ParametersPlan, values: Mapping[str, Any], changed: Mappin
             continue
         value = values[name]
         checked = list(value) if isinstance(value, (bytes, bytearray)) else value
+        if parameter.size_requirement is not None and len(checked) > parameter.type.size:
+            problems.append(f'parameter {name!r} = {value!r}: {parameter.size_requirement}')
         for validator in parameter.validators:
             if validator.builtin:
                 why = validator.check(checked)

@@ -218,14 +218,9 @@ def _descriptor_lines(plan: ParameterPlan, indent: str) -> list[str]:
     lines = [f'{indent}rcl_interfaces::msg::ParameterDescriptor descriptor;']
     if plan.description:
         lines.append(f'{indent}descriptor.description = {string_literal(plan.description)};')
-    constraints = [plan.additional_constraints] if plan.additional_constraints else []
-    constraints += [v.requirement for v in plan.validators]
-    if plan.type.size is not None:
-        constraints.append(f'must hold at most {plan.type.size} '
-                           f'{"characters" if plan.type.base == "string" else "elements"}')
-    if constraints:
+    if plan.constraints_text:
         lines.append(f'{indent}descriptor.additional_constraints = '
-                     f'{string_literal("; ".join(constraints))};')
+                     f'{string_literal(plan.constraints_text)};')
     if plan.read_only:
         lines.append(f'{indent}descriptor.read_only = true;')
     if plan.dynamic_typing:
@@ -310,10 +305,9 @@ def validate_lines(plan: ParametersPlan, params: str, indent: str) -> list[str]:
     lines: list[str] = []
     for p in plan.parameters:
         value = access(p, params)
-        if p.type.size is not None:
-            what = 'characters' if p.type.base == 'string' else 'elements'
+        if p.type.size is not None and p.size_requirement is not None:
             lines += [f'{indent}if ({value}.size() > {_size(p.type.size)}) {{',
-                      f'{indent}  return {_reason(p, f"must hold at most {p.type.size} {what}")};',
+                      f'{indent}  return {_reason(p, p.size_requirement)};',
                       f'{indent}}}']
         for validator in p.builtin_validators:
             lines += [f'{indent}if (!{predicate(validator, value, p)}) {{',
