@@ -63,6 +63,10 @@ class EntityKind(str, enum.Enum):
         return _OFFERS[self]
 
 
+#: The parameter kind (a module constant: reaching an enum member through its class is slow,
+#: and the question is asked of every entity of every node).
+_PARAMETER = EntityKind.PARAMETER
+
 # Derived from the one table of sections, once (asked for every entity of every node).
 #: kind -> section.
 _SECTION_OF = {EntityKind.PARAMETER: 'parameters',
@@ -186,7 +190,7 @@ class Entity:
     @property
     def is_parameter(self) -> bool:
         """True for a parameter."""
-        return self.kind is EntityKind.PARAMETER
+        return self.kind is _PARAMETER
 
     @property
     def default_value(self) -> Any:

@@ -87,11 +87,16 @@ class NodeInstance:
             entities.append(InstanceEntity(self, entity, final))
         #: Every entity with its final name, in the resolved node's order.
         self.entities: tuple[InstanceEntity, ...] = tuple(entities)
+        self._endpoints: tuple[tuple[InstanceEntity, ...], tuple[InstanceEntity, ...]] | None = None
 
     @property
     def endpoints(self) -> list[InstanceEntity]:
         """The endpoints (no parameters) with their final names."""
-        return [e for e in self.entities if not e.entity.is_parameter]
+        cached = self._endpoints
+        if cached is None or cached[0] is not self.entities:  # (computed once per entities)
+            cached = self._endpoints = (
+                self.entities, tuple(e for e in self.entities if not e.entity.is_parameter))
+        return list(cached[1])
 
     def of_kind(self, kind: EntityKind | str) -> list[InstanceEntity]:
         """The entities of one kind."""
