@@ -35,7 +35,7 @@ def test_thresholds_are_restored_when_the_batch_raises() -> None:
     assert gc.get_threshold() == (700, 10, 10)
 
 
-@pytest.mark.parametrize('threshold', [(0, 10, 10), (50_000, 5, 5)])
+@pytest.mark.parametrize('threshold', [(0, 10, 10), (BATCH_THRESHOLD * 2, 5, 5)])
 def test_a_disabled_collector_or_higher_thresholds_are_left_alone(threshold: tuple[int, int, int]) -> None:
     gc.set_threshold(*threshold)
     with batch_collection():
