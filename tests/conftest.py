@@ -12,6 +12,22 @@ os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
 # A domain per test run (0-101 are valid with localhost discovery).
 os.environ.setdefault('ROS_DOMAIN_ID', str(10 + os.getpid() % 90))
 
+
+def _worker_domain(base: str, worker: str | None) -> str:
+    """The domain of one pytest-xdist worker: the run's domain plus the worker's index.
+
+    Workers run live tests at the same time; each must see only its own nodes (tests
+    assert on what the graph holds), so each gets a domain of its own.  The controller
+    sets the base above before it starts the workers, which inherit it.
+    """
+    if not worker or not worker.startswith('gw'):
+        return base
+    return str((int(base) + int(worker[2:])) % 102)  # 0-101: valid with localhost discovery
+
+
+os.environ['ROS_DOMAIN_ID'] = _worker_domain(os.environ['ROS_DOMAIN_ID'],
+                                             os.environ.get('PYTEST_XDIST_WORKER'))
+
 from pathlib import Path  # noqa: E402
 
 import pytest  # noqa: E402

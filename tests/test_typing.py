@@ -14,11 +14,21 @@ from conftest import FIXTURES, REPO
 CONSUMER = FIXTURES / 'typing' / 'consumer.py'
 
 
-def _mypy(tmp_path: Path, *args: str) -> subprocess.CompletedProcess[str]:
+@pytest.fixture(scope='module')
+def mypy_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """One mypy cache for this module's runs: the library is analysed once, not per test.
+
+    It starts empty in every test run (never the tree's .mypy_cache), so nothing stale
+    from an earlier run can hide an error.
+    """
+    return tmp_path_factory.mktemp('mypy') / 'cache'
+
+
+def _mypy(cache: Path, *args: str) -> subprocess.CompletedProcess[str]:
     # The configuration is pyproject.toml's [tool.mypy] (strict = true).
     return subprocess.run(
         [sys.executable, '-m', 'mypy', '--config-file', str(REPO / 'pyproject.toml'),
-         '--cache-dir', str(tmp_path / 'mypy-cache'), *args],
+         '--cache-dir', str(cache), *args],
         cwd=REPO, text=True, capture_output=True, timeout=600)
 
 
@@ -32,19 +42,19 @@ def test_the_configuration_is_strict() -> None:
                for r in config['project']['optional-dependencies']['test'])
 
 
-def test_mypy_strict_accepts_the_library_and_a_consumer_script(tmp_path: Path) -> None:
+def test_mypy_strict_accepts_the_library_and_a_consumer_script(mypy_cache: Path) -> None:
     # One run for both: the consumer is checked against the library as installed in the tree.
-    result = _mypy(tmp_path, '--strict', 'nodl_schema', str(CONSUMER))
+    result = _mypy(mypy_cache, '--strict', 'nodl_schema', str(CONSUMER))
     assert result.returncode == 0, result.stdout + result.stderr
 
 
-def test_mypy_strict_catches_a_misuse_of_the_public_api(tmp_path: Path) -> None:
+def test_mypy_strict_catches_a_misuse_of_the_public_api(tmp_path: Path, mypy_cache: Path) -> None:
     """The consumer check can fail: a wrong use of a public name is an error."""
     script = tmp_path / 'misuse.py'
     script.write_text('from nodl_schema import load_node\n\n'
                       'def name(path: str) -> int:\n'
                       '    return load_node(path).main\n')
-    result = _mypy(tmp_path, '--strict', str(script))
+    result = _mypy(mypy_cache, '--strict', str(script))
     assert result.returncode == 1
     assert 'misuse.py:4: error: Incompatible return value type' in result.stdout
 
