@@ -169,8 +169,6 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL611': ('error', 'policy: two nodes share one fully qualified name (DDS security cannot tell them apart)'),
     'NODL612': ('error', 'policy: the system has no nodes to write a policy for'),
     'NODL613': ('warning', 'policy: a node name in the enclave mapping is no node of the system (a misspelt name?)'),
-    # -- NODL8xx: dialects and conversion ----------------------------------
-    'NODL801': ('error', 'legacy XML: an element, attribute or text the legacy format does not have'),
     # -- NODL70x: parameter files checked against definitions (nodl params check) --
     'NODL701': ('error', "parameter file: a parameter the node's definition does not declare (a warning "
                 'under a wildcard key, which also serves other nodes)'),
@@ -180,6 +178,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL704': ('error', 'parameter file: a required parameter (no default) is set by none of the files'),
     'NODL705': ('warning', 'parameter file: no node key of the files applies to the node'),
     'NODL706': ('error', 'parameter file check: the launch file cannot be read, or starts no node with a definition'),
+    # -- NODL8xx: dialects and conversion ----------------------------------
+    'NODL801': ('error', 'legacy XML: an element, attribute or text the legacy format does not have'),
     'NODL802': ('error', 'legacy XML: a required attribute is missing or empty'),
     'NODL803': ('error', 'legacy XML: an attribute has an invalid value'),
     'NODL804': ('error', 'legacy XML: unsupported legacy NoDL version'),
