@@ -59,8 +59,13 @@ $(STAMP): $(DEPS) $(SOURCES)
 demo: $(STAMP)
 	$(BIN)/python examples/demo.py
 
+# The suite waits (ROS discovery, builds, compiles) more than it computes, so it runs on
+# twice as many workers as a 2-core machine has cores. Each worker gets whole modules
+# (their module-scoped builds and nodes are made once), the costliest first
+# (tests/durations.json; see tests/conftest.py), and a ROS domain of its own.
+TEST_WORKERS ?= 4
 test: $(STAMP)
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder
 
 bench: $(STAMP)
 	$(BIN)/python bench/run.py

@@ -25,8 +25,11 @@ def _worker_domain(base: str, worker: str | None) -> str:
     return str((int(base) + int(worker[2:])) % 102)  # 0-101: valid with localhost discovery
 
 
-os.environ['ROS_DOMAIN_ID'] = _worker_domain(os.environ['ROS_DOMAIN_ID'],
-                                             os.environ.get('PYTEST_XDIST_WORKER'))
+# The base is remembered, so that the worker's domain is computed once from it, however
+# often this runs (and whatever a child process inherits).
+os.environ['ROS_DOMAIN_ID'] = _worker_domain(
+    os.environ.setdefault('NODL_TEST_ROS_DOMAIN_BASE', os.environ['ROS_DOMAIN_ID']),
+    os.environ.get('PYTEST_XDIST_WORKER'))
 
 from pathlib import Path  # noqa: E402
 
@@ -39,6 +42,74 @@ REPO = Path(__file__).resolve().parent.parent
 def pytest_addoption(parser: pytest.Parser) -> None:
     parser.addoption('--update-golden', action='store_true', default=False,
                      help='rewrite the expected-output files instead of comparing with them')
+    parser.addoption('--record-durations', action='store_true', default=False,
+                     help=f'write the seconds each test module took to {DURATIONS.name} '
+                          '(the order in which parallel workers are given the modules)')
+
+
+# --- Parallel runs (pytest-xdist, as `make test` runs the suite) -------------------------
+
+#: Seconds each test module took when last recorded (``pytest --record-durations``).
+DURATIONS = Path(__file__).parent / 'durations.json'
+
+
+def module_costs() -> dict[str, float]:
+    """The recorded seconds per test module file name ({} if none were recorded)."""
+    import json
+
+    try:
+        costs = json.loads(DURATIONS.read_text(encoding='utf-8'))
+    except (OSError, ValueError):
+        return {}
+    return {str(k): float(v) for k, v in costs.items()} if isinstance(costs, dict) else {}
+
+
+def costliest_first(modules: list[str], costs: dict[str, float]) -> list[str]:
+    """The modules, the most expensive first; one with no recorded cost (a new module)
+    counts as the most expensive, and equal costs keep the given order."""
+    return sorted(modules, key=lambda m: -costs.get(m, float('inf')))
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """On an xdist worker, order the modules by their recorded cost, the costliest first.
+
+    With ``--dist loadfile --no-loadscope-reorder`` (the Makefile), workers are handed
+    whole modules in this order, so the long builds and live-node modules start at once
+    and the many quick modules fill the gaps; otherwise the run ends waiting for a
+    colcon build that started last.  A run without xdist keeps the plain file order.
+    Only the order changes (each module's tests stay together and in their order).
+    """
+    if not hasattr(config, 'workerinput'):
+        return
+    by_module: dict[str, list[pytest.Item]] = {}
+    for item in items:
+        by_module.setdefault(item.path.name, []).append(item)
+    items[:] = [item for module in costliest_first(list(by_module), module_costs())
+                for item in by_module[module]]
+
+
+class _DurationRecorder:
+    """Adds up setup, call and teardown seconds per module (on the controller)."""
+
+    def __init__(self) -> None:
+        self.seconds: dict[str, float] = {}
+
+    def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
+        module = Path(report.nodeid.split('::', 1)[0]).name
+        self.seconds[module] = self.seconds.get(module, 0.0) + report.duration
+
+    def pytest_sessionfinish(self) -> None:
+        import json
+
+        costs = module_costs()
+        costs.update({m: round(s, 1) for m, s in self.seconds.items()})
+        DURATIONS.write_text(json.dumps(dict(sorted(costs.items())), indent=1) + '\n',
+                             encoding='utf-8')
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    if config.getoption('--record-durations') and not hasattr(config, 'workerinput'):
+        config.pluginmanager.register(_DurationRecorder(), 'nodl-durations')
 
 
 class Golden:
@@ -68,6 +139,19 @@ def golden(request: pytest.FixtureRequest) -> Golden:
 NODES = Path(__file__).parent / 'nodes'
 
 
+#: Runs before a node's script, in the node's process (it ends by exec-ing the script, so
+#: the process is the node's): asks Linux to end it (SIGTERM) when the test process that
+#: started it dies, so that a run stopped half-way (a timeout, Ctrl-C, a crashed xdist
+#: worker) leaves no node behind in the domain for the next run to see.  A separate
+#: step, not Popen's preexec_fn, which is unsafe in a process with threads (rclpy's).
+_ENDS_WITH_ITS_PARENT = (
+    'import ctypes, os, signal, sys\n'
+    'ctypes.CDLL(None).prctl(1, int(signal.SIGTERM), 0, 0, 0)  # PR_SET_PDEATHSIG\n'
+    'if os.getppid() != int(sys.argv[1]):  # the parent died before that\n'
+    '    os._exit(1)\n'
+    'os.execv(sys.argv[2], sys.argv[2:])\n')
+
+
 class NodeProcess:
     """A real ROS node in a process of its own (see tests/nodes/)."""
 
@@ -79,7 +163,8 @@ class NodeProcess:
         self.name = name
         self.namespace = namespace
         self.process = subprocess.Popen(
-            [sys.executable, str(NODES / script), '--name', name, '--namespace', namespace, *args],
+            [sys.executable, '-S', '-c', _ENDS_WITH_ITS_PARENT, str(os.getpid()),
+             sys.executable, str(NODES / script), '--name', name, '--namespace', namespace, *args],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=NODES)
         self._wait_ready(timeout)
 
