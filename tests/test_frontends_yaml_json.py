@@ -672,6 +672,69 @@ def test_position_of_an_unparseable_document_is_unknown() -> None:
     assert doc.position(('a',)) == (0, 0)
 
 
+def test_positions_come_from_the_source_map_the_parse_kept(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Existing paths with string keys are placed without parsing the text again."""
+    doc = parse_file('positions.yaml')
+
+    def no_second_parse(*args: Any, **kwargs: Any) -> None:
+        raise AssertionError('the text was parsed again to place a path')
+
+    monkeypatch.setattr(yaml, 'compose', no_second_parse)
+    assert doc.position(('parameters', 'speed', 'type'), 'key') == (4, 5)
+    assert doc.position(('parameters', 'quoted key', 'type'), 'value') == (6, 24)
+    assert doc.position(('publishers', 1, 'name'), 'value') == (10, 11)
+    assert doc.position(('publishers', 1), 'key') == (10, 5)
+    assert doc.position(('defaults', 'description'), 'value') == (17, 16)
+    assert doc.position((), 'value') == (1, 1)
+    # an alias is placed where its anchor is written, as the node tree places it
+    aliased = parse('a: &x\n  k: v\nb: *x\n')
+    assert aliased.position(('b', 'k'), 'value') == (2, 6)
+    assert aliased.position(('b',), 'key') == (3, 1)
+
+
+def _composed_position(root: Any, path: tuple[Any, ...], anchor: str) -> tuple[int, int]:
+    """The reference: the position PyYAML's node tree ``root`` gives an existing path."""
+    node, key_node = root, None
+    for part in path:
+        if isinstance(node, yaml.MappingNode):
+            key_node, node = [(k, v) for k, v in node.value if k.value == part][-1]
+        else:
+            key_node, node = None, node.value[part]
+    mark = key_node.start_mark if anchor == 'key' and key_node is not None else node.start_mark
+    return (mark.line + 1, mark.column + 1)
+
+
+def _paths(data: Any, prefix: tuple[Any, ...] = ()) -> Any:
+    yield prefix
+    items = data.items() if isinstance(data, dict) else enumerate(data) if isinstance(data, list) else ()
+    for key, value in items:
+        yield from _paths(value, prefix + (key,))
+
+
+def test_the_source_map_places_every_path_as_the_node_tree_does() -> None:
+    from nodl_schema.frontends import yaml_events
+
+    files = sorted((REPO / 'tests' / 'fixtures').rglob('*.yaml'))
+    placed = 0
+    for file in files:
+        text = file.read_text(encoding='utf-8', errors='replace')
+        spans: dict[Any, Any] = {}
+        try:
+            data, problems = yaml_events.build(yaml_events.event_source(text), spans)
+        except (yaml.YAMLError, yaml_events.Stop, UnicodeEncodeError):
+            continue
+        if problems:
+            continue
+        root = yaml.compose(text, Loader=getattr(yaml, 'CSafeLoader', yaml.SafeLoader))
+        for path in _paths(data):
+            for anchor in ('key', 'value'):
+                found = yaml_events.span_position(spans, path, anchor)
+                if found is not None:
+                    placed += 1
+                    assert found == _composed_position(root, path, anchor), (file, path, anchor)
+    assert placed > 1000  # the fixtures hold plenty of paths the map places
+
+
 def test_place_fills_in_file_line_and_column(positions: ParsedDocument) -> None:
     loose = Diagnostic(Severity.WARNING, 'w', ('parameters', 'speed', 'type'), anchor='key')
     placed = positions.place(loose)

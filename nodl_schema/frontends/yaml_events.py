@@ -18,8 +18,10 @@ also enforces what a YAML loader does not:
 
 Scalars resolve as PyYAML's ``SafeLoader`` resolves them (YAML 1.1, using
 PyYAML's own table of implicit resolvers), except timestamps, which stay
-text.  Positions are not kept: the caller composes the node tree again,
-only if a diagnostic needs a line and column.
+text.  Given a ``spans`` dict, the pass also keeps its source map: for each
+mapping and sequence, the events its keys and values start at (the events
+libyaml made anyway), so a document path is placed without parsing the
+text again (see :func:`span_position`).
 """
 
 from __future__ import annotations
@@ -41,7 +43,8 @@ try:
 except ImportError:  # PyYAML built without libyaml
     _CParser = None  # type: ignore[misc, assignment]
 
-__all__ = ['MAX_DEPTH', 'MAX_ALIAS_NODES', 'Stop', 'Problem', 'build', 'event_source', 'quote']
+__all__ = ['MAX_DEPTH', 'MAX_ALIAS_NODES', 'Stop', 'Problem', 'build', 'event_source', 'quote',
+           'span_position']
 
 MAX_DEPTH = 100
 MAX_ALIAS_NODES = 10_000
@@ -200,12 +203,15 @@ def _merged(out: dict[Any, Any], merges: list[tuple[Any, Any]], problems: list[P
     out.update(merged)
 
 
-def build(get_event: Callable[[], Any]) -> tuple[Any, list[Problem]]:
+def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
+          ) -> tuple[Any, list[Problem]]:
     """Read one document's events and return its data and its problems.
 
     ``get_event`` comes from :func:`event_source`.  Raises :class:`Stop` for
     a problem that makes the document unusable, and PyYAML's ``YAMLError``
-    for a syntax error.
+    for a syntax error.  With ``spans``, the document's source map is kept
+    there (read it with :func:`span_position`; only for a document without
+    problems).
     """
     problems: list[Problem] = []
     get_event()  # StreamStartEvent
@@ -219,6 +225,7 @@ def build(get_event: Callable[[], Any]) -> tuple[Any, list[Problem]]:
     key: Any = _NO_KEY
     key_event: Any = None
     key_events: list[Any] | None = None
+    events: list[Any] = []  # where the values of the collection being built start
     merges: list[tuple[Any, Any]] | None = None
     start: Any = None
     anchored: Any = None
@@ -267,10 +274,11 @@ def build(get_event: Callable[[], Any]) -> tuple[Any, list[Problem]]:
                 new = []
                 if tag is not None and tag != '!' and tag != _SEQ:
                     problems.append((CONSTRUCT, _unsupported(tag), event, ()))
-            stack.append((cur, is_map, key, key_event, key_events, merges, start, anchored))
+            stack.append((cur, is_map, key, key_event, key_events, merges, start, anchored, events))
             cur, is_map, key, key_event, merges, start, anchored = (
                 new, cls is MappingStartEvent, _NO_KEY, None, None, event, None)
             key_events = [] if is_map else None
+            events = []
             depth = len(stack)
             if event.anchor is not None:
                 if event.anchor in anchors:
@@ -294,7 +302,9 @@ def build(get_event: Callable[[], Any]) -> tuple[Any, list[Problem]]:
                 entry[2] = count - anchored[0]
                 entry[3] = deepest - len(stack) + 1
                 deepest = max(deepest, anchored[1])
-            cur, is_map, key, key_event, key_events, merges, start, anchored = stack.pop()
+            if spans is not None and merges is None:  # (merged mappings are placed by composing)
+                spans[id(start)] = (tuple(value) if is_map else None, key_events, events)
+            cur, is_map, key, key_event, key_events, merges, start, anchored, events = stack.pop()
         elif cls is AliasEvent:
             entry = anchors.get(event.anchor)  # type: ignore[assignment]
             if entry is None:
@@ -343,16 +353,49 @@ def build(get_event: Callable[[], Any]) -> tuple[Any, list[Problem]]:
                         problems.append(_duplicate(cur, key, key_event, key_events, stack))
                     else:
                         key_events.append(key_event)  # type: ignore[union-attr]
+                        events.append(event)
             key = _NO_KEY
         elif cur is not None:
             cur.append(value)
+            events.append(event)
         else:
             root = value
+            if spans is not None:
+                spans['root'] = event
     event = get_event()
     if event.__class__ is not StreamEndEvent:
         raise Stop(MULTIPLE_DOCUMENTS, 'the file holds more than one YAML document; put each '
                                        'definition in a file of its own', event.start_mark)
     return root, problems
+
+
+def span_position(spans: dict[Any, Any], path: DocPath, anchor: str = 'value'
+                  ) -> tuple[int, int] | None:
+    """1-based ``(line, column)`` of the key (``anchor='key'``) or value at ``path``, from the
+    source map :func:`build` kept in ``spans``; None when the map cannot say (a path that does
+    not exist, a key that is not a string, a merged mapping): compose the node tree then."""
+    event = spans.get('root')
+    if event is None:
+        return None
+    key_event = None
+    for part in path:
+        span = spans.get(id(event))
+        if span is None:
+            return None
+        keys, key_events, events = span
+        if keys is not None:
+            # a string key is written as its own text, so it is the key the node tree would find
+            if part.__class__ is not str or part not in keys:
+                return None
+            index = keys.index(part)
+            key_event = key_events[index]
+        else:
+            if part.__class__ is not int or not 0 <= part < len(events):
+                return None
+            key_event, index = None, part
+        event = events[index]
+    mark = key_event.start_mark if anchor == 'key' and key_event is not None else event.start_mark
+    return (mark.line + 1, mark.column + 1)
 
 
 def _anchor_twice(first: Any, event: Any) -> None:

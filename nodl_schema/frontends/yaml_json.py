@@ -10,8 +10,10 @@ YAML is parsed by libyaml, and :mod:`~nodl_schema.frontends.yaml_events`
 builds the Python values straight from its event stream, rejecting
 duplicate keys (which YAML loaders silently collapse), bounding nesting and
 alias expansion, and refusing tags NoDL has no use for.  No node tree is
-kept: a diagnostic's document path is turned into ``line:column`` by
-composing the tree only when there is a diagnostic to place.
+kept: the same pass keeps a source map (where each key and value starts),
+and a document path is turned into ``line:column`` from it; only what the
+map cannot place (JSON, a path that does not exist, merge keys) composes the
+tree, once per document.
 
 Hostile input is rejected with one clear diagnostic: nesting deeper than
 :data:`MAX_DEPTH`, alias expansion beyond :data:`MAX_ALIAS_NODES`, tabs used
@@ -62,6 +64,8 @@ class ParsedDocument:
         self.is_json = is_json
         self._root: Node | None = None
         self._composed = False
+        #: The source map of :func:`yaml_events.build` (None: place by composing the tree).
+        self._spans: dict[Any, Any] | None = None
 
     @property
     def ok(self) -> bool:
@@ -83,6 +87,10 @@ class ParsedDocument:
         When the path does not exist (a missing key), the deepest existing
         ancestor is used.  ``(0, 0)`` if the text cannot be placed at all.
         """
+        if self._spans is not None:
+            found = yaml_events.span_position(self._spans, path, anchor)
+            if found is not None:
+                return found
         root = self._node_tree()
         if root is None:
             return (0, 0)
@@ -213,8 +221,9 @@ def parse_document(source: SourceText) -> ParsedDocument:
 
 def _parse_yaml(doc: ParsedDocument) -> None:
     text, file = doc.source
+    spans: dict[Any, Any] = {}
     try:
-        doc.data, problems = yaml_events.build(yaml_events.event_source(text))
+        doc.data, problems = yaml_events.build(yaml_events.event_source(text), spans)
     except yaml_events.Stop as stop:
         doc.diagnostics.append(_error(file, stop.message, stop.code, stop.mark))
     except yaml.YAMLError as exc:
@@ -223,6 +232,8 @@ def _parse_yaml(doc: ParsedDocument) -> None:
         doc.diagnostics.append(_error(file, 'document contains a character that is not valid '
                                             'Unicode text; NoDL files are UTF-8 text', 'NODL002'))
     else:
+        if not problems:  # (a duplicate key or a bad key leaves the map behind the data)
+            doc._spans = spans
         for code, message, event, path in problems:
             doc.diagnostics.append(_error(file, message, code, event.start_mark, path))
 
