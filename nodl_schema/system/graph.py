@@ -85,12 +85,17 @@ class System:
         #: The instances, in the order given.
         self.instances: tuple[NodeInstance, ...] = tuple(instances)
         sides: dict[tuple[str, str], tuple[list[InstanceEntity], list[InstanceEntity]]] = {}
+        # kind -> (communication, offers), asked once per kind rather than per endpoint.
+        kinds = {kind: (kind.communication, kind.offers) for kind in EntityKind}
         for instance in self.instances:
             for bound in instance.endpoints:
-                communication = bound.entity.kind.communication
+                communication, offers = kinds[bound.entity.kind]
                 assert communication is not None
-                offering, using = sides.setdefault((communication, bound.name), ([], []))
-                (offering if bound.entity.kind.offers else using).append(bound)
+                key = (communication, bound.name)
+                found = sides.get(key)
+                if found is None:
+                    found = sides[key] = ([], [])
+                found[0 if offers else 1].append(bound)
         #: (communication, final name) -> its connection, sorted by communication then name.
         self._connections = {key: Connection(key[0], key[1], tuple(offering), tuple(using))
                              for key, (offering, using) in sorted(sides.items())}
