@@ -89,19 +89,18 @@ def test_locations_point_at_the_winning_declaration(talker: ResolvedNode) -> Non
 
 
 def test_locations_are_placed_on_first_use_only(tmp_path: Path) -> None:
-    # Placing a declaration reads its file's node tree: resolving does not (an analysis of a
-    # thousand nodes prints few locations); the first use does, and keeps the result.
+    # Placing a declaration is not free: resolving does not place (an analysis of a thousand
+    # nodes prints few locations); the first use does, and keeps the result.
     file = tmp_path / 'n.nodl.yaml'
     file.write_text('nodl_version: 2\nbase: node\nmain:\n  nodl_version: 2\n  description: N.\n'
                     '  publishers:\n    - {name: out, type: std_msgs/msg/String, description: O., qos:'
                     ' {history: KEEP_LAST, depth: 1, reliability: RELIABLE, durability: VOLATILE,'
                     ' liveliness: AUTOMATIC}}\n')
     fresh = resolve_node(file)
-    main = fresh.composed.layer('main')
-    parsed = main._place.__self__._parsed  # type: ignore[union-attr]
-    assert parsed is not None and not parsed._composed
-    first = fresh.entity('publisher', 'out').location
-    assert parsed._composed and fresh.entity('publisher', 'out').location is first
+    out = fresh.entity('publisher', 'out')
+    assert all(not isinstance(e._where, Location) for e in fresh.entities)  # type: ignore[attr-defined]
+    first = out.location
+    assert isinstance(out._where, Location) and out.location is first  # type: ignore[attr-defined]
     assert fresh.diagnostics == [] and first == Location(str(file), 7, 7)
 
 
