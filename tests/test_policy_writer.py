@@ -63,3 +63,56 @@ def test_text_from_definitions_is_escaped():
     assert all(c.count('--') == 0 or c.rstrip().endswith('-->') and c[:-4].count('--') == 0
                for c in comments)
     assert xml_comment('a -- b -') == '<!-- a - - b -  -->'
+
+
+def _refusal(policy):
+    with pytest.raises(PolicyNotWritable) as raised:
+        write_policy(policy)
+    return [(d.code, d.line, d.column) for d in raised.value.diagnostics]
+
+
+def _one_node(namespace='/', node='n', path='/n', notes=(), what='declared'):
+    policy = Policy(notes=list(notes))
+    profile = Profile(namespace, node)
+    profile.grant('topic', 'publish', '/x', Source(what, 'f.nodl.yaml:1:1'))
+    policy.enclave(path).profiles.append(profile)
+    return policy
+
+
+# (no white space among them: a comment turns that into a space)
+@pytest.mark.parametrize('bad', ['\x01', '\x08', '\ufffe', '\ud800'])
+@pytest.mark.parametrize('where', ['note', 'node', 'path', 'source'])
+def test_what_the_writer_refuses_is_what_reading_the_document_back_finds(bad, where):
+    """Text is checked in one scan of the written document, not by reading it back: the finding
+    (code, line, column) is the one reading the document back gives."""
+    def policy(text):
+        return _one_node(notes=[f'a {text} note'] if where == 'note' else [],
+                         node=f'n{text}' if where == 'node' else 'n',
+                         path=f'/p{text}' if where == 'path' else '/n',
+                         what=f'declared {text}' if where == 'source' else 'declared')
+
+    document = write_policy(policy('Q9Z')).replace('Q9Z', bad)
+    # (reading back also reports the elements a broken document leaves unfinished)
+    expected = [(d.code, d.line, d.column) for d in check_policy_text(document)
+                if d.code in ('NODL002', 'NODL012')]
+    assert len(expected) == 1
+    assert _refusal(policy(bad)) == expected
+
+
+def test_empty_elements_are_refused_while_writing():
+    empty_enclave = Policy()
+    empty_enclave.enclave('/a')
+    assert _refusal(empty_enclave) == [('NODL606', 5, 7)]
+    assert _refusal(Policy()) == [('NODL606', 3, 3)]
+
+
+def test_a_large_policy_is_written_and_reads_back_clean():
+    policy = Policy()
+    for i in range(300):
+        profile = Profile(f'/g{i % 7}', f'n{i}')
+        profile.grant('topic', 'publish', f'/g{i % 7}/out_{i}', Source('publisher', f'f{i}.nodl.yaml:3:5'))
+        profile.grant('service', 'reply', f'/g{i % 7}/n{i}/get', Source('server'))
+        policy.enclave(f'/g{i % 7}/n{i}' if i % 3 else '/shared').profiles.append(profile)
+    text = write_policy(policy)
+    assert check_policy_text(text) == []
+    assert text.count('<profile ns=') == 300
