@@ -303,7 +303,9 @@ def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
                 entry[3] = deepest - len(stack) + 1
                 deepest = max(deepest, anchored[1])
             if spans is not None and merges is None:  # (merged mappings are placed by composing)
-                spans[id(start)] = (tuple(value) if is_map else None, key_events, events)
+                spans[id(start.start_mark)] = (
+                    (tuple(value), [e.start_mark for e in key_events]) if is_map else (None, None),
+                    events)
             cur, is_map, key, key_event, key_events, merges, start, anchored, events = stack.pop()
         elif cls is AliasEvent:
             entry = anchors.get(event.anchor)  # type: ignore[assignment]
@@ -353,15 +355,15 @@ def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
                         problems.append(_duplicate(cur, key, key_event, key_events, stack))
                     else:
                         key_events.append(key_event)  # type: ignore[union-attr]
-                        events.append(event)
+                        events.append(event.start_mark)
             key = _NO_KEY
         elif cur is not None:
             cur.append(value)
-            events.append(event)
+            events.append(event.start_mark)
         else:
             root = value
             if spans is not None:
-                spans['root'] = event
+                spans['root'] = event.start_mark
     event = get_event()
     if event.__class__ is not StreamEndEvent:
         raise Stop(MULTIPLE_DOCUMENTS, 'the file holds more than one YAML document; put each '
@@ -374,27 +376,28 @@ def span_position(spans: dict[Any, Any], path: DocPath, anchor: str = 'value'
     """1-based ``(line, column)`` of the key (``anchor='key'``) or value at ``path``, from the
     source map :func:`build` kept in ``spans``; None when the map cannot say (a path that does
     not exist, a key that is not a string, a merged mapping): compose the node tree then."""
-    event = spans.get('root')
-    if event is None:
+    mark = spans.get('root')  # (only the start marks are kept: the events are let go)
+    if mark is None:
         return None
-    key_event = None
+    key_mark = None
     for part in path:
-        span = spans.get(id(event))
+        span = spans.get(id(mark))
         if span is None:
             return None
-        keys, key_events, events = span
+        (keys, key_marks), marks = span
         if keys is not None:
             # a string key is written as its own text, so it is the key the node tree would find
             if part.__class__ is not str or part not in keys:
                 return None
             index = keys.index(part)
-            key_event = key_events[index]
+            key_mark = key_marks[index]
         else:
-            if part.__class__ is not int or not 0 <= part < len(events):
+            if part.__class__ is not int or not 0 <= part < len(marks):
                 return None
-            key_event, index = None, part
-        event = events[index]
-    mark = key_event.start_mark if anchor == 'key' and key_event is not None else event.start_mark
+            key_mark, index = None, part
+        mark = marks[index]
+    if anchor == 'key' and key_mark is not None:
+        mark = key_mark
     return (mark.line + 1, mark.column + 1)
 
 
