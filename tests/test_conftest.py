@@ -55,13 +55,13 @@ def test_equal_costs_keep_the_file_order() -> None:
         'b.py', 'a.py', 'c.py']
 
 
-def test_the_recorded_durations_name_existing_modules_in_seconds() -> None:
+def test_the_recorded_durations_are_seconds_per_module() -> None:
+    # (a module since removed may stay listed: it only no longer takes part in the order)
     costs = module_costs()
     assert costs, f'{DURATIONS} is missing or empty'
+    assert all(name.startswith('test_') and name.endswith('.py') for name in costs)
     assert all(value >= 0 for value in costs.values())
-    present = {p.name for p in DURATIONS.parent.glob('test_*.py')}
-    assert set(costs) <= present, f'remove gone modules from {DURATIONS.name}: {set(costs) - present}'
-    json.loads(DURATIONS.read_text(encoding='utf-8'))  # plain JSON, as the recorder writes
+    assert costs == json.loads(DURATIONS.read_text(encoding='utf-8'))  # plain JSON, as recorded
 
 
 def test_a_worker_collects_the_modules_costliest_first(pytester: pytest.Pytester) -> None:
