@@ -7,6 +7,7 @@ Both markup frontends build :class:`Entity` objects and call :func:`build_descri
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Any, NamedTuple, TypeVar
 
 from nodl_schema.diagnostics import Diagnostic, Severity
@@ -133,13 +134,28 @@ class Entity:
                                        f"'{value.value}'", self.location.file, value.line, value.column)
 
 
+@lru_cache(maxsize=None)  # one entry per tag's spec (and frontend): a launch file repeats tags
+def _allowed(attributes: tuple[str, ...], yaml: bool) -> tuple[frozenset[str], tuple[str, ...]]:
+    """The attribute names a spec allows and those it requires (marked ``*``)."""
+    allowed = frozenset(a.rstrip('*') for a in attributes)
+    return (allowed - XML_ONLY if yaml else allowed), tuple(a[:-1] for a in attributes if a.endswith('*'))
+
+
 def _check(entity: Entity, attributes: tuple[str, ...], lists: tuple[str, ...], children: bool,
            problems: list[Diagnostic]) -> bool:
+    allowed, required = _allowed(attributes, entity.yaml)
+    present = entity.attributes
+    if (children or not entity.children) and not ('if' in present and 'unless' in present) and \
+            all(name in allowed for name in present) and all(name in present for name in required) and \
+            all(name in lists for name in entity.nested):
+        return True  # the usual case, decided without building any message
+    return _check_slow(entity, set(allowed), required, lists, children, problems)
+
+
+def _check_slow(entity: Entity, allowed: set[str], required: tuple[str, ...], lists: tuple[str, ...],
+                children: bool, problems: list[Diagnostic]) -> bool:
     from nodl_schema.validation.messages import did_you_mean
 
-    allowed = {a.rstrip('*') for a in attributes}
-    if entity.yaml:
-        allowed -= XML_ONLY
     ok = True
     for name, attribute in entity.attributes.items():
         if name not in allowed and not (name.startswith(('xmlns', 'xsi:')) and not entity.yaml):
@@ -153,7 +169,7 @@ def _check(entity: Entity, attributes: tuple[str, ...], lists: tuple[str, ...], 
                                        f'{", ".join(sorted(allowed))}', (), entity.location.file,
                                        attribute.line, attribute.column, code='NODL502'))
             ok = False
-    for name in [a[:-1] for a in attributes if a.endswith('*')]:
+    for name in required:
         if name not in entity.attributes:
             problems.append(Diagnostic(Severity.ERROR, f"<{entity.tag}> needs the attribute '{name}'",
                                        (), *entity.location, code='NODL503'))

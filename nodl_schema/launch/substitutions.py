@@ -68,7 +68,10 @@ def normalize(value: Any) -> list[Substitution]:
         return [TextSubstitution('')]
     out: list[Substitution] = []
     for item in value:
-        out.extend(normalize(item))
+        if isinstance(item, Substitution):  # the usual item (a parsed attribute), without recursing
+            out.append(item)
+        else:
+            out.extend(normalize(item))
     return out
 
 
