@@ -291,12 +291,17 @@ def _place_attributes(lines: _Lines, line: int, column: int,
     start = lines.offset(line, column)
     tag = _TAG_NAME.match(lines.text, start) if start >= 0 else None
     if tag is not None:
+        text = lines.text
         pos = tag.end()
         while True:
-            match = _ATTRIBUTE.match(lines.text, pos)
+            match = _ATTRIBUTE.match(text, pos)
             if match is None:
                 break
-            found.setdefault(match.group(1), lines.position(match.start(1)))
+            at = match.start(1)
+            if '\n' in text[start:at] or '\r' in text[start:at]:  # a start tag over several lines
+                found.setdefault(match.group(1), lines.position(at))
+            else:  # on the tag's line: no search for the line
+                found.setdefault(match.group(1), (line, column + at - start))
             pos = match.end()
     out = []
     for index in range(0, len(pairs), 2):
