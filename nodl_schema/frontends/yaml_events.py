@@ -304,7 +304,7 @@ def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
                 deepest = max(deepest, anchored[1])
             if spans is not None and merges is None:  # (merged mappings are placed by composing)
                 spans[id(start.start_mark)] = (
-                    (tuple(value), [e.start_mark for e in key_events]) if is_map else (None, None),
+                    (tuple(value), [e.start_mark for e in key_events or ()]) if is_map else (None, None),
                     events)
             cur, is_map, key, key_event, key_events, merges, start, anchored, events = stack.pop()
         elif cls is AliasEvent:
