@@ -32,6 +32,7 @@ if TYPE_CHECKING:
     from nodl_schema.model import ParameterDefinition
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
+from nodl_schema.dialects.remapped import RemappedDocument
 from nodl_schema.frontends.yaml_json import ParsedDocument
 from nodl_schema.validation.kinds import INTERFACE_KEYS, NODE_KEYS
 
@@ -166,30 +167,9 @@ def read_genparamlib(data: dict[str, Any]) -> GenParamReading:
     return GenParamReading(namespace, interface, out, origins, skipped)
 
 
-class _RemappedDocument(ParsedDocument):
-    """The original text, placing diagnostics about the interface at the original keys."""
-
-    def __init__(self, parsed: ParsedDocument, reading: GenParamReading) -> None:
-        super().__init__(parsed.source, reading.data, [], parsed.is_json)
-        self._original = parsed
-        self._reading = reading
-
-    def position(self, path: DocPath, anchor: str = 'value') -> tuple[int, int]:
-        """The position of ``path`` of the interface definition in the original text."""
-        return self._original.position(self._reading.original_path(path), anchor)
-
-    def place(self, diagnostic: Diagnostic) -> Diagnostic:
-        """Place a diagnostic about the interface; its path becomes the original one."""
-        if diagnostic.line:
-            return diagnostic
-        path = self._reading.original_path(diagnostic.path)
-        line, column = self._original.position(path, diagnostic.anchor)
-        return diagnostic.replace(path=path, file=self.source.file, line=line, column=column)
-
-
 def remapped(parsed: ParsedDocument, reading: GenParamReading) -> ParsedDocument:
     """A document that places diagnostics about ``reading.data`` in ``parsed``'s text."""
-    return _RemappedDocument(parsed, reading)
+    return RemappedDocument(parsed, reading)
 
 
 def adapt_genparamlib(parsed: ParsedDocument) -> Adapted:

@@ -27,6 +27,7 @@ if TYPE_CHECKING:
     from nodl_schema.dialects import Adapted
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
+from nodl_schema.dialects.remapped import RemappedDocument
 from nodl_schema.frontends.yaml_json import ParsedDocument
 from nodl_schema.validation.kinds import INCLUDE_KEYS, NODE_KEYS
 
@@ -176,30 +177,9 @@ def read_include(data: dict[str, Any]) -> IncludeReading:
     return IncludeReading(key, node, out, mixin_origins, base_origin, data.get(CODEGEN_KEY))
 
 
-class _RemappedDocument(ParsedDocument):
-    """The original parsed text, placing diagnostics about the converted node at the original keys."""
-
-    def __init__(self, parsed: ParsedDocument, reading: IncludeReading) -> None:
-        super().__init__(parsed.source, reading.data, [], parsed.is_json)
-        self._original = parsed
-        self._reading = reading
-
-    def position(self, path: DocPath, anchor: str = 'value') -> tuple[int, int]:
-        """The position of ``path`` of the node definition in the original text."""
-        return self._original.position(self._reading.original_path(path), anchor)
-
-    def place(self, diagnostic: Diagnostic) -> Diagnostic:
-        """Place a diagnostic about the node definition; its path becomes the original one."""
-        if diagnostic.line:
-            return diagnostic
-        path = self._reading.original_path(diagnostic.path)
-        line, column = self._original.position(path, diagnostic.anchor)
-        return diagnostic.replace(path=path, file=self.source.file, line=line, column=column)
-
-
 def remapped(parsed: ParsedDocument, reading: IncludeReading) -> ParsedDocument:
     """A document that places diagnostics about ``reading.data`` in ``parsed``'s text."""
-    return _RemappedDocument(parsed, reading)
+    return RemappedDocument(parsed, reading)
 
 
 def adapt_include(parsed: ParsedDocument) -> Adapted:
@@ -208,5 +188,5 @@ def adapt_include(parsed: ParsedDocument) -> Adapted:
 
     reading = read_include(parsed.data)
     placed = [parsed.place(d) for d in reading.diagnostics]
-    return Adapted(INCLUDE, reading.data, _RemappedDocument(parsed, reading), placed,
+    return Adapted(INCLUDE, reading.data, remapped(parsed, reading), placed,
                    {CODEGEN_KEY: reading.codegen} if reading.codegen is not None else None)
