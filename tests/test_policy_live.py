@@ -26,7 +26,7 @@ def graph():
 
 
 def test_live_policy_of_real_nodes(graph):
-    live = live_policy(timeout=15.0)
+    live = live_policy(timeout=15.0, settle=8.0)  # a loaded machine announces late
     assert {'/live_p/full', '/live_p/fib', '/live_p/fib_client'} <= set(live.nodes)
     policy = live.result.policy
     server = policy.profile('/live_p/fib')
@@ -50,7 +50,7 @@ def test_live_policy_of_real_nodes(graph):
 
 def test_live_cli_writes_the_policy(graph, tmp_path):
     out = tmp_path / 'live.xml'
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', '--live', '--timeout', '15',
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', '--live', '--timeout', '15', '--settle', '8',
                              '-o', str(out)], cwd=REPO, text=True, capture_output=True, timeout=120)
     assert result.returncode == 0, result.stderr
     assert '<profile ns="/live_p" node="fib_client">' in out.read_text()

@@ -54,6 +54,10 @@ class PolicyVerb(Verb):
                             help='observe the running graph instead of reading definitions')
         parser.add_argument('--timeout', type=_seconds, default=5.0, metavar='S',
                             help='--live: seconds to wait for the graph (default: 5)')
+        parser.add_argument('--settle', type=_seconds, default=3.5, metavar='S',
+                            help='--live: seconds of discovery before the graph is taken; nodes '
+                                 'of other processes appear up to one announcement period (3 s) '
+                                 'late: raise it on a loaded machine (default: 3.5)')
         group = parser.add_mutually_exclusive_group()
         group.add_argument('--enclave-per', choices=('node', 'namespace'), default=None,
                            help='one enclave per node (default; path = the node\'s name) or per '
@@ -147,7 +151,8 @@ class PolicyVerb(Verb):
             from nodl_schema.policy.live import live_policy
 
             try:
-                live = live_policy(timeout=args.timeout, distro=args.distro, enclaves=enclaves,
+                live = live_policy(timeout=max(args.timeout, args.settle), settle=args.settle,
+                                   distro=args.distro, enclaves=enclaves,
                                    client_library=args.client_library)
             except LiveError as exc:
                 return _usage(str(exc))
