@@ -173,44 +173,44 @@ def custom_signature(validator: ValidatorPlan) -> tuple[str, tuple[str, ...]]:
     return _custom_function(validator), tuple(_arg_type(a)[0] for a in _custom_args(validator))
 
 
-def custom_declarations(plan: ParametersPlan) -> list[str]:
-    """Declarations of the custom validator functions the user defines (one per signature)."""
+def _custom_hooks(plan: ParametersPlan) -> list[tuple[list[str], str, int, str]]:
+    """One entry per distinct custom validator signature, sorted: (namespaces, function name,
+    number of arguments, parameter list of the C++ function)."""
     seen: dict[tuple[str, tuple[str, ...]], None] = {}
     for parameter in plan.parameters:
         for validator in parameter.custom_validators:
             seen[custom_signature(validator)] = None
-    lines: list[str] = []
+    hooks = []
     for name, args in sorted(seen):
         *namespaces, function = name.split('::')
         params = ', '.join(['const rclcpp::Parameter & parameter'] + [
             f'{t} arg{i}' for i, t in enumerate(args)])
-        declaration = f'std::string {function}({params});'
-        if namespaces:
-            lines.append(f'namespace {"::".join(namespaces)}')
-            lines += ['{', declaration, '}  // namespace ' + '::'.join(namespaces)]
-        else:
-            lines.append(declaration)
+        hooks.append((namespaces, function, len(args), params))
+    return hooks
+
+
+def _in_namespaces(namespaces: list[str], body: list[str]) -> list[str]:
+    if not namespaces:
+        return body
+    joined = '::'.join(namespaces)
+    return [f'namespace {joined}', '{'] + body + [f'}}  // namespace {joined}']
+
+
+def custom_declarations(plan: ParametersPlan) -> list[str]:
+    """Declarations of the custom validator functions the user defines (one per signature)."""
+    lines: list[str] = []
+    for namespaces, function, _, params in _custom_hooks(plan):
+        lines += _in_namespaces(namespaces, [f'std::string {function}({params});'])
     return lines
 
 
 def custom_definitions(plan: ParametersPlan) -> list[str]:
     """Placeholder definitions of the custom validators (accept every value), for a user stub."""
-    seen: dict[tuple[str, tuple[str, ...]], None] = {}
-    for parameter in plan.parameters:
-        for validator in parameter.custom_validators:
-            seen[custom_signature(validator)] = None
     lines: list[str] = []
-    for name, args in sorted(seen):
-        *namespaces, function = name.split('::')
-        params = ', '.join(['const rclcpp::Parameter & parameter'] + [
-            f'{t} arg{i}' for i, t in enumerate(args)])
-        body = ['{', '  (void)parameter;'] + [f'  (void)arg{i};' for i in range(len(args))] + [
+    for namespaces, function, count, params in _custom_hooks(plan):
+        body = ['{', '  (void)parameter;'] + [f'  (void)arg{i};' for i in range(count)] + [
             '  return std::string();  // TODO: return why the value is rejected, if it is', '}']
-        if namespaces:
-            lines += [f'namespace {"::".join(namespaces)}', '{']
-        lines += [f'std::string {function}({params})'] + body
-        if namespaces:
-            lines.append('}  // namespace ' + '::'.join(namespaces))
+        lines += _in_namespaces(namespaces, [f'std::string {function}({params})'] + body)
     return lines
 
 
