@@ -393,6 +393,10 @@ def _parse_xml(text: str, file: str) -> XmlTree:
     except expat.ExpatError as exc:
         message = expat.ErrorString(exc.code) if exc.code is not None else str(exc)
         diagnostics.append(_error(file, f'malformed XML: {message}', exc.lineno, exc.offset + 1, code='NODL012'))
+    finally:
+        # The handlers refer to the parser (a reference cycle that would keep the whole
+        # tree alive until the next full garbage collection): let it go now.
+        del parser
     return XmlTree(file, roots[0] if roots else None, diagnostics)
 
 

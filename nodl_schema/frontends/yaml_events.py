@@ -19,9 +19,9 @@ also enforces what a YAML loader does not:
 Scalars resolve as PyYAML's ``SafeLoader`` resolves them (YAML 1.1, using
 PyYAML's own table of implicit resolvers), except timestamps, which stay
 text.  Given a ``spans`` dict, the pass also keeps its source map: for each
-mapping and sequence, the events its keys and values start at (the events
-libyaml made anyway), so a document path is placed without parsing the
-text again (see :func:`span_position`).
+mapping and sequence, the positions its keys and values start at (read from
+the events libyaml made anyway), so a document path is placed without parsing
+the text again (see :func:`span_position`).
 """
 
 from __future__ import annotations
@@ -112,6 +112,18 @@ def quote(value: Any) -> str:
     if len(text) > 40:
         text = text[:37] + '...'
     return repr(text)
+
+
+# The source map keeps a position as one int, ``line << _COLUMN_BITS | column`` (0-based),
+# rather than libyaml's Mark objects: a thousand documents' marks kept alive made every
+# garbage collection of an analysis walk them.  A collection is keyed by its start position
+# (two collections never start at the same place).
+_COLUMN_BITS = 32
+_COLUMN_MASK = (1 << _COLUMN_BITS) - 1
+
+
+def _position(mark: Any) -> int:
+    return mark.line << _COLUMN_BITS | mark.column  # type: ignore[no-any-return]
 
 
 def event_source(text: str) -> Callable[[], Any]:
@@ -303,9 +315,11 @@ def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
                 entry[3] = deepest - len(stack) + 1
                 deepest = max(deepest, anchored[1])
             if spans is not None and merges is None:  # (merged mappings are placed by composing)
-                spans[id(start.start_mark)] = (
-                    (tuple(value), [e.start_mark for e in key_events or ()]) if is_map else (None, None),
-                    events)
+                mark = start.start_mark
+                # (tuples of ints and strings: the collector stops tracking them)
+                spans[mark.line << _COLUMN_BITS | mark.column] = (
+                    (tuple(value), tuple([_position(e.start_mark) for e in key_events or ()]),
+                     tuple(events)) if is_map else (None, None, tuple(events)))
             cur, is_map, key, key_event, key_events, merges, start, anchored, events = stack.pop()
         elif cls is AliasEvent:
             entry = anchors.get(event.anchor)  # type: ignore[assignment]
@@ -355,15 +369,17 @@ def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
                         problems.append(_duplicate(cur, key, key_event, key_events, stack))
                     else:
                         key_events.append(key_event)  # type: ignore[union-attr]
-                        events.append(event.start_mark)
+                        mark = event.start_mark
+                        events.append(mark.line << _COLUMN_BITS | mark.column)
             key = _NO_KEY
         elif cur is not None:
             cur.append(value)
-            events.append(event.start_mark)
+            mark = event.start_mark
+            events.append(mark.line << _COLUMN_BITS | mark.column)
         else:
             root = value
             if spans is not None:
-                spans['root'] = event.start_mark
+                spans['root'] = _position(event.start_mark)
     event = get_event()
     if event.__class__ is not StreamEndEvent:
         raise Stop(MULTIPLE_DOCUMENTS, 'the file holds more than one YAML document; put each '
@@ -376,15 +392,15 @@ def span_position(spans: dict[Any, Any], path: DocPath, anchor: str = 'value'
     """1-based ``(line, column)`` of the key (``anchor='key'``) or value at ``path``, from the
     source map :func:`build` kept in ``spans``; None when the map cannot say (a path that does
     not exist, a key that is not a string, a merged mapping): compose the node tree then."""
-    mark = spans.get('root')  # (only the start marks are kept: the events are let go)
+    mark = spans.get('root')  # (only start positions are kept: the events are let go)
     if mark is None:
         return None
     key_mark = None
     for part in path:
-        span = spans.get(id(mark))
+        span = spans.get(mark)
         if span is None:
             return None
-        (keys, key_marks), marks = span
+        keys, key_marks, marks = span
         if keys is not None:
             # a string key is written as its own text, so it is the key the node tree would find
             if part.__class__ is not str or part not in keys:
@@ -398,7 +414,7 @@ def span_position(spans: dict[Any, Any], path: DocPath, anchor: str = 'value'
         mark = marks[index]
     if anchor == 'key' and key_mark is not None:
         mark = key_mark
-    return (mark.line + 1, mark.column + 1)
+    return ((mark >> _COLUMN_BITS) + 1, (mark & _COLUMN_MASK) + 1)
 
 
 def _anchor_twice(first: Any, event: Any) -> None:
