@@ -153,3 +153,20 @@ def test_remembered_computes_once_per_key_inside_a_snapshot_only() -> None:
         assert [ament.remembered('k', compute) for _ in range(3)] == [3, 3, 3]
         assert ament.remembered('other', compute) == 4
     assert ament.remembered('k', compute) == 5
+
+
+def test_an_entry_reads_as_a_text_file_does(tmp_path: Path) -> None:
+    # Entries are read through the file descriptor; the text is what open() in text mode gives.
+    folder = tmp_path / INDEX / 'nodl_nodes'
+    folder.mkdir(parents=True)
+    raw = '\ufeffline one\r\nline two\rline three\n\u00e9'.encode('utf-8') + b'x' * 70000
+    (folder / 'p__mixed').write_bytes(raw)
+    with open(folder / 'p__mixed', encoding='utf-8') as f:
+        expected = f.read()
+    prefixes = [str(tmp_path)]
+    assert ament.get_resource('nodl_nodes', 'p__mixed', prefixes).content == expected  # type: ignore[union-attr]
+    with ament.snapshot():
+        assert ament.get_resource('nodl_nodes', 'p__mixed', prefixes).content == expected  # type: ignore[union-attr]
+    (folder / 'p__bad').write_bytes(b'ok\xff')
+    with pytest.raises(UnicodeDecodeError):
+        ament.get_resource('nodl_nodes', 'p__bad', prefixes)

@@ -26,7 +26,10 @@ class _Snapshot:
 
     def __init__(self) -> None:
         self.listings: dict[str, frozenset[str]] = {}
-        self.contents: dict[str, str] = {}
+        # Keyed by (prefix, resource type), not by the folder's path: a look-up per node
+        # then joins no path (os.path.join costs more than the rest of the look-up).
+        self.folders: dict[tuple[str, str], frozenset[str]] = {}
+        self.entries: dict[tuple[str, str, str], Resource] = {}
         self.facts: dict[Any, Any] = {}
 
     def files(self, folder: str) -> frozenset[str]:
@@ -41,13 +44,40 @@ class _Snapshot:
             self.listings[folder] = found
         return found
 
-    def read(self, path: str) -> str:
-        """The text of an index entry."""
-        text = self.contents.get(path)
-        if text is None:
-            with open(path, encoding='utf-8') as f:
-                text = self.contents[path] = f.read()
-        return text
+    def listed(self, prefix: str, resource_type: str) -> frozenset[str]:
+        """The names in ``prefix``'s folder of ``resource_type``."""
+        found = self.folders.get((prefix, resource_type))
+        if found is None:
+            found = self.folders[prefix, resource_type] = self.files(
+                os.path.join(prefix, _INDEX, resource_type))
+        return found
+
+    def entry(self, prefix: str, resource_type: str, name: str) -> Resource:
+        """The listed entry ``name`` of ``prefix``'s folder of ``resource_type``, read once."""
+        key = (prefix, resource_type, name)
+        found = self.entries.get(key)
+        if found is None:
+            path = resource_file(prefix, resource_type, name)
+            found = self.entries[key] = Resource(_read_text(path), prefix, path)
+        return found
+
+
+def _read_text(path: str) -> str:
+    """A file's text as ``open(path, encoding='utf-8').read()`` gives it (newlines made
+    ``\\n``), read through the file descriptor: an index entry is a few bytes, and the
+    three layers of a text file object cost more than reading them."""
+    fd = os.open(path, os.O_RDONLY)
+    try:
+        chunks = []
+        while True:
+            chunk = os.read(fd, 65536)
+            if not chunk:
+                break
+            chunks.append(chunk)
+    finally:
+        os.close(fd)
+    text = b''.join(chunks).decode('utf-8')
+    return text.replace('\r\n', '\n').replace('\r', '\n') if '\r' in text else text
 
 
 _SNAPSHOT: ContextVar[_Snapshot | None] = ContextVar('nodl_ament_snapshot', default=None)
@@ -117,17 +147,21 @@ def get_resource(resource_type: str, name: str,
                  prefixes: list[str] | None = None) -> Resource | None:
     """The first resource ``resource_type/name`` found, or None."""
     current = _SNAPSHOT.get()
-    if current is not None and (os.sep in name or name in ('', '.', '..')):
-        current = None  # not an entry of the folder itself: looked up as a path, as outside
-    for prefix in prefixes if prefixes is not None else prefix_paths():
+    if prefixes is None:
+        prefixes = prefix_paths()
+    if current is not None and os.sep not in name and name not in ('', '.', '..'):
+        # One run's look-ups: the folder's listing says whether the entry exists, so a
+        # missing one costs no file system call.
+        for prefix in prefixes:
+            if name in current.listed(prefix, resource_type):
+                return current.entry(prefix, resource_type, name)
+        return None
+    # Outside a run (or a name that is not an entry of the folder itself, looked up as a
+    # path): the disk as it is now.
+    for prefix in prefixes:
         path = resource_file(prefix, resource_type, name)
-        if current is not None:
-            if name in current.files(os.path.join(prefix, _INDEX, resource_type)):
-                return Resource(current.read(path), prefix, path)
-            continue
         if os.path.isfile(path):
-            with open(path, encoding='utf-8') as f:
-                return Resource(f.read(), prefix, path)
+            return Resource(_read_text(path), prefix, path)
     return None
 
 
@@ -158,7 +192,7 @@ def package_share_directory(package: str, prefixes: list[str] | None = None) -> 
     if current is not None and os.sep not in package and package not in ('', '.', '..'):
         # Only whether the marker exists matters (its content is not read).
         prefix = next((p for p in (prefixes if prefixes is not None else prefix_paths())
-                       if package in current.files(os.path.join(p, _INDEX, 'packages'))), None)
+                       if package in current.listed(p, 'packages')), None)
         return os.path.join(prefix, 'share', package) if prefix is not None else None
     resource = get_resource('packages', package, prefixes)
     return os.path.join(resource.prefix, 'share', package) if resource else None
