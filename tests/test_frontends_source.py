@@ -419,3 +419,25 @@ def test_endless_device_is_rejected_not_read_forever() -> None:
                             timeout=60, cwd=REPO, env=env)
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == TOO_LARGE
+
+
+def test_read_limited_reads_what_open_reads(tmp_path: Path) -> None:
+    # read_limited asks for the size the file reports, not for the whole limit.
+    from nodl_schema.frontends.source import read_limited
+
+    for size in (0, 1, 900, 70_000, 3 * 1024 * 1024 + 7, MAX_BYTES, MAX_BYTES + 5):
+        path = tmp_path / f'f{size}'
+        path.write_bytes(bytes(i % 251 for i in range(size)))
+        expected = path.read_bytes()[:MAX_BYTES + 1]
+        assert read_limited(path) == expected
+        assert read_limited(str(path)) == expected
+    with pytest.raises(IsADirectoryError) as by_open:
+        open(tmp_path, 'rb')
+    with pytest.raises(IsADirectoryError) as by_read:
+        read_limited(tmp_path)
+    assert str(by_read.value) == str(by_open.value)
+    with pytest.raises(FileNotFoundError) as by_open:
+        open(tmp_path / 'missing', 'rb')
+    with pytest.raises(FileNotFoundError) as by_read:
+        read_limited(tmp_path / 'missing')
+    assert str(by_read.value) == str(by_open.value)
