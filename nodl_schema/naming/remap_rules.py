@@ -233,6 +233,8 @@ def parse_remap_rules(args: RemapArgs) -> list[RemapRule]:
     if args is None:
         return []
     items = list(args)
+    if not items:
+        return []
     if not any(item == '--ros-args' for item in items):
         return [item if isinstance(item, RemapRule) else parse_remap_rule(item) for item in items]
     rules: list[RemapRule] = []

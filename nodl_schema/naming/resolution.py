@@ -6,8 +6,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from nodl_schema.naming.remap_rules import RemapArgs, RemapRule, parse_remap_rules
-from nodl_schema.naming.validation import (InvalidNameError, checked_namespace, full_name_error,
-                                           namespace_error, normalize_namespace, topic_name_error)
+from nodl_schema.naming.validation import (_VALID_FULL_NAME, TOPIC_MAX_LENGTH, InvalidNameError,
+                                           checked_namespace, full_name_error, namespace_error,
+                                           normalize_namespace, topic_name_error)
 from nodl_schema.vocabulary import NAME_SUBSTITUTIONS
 
 __all__ = ['expand_name', 'node_name_after_remaps', 'node_namespace_after_remaps', 'NodeNames',
@@ -105,34 +106,67 @@ class NodeNames:
         Raises :class:`InvalidNameError` when rcl would refuse to create it.
         """
         rules = parse_remap_rules(remap_args)
-        checked_namespace(node_name, namespace)
+        namespace = checked_namespace(node_name, namespace)
+        if not rules:  # most launched nodes: nothing renames them (and nothing to check again)
+            return cls(node_name, namespace, ())
         final_name = node_name_after_remaps(node_name, rules)
-        final_namespace = node_namespace_after_remaps(node_name, namespace, rules)
-        problem = namespace_error(final_namespace)
-        if problem:
-            raise InvalidNameError('node namespace', final_namespace, problem)
-        return cls(final_name, final_namespace, tuple(rules))
+        # rcl_node_init: the __ns rule's node scope is compared with the name after __node
+        for rule in rules:
+            if rule.kind == 'namespace' and rule.applies_to(final_name):
+                problem = namespace_error(rule.replacement)
+                if problem:
+                    raise InvalidNameError('node namespace', rule.replacement, problem)
+                return cls(final_name, rule.replacement, tuple(rules))
+        return cls(final_name, namespace, tuple(rules))
+
+    # What follows is asked for every entity of every launched node: what depends on the
+    # node only (its checked namespace, the prefixes names expand to, its rules' expanded
+    # match sides) is computed once and kept in the instance's __dict__ (the dataclass is
+    # frozen, and these are not fields: equality and repr are unchanged).
 
     @property
     def fqn(self) -> str:
         """``/namespace/name``."""
-        return join_name(self.namespace, self.name)
+        fqn: str | None = self.__dict__.get('_fqn')
+        if fqn is None:
+            fqn = join_name(self.namespace, self.name)
+            object.__setattr__(self, '_fqn', fqn)
+        return fqn
 
     def _checked_namespace(self) -> str:
         """The node's namespace, its name and namespace checked once (:func:`expand_name`
         checks them for every name; a node expands many)."""
-        checked: str | None = self.__dict__.get('_checked')
-        if checked is None:
-            checked = checked_namespace(self.name, self.namespace)
-            object.__setattr__(self, '_checked', checked)
-        return checked
+        return self._prefixes()[0]
+
+    def _prefixes(self) -> tuple[str, str, str]:
+        """``(checked namespace, what '~' stands for, what a relative name is put under)``;
+        raises :class:`InvalidNameError` if the node's name or namespace is invalid."""
+        prefixes: tuple[str, str, str] | None = self.__dict__.get('_prefixes_')
+        if prefixes is None:
+            namespace = checked_namespace(self.name, self.namespace)
+            under = namespace if namespace == '/' else namespace + '/'
+            prefixes = (namespace, under + self.name, under)
+            object.__setattr__(self, '_prefixes_', prefixes)
+        return prefixes
+
+    def _expanded(self, name: str) -> str:
+        """:func:`_expand` of a ``name`` :func:`topic_name_error` accepts, for this node."""
+        prefixes = self.__dict__.get('_prefixes_') or self._prefixes()
+        if '{' in name:
+            return _expand(name, self.name, prefixes[0])
+        first = name[0]
+        if first == '/':
+            return name
+        if first == '~':
+            return prefixes[1] + name[1:]
+        return prefixes[2] + name
 
     def expand(self, name: str) -> str:
         """``name`` expanded for this node (no remapping); see :func:`expand_name`."""
         problem = topic_name_error(name)
         if problem:
             raise InvalidNameError('topic name', name, problem)
-        return _expand(name, self.name, self._checked_namespace())
+        return self._expanded(name)
 
     def rule_for(self, name: str, *, service: bool = False) -> RemapRule | None:
         """The rule that remaps ``name`` (a topic, or a service) for this node, if one does."""
@@ -141,13 +175,33 @@ class NodeNames:
     def _rule_for_expanded(self, expanded: str, service: bool) -> RemapRule | None:
         if not self.rules:
             return None
-        wanted = 'service' if service else 'topic'
-        for rule in self.rules:
-            if rule.kind in ('name', wanted) and rule.applies_to(self.name):
-                assert rule.match is not None
-                if _expand(rule.match, self.name, self.namespace) == expanded:
-                    return rule
-        return None
+        tables = self.__dict__.get('_rule_tables') or self._rule_tables()
+        found, failing = tables[1 if service else 0]
+        rule = found.get(expanded)
+        if rule is None and failing is not None:
+            _expand(failing, self.name, self.namespace)  # raises, as the rule-by-rule search did
+        return rule
+
+    def _rule_tables(self) -> tuple[tuple[dict[str, RemapRule], str | None], ...]:
+        """For topics, then services: expanded match side -> the first rule that applies to
+        this node with it, and the match side of the first such rule that does not expand
+        (the rules after it are never reached)."""
+        tables = []
+        for wanted in ('topic', 'service'):
+            found: dict[str, RemapRule] = {}
+            failing = None
+            for rule in self.rules:
+                if rule.kind in ('name', wanted) and rule.applies_to(self.name):
+                    assert rule.match is not None
+                    try:
+                        found.setdefault(_expand(rule.match, self.name, self.namespace), rule)
+                    except ValueError:
+                        failing = rule.match
+                        break
+            tables.append((found, failing))
+        out = tuple(tables)
+        object.__setattr__(self, '_rule_tables', out)
+        return out
 
     def topic_remaps(self) -> dict[str, str]:
         """The topic rules that apply to this node, as expanded FROM -> TO (first rule wins).
@@ -166,13 +220,19 @@ class NodeNames:
 
         An action's name resolves as a topic name (as ``rcl_action`` does).
         """
-        expanded = self.expand(name)
-        rule = self._rule_for_expanded(expanded, service)
-        resolved = expanded if rule is None else \
-            _expand(rule.replacement, self.name, self.namespace)
-        problem = full_name_error(resolved)
+        problem = topic_name_error(name)
         if problem:
-            raise InvalidNameError('resolved name', resolved, problem)
+            raise InvalidNameError('topic name', name, problem)
+        resolved = self._expanded(name)
+        if self.rules:
+            rule = self._rule_for_expanded(resolved, service)
+            if rule is not None:
+                resolved = _expand(rule.replacement, self.name, self.namespace)
+        # full_name_error's own first test, inline (every entity of every node comes here)
+        if len(resolved) > TOPIC_MAX_LENGTH or _VALID_FULL_NAME.fullmatch(resolved) is None:
+            problem = full_name_error(resolved)
+            if problem:
+                raise InvalidNameError('resolved name', resolved, problem)
         return resolved
 
 
