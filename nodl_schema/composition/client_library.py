@@ -13,6 +13,7 @@ import os
 from typing import NamedTuple
 
 from nodl_schema.composition.bases import DEFAULT_CLIENT_LIBRARY, check_client_library
+from nodl_schema.index import ament
 from nodl_schema.vocabulary import BUILD_TYPE_LIBRARIES
 
 __all__ = ['ClientLibraryChoice', 'BUILD_TYPE_LIBRARIES', 'choose_client_library',
@@ -35,19 +36,17 @@ def package_build_type(package: str, prefixes: list[str] | None = None) -> str |
 
     Read once per package within an :func:`nodl_schema.index.ament.snapshot`.
     """
-    from nodl_schema.index import ament
-
     key = ('build_type', package, tuple(prefixes) if prefixes is not None else None)
     return ament.remembered(key, lambda: _read_build_type(package, prefixes))
 
 
 def _read_build_type(package: str, prefixes: list[str] | None) -> str | None:
-    from nodl_schema.index import ament
-
     share = ament.package_share_directory(package, prefixes)
     if share is None:
         return None
     manifest = os.path.join(share, 'package.xml')
+    if not os.access(manifest, os.F_OK):
+        return None  # asked first: a failed open raises, which costs more than asking
     try:
         import xml.etree.ElementTree as ElementTree
 
