@@ -14,6 +14,7 @@ import os
 
 from nodl_schema.composition.resolvers import (
     ResolutionError, ResolveContext, Resolved, ResolverExtension)
+from nodl_schema.files import tidy_path
 from nodl_schema.frontends.source import read_limited
 from nodl_schema.index import ament
 from nodl_schema.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, resource_name
@@ -34,15 +35,12 @@ def _read(resource: ament.Resource, package: str) -> Resolved:
     # A path is one line; a document held in the entry may be one line too (flow YAML
     # or minified JSON: '{...}', or 'key: value').
     if content and '\n' not in content and not content.startswith('{') and ': ' not in content:
-        from nodl_schema.files import tidy_path
-
-        candidates = [tidy_path(content if os.path.isabs(content) else
-                                os.path.join(resource.prefix, 'share', package, content))]
-        for candidate in candidates:
-            if os.path.isfile(candidate):
-                return Resolved(read_limited(candidate), candidate)
-        raise ResolutionError(f'the index entry {resource.path} points at {candidates[0]}, '
-                              'which does not exist (is the package fully installed?)', candidates)
+        candidate = tidy_path(content if os.path.isabs(content) else
+                              os.path.join(resource.prefix, 'share', package, content))
+        if os.path.isfile(candidate):
+            return Resolved(read_limited(candidate), candidate)
+        raise ResolutionError(f'the index entry {resource.path} points at {candidate}, '
+                              'which does not exist (is the package fully installed?)', [candidate])
     return Resolved(resource.content, resource.path)
 
 
