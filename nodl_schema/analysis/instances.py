@@ -26,6 +26,11 @@ __all__ = ['AnalysedNode', 'build_node']
 class AnalysedNode:
     """One launched node after matching and naming (see the module docstring)."""
 
+    # Every launched node lives until the analysis ends: slots spare each one a __dict__
+    # (an object more for the garbage collector to walk).
+    __slots__ = ('entry', 'match', 'created_name', 'names', 'rules', 'rule_locations', 'settings',
+                 'instance')
+
     def __init__(self, entry: LaunchEntry, match: Match, name: str, names: NodeNames | None,
                  rules: list[RemapRule], settings: list[ParameterSetting],
                  instance: NodeInstance | None) -> None:
@@ -86,17 +91,21 @@ class AnalysedNode:
         return f'AnalysedNode({self.fqn!r}, {self.executable_label!r})'
 
 
+def _label(entry: LaunchEntry) -> str:
+    """How findings name what an entry runs: ``package executable`` (or plugin)."""
+    return f'{entry.package} {entry.executable or entry.plugin}'
+
+
 def build_node(entry: LaunchEntry, match: Match, findings: list[Finding]) -> AnalysedNode:
     """The analysed node of one entry; problems are appended to ``findings``."""
     where = entry.location
-    label = f'{entry.package} {entry.executable or entry.plugin}'
     name = entry.name or match.node_name
     if not name:
         name = entry.executable or match.key
         if match.resolved is not None:
             findings.append(make_finding(
                 'unnamed-node',
-                f"{label} is launched without a name and its registration records none: "
+                f"{_label(entry)} is launched without a name and its registration records none: "
                 f"assuming the node is called '{name}' (set name= in the launch file, or record "
                 f'it: ament_nodl_register_node({match.key} FILE ... NODE_NAME <name>))', where,
                 ()))
@@ -107,13 +116,14 @@ def build_node(entry: LaunchEntry, match: Match, findings: list[Finding]) -> Ana
             rules.append(parse_remap_rule(f'{source}:={target}'))
             rule_locations.append(entry.remap_location(index))
         except ValueError as exc:
-            findings.append(make_finding('not-analysable', f'{label}: {exc}', entry.remap_location(index), ()))
+            findings.append(make_finding('not-analysable', f'{_label(entry)}: {exc}',
+                                         entry.remap_location(index), ()))
     names: NodeNames | None
     try:
         names = NodeNames.create(name, entry.namespace or '/', rules)
     except InvalidNameError as exc:
         names = None
-        findings.append(make_finding('not-analysable', f'{label}: {exc}', where, ()))
+        findings.append(make_finding('not-analysable', f'{_label(entry)}: {exc}', where, ()))
     fqn = names.fqn if names is not None else join_name(entry.namespace, name)
     settings: list[ParameterSetting] = []
     for item in entry.parameters:
@@ -128,12 +138,14 @@ def build_node(entry: LaunchEntry, match: Match, findings: list[Finding]) -> Ana
             first = match.problems[0] if match.problems else None
             why = f': {first}' if first is not None else ''
             findings.append(make_finding(
-                'not-analysable', f'{label}: its definition {match.file} does not resolve{why}',
-                where, (fqn,)))
+                'not-analysable', f'{_label(entry)}: its definition {match.file} does not '
+                f'resolve{why}', where, (fqn,)))
         return node
     try:
+        # the final values, a later setting winning (as AnalysedNode.parameter_values)
+        values = {setting.name: setting.value for setting in settings}
         node.instance = NodeInstance(match.resolved, name, entry.namespace or '/', rules,
-                                     node.parameter_values(), where, names=names)
+                                     values, where, names=names)
     except ValueError as exc:
         findings.append(make_finding('not-analysable', f'{fqn}: {exc}', where, (fqn,)))
     return node

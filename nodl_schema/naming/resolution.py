@@ -107,8 +107,11 @@ class NodeNames:
         """
         rules = parse_remap_rules(remap_args)
         namespace = checked_namespace(node_name, namespace)
-        if not rules:  # most launched nodes: nothing renames them (and nothing to check again)
-            return cls(node_name, namespace, ())
+        if not rules:  # most launched nodes: nothing renames them, and both names are checked
+            names = cls(node_name, namespace, ())
+            under = namespace if namespace == '/' else namespace + '/'
+            object.__setattr__(names, '_prefixes_', (namespace, under + node_name, under))
+            return names
         final_name = node_name_after_remaps(node_name, rules)
         # rcl_node_init: the __ns rule's node scope is compared with the name after __node
         for rule in rules:
@@ -145,7 +148,7 @@ class NodeNames:
         if prefixes is None:
             namespace = checked_namespace(self.name, self.namespace)
             under = namespace if namespace == '/' else namespace + '/'
-            prefixes = (namespace, under + self.name, under)
+            prefixes = (namespace, under + self.name, under)  # (as create() without rules)
             object.__setattr__(self, '_prefixes_', prefixes)
         return prefixes
 

@@ -21,6 +21,9 @@ NODE_NAME_MAX_LENGTH = 255
 #: alphanumerics and ``_``, none starting with a digit, each after one ``/``.
 _VALID_FULL_NAME = re.compile(r'(?:/[A-Za-z_][A-Za-z0-9_]*)+')
 
+#: What a node name is made of (ASCII alphanumerics and ``_``), as :func:`node_name_error` checks.
+_NODE_NAME_CHARACTERS = re.compile(r'[A-Za-z0-9_]+')
+
 ALNUM = frozenset('abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789')
 DIGITS = frozenset('0123456789')
 
@@ -131,7 +134,7 @@ def node_name_error(name: str) -> str | None:
     """Why rmw rejects ``name`` as a node name, or ``None``."""
     if not name:
         return 'node name must not be empty'
-    if any(c not in ALNUM and c != '_' for c in name):
+    if _NODE_NAME_CHARACTERS.fullmatch(name) is None:
         return "node name must not contain characters other than alphanumerics or '_'"
     if name[0] in DIGITS:
         return 'node name must not start with a number'
