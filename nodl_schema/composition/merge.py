@@ -142,6 +142,16 @@ def merge_traced(layers: Sequence[Layer]) -> MergeResult:
     declarations: dict[tuple[str, str], list[Declaration]] = {}
     parameters: dict[str, Any] = {}
     sections: dict[str, dict[str, Any]] = {s: {} for s in ENDPOINT_SECTIONS}
+    seed = _seed(layers[0]) if layers and layers[0].shared is not None else None
+    if seed is not None:
+        # A first layer every node of the run shares (a base): what merging it alone gives is
+        # made once and copied (a thousand nodes would otherwise redo the same dozen entities).
+        seed_declarations, seed_parameters, seed_sections = seed
+        declarations = {key: [declaration] for key, declaration in seed_declarations}
+        parameters.update(seed_parameters)
+        for section, merged in seed_sections:
+            sections[section].update(merged)
+        layers = layers[1:]
 
     def declare(section: str, name: str, layer: Layer, path: DocPath, entity: Any,
                 merged: dict[str, Any], word: str, anchor: str) -> None:
@@ -183,6 +193,36 @@ def merge_traced(layers: Sequence[Layer]) -> MergeResult:
         if merged:
             setattr(result, section, list(merged.values()))
     return MergeResult(result, notes, declarations)
+
+
+#: What merging one shared layer alone gives: its declarations (key, declaration), its
+#: parameters and its endpoints per section (name -> stamped entity).
+_Seed = tuple[tuple[tuple[tuple[str, str], Declaration], ...], dict[str, Any],
+              tuple[tuple[str, dict[str, Any]], ...]]
+
+
+def _seed(layer: Layer) -> _Seed:
+    """Merge a shared layer (a built-in base) alone, once per layer (kept in
+    :attr:`Layer.shared`).  Its entities' names are unique (the built-in bases are valid), so
+    it has no overrides of its own."""
+    shared = layer.shared
+    assert shared is not None
+    found: _Seed | None = shared.get('merge seed')
+    if found is None:
+        traced: list[tuple[tuple[str, str], Declaration]] = []
+        parameters: dict[str, Any] = {}
+        for name, param in (layer.interface.parameters or {}).items():
+            traced.append(((PARAMETERS, name), Declaration(layer, (PARAMETERS, name), param)))
+            parameters[name] = _stamp(param, layer.label)
+        sections = []
+        for section in SECTIONS:
+            merged: dict[str, Any] = {}
+            for index, entity in enumerate(getattr(layer.interface, section) or ()):
+                traced.append(((section, entity.name), Declaration(layer, (section, index), entity)))
+                merged[entity.name] = _stamp(entity, layer.label)
+            sections.append((section, merged))
+        found = shared['merge seed'] = (tuple(traced), parameters, tuple(sections))
+    return found
 
 
 def merge_layers(layers: Sequence[Layer]) -> tuple[Interface, list[Diagnostic]]:

@@ -74,6 +74,10 @@ def _new_entity(kind: EntityKind, name: str, merged: object,
                   location, labels, merged)
 
 
+#: The endpoint sections in file order, with their entity kinds.
+_SECTION_KINDS = tuple((section, EntityKind.of_section(section)) for section in ENDPOINT_SECTIONS)
+
+
 class ResolvedNode:
     """A node definition resolved into typed entities (see the module docstring)."""
 
@@ -88,8 +92,7 @@ class ResolvedNode:
             entities.append(_entity(EntityKind.PARAMETER, name, param,
                                     composed.declarations.get((PARAMETERS, name), ()),
                                     composed.layers))
-        for section in ENDPOINT_SECTIONS:
-            kind = EntityKind.of_section(section)
+        for section, kind in _SECTION_KINDS:
             for endpoint in iface.endpoints(section):
                 entities.append(_entity(kind, endpoint.name, endpoint,
                                         composed.declarations.get((section, endpoint.name), ()),
