@@ -73,7 +73,7 @@ def test_a_name_that_cannot_be_granted_is_a_diagnostic():
     resolved = resolve_node(POLICY / 'talker.nodl.yaml')
     instance = NodeInstance(resolved, 'talker')
     bound = next(e for e in instance.entities if e.name == '/chatter')
-    instance.entities = tuple(e._replace(name='/chat*') if e is bound else e for e in instance.entities)
+    instance.entities = tuple(e._replace(name='/chat*') if e == bound else e for e in instance.entities)
     profile, problems = profile_for_instance(instance)
     assert [d.code for d in problems] == ['NODL602']
     assert problems[0].file.endswith('talker.nodl.yaml') and problems[0].line == 7

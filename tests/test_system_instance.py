@@ -89,3 +89,37 @@ def test_final_names_agree_with_a_real_rclpy_node(ros_node) -> None:  # type: ig
         declared = {b.name for b in instance.of_kind(kind)}
         seen = {e.name for e in getattr(observed, kind.section)}
         assert declared == seen, kind
+
+
+def test_an_instance_and_its_entities_form_no_reference_cycle(talker) -> None:  # type: ignore[no-untyped-def]
+    # A large analysis hangs off its instances: with a cycle it would be freed only by the
+    # garbage collector.  With the collector off, letting go must free the instance at once.
+    import gc
+    import weakref
+
+    was_enabled = gc.isenabled()
+    gc.disable()
+    try:
+        instance = NodeInstance(talker, 'talker', '/robot')
+        entities = instance.entities
+        assert entities == instance.entities and hash(entities) == hash(instance.entities)
+        assert instance.endpoints == [e for e in entities if not e.entity.is_parameter]
+        alive = weakref.ref(instance)
+        del instance
+        assert alive() is entities[0].instance  # an entity keeps its instance alive
+        del entities
+        assert alive() is None
+    finally:
+        if was_enabled:
+            gc.enable()
+
+
+def test_entities_can_be_replaced(talker) -> None:  # type: ignore[no-untyped-def]
+    instance = NodeInstance(talker, 'talker', '/robot')
+    chatter = instance.find('publisher', '/robot/talker/chatter')
+    assert chatter is not None
+    instance.entities = tuple(e._replace(name='/renamed') if e == chatter else e
+                              for e in instance.entities)
+    assert instance.find('publisher', '/renamed') is not None
+    assert instance.final_name(chatter.entity) == '/renamed'
+    assert '/renamed' in [e.name for e in instance.endpoints]

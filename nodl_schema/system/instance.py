@@ -9,7 +9,7 @@ their default, overridden by the instance's overrides.
 
 from __future__ import annotations
 
-from typing import Any, Iterable, Mapping, NamedTuple
+from typing import Any, Iterable, Iterator, Mapping, NamedTuple
 
 from nodl_schema.naming import (
     NodeNames, RemapArgs, RemapRule, normalize_namespace, parse_remap_rules)
@@ -78,51 +78,74 @@ class NodeInstance:
         self.parameter_overrides: dict[str, Any] = dict(parameter_overrides or {})
         #: Where the instance is declared (a launch file entry), if known.
         self.location = location
-        entities = []
+        finals = []
         for entity in resolved.entities:
             if entity.is_parameter:
-                entities.append(InstanceEntity(self, entity, entity.name))
-                continue
-            final = self.names.resolve(entity.name, service=entity.kind.communication == 'service')
-            entities.append(InstanceEntity(self, entity, final))
-        #: Every entity with its final name, in the resolved node's order.
-        self.entities: tuple[InstanceEntity, ...] = tuple(entities)
-        self._endpoints: tuple[tuple[InstanceEntity, ...], tuple[InstanceEntity, ...]] | None = None
+                finals.append(entity.name)
+            else:
+                finals.append(self.names.resolve(entity.name,
+                                                 service=entity.kind.communication == 'service'))
+        self._set_bound(resolved.entities, tuple(finals))
+
+    # The instance keeps (entity, final name) pairs and makes its InstanceEntity objects when
+    # asked: an InstanceEntity refers to its instance, so an instance holding them would form a
+    # reference cycle, and a whole analysis hanging off a thousand cycles is freed only by the
+    # garbage collector (slowly) instead of as soon as it is let go.  They compare equal (and
+    # hash alike) however many times they are made.  (Two tuples, not one pair per entity:
+    # fewer objects for the collector to walk while a large analysis is being built.)
+
+    def _set_bound(self, entities: tuple[Entity, ...], names: tuple[str, ...]) -> None:
+        self._entities, self._names = entities, names
+        self._endpoint_indices = tuple(i for i, e in enumerate(entities) if not e.is_parameter)
+
+    @property
+    def _bound(self) -> Iterator[tuple[Entity, str]]:
+        return zip(self._entities, self._names)
+
+    @property
+    def entities(self) -> tuple[InstanceEntity, ...]:
+        """Every entity with its final name, in the resolved node's order."""
+        new, instance = tuple.__new__, self
+        return tuple([new(InstanceEntity, (instance, entity, name))
+                      for entity, name in zip(self._entities, self._names)])
+
+    @entities.setter
+    def entities(self, entities: Iterable[InstanceEntity]) -> None:
+        given = tuple(entities)
+        self._set_bound(tuple(b.entity for b in given), tuple(b.name for b in given))
 
     @property
     def endpoints(self) -> list[InstanceEntity]:
         """The endpoints (no parameters) with their final names."""
-        cached = self._endpoints
-        if cached is None or cached[0] is not self.entities:  # (computed once per entities)
-            cached = self._endpoints = (
-                self.entities, tuple(e for e in self.entities if not e.entity.is_parameter))
-        return list(cached[1])
+        new, instance, entities, names = tuple.__new__, self, self._entities, self._names
+        return [new(InstanceEntity, (instance, entities[i], names[i]))
+                for i in self._endpoint_indices]
 
     def of_kind(self, kind: EntityKind | str) -> list[InstanceEntity]:
         """The entities of one kind."""
         wanted = EntityKind(kind)
-        return [e for e in self.entities if e.entity.kind is wanted]
+        return [InstanceEntity(self, e, n) for e, n in self._bound if e.kind is wanted]
 
     def final_name(self, entity: Entity | tuple[EntityKind | str, str]) -> str:
         """The final name of an entity of the resolved node (or of ``(kind, declared name)``)."""
         if not isinstance(entity, Entity):
             entity = self.resolved.entity(*entity)
-        for bound in self.entities:
-            if bound.entity is entity:
-                return bound.name
+        for bound, name in self._bound:
+            if bound is entity:
+                return name
         raise KeyError(f'{entity} is not an entity of {self.resolved.file}')
 
     def find(self, kind: EntityKind | str, final_name: str) -> InstanceEntity | None:
         """The entity of ``kind`` whose final name is ``final_name``, or None."""
         wanted = EntityKind(kind)
-        return next((e for e in self.entities if e.entity.kind is wanted and e.name == final_name),
-                    None)
+        return next((InstanceEntity(self, e, n) for e, n in self._bound
+                     if e.kind is wanted and n == final_name), None)
 
     def parameter_values(self) -> dict[str, Any]:
         """Each declared parameter's value: its default, overridden by the instance's value
         (None for a parameter without a default that is not given)."""
-        return {e.name: self.parameter_overrides.get(e.name, e.entity.default_value)
-                for e in self.entities if e.entity.is_parameter}
+        return {name: self.parameter_overrides.get(name, e.default_value)
+                for e, name in self._bound if e.is_parameter}
 
     def undeclared_overrides(self) -> list[str]:
         """Overrides of parameters the node does not declare (sorted)."""
