@@ -145,6 +145,28 @@ def test_crlf_and_cr_line_breaks_count_as_one_line() -> None:
         assert errors_at(doc) == [(3, 5)], newline
 
 
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(['a', 'pkg', 'x:y', 'value-sep', 'é', 'n_1']),
+                          st.sampled_from([' ', '  ', '\t', '\n  ', '\r\n ']),
+                          st.sampled_from(['=', ' = ', '=\n']),
+                          st.sampled_from(['"v"', "'w'", '"a>b"', '"x\ny"', '"é"', '""', '"b=\'c\'"'])),
+                max_size=5, unique_by=lambda t: t[0]),
+       st.sampled_from(['', ' ', 'é ', '<!-- c -->']), st.sampled_from(['/>', ' />', '\n/>']))
+def test_attributes_are_placed_as_one_by_one(attributes, lead, close) -> None:
+    """The placement of a tag's attributes in one match (a tag on one line) gives the
+    positions the attribute-by-attribute scan gives (every tag, on one line or not)."""
+    from nodl_schema.frontends import legacy_xml as X
+
+    tag = '<t' + ''.join(f'{space}{name}{equals}{value}' for name, space, equals, value in attributes) + close
+    text = f'<root>\n{lead}{tag}</root>'
+    element = load_xml(text).root.children[0]  # type: ignore[union-attr]
+    lines = X._Lines(text)
+    pairs = [part for a in element.attributes for part in (a.name, a.value)]
+    start = lines.offset(element.line, element.column)
+    assert element.attributes == X._place_attributes_by_name(lines, element.line, element.column, pairs, start)
+    assert [a.name for a in element.attributes] == [name for name, *_ in attributes]
+
+
 # --------------------------------------------------------------------------
 # Structural errors
 

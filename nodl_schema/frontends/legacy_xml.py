@@ -27,7 +27,8 @@ from __future__ import annotations
 import bisect
 import os
 import re
-from typing import TYPE_CHECKING, Any, Iterable, NamedTuple, Sequence
+from functools import partial
+from typing import TYPE_CHECKING, Any, Callable, Iterable, NamedTuple, Sequence
 from xml.parsers import expat
 
 from nodl_schema.diagnostics import Diagnostic, Severity
@@ -265,8 +266,15 @@ class _Rejected(Exception):
 
 
 _LINE_BREAK = re.compile(r'\r\n|\r|\n')
-_TAG_NAME = re.compile(r'<[^\s/>]*')
 _ATTRIBUTE = re.compile(r'\s+([^\s=/>]+)\s*=\s*(?:"[^"]*"|\'[^\']*\')')
+_TAG_NAME = re.compile(r'<[^\s/>]*')
+#: Attribute count -> a start tag with that many attributes (see _start_tag); tags with more
+#: attributes than this are placed attribute by attribute.
+_START_TAGS: dict[int, re.Pattern[str]] = {}
+_MAX_GROUPED = 24
+#: ``XmlAttribute(name, value, line, column)`` without the Python-level ``__new__`` a
+#: NamedTuple has (a third of the cost of placing an attribute).
+_new_attribute: Callable[[tuple[str, str, int, int]], XmlAttribute] = partial(tuple.__new__, XmlAttribute)
 
 
 class _Lines:
@@ -284,14 +292,46 @@ class _Lines:
         return index + 1, offset - self.starts[index] + 1
 
 
+def _start_tag(count: int) -> re.Pattern[str]:
+    """A start tag's name and ``count`` attributes, each name a group (compiled once per count)."""
+    pattern = _START_TAGS.get(count)
+    if pattern is None:
+        pattern = _START_TAGS[count] = re.compile('<[^\\s/>]*' + _ATTRIBUTE.pattern * count)
+    return pattern
+
+
 def _place_attributes(lines: _Lines, line: int, column: int,
                       pairs: Sequence[str]) -> list[XmlAttribute]:
     """Attach to each attribute the position of its name in the start tag."""
-    found: dict[str, tuple[int, int]] = {}
+    count = len(pairs) // 2
+    if not count:
+        return []
+    text = lines.text
     start = lines.offset(line, column)
-    tag = _TAG_NAME.match(lines.text, start) if start >= 0 else None
+    if start >= 0 and count <= _MAX_GROUPED:
+        # The usual start tag: one match of a pattern with a group per attribute gives every
+        # name's span at once (``regs``); on one line, a column is an offset from the tag's.
+        # Expat reports attributes in the order written; the names are compared all the same.
+        # Thousands of elements make this the XML reader's hottest loop.
+        tag = _start_tag(count).match(text, start)
+        if tag is not None and text.find('\n', start, tag.end()) < 0 and \
+                text.find('\r', start, tag.end()) < 0:
+            spans = tag.regs[1:]
+            names = pairs[0::2]
+            if [text[i:j] for i, j in spans] == names:
+                shift = column - start
+                return [_new_attribute((name, value, line, at + shift))
+                        for name, value, (at, _) in zip(names, pairs[1::2], spans)]
+    return _place_attributes_by_name(lines, line, column, pairs, start)
+
+
+def _place_attributes_by_name(lines: _Lines, line: int, column: int, pairs: Sequence[str],
+                              start: int) -> list[XmlAttribute]:
+    """:func:`_place_attributes` for a start tag over several lines (or an unexpected one)."""
+    text = lines.text
+    found: dict[str, tuple[int, int]] = {}
+    tag = _TAG_NAME.match(text, start) if start >= 0 else None
     if tag is not None:
-        text = lines.text
         pos = tag.end()
         while True:
             match = _ATTRIBUTE.match(text, pos)
@@ -307,7 +347,7 @@ def _place_attributes(lines: _Lines, line: int, column: int,
     for index in range(0, len(pairs), 2):
         name = pairs[index]
         at_line, at_column = found.get(name, (line, column))
-        out.append(XmlAttribute(name, pairs[index + 1], at_line, at_column))
+        out.append(_new_attribute((name, pairs[index + 1], at_line, at_column)))
     return out
 
 
