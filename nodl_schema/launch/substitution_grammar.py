@@ -79,7 +79,7 @@ _ESCAPE = re.compile(r'\\(.)', re.S)
 
 
 def _unescape(text: str) -> str:
-    return _ESCAPE.sub(r'\1', text)
+    return _ESCAPE.sub(r'\1', text) if '\\' in text else text  # most text has no escape
 
 
 class _Parser:

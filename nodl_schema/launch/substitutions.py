@@ -56,6 +56,8 @@ SomeSubstitutions = object  # str, a Substitution, or a sequence of them (typed 
 
 def normalize(value: Any) -> list[Substitution]:
     """``str``, a substitution, a path or a sequence of those -> a list of substitutions."""
+    if type(value) is list:  # the usual value (a parsed attribute), without the ABC check for a path
+        return _normalize_items(value)
     if isinstance(value, Substitution):
         return [value]
     if isinstance(value, str):
@@ -66,6 +68,10 @@ def normalize(value: Any) -> list[Substitution]:
         return [TextSubstitution(str(value))]
     if value is None:
         return [TextSubstitution('')]
+    return _normalize_items(value)
+
+
+def _normalize_items(value: Any) -> list[Substitution]:
     out: list[Substitution] = []
     for item in value:
         if isinstance(item, Substitution):  # the usual item (a parsed attribute), without recursing
@@ -77,7 +83,13 @@ def normalize(value: Any) -> list[Substitution]:
 
 def perform(context: LaunchContext, value: Any) -> str:
     """Perform every substitution of ``value`` and join the texts."""
-    return ''.join(s.perform(context) for s in normalize(value))
+    parts = normalize(value)
+    if len(parts) == 1:
+        part = parts[0]
+        # Plain text (most attributes): its text, without a generator and a join.
+        if type(part) is TextSubstitution and type(part.text) is str:
+            return part.text
+    return ''.join(s.perform(context) for s in parts)
 
 
 def yaml_bool(text: str) -> bool:
