@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import re
+from functools import lru_cache
 from typing import Any, NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
@@ -50,28 +51,39 @@ _PLAIN_WORD = re.compile(r'[-+.]?[A-Za-z0-9_][A-Za-z0-9_.+\-/]*')
 
 def yaml_value(text: str) -> Any:
     """``yaml.safe_load(text)`` (yaml.YAMLError as it raises), quick for one plain word."""
+    if _PLAIN_WORD.fullmatch(text):
+        # What safe_load's composer and constructor do for one plain scalar, called directly:
+        # the resolver's tag, then that tag's constructor (a scalar's has no state to reset).
+        resolver, constructor, scalar = _plain_scalar_typing()
+        tag = resolver.resolve(scalar, text, (True, False))
+        construct = constructor.yaml_constructors.get(tag)
+        if construct is None:  # a tag someone added a resolver for: as safe_load treats it
+            return type(constructor)().construct_document(scalar(tag, text))
+        return construct(constructor, scalar(tag, text))
     import yaml
 
-    if _PLAIN_WORD.fullmatch(text):
-        from yaml.constructor import SafeConstructor
-        from yaml.nodes import ScalarNode
-        from yaml.resolver import Resolver
-
-        resolver: Any = Resolver()
-        constructor: Any = SafeConstructor()
-        return constructor.construct_document(
-            ScalarNode(resolver.resolve(ScalarNode, text, (True, False)), text))
     return yaml.safe_load(text)
 
 
-def _yaml(text: str, can_be_str: bool) -> Any:
-    import yaml
+@lru_cache(maxsize=None)  # one entry: PyYAML's stateless helpers, made when first needed
+def _plain_scalar_typing() -> tuple[Any, Any, Any]:
+    from yaml.constructor import SafeConstructor
+    from yaml.nodes import ScalarNode
+    from yaml.resolver import Resolver
 
+    return Resolver(), SafeConstructor(), ScalarNode
+
+
+def _yaml(text: str, can_be_str: bool) -> Any:
     if not text:
         return text
     try:
         out = yaml_value(text)
-    except yaml.YAMLError as exc:
+    except Exception as exc:
+        import yaml  # only now: a value read without error needs no import statement
+
+        if not isinstance(exc, yaml.YAMLError):
+            raise
         if can_be_str:
             return text
         raise LaunchProblem('NODL518', f'cannot read {text!r} as a YAML value: {exc}'.split('\n')[0])
@@ -165,10 +177,12 @@ def _is_subs(value: Any) -> bool:
 
 def evaluate_value(context: Any, spec: Any, name: str = '') -> Any:
     """Compute a parameter value in ``context`` as launch_ros does."""
-    from nodl_schema.launch.substitutions import perform
-
     if isinstance(spec, ParameterValue):
         value, data_type = spec.value, spec.value_type
+        if isinstance(value, SCALAR_TYPES):  # a value as it is, under both rules (the usual case)
+            return value
+        from nodl_schema.launch.substitutions import perform
+
         if spec.dict_rules:  # evaluate_parameter_dict: substitutions are read as YAML, '' is ''
             if _is_subs(value):
                 text = perform(context, value)
@@ -179,8 +193,6 @@ def evaluate_value(context: Any, spec: Any, name: str = '') -> Any:
                     raise LaunchProblem('NODL518', f"parameter '{name}': a list of items of one "
                                                    'type (bool, int, float or str) was expected')
                 return items
-            return value
-        if isinstance(value, SCALAR_TYPES):
             return value
         if _is_subs(value):
             return coerce_to_type(perform(context, value), data_type)
