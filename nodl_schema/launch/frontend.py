@@ -7,8 +7,8 @@ Both markup frontends build :class:`Entity` objects and call :func:`build_descri
 
 from __future__ import annotations
 
-from functools import lru_cache
-from typing import Any, NamedTuple, TypeVar
+from functools import partial
+from typing import TYPE_CHECKING, Any, Callable, NamedTuple, TypeVar
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch import actions as A
@@ -18,6 +18,10 @@ from nodl_schema.launch.errors import LaunchProblem
 from nodl_schema.launch.model import SourceLocation
 from nodl_schema.launch.params import ParameterValue, get_typed_value, type_from_identifier
 from nodl_schema.launch.substitution_grammar import parse_if_substitutions, parse_substitution
+from nodl_schema.launch.substitutions import TextSubstitution
+
+if TYPE_CHECKING:  # pragma: no cover - for type checkers only
+    from nodl_schema.frontends.legacy_xml import XmlAttribute
 
 __all__ = ['Attribute', 'Entity', 'TAGS', 'build_description']
 
@@ -77,16 +81,26 @@ class Attribute(NamedTuple):
     column: int
 
 
+#: ``SourceLocation(file, line, column)`` without a NamedTuple's Python-level ``__new__``
+#: (an entity is made for every element of a launch file).
+_new_location: Callable[[tuple[str, int, int]], SourceLocation] = partial(tuple.__new__, SourceLocation)
+
+
 class Entity:
     """A frontend entity: its tag, attributes, nested entity lists and child actions."""
+
+    __slots__ = ('tag', 'yaml', 'location', 'attributes', 'nested', 'children', 'stray')
 
     def __init__(self, tag: str, file: str, line: int, column: int, *, yaml: bool = False) -> None:
         self.tag = tag
         #: True for an entity of a YAML launch file (launch_yaml's rules: no ``NAME-sep``,
         #: values are checked against ``type``, not coerced).
         self.yaml = yaml
-        self.location = SourceLocation(file, line, column)
-        self.attributes: dict[str, Attribute] = {}
+        self.location = _new_location((file, line, column))
+        #: Name -> value and position: an :class:`Attribute` (YAML) or the XML reader's
+        #: :class:`~nodl_schema.frontends.legacy_xml.XmlAttribute` as it is (it has the same
+        #: ``value``, ``line`` and ``column``).
+        self.attributes: dict[str, Attribute | XmlAttribute] = {}
         self.nested: dict[str, list[Entity]] = {}
         self.children: list[Entity] = []
         #: Where unexpected content is (a YAML child list for a tag without children...).
@@ -98,6 +112,8 @@ class Entity:
         if attribute is None:
             return None
         value = attribute.value
+        if type(value) is str:  # every XML attribute: no further checks
+            return value
         if isinstance(value, bool):
             return str(value).lower()
         if isinstance(value, (list, dict)):
@@ -134,22 +150,35 @@ class Entity:
                                        f"'{value.value}'", self.location.file, value.line, value.column)
 
 
-@lru_cache(maxsize=None)  # one entry per tag's spec (and frontend): a launch file repeats tags
-def _allowed(attributes: tuple[str, ...], yaml: bool) -> tuple[frozenset[str], tuple[str, ...]]:
-    """The attribute names a spec allows and those it requires (marked ``*``)."""
-    allowed = frozenset(a.rstrip('*') for a in attributes)
-    return (allowed - XML_ONLY if yaml else allowed), tuple(a[:-1] for a in attributes if a.endswith('*'))
+class _Spec:
+    """What a tag allows, as sets made once: :func:`_check` decides the usual entity (nothing
+    wrong) by set comparisons, and builds messages only when something is wrong."""
+
+    __slots__ = ('lists', 'children', 'allowed', 'allowed_yaml', 'required', 'required_set', 'lists_set')
+
+    def __init__(self, attributes: tuple[str, ...], lists: tuple[str, ...], children: bool) -> None:
+        self.lists = lists
+        self.children = children
+        self.allowed = frozenset(a.rstrip('*') for a in attributes)
+        self.allowed_yaml = self.allowed - XML_ONLY
+        self.required = tuple(a[:-1] for a in attributes if a.endswith('*'))
+        self.required_set = frozenset(self.required)
+        self.lists_set = frozenset(lists)
 
 
-def _check(entity: Entity, attributes: tuple[str, ...], lists: tuple[str, ...], children: bool,
-           problems: list[Diagnostic]) -> bool:
-    allowed, required = _allowed(attributes, entity.yaml)
+_SPECS = {tag: _Spec(*spec) for tag, spec in TAGS.items()}
+_NESTED_SPECS = {tag: _Spec(attributes, lists, False) for tag, (attributes, lists) in NESTED.items()}
+_ROOT_SPEC = _Spec(('deprecated', 'version'), (), True)
+
+
+def _check(entity: Entity, spec: _Spec, problems: list[Diagnostic]) -> bool:
+    allowed = spec.allowed_yaml if entity.yaml else spec.allowed
     present = entity.attributes
-    if (children or not entity.children) and not ('if' in present and 'unless' in present) and \
-            all(name in allowed for name in present) and all(name in present for name in required) and \
-            all(name in lists for name in entity.nested):
+    if (spec.children or not entity.children) and not ('if' in present and 'unless' in present) and \
+            allowed.issuperset(present) and present.keys() >= spec.required_set and \
+            spec.lists_set.issuperset(entity.nested):
         return True  # the usual case, decided without building any message
-    return _check_slow(entity, set(allowed), required, lists, children, problems)
+    return _check_slow(entity, set(allowed), spec.required, spec.lists, spec.children, problems)
 
 
 def _check_slow(entity: Entity, allowed: set[str], required: tuple[str, ...], lists: tuple[str, ...],
@@ -198,11 +227,11 @@ def _check_slow(entity: Entity, allowed: set[str], required: tuple[str, ...], li
 def _nested_ok(entity: Entity, problems: list[Diagnostic]) -> bool:
     ok = True
     for name, items in entity.nested.items():
-        spec = NESTED.get(name)
+        spec = _NESTED_SPECS.get(name)
         if spec is None:
             continue
         for item in items:
-            ok = _check(item, spec[0], spec[1], False, problems) and ok
+            ok = _check(item, spec, problems) and ok
             ok = _nested_ok(item, problems) and ok
     return ok
 
@@ -232,8 +261,6 @@ def _parameters(entity: Entity) -> list[Any]:
 
 
 def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
-    from nodl_schema.launch.substitutions import TextSubstitution
-
     name = [*prefix, *([TextSubstitution('.')] if prefix else []), *param.subs('name')]
     nested = param.nested.get('param', [])
     value = param.attributes.get('value')
@@ -306,7 +333,7 @@ def _placed(node: _Placed, entity: Entity) -> _Placed:
     """``node`` (a node action or composable node) told where its ``remap`` entries and its
     ``args``/``ros_args`` are written: findings about a rule point there."""
     node.remap_sources = [r.location for r in entity.nested.get('remap', [])]
-    if isinstance(node, R.Node):
+    if isinstance(node, R.Node) and ('args' in entity.attributes or 'ros_args' in entity.attributes):
         node.word_sources = {name: SourceLocation(entity.location.file, a.line, a.column)
                              for name, a in entity.attributes.items() if name in ('args', 'ros_args')}
     return node
@@ -320,53 +347,54 @@ def _composable(entity: Entity) -> R.ComposableNode:
     return _placed(node, entity)
 
 
+def _cmdline(entity: Entity, name: str) -> list[Any] | None:
+    """``args``/``ros_args`` split into words as launch_ros splits them (None when absent)."""
+    parts = entity.subs(name)
+    if parts is None:
+        return None
+    import shlex
+
+    words: list[Any] = []
+    current: list[Any] = []
+    for part in parts:
+        if isinstance(part, TextSubstitution):
+            text = part.text
+            tokens = shlex.split(text)
+            if text[:1].isspace() and current:
+                words.append(current)
+                current = []
+            for index, token in enumerate(tokens):
+                if index:
+                    words.append(current)
+                    current = []
+                current.append(TextSubstitution(token))
+            if text[-1:].isspace() and current:
+                words.append(current)
+                current = []
+        else:
+            current.append(part)
+    if current:
+        words.append(current)
+    return words
+
+
 def _node_kwargs(entity: Entity) -> dict[str, Any]:
-    from nodl_schema.launch.substitutions import TextSubstitution
-
-    def cmdline(name: str) -> list[Any] | None:
-        parts = entity.subs(name)
-        if parts is None:
-            return None
-        import shlex
-
-        words: list[Any] = []
-        current: list[Any] = []
-        for part in parts:
-            if isinstance(part, TextSubstitution):
-                text = part.text
-                tokens = shlex.split(text)
-                if text[:1].isspace() and current:
-                    words.append(current)
-                    current = []
-                for index, token in enumerate(tokens):
-                    if index:
-                        words.append(current)
-                        current = []
-                    current.append(TextSubstitution(token))
-                if text[-1:].isspace() and current:
-                    words.append(current)
-                    current = []
-            else:
-                current.append(part)
-        if current:
-            words.append(current)
-        return words
-
     return dict(executable=entity.subs('exec'), package=entity.subs('pkg'), name=entity.subs('name'),
                 namespace=entity.subs('namespace'), parameters=_parameters(entity),
-                remappings=_remaps(entity), arguments=cmdline('args'), ros_arguments=cmdline('ros_args'))
+                remappings=_remaps(entity), arguments=_cmdline(entity, 'args'),
+                ros_arguments=_cmdline(entity, 'ros_args'))
 
 
 def build_action(entity: Entity, problems: list[Diagnostic]) -> A.Action | None:
     """One entity to its action (None, reported, when it is not valid)."""
-    from nodl_schema.validation.messages import did_you_mean
-
-    spec = TAGS.get(entity.tag)
+    spec = _SPECS.get(entity.tag)
     if spec is None:
+        from nodl_schema.validation.messages import did_you_mean
+
         problems.append(Diagnostic(Severity.ERROR, f'unknown launch tag <{entity.tag}>'
                                    f'{did_you_mean(entity.tag, TAGS)}', (), *entity.location, code='NODL501'))
         return None
-    if not (_check(entity, *spec, problems) and _nested_ok(entity, problems)):
+    if not (_check(entity, spec, problems) and _nested_ok(entity, problems)):
         return None
     tag = entity.tag
     try:
@@ -390,6 +418,8 @@ def _children(entity: Entity, problems: list[Diagnostic]) -> list[A.Action]:
 
 def _make(entity: Entity, tag: str, problems: list[Diagnostic]) -> A.Action:
     s = entity.subs
+    if tag == 'node':  # the usual entity first
+        return _placed(R.Node(**_node_kwargs(entity)), entity)
     if tag == 'arg':
         choices = [c.text('value') for c in entity.nested.get('choice', [])]
         return A.DeclareLaunchArgument(entity.text('name') or '', default_value=s('default'),
@@ -421,8 +451,6 @@ def _make(entity: Entity, tag: str, problems: list[Diagnostic]) -> A.Action:
     if tag == 'append_env':
         return A.AppendEnvironmentVariable(s('name'), s('value'), prepend=bool(entity.boolean('prepend')),
                                            separator=entity.text('separator') or ':')
-    if tag == 'node':
-        return _placed(R.Node(**_node_kwargs(entity)), entity)
     if tag == 'node_container':
         return _placed(R.ComposableNodeContainer(
             composable_node_descriptions=[_composable(c) for c in entity.nested.get('composable_node', [])],
@@ -444,7 +472,7 @@ def build_description(root: Entity, problems: list[Diagnostic]) -> A.LaunchDescr
         problems.append(Diagnostic(Severity.ERROR, f"the root is <{root.tag}>; a launch file's root is "
                                    '<launch>', (), *root.location, code='NODL501'))
         return None
-    _check(root, ('deprecated', 'version'), (), True, problems)
+    _check(root, _ROOT_SPEC, problems)
     description = A.LaunchDescription(_children(root, problems))
     description.location = root.location
     return description

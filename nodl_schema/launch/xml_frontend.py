@@ -11,9 +11,12 @@ from __future__ import annotations
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch.actions import LaunchDescription
 from nodl_schema.launch.errors import MAX_XML_DEPTH
-from nodl_schema.launch.frontend import NESTED, TAGS, Attribute, Entity, build_description
+from nodl_schema.launch.frontend import NESTED, TAGS, Entity, build_description
 
 __all__ = ['read_xml_launch']
+
+#: Tag -> the child tags it holds as nested entity lists (the others are actions).
+_LISTS = {tag: TAGS.get(tag, (None, (), None))[1] or NESTED.get(tag, ((), ()))[1] for tag in (*TAGS, *NESTED)}
 
 
 def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnostic]]:
@@ -38,17 +41,19 @@ def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnosti
                                        'levels', (), path, element.line, element.column, code='NODL009'))
             return None
         entity = Entity(element.tag, path, element.line, element.column)
-        for attribute in element.attributes:
-            entity.attributes[attribute.name] = Attribute(attribute.value, attribute.line, attribute.column)
-        lists = TAGS.get(element.tag, (None, (), None))[1] or NESTED.get(element.tag, ((), ()))[1]
-        for child in element.children:
-            converted = convert(child, depth + 1)
-            if converted is None:
-                continue
-            if child.tag in lists:
-                entity.nested.setdefault(child.tag, []).append(converted)
-            else:
-                entity.children.append(converted)
+        # The reader's attributes as they are (value, line and column, as Attribute has them):
+        # one dictionary per element, no record per attribute.
+        entity.attributes = {attribute.name: attribute for attribute in element.attributes}
+        if element.children:
+            lists = _LISTS.get(element.tag, ())
+            for child in element.children:
+                converted = convert(child, depth + 1)
+                if converted is None:
+                    continue
+                if child.tag in lists:
+                    entity.nested.setdefault(child.tag, []).append(converted)
+                else:
+                    entity.children.append(converted)
         return entity
 
     # Iterative depth check first: expat itself reads any depth, the conversion is recursive.
