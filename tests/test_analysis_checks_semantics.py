@@ -89,6 +89,21 @@ def test_duplicate_node_sees_final_names(tmp_path: Path) -> None:
     assert [r[1] for r in first.diagnostic.related] == [3]  # where /ns/x is first launched
 
 
+def test_duplicate_findings_at_one_place_follow_each_name_s_first_launch() -> None:
+    """Nodes launched from one place (a loop in a Python launch file) sort alike: their
+    duplicate-node findings come in the order of context.by_fqn, that of each name's first
+    launch (/a before /b here, though /b is launched again first)."""
+    from nodl_schema.analysis import LaunchEntry, analyse_entries
+    from nodl_schema.system.entities import Location
+
+    here = Location('system.launch.py', 4, 5)
+    analysis = analyse_entries([LaunchEntry('demo', 'talker', here, name=name)
+                                for name in ('a', 'b', 'b', 'a', 'b')], prefixes=[])
+    assert analysis.context is not None and list(analysis.context.by_fqn) == ['/a', '/b']
+    found = [f.message.split(' ')[0] for f in _kinds(analysis, 'duplicate-node')]
+    assert found == ['/a', '/b', '/b']
+
+
 # -- QoS -----------------------------------------------------------------------------------
 
 #: Publisher and subscription profiles on one topic; some omit durability, liveliness...

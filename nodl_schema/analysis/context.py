@@ -49,12 +49,19 @@ class AnalysisContext:
     def __post_init__(self) -> None:
         self._by_instance = {id(n.instance): n for n in self.nodes if n.instance is not None}
         #: The system of the nodes that have a definition.
-        self.system = System(n.instance for n in self.nodes if n.instance is not None)
-        by_fqn: dict[str, list[AnalysedNode]] = {}
-        for node in self.nodes:
-            by_fqn.setdefault(node.fqn, []).append(node)
-        #: Final name -> the nodes launched under it (more than one is a duplicate).
-        self.by_fqn = by_fqn
+        self.system = System([n.instance for n in self.nodes if n.instance is not None])
+        self._by_fqn: dict[str, list[AnalysedNode]] | None = None
+
+    @property
+    def by_fqn(self) -> dict[str, list[AnalysedNode]]:
+        """Final name -> the nodes launched under it (more than one is a duplicate); made on
+        first use (a list per launched node is a lot for the collector to keep walking)."""
+        by_fqn = self._by_fqn
+        if by_fqn is None:
+            by_fqn = self._by_fqn = {}
+            for node in self.nodes:
+                by_fqn.setdefault(node.fqn, []).append(node)
+        return by_fqn
 
     def node_of(self, instance: NodeInstance) -> AnalysedNode:
         """The analysed node of an instance."""

@@ -84,21 +84,37 @@ class System:
     def __init__(self, instances: Iterable[NodeInstance]) -> None:
         #: The instances, in the order given.
         self.instances: tuple[NodeInstance, ...] = tuple(instances)
-        sides: dict[tuple[str, str], tuple[list[InstanceEntity], list[InstanceEntity]]] = {}
-        # kind -> (communication, offers), asked once per kind rather than per endpoint.
-        kinds = {kind: (kind.communication, kind.offers) for kind in EntityKind}
+        # communication -> final name -> (offering, using).  Grouped by communication first, so
+        # that each group's names are sorted as strings rather than (communication, name) pairs,
+        # and no pair is made per endpoint (a large system has tens of thousands).
+        sides: dict[str, dict[str, tuple[list[InstanceEntity], list[InstanceEntity]]]] = {}
+        # kind -> (communication, side), asked once per kind rather than per endpoint.
+        kinds = {kind: (kind.communication, 0 if kind.offers else 1) for kind in EntityKind}
         for instance in self.instances:
             for bound in instance.endpoints:
-                communication, offers = kinds[bound.entity.kind]
+                communication, side = kinds[bound.entity.kind]
                 assert communication is not None
-                key = (communication, bound.name)
-                found = sides.get(key)
+                names = sides.get(communication)
+                if names is None:
+                    names = sides[communication] = {}
+                found = names.get(bound.name)
                 if found is None:
-                    found = sides[key] = ([], [])
-                found[0 if offers else 1].append(bound)
-        #: (communication, final name) -> its connection, sorted by communication then name.
-        self._connections = {key: Connection(key[0], key[1], tuple(offering), tuple(using))
-                             for key, (offering, using) in sorted(sides.items())}
+                    found = names[bound.name] = ([], [])
+                found[side].append(bound)
+        new = tuple.__new__  # Connection(...) without its Python-level __new__, per connection
+        #: communication -> final name -> its connection.
+        self._by_name: dict[str, dict[str, Connection]] = {}
+        ordered: list[Connection] = []
+        for communication in sorted(sides):
+            names = sides[communication]
+            table = self._by_name[communication] = {}
+            for name in sorted(names):
+                offering, using = names[name]
+                connection = table[name] = new(Connection, (communication, name, tuple(offering),
+                                                            tuple(using)))
+                ordered.append(connection)
+        #: Every connection, sorted by communication then name.
+        self._ordered: tuple[Connection, ...] = tuple(ordered)
 
     def connections(self, communication: str | None = None, *,
                     include_client_library: bool = True) -> list[Connection]:
@@ -107,18 +123,21 @@ class System:
         With ``include_client_library=False``, endpoints the client library
         provides are left out, and connections left empty are dropped.
         """
+        if communication is None:
+            found: Iterable[Connection] = self._ordered
+        else:
+            found = self._by_name.get(communication, {}).values()
+        if include_client_library:
+            return list(found)
         out = []
-        for (kind, _), connection in self._connections.items():
-            if communication is not None and kind != communication:
-                continue
-            if not include_client_library:
-                def keep(side: tuple[InstanceEntity, ...]) -> tuple[InstanceEntity, ...]:
-                    return tuple(e for e in side if e.entity.provider is not Provider.CLIENT_LIBRARY)
+        for connection in found:
+            def keep(side: tuple[InstanceEntity, ...]) -> tuple[InstanceEntity, ...]:
+                return tuple(e for e in side if e.entity.provider is not Provider.CLIENT_LIBRARY)
 
-                connection = connection._replace(offering=keep(connection.offering),
-                                                 using=keep(connection.using))
-                if not connection.endpoints:
-                    continue
+            connection = connection._replace(offering=keep(connection.offering),
+                                             using=keep(connection.using))
+            if not connection.endpoints:
+                continue
             out.append(connection)
         return out
 
@@ -139,7 +158,8 @@ class System:
 
     def connection(self, communication: str, name: str) -> Connection | None:
         """The connection of ``communication`` called ``name`` (final name), or None."""
-        return self._connections.get((communication, name))
+        table = self._by_name.get(communication)
+        return table.get(name) if table is not None else None
 
     def _bound(self, instance: NodeInstance | str, entity: Entity | InstanceEntity
                | tuple[EntityKind | str, str]) -> InstanceEntity:
@@ -167,7 +187,9 @@ class System:
         communication = bound.entity.kind.communication
         if communication is None:
             return []
-        connection = self._connections[(communication, bound.name)]
+        connection = self.connection(communication, bound.name)
+        if connection is None:
+            raise KeyError((communication, bound.name))
         return list(connection.using if bound.entity.kind.offers else connection.offering)
 
     def instance(self, fqn: str) -> NodeInstance:
@@ -183,4 +205,4 @@ class System:
                 if len(group) > 1}
 
     def __repr__(self) -> str:
-        return f'System({len(self.instances)} instances, {len(self._connections)} connections)'
+        return f'System({len(self.instances)} instances, {len(self._ordered)} connections)'

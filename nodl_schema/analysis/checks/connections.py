@@ -3,11 +3,13 @@
 
 from __future__ import annotations
 
+import operator
 from typing import Any, Iterator
 
 from nodl_schema.analysis.checks import CheckExtension
 from nodl_schema.analysis.context import AnalysisContext
 from nodl_schema.analysis.findings import Finding, make_finding
+from nodl_schema.model.qos import QOS_POLICIES
 from nodl_schema.system.entities import Provider
 from nodl_schema.system.instance import InstanceEntity
 
@@ -33,7 +35,9 @@ class MultiplePublishersCheck(CheckExtension):
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """One finding per topic published by several nodes."""
         for connection in context.system.connections('topic'):
-            publishers = _own(connection.publishers)
+            if len(connection.offering) < 2:
+                continue  # fewer than two publishers
+            publishers = _own(connection.offering)
             nodes = list(dict.fromkeys(p.instance.fqn for p in publishers))
             if len(nodes) < 2 or context.settings.publishers_allowed(connection.name):
                 continue
@@ -59,9 +63,15 @@ class TypeMismatchCheck(CheckExtension):
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """One finding per connection whose endpoints use more than one type."""
         for connection in context.system.connections():
-            endpoints = connection.endpoints
+            offering, using = connection.offering, connection.using
+            if len(offering) + len(using) < 2:
+                continue  # one endpoint, one type (most services: a server and no client)
+            endpoints = offering + using
             first_type = endpoints[0].entity.type_name
-            if all(e.entity.type_name == first_type for e in endpoints):
+            for e in endpoints:
+                if e.entity.type_name != first_type:
+                    break
+            else:
                 continue
             by_type: dict[str, list[InstanceEntity]] = {}
             for e in endpoints:
@@ -81,8 +91,13 @@ class TypeMismatchCheck(CheckExtension):
                                      f'{e.entity.type_name}') for e in endpoints])
 
 
+#: Every policy of a profile, in a fixed order: two profiles with the same policies have the
+#: same key (as their ``to_dict()`` items would, without making a dict per endpoint).
+_QOS_POLICIES = operator.attrgetter(*QOS_POLICIES)
+
+
 def _qos_key(qos: Any) -> tuple[Any, ...]:
-    return tuple(sorted(qos.to_dict().items())) if qos is not None else ()
+    return _QOS_POLICIES(qos) if qos is not None else ()
 
 
 class QoSCheck(CheckExtension):
@@ -98,16 +113,18 @@ class QoSCheck(CheckExtension):
 
         verdicts: dict[tuple[Any, Any], Any] = {}
         for connection in context.system.connections('topic'):
-            if not connection.publishers or not connection.subscriptions:
+            publishers, subscriptions = connection.offering, connection.using
+            if not publishers or not subscriptions:
                 continue
             # client library to client library pairs (/parameter_events) are never checked:
             # pair every publisher with the nodes' own subscriptions, and the nodes' own
             # publishers with the client library's subscriptions (linear when none are own)
-            own_subs = _own(connection.subscriptions)
-            library_subs = [s for s in connection.subscriptions
+            own_subs = _own(subscriptions)
+            library_subs = [s for s in subscriptions
                             if s.entity.provider is Provider.CLIENT_LIBRARY]
-            pairs = [(p, s) for p in connection.publishers for s in own_subs]
-            pairs += [(p, s) for p in _own(connection.publishers) for s in library_subs]
+            pairs = [(p, s) for p in publishers for s in own_subs]
+            if library_subs:
+                pairs += [(p, s) for p in _own(publishers) for s in library_subs]
             for pub, sub in pairs:
                 key = (_qos_key(pub.entity.qos), _qos_key(sub.entity.qos))
                 verdict = verdicts.get(key)

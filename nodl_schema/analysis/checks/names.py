@@ -7,6 +7,7 @@ from typing import Any, Iterator
 from nodl_schema.analysis.checks import CheckExtension
 from nodl_schema.analysis.context import AnalysisContext
 from nodl_schema.analysis.findings import Finding, make_finding
+from nodl_schema.analysis.instances import AnalysedNode
 
 __all__ = ['DuplicateNodeCheck', 'UnusedRemapCheck']
 
@@ -40,9 +41,16 @@ class DuplicateNodeCheck(CheckExtension):
 
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """One finding per node launched under a name an earlier node already has."""
-        for fqn, group in context.by_fqn.items():
-            if len(group) < 2:
-                continue
+        # context.by_fqn's groups, made only for the names launched more than once (few)
+        first_of: dict[str, AnalysedNode] = {}
+        groups: dict[str, list[AnalysedNode]] = {}
+        for node in context.nodes:
+            first = first_of.setdefault(node.fqn, node)
+            if first is not node:
+                groups.setdefault(node.fqn, [first]).append(node)
+        # in context.by_fqn's order: that of each name's first launch
+        for fqn in (name for name in first_of if name in groups) if groups else ():
+            group = groups[fqn]
             first = group[0]
             for other in group[1:]:
                 yield make_finding(

@@ -51,6 +51,8 @@ class OrphanCheck(CheckExtension):
         for connection in context.system.connections():
             if connection.connected or connection.name in maybe:
                 continue
+            if not connection.using and connection.communication != 'topic':
+                continue  # servers without clients are no problem (and most services are that)
             for bound in connection.endpoints:
                 if bound.entity.provider is Provider.CLIENT_LIBRARY:
                     continue

@@ -107,9 +107,19 @@ class ParameterCheck(CheckExtension):
         """Findings about every node with a definition."""
         from nodl_schema.validation.validators import value_problems
 
+        # Per resolved node (the nodes launched from one definition share it): its parameters
+        # by name, and those the launch must set (no default, and a type that takes a value).
+        known: dict[int, tuple[dict[str, Any], list[tuple[str, Any]]]] = {}
         for node in context.analysed():
             assert node.instance is not None
-            declared = {e.name: e for e in node.instance.resolved.parameters}
+            resolved = node.instance.resolved
+            facts = known.get(id(resolved))
+            if facts is None:
+                by_name = {e.name: e for e in resolved.parameters}
+                facts = known[id(resolved)] = (by_name, [
+                    (name, e) for name, e in by_name.items() if e.default_value is None
+                    and not (isinstance(e.type, TypeSpec) and e.type.element == 'none')])
+            declared, required = facts
             given = node.parameters
             fqn = node.fqn
             for name, setting in given.items():
@@ -142,16 +152,15 @@ class ParameterCheck(CheckExtension):
                         where, [fqn], parameter=name, related=_declared_here(entity))
                     continue
                 validation = getattr(entity.definition, 'validation', None)
+                if not isinstance(validation, dict):
+                    continue  # no validators to break (value_problems would find none)
                 for key, why in value_problems(setting.value, entity.type_name, validation):
                     yield make_finding(
                         'parameter-invalid', f"{fqn}: parameter '{name}' = {_show(setting.value)} "
                         f'breaks {key}: {why}', where, [fqn], parameter=name,
                         related=_declared_here(entity))
-            for name, entity in declared.items():
-                if name in given or entity.default_value is not None:
-                    continue
-                spec = entity.type
-                if isinstance(spec, TypeSpec) and spec.element == 'none':
+            for name, entity in required:
+                if name in given:
                     continue
                 where = entity.location
                 yield make_finding(
