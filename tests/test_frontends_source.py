@@ -431,6 +431,9 @@ def test_read_limited_reads_what_open_reads(tmp_path: Path) -> None:
         expected = path.read_bytes()[:MAX_BYTES + 1]
         assert read_limited(path) == expected
         assert read_limited(str(path)) == expected
+    if os.path.exists('/proc/version'):  # a regular file that says it holds nothing
+        with open('/proc/version', 'rb') as f:
+            assert read_limited('/proc/version') == f.read()
     with pytest.raises(IsADirectoryError) as by_open:
         open(tmp_path, 'rb')
     with pytest.raises(IsADirectoryError) as by_read:

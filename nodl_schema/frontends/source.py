@@ -9,7 +9,7 @@ from __future__ import annotations
 import errno
 import os
 from collections import namedtuple
-from stat import S_ISDIR
+from stat import S_ISDIR, S_ISREG
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
@@ -114,12 +114,14 @@ def read_limited(path: str | os.PathLike[str]) -> bytes:
     """
     # Through the descriptor, asking first for what the file says it holds (plus a byte, to
     # see that it grew): a read allocates all it asks for, and asking a small definition
-    # for the whole limit (10 MB) cost more than the rest of reading it.
+    # for the whole limit (10 MB) cost more than the rest of reading it.  Having read all
+    # a regular file holds ends the reading (no read only to see the end).
     fd = os.open(path, os.O_RDONLY)
     try:
         status = os.fstat(fd)
         if S_ISDIR(status.st_mode):  # the error open() gives
             raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), os.fspath(path))
+        size = status.st_size if S_ISREG(status.st_mode) else -1
         chunks = []
         total = 0
         ask = min(status.st_size, MAX_BYTES) + 1
@@ -129,6 +131,8 @@ def read_limited(path: str | os.PathLike[str]) -> bytes:
                 break
             chunks.append(chunk)
             total += len(chunk)
+            if total == size:
+                break
             ask = _CHUNK
     finally:
         os.close(fd)
