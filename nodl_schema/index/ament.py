@@ -61,6 +61,13 @@ class _Snapshot:
             found = self.entries[key] = Resource(_read_text(path), prefix, path)
         return found
 
+    def package_prefix(self, package: str, prefixes: list[str]) -> str | None:
+        """The first of ``prefixes`` whose index lists ``package``."""
+        for prefix in prefixes:
+            if package in self.listed(prefix, 'packages'):
+                return prefix
+        return None
+
 
 def _read_text(path: str) -> str:
     """A file's text as ``open(path, encoding='utf-8').read()`` gives it (newlines made
@@ -191,8 +198,7 @@ def package_share_directory(package: str, prefixes: list[str] | None = None) -> 
     current = _SNAPSHOT.get()
     if current is not None and os.sep not in package and package not in ('', '.', '..'):
         # Only whether the marker exists matters (its content is not read).
-        prefix = next((p for p in (prefixes if prefixes is not None else prefix_paths())
-                       if package in current.listed(p, 'packages')), None)
+        prefix = current.package_prefix(package, prefixes if prefixes is not None else prefix_paths())
         return os.path.join(prefix, 'share', package) if prefix is not None else None
     resource = get_resource('packages', package, prefixes)
     return os.path.join(resource.prefix, 'share', package) if resource else None
