@@ -225,6 +225,21 @@ def _seed(layer: Layer) -> _Seed:
     return found
 
 
+def seeded_copies(layer: Layer) -> frozenset[int]:
+    """The ids of the merged copies a shared layer gives every node it is the first layer of
+    (see :attr:`Layer.shared`; they live as long as the layer): a node's merged entity that is
+    one of them is declared by that layer alone."""
+    shared = layer.shared
+    assert shared is not None
+    found: frozenset[int] | None = shared.get('seeded copies')
+    if found is None:
+        _, parameters, sections = _seed(layer)
+        found = shared['seeded copies'] = frozenset(
+            [id(p) for p in parameters.values()]
+            + [id(e) for _, merged in sections for e in merged.values()])
+    return found
+
+
 def merge_layers(layers: Sequence[Layer]) -> tuple[Interface, list[Diagnostic]]:
     """The merged interface of ``layers`` and the override diagnostics."""
     merged = merge_traced(layers)

@@ -18,7 +18,7 @@ from typing import Callable, Iterator, Sequence
 from nodl_schema.composition.client_library import ClientLibraryChoice, choose_client_library
 from nodl_schema.composition.compose import ComposedNode, compose_report
 from nodl_schema.composition.layers import Layer
-from nodl_schema.composition.merge import PARAMETERS, Declaration
+from nodl_schema.composition.merge import PARAMETERS, Declaration, seeded_copies
 from nodl_schema.composition.resolvers import Resolver
 from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
 from nodl_schema.frontends.source import Source
@@ -88,18 +88,33 @@ class ResolvedNode:
         self.client_library_reason = client_library_reason or 'as given'
         entities: list[Entity] = []
         iface = composed.interface
+        declarations, layers = composed.declarations, composed.layers
+        # A shared base's entity that no later layer redeclares is the same Entity for every
+        # node of the run: its merged copy is then the one the base's own merge made.
+        shared = layers[0].shared if layers else None
+        seeded = seeded_copies(layers[0]) if shared is not None else frozenset()
+        known: dict[int, Entity] = shared.setdefault('entities by merged copy', {}) \
+            if shared is not None else {}
         for name, param in (iface.parameters or {}).items():
-            entities.append(_entity(EntityKind.PARAMETER, name, param,
-                                    composed.declarations.get((PARAMETERS, name), ()),
-                                    composed.layers))
+            found = known.get(id(param))
+            if found is None:
+                found = _entity(EntityKind.PARAMETER, name, param,
+                                declarations.get((PARAMETERS, name), ()), layers)
+                if id(param) in seeded:
+                    known[id(param)] = found
+            entities.append(found)
         for section, kind in _SECTION_KINDS:
             for endpoint in iface.endpoints(section):
-                entities.append(_entity(kind, endpoint.name, endpoint,
-                                        composed.declarations.get((section, endpoint.name), ()),
-                                        composed.layers))
+                found = known.get(id(endpoint))
+                if found is None:
+                    found = _entity(kind, endpoint.name, endpoint,
+                                    declarations.get((section, endpoint.name), ()), layers)
+                    if id(endpoint) in seeded:
+                        known[id(endpoint)] = found
+                entities.append(found)
         #: Every entity: parameters first, then the endpoint sections in file order.
         self.entities: tuple[Entity, ...] = tuple(entities)
-        self._by_key = {e.key: e for e in entities}
+        self._by_key: dict[tuple[EntityKind, str], Entity] | None = None  # made when first asked
 
     # -- what the node is -------------------------------------------------------------------
 
@@ -163,7 +178,10 @@ class ResolvedNode:
 
     def get(self, kind: EntityKind | str, name: str) -> Entity | None:
         """The entity of ``kind`` called ``name`` (as declared), or None."""
-        return self._by_key.get((EntityKind(kind), name))
+        by_key = self._by_key
+        if by_key is None:
+            by_key = self._by_key = {e.key: e for e in self.entities}
+        return by_key.get((EntityKind(kind), name))
 
     def entity(self, kind: EntityKind | str, name: str) -> Entity:
         """The entity of ``kind`` called ``name`` (KeyError if there is none)."""
