@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from typing import Any, Iterable
 
+from nodl_schema.codes import default_severity
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.system.entities import Location
 
@@ -42,8 +43,11 @@ KINDS: dict[str, str] = {
 #: code -> kind.
 KIND_OF_CODE: dict[str, str] = {code: kind for kind, code in KINDS.items()}
 
+#: A severity's word -> the severity (``Severity(word)`` is an enum look-up per finding).
+_SEVERITIES = {severity.value: severity for severity in Severity}
 
-@dataclass(frozen=True)
+
+@dataclass(frozen=True, slots=True)  # (no __dict__: fewer objects for the collector to walk)
 class Finding:
     """One finding (see the module docstring)."""
 
@@ -96,9 +100,9 @@ def make_finding(kind: str, message: str, location: Location, nodes: Iterable[st
                  endpoint: str | None = None, parameter: str | None = None,
                  related: Iterable[tuple[str, int, int, str]] = ()) -> Finding:
     """A finding of ``kind`` with the default severity of its code."""
-    from nodl_schema.codes import default_severity
-
     code = KINDS[kind]
-    diagnostic = Diagnostic(Severity(default_severity(code)), message, (), location.file,
-                            location.line, location.column, code=code, related=related)
+    severity = default_severity(code)
+    diagnostic = Diagnostic(_SEVERITIES.get(severity) or Severity(severity), message, (),
+                            location.file, location.line, location.column, code=code,
+                            related=related)
     return Finding(diagnostic, kind, tuple(dict.fromkeys(nodes)), endpoint, parameter)
