@@ -49,29 +49,49 @@ def _uniform(values: list[Any], can_be_str: bool = False) -> bool:
 _PLAIN_WORD = re.compile(r'[-+.]?[A-Za-z0-9_][A-Za-z0-9_.+\-/]*')
 
 
+#: Decimal numbers without underscores or an exponent (``5``, ``-12``, ``0.5``, ``5.``): YAML 1.1
+#: reads the first form (no leading zero) as an int, the second as a float, as Python does.
+_DECIMAL = re.compile(r'[-+]?(?:(0|[1-9][0-9]*)|[0-9]+\.[0-9]*)')
+#: The words PyYAML's resolver reads as a bool or null (typed by PyYAML itself, once).
+_YAML_WORDS = ('yes', 'Yes', 'YES', 'no', 'No', 'NO', 'true', 'True', 'TRUE', 'false', 'False', 'FALSE',
+               'on', 'On', 'ON', 'off', 'Off', 'OFF', 'null', 'Null', 'NULL')
+
+
 def yaml_value(text: str) -> Any:
     """``yaml.safe_load(text)`` (yaml.YAMLError as it raises), quick for one plain word."""
     if _PLAIN_WORD.fullmatch(text):
-        # What safe_load's composer and constructor do for one plain scalar, called directly:
-        # the resolver's tag, then that tag's constructor (a scalar's has no state to reset).
-        resolver, constructor, scalar = _plain_scalar_typing()
-        tag = resolver.resolve(scalar, text, (True, False))
-        construct = constructor.yaml_constructors.get(tag)
-        if construct is None:  # a tag someone added a resolver for: as safe_load treats it
-            return type(constructor)().construct_document(scalar(tag, text))
-        return construct(constructor, scalar(tag, text))
+        # The usual parameter values first: a plain decimal number, a bool or null word.
+        number = _DECIMAL.fullmatch(text)
+        if number is not None:
+            return int(text) if number.group(1) is not None else float(text)
+        resolver, constructor, scalar, words = _plain_scalar_typing()
+        if text in words:
+            return words[text]
+        return _construct(resolver, constructor, scalar, text)
     import yaml
 
     return yaml.safe_load(text)
 
 
+def _construct(resolver: Any, constructor: Any, scalar: Any, text: str) -> Any:
+    """What safe_load's composer and constructor do for one plain scalar, called directly:
+    the resolver's tag, then that tag's constructor (a scalar's has no state to reset)."""
+    tag = resolver.resolve(scalar, text, (True, False))
+    construct = constructor.yaml_constructors.get(tag)
+    if construct is None:  # a tag someone added a resolver for: as safe_load treats it
+        return type(constructor)().construct_document(scalar(tag, text))
+    return construct(constructor, scalar(tag, text))
+
+
 @lru_cache(maxsize=None)  # one entry: PyYAML's stateless helpers, made when first needed
-def _plain_scalar_typing() -> tuple[Any, Any, Any]:
+def _plain_scalar_typing() -> tuple[Any, Any, Any, dict[str, Any]]:
     from yaml.constructor import SafeConstructor
     from yaml.nodes import ScalarNode
     from yaml.resolver import Resolver
 
-    return Resolver(), SafeConstructor(), ScalarNode
+    resolver, constructor = Resolver(), SafeConstructor()
+    return resolver, constructor, ScalarNode, {
+        word: _construct(resolver, constructor, ScalarNode, word) for word in _YAML_WORDS}
 
 
 def _yaml(text: str, can_be_str: bool) -> Any:
