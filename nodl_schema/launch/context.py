@@ -47,6 +47,7 @@ class LaunchContext:
         self._missing: set[str] = set()
         self._anonymous: dict[str, str] = {}
         self._seen_diagnostics: set[tuple[str, int, int, str]] = set()
+        self._namespace_errors: dict[str, str | None] = {}
 
     # -- what launch.LaunchContext offers to substitutions written in helper packages ------
     @property
@@ -106,6 +107,16 @@ class LaunchContext:
         for old, new in (('.', '_'), ('-', '_'), (':', '_')):
             value = value.replace(old, new)
         return value
+
+    def namespace_error(self, namespace: str) -> str | None:
+        """:func:`nodl_schema.naming.namespace_error`, once per namespace (nodes share them)."""
+        try:
+            return self._namespace_errors[namespace]
+        except KeyError:
+            from nodl_schema.naming.validation import namespace_error
+
+            problem = self._namespace_errors[namespace] = namespace_error(namespace)
+            return problem
 
     def note_missing_configuration(self, name: str) -> None:
         """Remember that ``$(var name)`` failed (to say so once)."""

@@ -19,6 +19,7 @@ from nodl_schema.launch.errors import LaunchProblem, Unevaluable
 from nodl_schema.launch.model import LaunchedNode, LaunchRemap, ParameterSource, SourceLocation
 from nodl_schema.launch.params import ParameterValue, RuntimeValue, evaluate_value, normalize_python_dict
 from nodl_schema.launch.substitutions import normalize, perform
+from nodl_schema.naming.validation import namespace_error, node_name_error, normalize_namespace
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -36,8 +37,6 @@ class PushRosNamespace(Action):
         self.namespace = normalize(namespace)
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        from nodl_schema.naming import namespace_error
-
         pushed = perform(context, self.namespace)
         previous = context.configurations.get('ros_namespace')
         namespace = make_namespace_absolute(prefix_namespace(previous, pushed))
@@ -113,8 +112,6 @@ def make_namespace_absolute(namespace: str | None) -> str | None:
     """A leading ``/`` for a relative namespace (as ``rcl_node_init`` takes it)."""
     if namespace is None:
         return None
-    from nodl_schema.naming import normalize_namespace
-
     return normalize_namespace(namespace)
 
 
@@ -222,7 +219,9 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
                     node_key: str) -> list[ParameterSource]:
     out = []
     for item in parameters:
-        if isinstance(item, ParameterFileEntry):
+        if type(item) is list:  # name-value pairs (a frontend's params): neither of the others
+            out.append(_named_parameters(context, item, location, node_key))
+        elif isinstance(item, ParameterFileEntry):
             from nodl_schema.files import tidy_path
 
             path = tidy_path(perform(context, item.path))  # '$(dirname)/../config/x.yaml' tidied
@@ -236,12 +235,17 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
             out.append(ParameterSource('values', 'node', location,
                                        values={pname: evaluate_parameter(context, spec, pname, location)}))
         else:
-            values: dict[str, Any] = {}
-            for name, spec in item:
-                pname = perform(context, name)
-                values[pname] = evaluate_parameter(context, spec, pname, location)
-            out.append(ParameterSource('values', 'node', location, values=values, node_key=node_key))
+            out.append(_named_parameters(context, item, location, node_key))
     return out
+
+
+def _named_parameters(context: LaunchContext, item: Any, location: SourceLocation,
+                      node_key: str) -> ParameterSource:
+    values: dict[str, Any] = {}
+    for name, spec in item:
+        pname = perform(context, name)
+        values[pname] = evaluate_parameter(context, spec, pname, location)
+    return ParameterSource('values', 'node', location, values=values, node_key=node_key)
 
 
 class Node(Action):
@@ -267,7 +271,7 @@ class Node(Action):
         self.word_sources: dict[str, SourceLocation | list[SourceLocation]] = {}
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        from nodl_schema.naming import join_name, namespace_error, node_name_error
+        from nodl_schema.naming import join_name
 
         name = None
         if self.name is not None:
@@ -279,7 +283,7 @@ class Node(Action):
         namespace = make_namespace_absolute(prefix_namespace(context.configurations.get('ros_namespace'),
                                                              given))
         if namespace is not None:
-            problem = namespace_error(namespace)
+            problem = context.namespace_error(namespace)
             if problem:
                 raise LaunchProblem('NODL519', f"invalid namespace '{namespace}': {problem}")
         record = LaunchedNode(self.kind, None if self.package is None else perform(context, self.package),
