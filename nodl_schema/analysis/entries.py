@@ -18,7 +18,7 @@ from nodl_schema.system.entities import Location
 __all__ = ['ParameterSetting', 'ParameterFile', 'LaunchEntry', 'entries_from_launch']
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)  # (no __dict__: one object less per setting)
 class ParameterSetting:
     """One parameter value given to a node, where it is written, and how."""
 
@@ -33,7 +33,7 @@ class ParameterSetting:
     origin: str = 'inline'
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)  # (no __dict__: one object less per file)
 class ParameterFile:
     """A parameter file given to a node, applied once the node's final name is known.
 
@@ -46,7 +46,7 @@ class ParameterFile:
     location: Location
 
 
-@dataclass
+@dataclass(slots=True)  # (no __dict__: one object less per launched node)
 class LaunchEntry:
     """One launched node, as the launch would start it."""
 
@@ -112,21 +112,21 @@ def _resolved_settings(record: Any) -> Callable[[str], list[ParameterSetting]]:
 def entries_from_launch(records: Iterable[Any]) -> list[LaunchEntry]:
     """Launch entries from the launch reader's records
     (:class:`nodl_schema.launch.LaunchedNode`); :class:`LaunchEntry` objects pass through."""
+    from nodl_schema.launch.model import remap_source
+
     out = []
     for record in records:
         if isinstance(record, LaunchEntry):
             out.append(record)
             continue
         namespace = record.namespace or '/'
+        where = _location(record.source)  # (one immutable tuple for the entry and its file)
         parameters: list[ParameterSetting | ParameterFile] = []
         if record.parameters:  # all sources at once: rcl merges them into one table
-            parameters.append(ParameterFile(record.source.file, _resolved_settings(record),
-                                            _location(record.source)))
-        from nodl_schema.launch.model import remap_source
-
+            parameters.append(ParameterFile(record.source.file, _resolved_settings(record), where))
         out.append(LaunchEntry(
             package=str(record.package or ''), executable=record.executable,
-            location=_location(record.source), plugin=record.plugin, name=record.name,
+            location=where, plugin=record.plugin, name=record.name,
             namespace=namespace, remaps=[(str(a), str(b)) for a, b in record.remaps],
             remap_locations=[_location(remap_source(r, record.source)) for r in record.remaps],
             parameters=parameters, container=record.container, role=record.kind))
