@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 from pathlib import Path
 
@@ -170,3 +171,13 @@ def test_an_entry_reads_as_a_text_file_does(tmp_path: Path) -> None:
     (folder / 'p__bad').write_bytes(b'ok\xff')
     with pytest.raises(UnicodeDecodeError):
         ament.get_resource('nodl_nodes', 'p__bad', prefixes)
+
+
+def test_package_prefix_is_where_the_share_directory_is() -> None:
+    for inside in (False, True):
+        with ament.snapshot() if inside else contextlib.nullcontext():
+            assert ament.package_prefix('alpha', BOTH) == FIRST
+            assert ament.package_prefix('beta', BOTH) == SECOND
+            assert ament.package_prefix('beta', [SECOND, FIRST]) == SECOND
+            assert ament.package_prefix('zeta', BOTH) is None
+            assert ament.package_prefix('', BOTH) is None

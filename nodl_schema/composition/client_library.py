@@ -41,10 +41,10 @@ def package_build_type(package: str, prefixes: list[str] | None = None) -> str |
 
 
 def _read_build_type(package: str, prefixes: list[str] | None) -> str | None:
-    share = ament.package_share_directory(package, prefixes)
-    if share is None:
+    prefix = ament.package_prefix(package, prefixes)
+    if prefix is None:
         return None
-    manifest = os.path.join(share, 'package.xml')
+    manifest = os.path.join(prefix, 'share', package, 'package.xml')
     if not os.access(manifest, os.F_OK):
         return None  # asked first: a failed open raises, which costs more than asking
     try:

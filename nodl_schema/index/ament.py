@@ -13,8 +13,8 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from typing import Any, Callable, Iterator, NamedTuple, TypeVar
 
-__all__ = ['Resource', 'prefix_paths', 'get_resource', 'get_resources', 'package_share_directory',
-           'resource_file', 'snapshot', 'in_snapshot', 'remembered']
+__all__ = ['Resource', 'prefix_paths', 'get_resource', 'get_resources', 'package_prefix',
+           'package_share_directory', 'resource_file', 'snapshot', 'in_snapshot', 'remembered']
 
 _INDEX = os.path.join('share', 'ament_index', 'resource_index')
 _T = TypeVar('_T')
@@ -193,12 +193,17 @@ def get_resources(resource_type: str, prefixes: list[str] | None = None) -> dict
     return found
 
 
-def package_share_directory(package: str, prefixes: list[str] | None = None) -> str | None:
-    """``<prefix>/share/<package>`` of a package in the index, or None."""
+def package_prefix(package: str, prefixes: list[str] | None = None) -> str | None:
+    """The prefix a package is found in (the first of ``prefixes`` whose index lists it), or None."""
     current = _SNAPSHOT.get()
     if current is not None and os.sep not in package and package not in ('', '.', '..'):
         # Only whether the marker exists matters (its content is not read).
-        prefix = current.package_prefix(package, prefixes if prefixes is not None else prefix_paths())
-        return os.path.join(prefix, 'share', package) if prefix is not None else None
+        return current.package_prefix(package, prefixes if prefixes is not None else prefix_paths())
     resource = get_resource('packages', package, prefixes)
-    return os.path.join(resource.prefix, 'share', package) if resource else None
+    return resource.prefix if resource else None
+
+
+def package_share_directory(package: str, prefixes: list[str] | None = None) -> str | None:
+    """``<prefix>/share/<package>`` of a package in the index, or None."""
+    prefix = package_prefix(package, prefixes)
+    return os.path.join(prefix, 'share', package) if prefix is not None else None
