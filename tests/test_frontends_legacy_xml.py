@@ -406,6 +406,18 @@ def test_load_xml_keeps_the_tree() -> None:
     assert tree.root.children[0].get('executable').value == 'first'  # type: ignore[union-attr]
 
 
+def test_attributes_are_placed_when_first_read() -> None:
+    from nodl_schema.frontends.legacy_xml import XmlAttribute, XmlElement
+
+    tree = load_xml('<a>\n  <b x="1"\n     y=\'2\'/></a>')
+    element = tree.root.children[0]  # type: ignore[union-attr]
+    assert element.pairs == ['x', '1', 'y', '2']  # what a reader of values alone needs
+    assert element.attributes == [XmlAttribute('x', '1', 2, 6), XmlAttribute('y', '2', 3, 6)]
+    assert element.attributes is element.attributes  # placed once
+    made = XmlElement('c', [XmlAttribute('z', '3', 1, 4)], 1, 1)
+    assert made.pairs == ['z', '3'] and made.get('z') == XmlAttribute('z', '3', 1, 4)
+
+
 def test_module_imports_neither_dataclasses_nor_pathlib() -> None:
     code = ('import sys; import nodl_schema.frontends.legacy_xml; '
             "print('dataclasses' in sys.modules, 'pathlib' in sys.modules)")

@@ -225,16 +225,32 @@ class XmlAttribute(NamedTuple):
 class XmlElement:
     """An element with its attributes (in file order), children and position."""
 
-    __slots__ = ('tag', 'attributes', 'children', 'line', 'column', 'text_at')
+    __slots__ = ('tag', '_attributes', 'pairs', '_lines', 'children', 'line', 'column', 'text_at')
 
-    def __init__(self, tag: str, attributes: list[XmlAttribute], line: int, column: int) -> None:
+    def __init__(self, tag: str, attributes: list[XmlAttribute] | None, line: int, column: int, *,
+                 pairs: list[str] | None = None, lines: _Lines | None = None) -> None:
         self.tag = tag
-        self.attributes = attributes
+        #: The attributes, placed when first read (a reader that never asks where an attribute
+        #: is, as the launch reader unless something is wrong, does not pay for placing them).
+        self._attributes = attributes
+        #: The attribute names and values in the order written: name, value, name, value...
+        self.pairs: list[str] = pairs if pairs is not None else [
+            part for attribute in attributes or () for part in (attribute.name, attribute.value)]
+        self._lines = lines
         self.children: list[XmlElement] = []
         self.line = line
         self.column = column
         #: Where the first non-blank text directly inside the element is, if any.
         self.text_at: tuple[int, int] | None = None
+
+    @property
+    def attributes(self) -> list[XmlAttribute]:
+        """The attributes in file order, each with the position of its name."""
+        if self._attributes is None:
+            assert self._lines is not None, 'an element without attributes is made with the lines to place them'
+            self._attributes = _place_attributes(self._lines, self.line, self.column, self.pairs)
+            self._lines = None
+        return self._attributes
 
     def get(self, name: str) -> XmlAttribute | None:
         """The attribute called ``name``, or None."""
@@ -379,8 +395,8 @@ def _parse_xml(text: str, file: str) -> XmlTree:
         return parser.CurrentLineNumber, parser.CurrentColumnNumber + 1
 
     def start(tag: str, pairs: list[str]) -> None:
-        line, column = here()
-        element = XmlElement(tag, _place_attributes(lines, line, column, pairs), line, column)
+        element = XmlElement(tag, None, parser.CurrentLineNumber, parser.CurrentColumnNumber + 1,
+                             pairs=pairs, lines=lines)
         if stack:
             stack[-1].children.append(element)
         else:

@@ -8,7 +8,7 @@ Both markup frontends build :class:`Entity` objects and call :func:`build_descri
 from __future__ import annotations
 
 from functools import partial
-from typing import TYPE_CHECKING, Any, Callable, NamedTuple, TypeVar
+from typing import TYPE_CHECKING, Any, Callable, TypeVar
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch import actions as A
@@ -21,9 +21,9 @@ from nodl_schema.launch.substitution_grammar import parse_if_substitutions, pars
 from nodl_schema.launch.substitutions import TextSubstitution
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers only
-    from nodl_schema.frontends.legacy_xml import XmlAttribute
+    from nodl_schema.frontends.legacy_xml import XmlElement
 
-__all__ = ['Attribute', 'Entity', 'TAGS', 'build_description']
+__all__ = ['Entity', 'TAGS', 'build_description']
 
 _PROCESS = ('cwd', 'shell', 'emulate_tty', 'additional_env', 'launch-prefix', 'output', 'respawn',
             'respawn_delay', 'respawn_max_retries', 'on_exit', 'sigterm_timeout', 'sigkill_timeout',
@@ -73,14 +73,6 @@ NESTED: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
 XML_ONLY = frozenset({'value-sep'})
 
 
-class Attribute(NamedTuple):
-    """An attribute's value as written (text in XML; any YAML scalar or list) and position."""
-
-    value: Any
-    line: int
-    column: int
-
-
 #: ``SourceLocation(file, line, column)`` without a NamedTuple's Python-level ``__new__``
 #: (an entity is made for every element of a launch file).
 _new_location: Callable[[tuple[str, int, int]], SourceLocation] = partial(tuple.__new__, SourceLocation)
@@ -89,7 +81,7 @@ _new_location: Callable[[tuple[str, int, int]], SourceLocation] = partial(tuple.
 class Entity:
     """A frontend entity: its tag, attributes, nested entity lists and child actions."""
 
-    __slots__ = ('tag', 'yaml', 'location', 'attributes', 'nested', 'children', 'stray')
+    __slots__ = ('tag', 'yaml', 'location', 'values', 'positions', 'element', 'nested', 'children', 'stray')
 
     def __init__(self, tag: str, file: str, line: int, column: int, *, yaml: bool = False) -> None:
         self.tag = tag
@@ -97,57 +89,67 @@ class Entity:
         #: values are checked against ``type``, not coerced).
         self.yaml = yaml
         self.location = _new_location((file, line, column))
-        #: Name -> value and position: an :class:`Attribute` (YAML) or the XML reader's
-        #: :class:`~nodl_schema.frontends.legacy_xml.XmlAttribute` as it is (it has the same
-        #: ``value``, ``line`` and ``column``).
-        self.attributes: dict[str, Attribute | XmlAttribute] = {}
+        #: Attribute name -> value as written (text in XML; any YAML scalar or list).
+        self.values: dict[str, Any] = {}
+        #: Attribute name -> (line, column) where it is written (the YAML frontend's).
+        self.positions: dict[str, tuple[int, int]] = {}
+        #: The XML element an XML entity is read from: it places an attribute when asked (see
+        #: :meth:`position`), which is only when something is wrong or a place is recorded.
+        self.element: XmlElement | None = None
         self.nested: dict[str, list[Entity]] = {}
         self.children: list[Entity] = []
         #: Where unexpected content is (a YAML child list for a tag without children...).
         self.stray: list[tuple[str, int, int]] = []
 
+    def position(self, name: str) -> tuple[int, int]:
+        """Where attribute ``name`` is written (line, column); the entity's place if unknown."""
+        if self.element is not None:
+            attribute = self.element.get(name)
+            if attribute is not None:
+                return attribute.line, attribute.column
+        return self.positions.get(name, (self.location.line, self.location.column))
+
     def text(self, name: str) -> str | None:
         """An attribute as text (YAML scalars other than text are written as YAML writes them)."""
-        attribute = self.attributes.get(name)
-        if attribute is None:
-            return None
-        value = attribute.value
+        value = self.values.get(name)
         if type(value) is str:  # every XML attribute: no further checks
             return value
+        if value is None:  # absent, or YAML's null
+            return None
         if isinstance(value, bool):
             return str(value).lower()
         if isinstance(value, (list, dict)):
             raise LaunchProblem('NODL504', f"attribute '{name}' of <{self.tag}> must be text, not a "
                                            f'{type(value).__name__}', self.location.file,
-                                attribute.line, attribute.column)
-        return None if value is None else str(value)
+                                *self.position(name))
+        return str(value)
 
     def subs(self, name: str) -> Any:
         """An attribute parsed for substitutions (None when absent)."""
-        text = self.text(name)
-        if text is None:
+        value = self.values.get(name)
+        if value is None:  # absent (most optional attributes), or YAML's null
             return None
+        text = value if type(value) is str else self.text(name)  # called for each attribute read
+        assert text is not None
         try:
             return parse_substitution(text)
         except LaunchProblem as problem:
-            attribute = self.attributes[name]
-            raise LaunchProblem(problem.code, problem.message, self.location.file, attribute.line,
-                                attribute.column)
+            raise LaunchProblem(problem.code, problem.message, self.location.file, *self.position(name))
 
     def boolean(self, name: str) -> bool | None:
         """A boolean attribute (``true``/``false``/``1``/``0``)."""
-        value = self.attributes.get(name)
-        if value is None:
+        if name not in self.values:
             return None
-        if isinstance(value.value, bool):
-            return value.value
-        text = str(value.value).strip().lower()
+        value = self.values[name]
+        if isinstance(value, bool):
+            return value
+        text = str(value).strip().lower()
         if text in ('true', '1'):
             return True
         if text in ('false', '0'):
             return False
         raise LaunchProblem('NODL504', f"attribute '{name}' of <{self.tag}> must be true or false, not "
-                                       f"'{value.value}'", self.location.file, value.line, value.column)
+                                       f"'{value}'", self.location.file, *self.position(name))
 
 
 class _Spec:
@@ -173,7 +175,7 @@ _ROOT_SPEC = _Spec(('deprecated', 'version'), (), True)
 
 def _check(entity: Entity, spec: _Spec, problems: list[Diagnostic]) -> bool:
     allowed = spec.allowed_yaml if entity.yaml else spec.allowed
-    present = entity.attributes
+    present = entity.values
     if (spec.children or not entity.children) and not ('if' in present and 'unless' in present) and \
             allowed.issuperset(present) and present.keys() >= spec.required_set and \
             spec.lists_set.issuperset(entity.nested):
@@ -186,7 +188,7 @@ def _check_slow(entity: Entity, allowed: set[str], required: tuple[str, ...], li
     from nodl_schema.validation.messages import did_you_mean
 
     ok = True
-    for name, attribute in entity.attributes.items():
+    for name in entity.values:
         if name not in allowed and not (name.startswith(('xmlns', 'xsi:')) and not entity.yaml):
             hint = did_you_mean(name, allowed | set(lists)) or next(  # 'sep' -> 'value-sep'
                 (f"; did you mean '{a}'?" for a in sorted(allowed) if a.endswith('-' + name)), '')
@@ -196,10 +198,10 @@ def _check_slow(entity: Entity, allowed: set[str], required: tuple[str, ...], li
             problems.append(Diagnostic(Severity.ERROR, f"unknown attribute '{name}' of <{entity.tag}>"
                                        f'{hint}; expected '
                                        f'{", ".join(sorted(allowed))}', (), entity.location.file,
-                                       attribute.line, attribute.column, code='NODL502'))
+                                       *entity.position(name), code='NODL502'))
             ok = False
     for name in required:
-        if name not in entity.attributes:
+        if name not in entity.values:
             problems.append(Diagnostic(Severity.ERROR, f"<{entity.tag}> needs the attribute '{name}'",
                                        (), *entity.location, code='NODL503'))
             ok = False
@@ -217,7 +219,7 @@ def _check_slow(entity: Entity, allowed: set[str], required: tuple[str, ...], li
                                        f'{did_you_mean(child.tag, lists)}; it holds no actions', (),
                                        *child.location, code='NODL501'))
         ok = False
-    if 'if' in entity.attributes and 'unless' in entity.attributes:
+    if 'if' in entity.values and 'unless' in entity.values:
         problems.append(Diagnostic(Severity.ERROR, f"<{entity.tag}> has both 'if' and 'unless'; use one",
                                    (), *entity.location, code='NODL504'))
         ok = False
@@ -263,9 +265,9 @@ def _parameters(entity: Entity) -> list[Any]:
 def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
     name = [*prefix, *([TextSubstitution('.')] if prefix else []), *param.subs('name')]
     nested = param.nested.get('param', [])
-    value = param.attributes.get('value')
+    has_value = 'value' in param.values
     identifier = param.text('type')
-    if value is not None and nested:
+    if has_value and nested:
         raise LaunchProblem('NODL504', "<param> takes a 'value' or nested <param>, not both", *param.location)
     if nested:
         if identifier is not None:
@@ -274,19 +276,19 @@ def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
         for child in nested:
             out.extend(_named(child, name))
         return out
-    if value is None:
+    if not has_value:
         raise LaunchProblem('NODL503', f"<param name=\"{param.text('name')}\"> needs a 'value' or nested "
                                        '<param>', *param.location)
     data_type = type_from_identifier(identifier) if identifier is not None else None
-    raw = value.value
+    raw = param.values['value']
     if param.yaml:
         if raw is None:  # launch_yaml reads 'value: ~' as no value
             raise LaunchProblem('NODL503', f"<param name=\"{param.text('name')}\"> needs a 'value' or "
-                                           'nested <param>', param.location.file, value.line, value.column)
+                                           'nested <param>', param.location.file, *param.position('value'))
         problem = _yaml_value_problem(raw, data_type, identifier)
         if problem:
             raise LaunchProblem('NODL518', f"parameter '{param.text('name')}': {problem}",
-                                param.location.file, value.line, value.column)
+                                param.location.file, *param.position('value'))
     separator = param.text('value-sep')
     try:
         if isinstance(raw, str):
@@ -295,7 +297,7 @@ def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
             typed = raw
         return [(name, ParameterValue(parse_if_substitutions(typed), data_type))]
     except LaunchProblem as problem:
-        raise LaunchProblem(problem.code, problem.message, param.location.file, value.line, value.column)
+        raise LaunchProblem(problem.code, problem.message, param.location.file, *param.position('value'))
 
 
 def _yaml_value_problem(raw: Any, data_type: Any, identifier: str | None) -> str | None:
@@ -333,9 +335,9 @@ def _placed(node: _Placed, entity: Entity) -> _Placed:
     """``node`` (a node action or composable node) told where its ``remap`` entries and its
     ``args``/``ros_args`` are written: findings about a rule point there."""
     node.remap_sources = [r.location for r in entity.nested.get('remap', [])]
-    if isinstance(node, R.Node) and ('args' in entity.attributes or 'ros_args' in entity.attributes):
-        node.word_sources = {name: SourceLocation(entity.location.file, a.line, a.column)
-                             for name, a in entity.attributes.items() if name in ('args', 'ros_args')}
+    if isinstance(node, R.Node) and ('args' in entity.values or 'ros_args' in entity.values):
+        node.word_sources = {name: SourceLocation(entity.location.file, *entity.position(name))
+                             for name in entity.values if name in ('args', 'ros_args')}
     return node
 
 

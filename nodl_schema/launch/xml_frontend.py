@@ -41,9 +41,11 @@ def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnosti
                                        'levels', (), path, element.line, element.column, code='NODL009'))
             return None
         entity = Entity(element.tag, path, element.line, element.column)
-        # The reader's attributes as they are (value, line and column, as Attribute has them):
-        # one dictionary per element, no record per attribute.
-        entity.attributes = {attribute.name: attribute for attribute in element.attributes}
+        # The values by name; the element places an attribute only when the entity asks where
+        # it is (a problem, a recorded place), so a launch file without problems places none.
+        pairs = iter(element.pairs)
+        entity.values = dict(zip(pairs, pairs))
+        entity.element = element
         if element.children:
             lists = _LISTS.get(element.tag, ())
             for child in element.children:

@@ -13,7 +13,7 @@ from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch.actions import LaunchDescription
-from nodl_schema.launch.frontend import Attribute, Entity, build_description
+from nodl_schema.launch.frontend import Entity, build_description
 
 __all__ = ['read_yaml_launch']
 
@@ -65,7 +65,8 @@ def read_yaml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnost
                 result.nested[name] = [entity(name, item, item, d) for item, d in
                                        zip(v.value, value if isinstance(value, list) else [])]
             else:
-                result.attributes[name] = Attribute(value, *at(k))
+                result.values[name] = value
+                result.positions[name] = at(k)
         return result
 
     def entities(sequence: Any, data: Any) -> list[Entity]:
