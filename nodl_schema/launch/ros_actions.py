@@ -19,7 +19,7 @@ from nodl_schema.launch.errors import LaunchProblem, Unevaluable
 from nodl_schema.launch.model import LaunchedNode, LaunchRemap, ParameterSource, SourceLocation
 from nodl_schema.launch.params import ParameterValue, RuntimeValue, evaluate_value, normalize_python_dict
 from nodl_schema.launch.substitutions import normalize, perform
-from nodl_schema.naming.validation import namespace_error, node_name_error, normalize_namespace
+from nodl_schema.naming import join_name, namespace_error, node_name_error, normalize_namespace
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -271,8 +271,6 @@ class Node(Action):
         self.word_sources: dict[str, SourceLocation | list[SourceLocation]] = {}
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        from nodl_schema.naming import join_name
-
         name = None
         if self.name is not None:
             name = perform(context, self.name)
@@ -289,7 +287,8 @@ class Node(Action):
         record = LaunchedNode(self.kind, None if self.package is None else perform(context, self.package),
                               perform(context, self.executable), name, namespace or '/', self.location,
                               include_chain=context.include_chain, namespace_given=namespace is not None)
-        _ros_arguments(context, self, self.location, record)
+        if self.arguments or self.ros_arguments:
+            _ros_arguments(context, self, self.location, record)
         fully = name is not None and namespace is not None
         fqn = join_name(namespace or '/', name or '')
         self.node_name = fqn if name is not None else None
