@@ -84,34 +84,46 @@ class System:
     def __init__(self, instances: Iterable[NodeInstance]) -> None:
         #: The instances, in the order given.
         self.instances: tuple[NodeInstance, ...] = tuple(instances)
-        # communication -> final name -> (offering, using).  Grouped by communication first, so
-        # that each group's names are sorted as strings rather than (communication, name) pairs,
-        # and no pair is made per endpoint (a large system has tens of thousands).
-        sides: dict[str, dict[str, tuple[list[InstanceEntity], list[InstanceEntity]]]] = {}
-        # kind -> (communication, side), asked once per kind rather than per endpoint.
-        kinds = {kind: (kind.communication, 0 if kind.offers else 1) for kind in EntityKind}
+        # (communication, offers) -> final name -> its endpoint(s) on that side: the endpoint
+        # itself while it is the only one (most names have one per side), a list from the
+        # second on.  A large system has tens of thousands of endpoints: no list, and no
+        # (communication, name) pair, is made per endpoint, and each communication's names
+        # are sorted as strings.
+        sides: dict[tuple[str, bool], dict[str, InstanceEntity | list[InstanceEntity]]] = {}
+        # kind -> its side's table, asked once per kind rather than per endpoint.
+        table_of = {kind: sides.setdefault((kind.communication, kind.offers), {})
+                    for kind in EntityKind if kind.communication is not None}
         for instance in self.instances:
             for bound in instance.endpoints:
-                communication, side = kinds[bound.entity.kind]
-                assert communication is not None
-                names = sides.get(communication)
-                if names is None:
-                    names = sides[communication] = {}
-                found = names.get(bound.name)
+                table = table_of[bound.entity.kind]
+                name = bound.name
+                found = table.get(name)
                 if found is None:
-                    found = names[bound.name] = ([], [])
-                found[side].append(bound)
+                    table[name] = bound
+                elif type(found) is list:
+                    found.append(bound)
+                else:
+                    table[name] = [found, bound]  # type: ignore[list-item]
+
+        def side(found: InstanceEntity | list[InstanceEntity] | None
+                 ) -> tuple[InstanceEntity, ...]:
+            if found is None:
+                return ()
+            return tuple(found) if type(found) is list else (found,)  # type: ignore[return-value]
+
         new = tuple.__new__  # Connection(...) without its Python-level __new__, per connection
         #: communication -> final name -> its connection.
         self._by_name: dict[str, dict[str, Connection]] = {}
         ordered: list[Connection] = []
-        for communication in sorted(sides):
-            names = sides[communication]
-            table = self._by_name[communication] = {}
+        for communication in sorted({communication for communication, _ in sides}):
+            offering, using = sides.get((communication, True), {}), sides.get((communication, False), {})
+            names = offering.keys() | using.keys()
+            if not names:
+                continue
+            connections = self._by_name[communication] = {}
             for name in sorted(names):
-                offering, using = names[name]
-                connection = table[name] = new(Connection, (communication, name, tuple(offering),
-                                                            tuple(using)))
+                connection = connections[name] = new(Connection, (
+                    communication, name, side(offering.get(name)), side(using.get(name))))
                 ordered.append(connection)
         #: Every connection, sorted by communication then name.
         self._ordered: tuple[Connection, ...] = tuple(ordered)
