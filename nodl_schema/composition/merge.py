@@ -54,7 +54,8 @@ class MergeResult(NamedTuple):
 
     interface: Interface
     diagnostics: list[Diagnostic]
-    #: (section or ``parameters``, name) -> every declaration, first layer first.
+    #: (section or ``parameters``, name) -> every declaration, first layer first (read-only:
+    #: the lists of a shared base's entities are shared by every node of a run).
     declarations: dict[tuple[str, str], list[Declaration]]
 
 
@@ -147,7 +148,8 @@ def merge_traced(layers: Sequence[Layer]) -> MergeResult:
         # A first layer every node of the run shares (a base): what merging it alone gives is
         # made once and copied (a thousand nodes would otherwise redo the same dozen entities).
         seed_declarations, seed_parameters, seed_sections = seed
-        declarations = {key: [declaration] for key, declaration in seed_declarations}
+        # Its one-declaration traces are shared too, until a later layer adds to one (below).
+        declarations = dict(seed_declarations)
         parameters.update(seed_parameters)
         for section, merged in seed_sections:
             sections[section].update(merged)
@@ -155,7 +157,12 @@ def merge_traced(layers: Sequence[Layer]) -> MergeResult:
 
     def declare(section: str, name: str, layer: Layer, path: DocPath, entity: Any,
                 merged: dict[str, Any], word: str, anchor: str) -> None:
-        trace = declarations.setdefault((section, name), [])
+        key = (section, name)
+        trace = declarations.get(key)
+        if trace is None:
+            trace = declarations[key] = []
+        elif seed is not None and trace is seed[0].get(key):
+            trace = declarations[key] = list(trace)  # (a shared trace is never changed)
         if trace:
             # What the base declares is judged against the base, whatever refined it since.
             earlier = trace[0] if trace[0].layer.role == 'base' else trace[-1]
@@ -169,10 +176,9 @@ def merge_traced(layers: Sequence[Layer]) -> MergeResult:
         if shared is None:
             merged[name] = _stamp(entity, layer.label)
         else:  # a layer every node of the run shares: one copy for all of them
-            key = ('stamped', id(entity))
-            stamped = shared.get(key)
+            stamped = shared.get(('stamped', id(entity)))
             if stamped is None:
-                stamped = shared[key] = _stamp(entity, layer.label)
+                stamped = shared[('stamped', id(entity))] = _stamp(entity, layer.label)
             merged[name] = stamped
 
     for layer in layers:
@@ -197,7 +203,7 @@ def merge_traced(layers: Sequence[Layer]) -> MergeResult:
 
 #: What merging one shared layer alone gives: its declarations (key, declaration), its
 #: parameters and its endpoints per section (name -> stamped entity).
-_Seed = tuple[tuple[tuple[tuple[str, str], Declaration], ...], dict[str, Any],
+_Seed = tuple[dict[tuple[str, str], list[Declaration]], dict[str, Any],
               tuple[tuple[str, dict[str, Any]], ...]]
 
 
@@ -209,19 +215,19 @@ def _seed(layer: Layer) -> _Seed:
     assert shared is not None
     found: _Seed | None = shared.get('merge seed')
     if found is None:
-        traced: list[tuple[tuple[str, str], Declaration]] = []
+        traced: dict[tuple[str, str], list[Declaration]] = {}
         parameters: dict[str, Any] = {}
         for name, param in (layer.interface.parameters or {}).items():
-            traced.append(((PARAMETERS, name), Declaration(layer, (PARAMETERS, name), param)))
+            traced[(PARAMETERS, name)] = [Declaration(layer, (PARAMETERS, name), param)]
             parameters[name] = _stamp(param, layer.label)
         sections = []
         for section in SECTIONS:
             merged: dict[str, Any] = {}
             for index, entity in enumerate(getattr(layer.interface, section) or ()):
-                traced.append(((section, entity.name), Declaration(layer, (section, index), entity)))
+                traced[(section, entity.name)] = [Declaration(layer, (section, index), entity)]
                 merged[entity.name] = _stamp(entity, layer.label)
             sections.append((section, merged))
-        found = shared['merge seed'] = (tuple(traced), parameters, tuple(sections))
+        found = shared['merge seed'] = (traced, parameters, tuple(sections))
     return found
 
 
