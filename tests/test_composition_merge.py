@@ -265,3 +265,35 @@ def test_merged_entities_are_stamped_copies_of_every_field() -> None:
         assert copy is not original and copy.origin == 'a' and original.origin is None
         assert [getattr(copy, f.name) for f in dataclasses.fields(copy) if f.name != 'origin'] == \
             [getattr(original, f.name) for f in dataclasses.fields(original) if f.name != 'origin']
+
+
+NODE = """\
+nodl_version: 2
+base: node
+main:
+  nodl_version: 2
+  description: A node.
+  parameters:
+    rate: {{type: double, default_value: 10.0, description: Rate.}}
+{extra}"""
+
+
+def test_a_run_shares_the_base_and_copies_a_trace_only_when_a_later_layer_adds_to_it() -> None:
+    # Within a snapshot (an analysis) every node shares the base layer's merge; a node that
+    # refines a base parameter must not change what the others see.
+    from nodl_schema.composition import compose
+    from nodl_schema.index import ament
+
+    refined = NODE.format(extra='    use_sim_time: {type: bool, default_value: true, '
+                                'description: Refined.}\n')
+    plain = NODE.format(extra='')
+    key = ('parameters', 'use_sim_time')
+    with ament.snapshot():
+        first, other, again = compose(refined), compose(plain), compose(refined)
+    assert [d.layer.label for d in first.declarations[key]] == ['base:node', 'main']
+    assert [d.layer.label for d in again.declarations[key]] == ['base:node', 'main']
+    assert [d.layer.label for d in other.declarations[key]] == ['base:node']
+    assert other.declarations[key] is not first.declarations[key]
+    assert other.interface.parameters['use_sim_time'].default_value is False
+    assert first.interface.parameters['use_sim_time'].default_value is True
+    assert other.declarations[('parameters', 'rate')] != first.declarations[('parameters', 'rate')]
