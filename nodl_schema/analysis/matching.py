@@ -17,7 +17,12 @@ from dataclasses import dataclass, field
 
 from nodl_schema.analysis.entries import LaunchEntry
 from nodl_schema.diagnostics import Diagnostic
-from nodl_schema.system.resolved import ResolvedNode
+from nodl_schema.index import ament, node_info, registry
+from nodl_schema.system.resolved import ResolvedNode, resolve_registered
+
+# Imported here, not in the functions: an import statement costs a few microseconds each
+# time it runs, for every launched node.  The index functions are called through their
+# modules, so that timing wrappers put on the modules' functions see these calls too.
 
 __all__ = ['Match', 'DefinitionMatcher']
 
@@ -46,21 +51,17 @@ class DefinitionMatcher:
 
     def __init__(self, client_library: str | None = None,
                  prefixes: list[str] | None = None) -> None:
-        from nodl_schema.index import ament
-
         self.client_library = client_library
         self.prefixes = prefixes if prefixes is not None else ament.prefix_paths()
         self._cache: dict[tuple[str, str, str], Match] = {}
 
     def match(self, entry: LaunchEntry) -> Match:
         """The match of one launch entry (cached per package and key)."""
-        from nodl_schema.index.node_info import find_plugin, plugin_key
-
         how = 'executable'
         if entry.plugin is not None:
-            info = find_plugin(entry.package, entry.plugin, self.prefixes)
+            info = node_info.find_plugin(entry.package, entry.plugin, self.prefixes)
             key, how = (info.key, 'plugin') if info is not None \
-                else (plugin_key(entry.plugin), 'class name')
+                else (node_info.plugin_key(entry.plugin), 'class name')
         else:
             key = entry.executable or ''
         cache_key = (entry.package, key, how)
@@ -71,14 +72,10 @@ class DefinitionMatcher:
         return found
 
     def _find(self, package: str, key: str, how: str) -> Match:
-        from nodl_schema.index.node_info import read_node_info
-        from nodl_schema.index.registry import find_node
-        from nodl_schema.system.resolved import resolve_registered
-
-        registration = find_node(package, key, self.prefixes)
+        registration = registry.find_node(package, key, self.prefixes)
         if registration is None:
             return Match(package, key, None, None, how=how)
-        node_name = read_node_info(package, key, self.prefixes).node_name
+        node_name = node_info.read_node_info(package, key, self.prefixes).node_name
         resolved, diagnostics, source = resolve_registered(
             package, key, client_library=self.client_library, prefixes=self.prefixes)
         problems = [d for d in diagnostics if d.severity.value == 'error']

@@ -12,10 +12,17 @@ from __future__ import annotations
 import os
 from typing import NamedTuple
 
+# Importing the ament resolver imports the composition package, and with it loading: the
+# names compose_registered needs are there already, so they are imported here rather than
+# on every call (an import statement costs a few microseconds each time it runs).  Composing
+# and checking are called through their modules, so that timing wrappers see the calls.
+from nodl_schema import composition, loading
 from nodl_schema.composition.ament_resolver import (
     INTERFACE_RESOURCE, NODE_RESOURCE, read_registered, resource_name)
 from nodl_schema.composition.resolvers import ResolutionError, Resolved
+from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.index import ament
+from nodl_schema.validation.kinds import Kind
 from nodl_schema.vocabulary import RESOURCE_SEPARATOR
 
 __all__ = ['Registration', 'list_registrations', 'find_node', 'read_registration',
@@ -133,11 +140,6 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
     converted to v2 in memory first.  Never raises for a missing or broken
     registration: that is a diagnostic.
     """
-    from nodl_schema.composition import compose_report
-    from nodl_schema.diagnostics import Diagnostic, Severity
-    from nodl_schema.loading import check_source
-    from nodl_schema.validation.kinds import Kind
-
     where = f'{package}/{executable}'
     registration = find_node(package, executable, prefixes)
     if registration is None:
@@ -152,7 +154,7 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
         resolved = read_registration(registration, prefixes)
     except ResolutionError as exc:  # an entry whose file is gone (a partly removed install)
         return None, [Diagnostic(Severity.ERROR, exc.message, (), where, code='NODL015')], where
-    composed, diagnostics = compose_report(
-        check_source(resolved.text, kind=Kind.NODE, file=resolved.file),
+    composed, diagnostics = composition.compose_report(
+        loading.check_source(resolved.text, kind=Kind.NODE, file=resolved.file),
         client_library=client_library, prefixes=prefixes)
     return composed, diagnostics, resolved.file
