@@ -164,6 +164,29 @@ def test_qos_findings_are_exactly_check_qos_compatible_for_every_pair(tmp_path: 
     assert found == expected
 
 
+def test_a_topic_many_nodes_share_is_checked_per_pair_of_profiles(tmp_path: Path) -> None:
+    """Every node publishing and subscribing one topic (/tf-like): compatible profiles give no
+    finding; one subscriber with a stricter profile gets one finding per publisher, in the
+    publishers' order, as when every pair is looked at."""
+    qos = {'history': 'KEEP_LAST', 'depth': 10, 'reliability': 'RELIABLE', 'durability': 'VOLATILE',
+           'liveliness': 'AUTOMATIC'}
+
+    def node(sub_qos: dict[str, Any]) -> dict[str, Any]:
+        return {'publishers': [{'name': '/tf', 'type': 'std_msgs/msg/String', 'description': 'd.',
+                                'qos': qos}],
+                'subscriptions': [{'name': '/tf', 'type': 'std_msgs/msg/String', 'description': 'd.',
+                                   'qos': sub_qos}]}
+
+    nodes = {f'n{i}': node(qos) for i in range(6)}
+    launch = '<launch>\n' + ''.join(f'  <node pkg="demo" exec="{n}" name="{n}"/>\n' for n in nodes) + '</launch>\n'
+    assert not _kinds(_analyse(tmp_path / 'a', nodes, launch), 'qos-incompatible', 'qos-warning')
+
+    nodes['n3'] = node({**qos, 'durability': 'TRANSIENT_LOCAL'})
+    found = _kinds(_analyse(tmp_path / 'b', nodes, launch), 'qos-incompatible', 'qos-warning')
+    assert [(f.kind, f.nodes) for f in found] == [  # (a node's own pair names it once)
+        ('qos-incompatible', tuple(dict.fromkeys((f'/n{i}', '/n3')))) for i in range(6)]
+
+
 # -- actions and services ------------------------------------------------------------------
 
 def _action(name: str, type_name: str = 'test_msgs/action/Fibonacci') -> dict[str, Any]:

@@ -100,6 +100,26 @@ def _qos_key(qos: Any) -> tuple[Any, ...]:
     return _QOS_POLICIES(qos) if qos is not None else ()
 
 
+#: Not yet asked (a verdict may be None).
+_UNKNOWN = object()
+
+
+def _any_flagged(verdict_of: Any, publishers: Any, own_subs: Any, own_pubs: Any,
+                 library_subs: Any) -> bool:
+    """True if a pair QoSCheck looks at has a verdict other than ``ok``, asked once per pair
+    of distinct profiles (not per pair of endpoints: quadratic in the nodes on one topic)."""
+    def profiles(endpoints: Any) -> list[Any]:
+        return list({_qos_key(e.entity.qos): e.entity.qos for e in endpoints}.values())
+
+    for pubs, subs in ((publishers, own_subs), (own_pubs, library_subs)):
+        for pub_qos in profiles(pubs):
+            for sub_qos in profiles(subs):
+                verdict = verdict_of(pub_qos, sub_qos)
+                if verdict is not None and verdict.verdict != 'ok':
+                    return True
+    return False
+
+
 class QoSCheck(CheckExtension):
     """A publisher and a subscription on one topic that the middleware would not connect
     (``qos-incompatible``), or would connect with a warning (``qos-warning``): exactly
@@ -112,6 +132,20 @@ class QoSCheck(CheckExtension):
         from nodl_schema.qos_compat import check_qos_compatible
 
         verdicts: dict[tuple[Any, Any], Any] = {}
+
+        def verdict_of(pub_qos: Any, sub_qos: Any) -> Any:
+            """check_qos_compatible's verdict, once per pair of profiles (None if it raises:
+            a definition that passed validation has valid QoS)."""
+            key = (_qos_key(pub_qos), _qos_key(sub_qos))
+            verdict = verdicts.get(key, _UNKNOWN)
+            if verdict is _UNKNOWN:
+                try:
+                    verdict = check_qos_compatible(pub_qos, sub_qos)
+                except ValueError:
+                    verdict = None
+                verdicts[key] = verdict
+            return verdict
+
         for connection in context.system.connections('topic'):
             publishers, subscriptions = connection.offering, connection.using
             if not publishers or not subscriptions:
@@ -122,19 +156,16 @@ class QoSCheck(CheckExtension):
             own_subs = _own(subscriptions)
             library_subs = [s for s in subscriptions
                             if s.entity.provider is Provider.CLIENT_LIBRARY]
+            own_pubs = _own(publishers) if library_subs else []
+            if len(publishers) * len(own_subs) + len(own_pubs) * len(library_subs) > \
+                    len(publishers) + len(subscriptions) and \
+                    not _any_flagged(verdict_of, publishers, own_subs, own_pubs, library_subs):
+                continue  # many pairs (a topic most nodes publish and subscribe), none flagged
             pairs = [(p, s) for p in publishers for s in own_subs]
-            if library_subs:
-                pairs += [(p, s) for p in _own(publishers) for s in library_subs]
+            pairs += [(p, s) for p in own_pubs for s in library_subs]
             for pub, sub in pairs:
-                key = (_qos_key(pub.entity.qos), _qos_key(sub.entity.qos))
-                verdict = verdicts.get(key)
-                if verdict is None:
-                    try:
-                        verdict = check_qos_compatible(pub.entity.qos, sub.entity.qos)
-                    except ValueError:
-                        continue  # a definition that passed validation has valid QoS
-                    verdicts[key] = verdict
-                if verdict.verdict == 'ok':
+                verdict = verdict_of(pub.entity.qos, sub.entity.qos)
+                if verdict is None or verdict.verdict == 'ok':
                     continue
                 kind = 'qos-incompatible' if verdict.verdict == 'error' else 'qos-warning'
                 outcome = 'will not connect' if verdict.verdict == 'error' else 'may not connect'
