@@ -20,8 +20,13 @@ from nodl_schema.analysis.context import AnalysisContext
 from nodl_schema.analysis.findings import Finding, make_finding
 from nodl_schema.launch.params import RuntimeValue
 from nodl_schema.model.parameter_types import TypeSpec
+from nodl_schema.system.entities import EntityKind
 
 __all__ = ['ParameterCheck', 'launch_value_fits', 'launch_value_verdict', 'value_type_words']
+
+
+#: (resolved.parameters, without its EntityKind(kind) look-up per node)
+_PARAMETER = EntityKind.PARAMETER
 
 
 def _element_fits(value: Any, element: str) -> bool:
@@ -43,17 +48,18 @@ def _element_fits(value: Any, element: str) -> bool:
 def launch_value_fits(value: Any, spec: TypeSpec) -> bool:
     """True if a node declaring a parameter of type ``spec`` accepts ``value`` as its
     override (no conversion: an int is not a double)."""
-    if spec.element == 'none':
+    element = spec.element  # (a property that parses the type name: asked once, not per item)
+    if element == 'none':
         return True
     if spec.is_array:
         if not isinstance(value, list):
             return False
         if spec.size is not None and len(value) > spec.size:
             return False
-        return all(_element_fits(v, spec.element) for v in value)
+        return all(_element_fits(v, element) for v in value)
     if spec.size is not None and isinstance(value, str) and len(value) > spec.size:
         return False
-    return _element_fits(value, spec.element)
+    return _element_fits(value, element)
 
 
 def launch_value_verdict(value: Any, spec: TypeSpec) -> str:
@@ -115,7 +121,7 @@ class ParameterCheck(CheckExtension):
             resolved = node.instance.resolved
             facts = known.get(id(resolved))
             if facts is None:
-                by_name = {e.name: e for e in resolved.parameters}
+                by_name = {e.name: e for e in resolved.entities if e.kind is _PARAMETER}
                 facts = known[id(resolved)] = (by_name, [
                     (name, e) for name, e in by_name.items() if e.default_value is None
                     and not (isinstance(e.type, TypeSpec) and e.type.element == 'none')])
