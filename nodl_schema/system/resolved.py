@@ -22,6 +22,7 @@ from nodl_schema.composition.merge import PARAMETERS, Declaration, seeded_copies
 from nodl_schema.composition.resolvers import Resolver
 from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
 from nodl_schema.frontends.source import Source
+from nodl_schema.index.registry import compose_registered
 from nodl_schema.loading import Report
 from nodl_schema.model import ENDPOINT_SECTIONS, Base, Interface, Node
 from nodl_schema.system.entities import (
@@ -280,8 +281,6 @@ def resolve_registered(package: str, executable: str, *, client_library: str | N
     file)``; never raises for a missing or broken registration (ValueError for an unknown
     client library).
     """
-    from nodl_schema.index.registry import compose_registered
-
     choice = choose_client_library(client_library, package, prefixes)
     composed, diagnostics, source = compose_registered(package, executable, prefixes,
                                                        client_library=choice.name)
