@@ -78,14 +78,10 @@ class NodeInstance:
         self.parameter_overrides: dict[str, Any] = dict(parameter_overrides or {})
         #: Where the instance is declared (a launch file entry), if known.
         self.location = location
-        finals = []
-        for entity in resolved.entities:
-            if entity.is_parameter:
-                finals.append(entity.name)
-            else:
-                finals.append(self.names.resolve(entity.name,
-                                                 service=entity.kind.communication == 'service'))
-        self._set_bound(resolved.entities, tuple(finals))
+        resolve = self.names.resolve
+        self._set_bound(resolved.entities, tuple([
+            name if service is None else resolve(name, service=service)
+            for name, service in resolved.naming_plan]), resolved.endpoint_indices)
 
     # The instance keeps (entity, final name) pairs and makes its InstanceEntity objects when
     # asked: an InstanceEntity refers to its instance, so an instance holding them would form a
@@ -94,9 +90,11 @@ class NodeInstance:
     # hash alike) however many times they are made.  (Two tuples, not one pair per entity:
     # fewer objects for the collector to walk while a large analysis is being built.)
 
-    def _set_bound(self, entities: tuple[Entity, ...], names: tuple[str, ...]) -> None:
+    def _set_bound(self, entities: tuple[Entity, ...], names: tuple[str, ...],
+                   endpoint_indices: tuple[int, ...] | None = None) -> None:
         self._entities, self._names = entities, names
-        self._endpoint_indices = tuple(i for i, e in enumerate(entities) if not e.is_parameter)
+        self._endpoint_indices = endpoint_indices if endpoint_indices is not None else \
+            tuple(i for i, e in enumerate(entities) if not e.is_parameter)
 
     @property
     def _bound(self) -> Iterator[tuple[Entity, str]]:

@@ -115,6 +115,15 @@ class ResolvedNode:
                 entities.append(found)
         #: Every entity: parameters first, then the endpoint sections in file order.
         self.entities: tuple[Entity, ...] = tuple(entities)
+        #: What each instance of the node needs to name its entities, worked out once (a
+        #: launched system may run a node many times): per entity, its declared name and
+        #: None for a parameter (which keeps its name), else whether it resolves as a service.
+        self.naming_plan: tuple[tuple[str, bool | None], ...] = tuple(
+            (e.name, None if e.is_parameter else e.kind.communication == 'service')
+            for e in self.entities)
+        #: The positions of the endpoints (not parameters) in :attr:`entities`.
+        self.endpoint_indices: tuple[int, ...] = tuple(
+            i for i, e in enumerate(self.entities) if not e.is_parameter)
         self._by_key: dict[tuple[EntityKind, str], Entity] | None = None  # made when first asked
 
     # -- what the node is -------------------------------------------------------------------
