@@ -35,10 +35,13 @@ def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnosti
     if tree.root is None or any(d.severity is Severity.ERROR for d in tree.diagnostics):
         return None, problems
 
+    too_deep: list[XmlElement] = []
+
     def convert(element: XmlElement, depth: int) -> Entity | None:
+        # Recursive, but never deeper than MAX_XML_DEPTH + 1 (expat itself reads any depth):
+        # an element below that is noted, not entered.
         if depth > MAX_XML_DEPTH:
-            problems.append(Diagnostic(Severity.ERROR, f'the launch file nests deeper than {MAX_XML_DEPTH} '
-                                       'levels', (), path, element.line, element.column, code='NODL009'))
+            too_deep.append(element)
             return None
         entity = Entity(element.tag, path, element.line, element.column)
         # The values by name; the element places an attribute only when the entity asks where
@@ -58,16 +61,14 @@ def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnosti
                     entity.children.append(converted)
         return entity
 
-    # Iterative depth check first: expat itself reads any depth, the conversion is recursive.
-    stack = [(tree.root, 1)]
-    while stack:
-        element, depth = stack.pop()
-        if depth > MAX_XML_DEPTH:
-            problems.append(Diagnostic(Severity.ERROR, f'the launch file nests deeper than {MAX_XML_DEPTH} '
-                                       'levels', (), path, element.line, element.column, code='NODL009'))
-            return None, problems
-        stack.extend((child, depth + 1) for child in element.children)
     root = convert(tree.root, 1)
+    if too_deep:
+        # One diagnostic, at the last element too deep (where it has always been reported: the
+        # former separate depth check walked the tree from its end).
+        element = too_deep[-1]
+        problems.append(Diagnostic(Severity.ERROR, f'the launch file nests deeper than {MAX_XML_DEPTH} '
+                                   'levels', (), path, element.line, element.column, code='NODL009'))
+        return None, problems
     if root is None:
         return None, problems
     return build_description(root, problems), problems
