@@ -234,7 +234,8 @@ def _nested_ok(entity: Entity, problems: list[Diagnostic]) -> bool:
             continue
         for item in items:
             ok = _check(item, spec, problems) and ok
-            ok = _nested_ok(item, problems) and ok
+            if item.nested:  # most nested entities (a param, a remap) hold none
+                ok = _nested_ok(item, problems) and ok
     return ok
 
 
