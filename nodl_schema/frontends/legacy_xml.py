@@ -395,8 +395,8 @@ def _parse_xml(text: str, file: str) -> XmlTree:
         return parser.CurrentLineNumber, parser.CurrentColumnNumber + 1
 
     def start(tag: str, pairs: list[str]) -> None:
-        element = XmlElement(tag, None, parser.CurrentLineNumber, parser.CurrentColumnNumber + 1,
-                             pairs=pairs, lines=lines)
+        line, column = here()
+        element = XmlElement(tag, None, line, column, pairs=pairs, lines=lines)
         if stack:
             stack[-1].children.append(element)
         else:
