@@ -298,14 +298,23 @@ class _Lines:
 
     def __init__(self, text: str) -> None:
         self.text = text
-        self.starts = [0] + [m.end() for m in _LINE_BREAK.finditer(text)]
+        self._starts: list[int] | None = None
+
+    @property
+    def starts(self) -> list[int]:
+        """Where each line starts (found when first needed: most documents never need it)."""
+        if self._starts is None:
+            self._starts = [0] + [m.end() for m in _LINE_BREAK.finditer(self.text)]
+        return self._starts
 
     def offset(self, line: int, column: int) -> int:
-        return self.starts[line - 1] + column - 1 if 0 < line <= len(self.starts) else -1
+        starts = self.starts
+        return starts[line - 1] + column - 1 if 0 < line <= len(starts) else -1
 
     def position(self, offset: int) -> tuple[int, int]:
-        index = bisect.bisect_right(self.starts, offset) - 1
-        return index + 1, offset - self.starts[index] + 1
+        starts = self.starts
+        index = bisect.bisect_right(starts, offset) - 1
+        return index + 1, offset - starts[index] + 1
 
 
 def _start_tag(count: int) -> re.Pattern[str]:
