@@ -83,13 +83,12 @@ def _normalize_items(value: Any) -> list[Substitution]:
 
 def perform(context: LaunchContext, value: Any) -> str:
     """Perform every substitution of ``value`` and join the texts."""
-    parts = value if type(value) is list else normalize(value)  # a list of them, normalized or not
-    if len(parts) == 1:
-        part = parts[0]
+    if type(value) is list and len(value) == 1:
+        part = value[0]
         # Plain text (most attributes): its text, without a copy, a generator and a join.
         if type(part) is TextSubstitution and type(part.text) is str:
             return part.text
-    return ''.join(s.perform(context) for s in normalize(parts))
+    return ''.join(s.perform(context) for s in normalize(value))
 
 
 def yaml_bool(text: str) -> bool:
