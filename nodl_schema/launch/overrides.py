@@ -88,7 +88,11 @@ def match_parameter_file_nodes(keys: Iterable[str], node_fqn: str) -> list[str]:
     without a leading ``/`` gets one.  Which value wins among matching keys is decided by
     the order of rcl's merged table: see :func:`process_overrides`.
     """
-    return [key for key in keys if _pattern(key).fullmatch(node_fqn) is not None]
+    # A key without a wildcard names one node (each node's inline parameters carry its own
+    # name, so a launched system has as many such keys as nodes): compared, not compiled.
+    return [key for key in keys
+            if ((key if key[:1] == '/' else '/' + key) == node_fqn if '*' not in key
+                else _pattern(key).fullmatch(node_fqn) is not None)]
 
 
 def _composable_key(key: str) -> str:
