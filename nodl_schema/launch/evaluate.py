@@ -121,6 +121,7 @@ def _missing_required_argument(context: LaunchContext, description: LaunchDescri
                     walk(nested.entities, inner, (*(chain or ()), entity))
 
     walk(description.entities, False, None)
+    del walk  # (a recursive closure refers to itself: a cycle holding what it saw until collected)
     accepted = list(given)  # launch extends one list: names of nested includes accumulate
     for argument, conditional, chain in declared:
         if conditional or argument.default_value is not None:

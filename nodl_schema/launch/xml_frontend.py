@@ -62,6 +62,7 @@ def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnosti
         return entity
 
     root = convert(tree.root, 1)
+    del convert  # (a recursive closure refers to itself: a cycle holding the tree until collected)
     if too_deep:
         # One diagnostic, at the last element too deep (where it has always been reported: the
         # former separate depth check walked the tree from its end).
