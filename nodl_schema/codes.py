@@ -174,7 +174,7 @@ CODES: dict[str, tuple[str, str]] = {
                 'under a wildcard key, which also serves other nodes)'),
     'NODL702': ('error', 'parameter file: a value of another type than declared (as strict as a node: '
                 'an integer for a double parameter is an error)'),
-    'NODL703': ('error', "parameter file: a value breaks the parameter's validators"),
+    'NODL703': ('error', "parameter file: a value breaks the parameter's validators, or an empty list leaves a typed parameter unset"),
     'NODL704': ('error', 'parameter file: a required parameter (no default) is set by none of the files'),
     'NODL705': ('warning', 'parameter file: no node key of the files applies to the node'),
     'NODL706': ('error', 'parameter file check: the launch file cannot be read, or starts no node with a definition'),

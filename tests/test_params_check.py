@@ -127,3 +127,14 @@ def test_cli_launch_and_a_file_no_key_of_which_applies(tmp_path: Path) -> None:
     assert unmatched.returncode == 0  # a warning: the file may be meant for other nodes
     assert f'{other}:1:1: warning: no node key of the parameter file(s) applies to /talker' in unmatched.stdout
     assert '[NODL705]' in unmatched.stdout
+
+
+def test_an_empty_list_leaves_a_statically_typed_array_unset(tmp_path: Path) -> None:
+    # rcl reads '[]' in a parameter file as no value: a real rclpy node declaring the
+    # parameter with a default then raises ParameterUninitializedException when it reads it
+    # (what the launch analysis reports for the same value, NODL561).
+    params = tmp_path / 'empty.params.yaml'
+    params.write_text('/**:\n  ros__parameters:\n    required_scale: 1.0\n    doubles: []\n')
+    found = check_parameter_files([str(params)], _node(), '/everything')
+    assert _codes(found) == [('NODL703', 4, 5)]
+    assert 'unset' in found[0].message and found[0].related

@@ -7,16 +7,17 @@ the value of the last file that sets it.  Each value is then checked as the
 node would check it: its type exactly (an integer is not a double), every
 built-in validator; parameters the definition does not declare are reported
 with a suggestion, and required parameters that no file sets are reported at
-their declaration.
+their declaration.  An empty list for a statically typed parameter is reported
+too: rcl reads it as no value, so the node's parameter ends up unset.
 """
 
 from __future__ import annotations
 
-from typing import Iterable, Sequence
+from typing import Any, Iterable, Sequence
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.generate.parameters import ParametersPlan, plan_parameters, value_problems
-from nodl_schema.system import ResolvedNode
+from nodl_schema.system import Entity, ResolvedNode
 
 __all__ = ['check_parameter_files', 'check_launch_parameters', 'is_wildcard_key']
 
@@ -26,14 +27,22 @@ def is_wildcard_key(key: str) -> bool:
     return '*' in key
 
 
-def _plan(node: ResolvedNode) -> tuple[ParametersPlan, dict[str, object]]:
+def _plan(node: ResolvedNode) -> tuple[ParametersPlan, dict[str, Entity]]:
     entities = [e for e in node.parameters]
     return plan_parameters(entities), {e.name: e for e in entities}
 
 
+def _declared_here(name: str, entity: Any) -> list[tuple[str, int, int, str]]:
+    where = getattr(entity, 'location', None)
+    return [(where.file, where.line, where.column, f'{name!r} is declared here')] \
+        if where is not None and where.line else []
+
+
 def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) -> list[Diagnostic]:
     """Every problem of ``files`` for ``node`` started as ``fqn`` (``/ns/name``)."""
+    from nodl_schema.analysis.checks.parameters import launch_value_verdict
     from nodl_schema.launch.overrides import match_parameter_file_nodes
+    from nodl_schema.model.parameter_types import TypeSpec
     from nodl_schema.launch.params import load_parameter_file
     from nodl_schema.validation.messages import did_you_mean
 
@@ -63,19 +72,26 @@ def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) ->
                         line, column, anchor='key', code='NODL701'))
                     continue
                 given.add(name)
+                entity = entities[name]
+                if not parameter.dynamic_typing and isinstance(entity.type, TypeSpec) \
+                        and launch_value_verdict(value, entity.type) == 'unset':
+                    # rcl reads an empty list as no value (what the launch analysis says too)
+                    out.append(Diagnostic(
+                        Severity.ERROR, f"parameter {name!r} of {fqn}: an empty list is no value "
+                        'for rcl: a statically typed parameter ends up unset (its default is '
+                        'lost) and the node fails when it reads it', (), path, line, column,
+                        code='NODL703', related=_declared_here(name, entity)))
+                    continue
                 problems = value_problems(parameter, value)
                 if not problems:
                     continue
                 from nodl_schema.generate.parameters import type_problem
 
                 code = 'NODL702' if type_problem(parameter, value) is not None else 'NODL703'
-                entity = entities[name]
-                where = getattr(entity, 'location', None)
-                related = [(where.file, where.line, where.column, f'{name!r} is declared here')] \
-                    if where is not None and where.line else []
                 out.append(Diagnostic(
                     Severity.ERROR, f"parameter {name!r} of {fqn}: {value!r} is invalid: "
-                    + '; '.join(problems), (), path, line, column, code=code, related=related))
+                    + '; '.join(problems), (), path, line, column, code=code,
+                    related=_declared_here(name, entity)))
     if not matched_any and files:
         out.append(Diagnostic(Severity.WARNING, f'no node key of the parameter file(s) applies to {fqn} '
                               '(keys match the fully qualified name; /** matches every node)',

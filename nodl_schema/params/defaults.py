@@ -34,9 +34,10 @@ def defaults_yaml(node: ResolvedNode, fqn: str, *, include_base: bool = False) -
     """The parameters of ``node`` with their defaults under the node key ``fqn``.
 
     The implementation's and the mixins' parameters are written (the base's,
-    such as ``use_sim_time``, only with ``include_base``); a required parameter
-    and a ``byte_array`` (which rcl's parameter files cannot express) are
-    written as comments saying what to give.
+    such as ``use_sim_time``, only with ``include_base``); a required parameter,
+    a ``byte_array`` (which rcl's parameter files cannot express) and an empty
+    list default (which rcl reads as no value) are written as comments saying
+    what to give.
     """
     wanted = [Provider.IMPLEMENTATION, Provider.OTHER_CODE] + ([Provider.CLIENT_LIBRARY] if include_base else [])
     plan: ParametersPlan = plan_parameters([e for e in node.provided_by(*wanted) if e.is_parameter])
@@ -72,6 +73,9 @@ def _entry(p: ParameterPlan, indent: str, leaf: str) -> list[str]:
         out.append(f'{indent}# {_key(leaf)}: required ({p.type_name}): no default, give a value')
     elif p.dynamic_typing and p.default is None:
         out.append(f'{indent}# {_key(leaf)}: any type, no default')
+    elif isinstance(p.default, (list, tuple)) and not p.default and not p.dynamic_typing:
+        out.append(f'{indent}# {_key(leaf)}: [] (an empty list is no value in a parameter file: '
+                   "rcl would leave the parameter unset; the node's default applies)")
     elif p.type.base == 'byte_array':
         out.append(f'{indent}# {_key(leaf)}: {yaml_scalar(p.default, "int_array")} '
                    '(a byte array: parameter files cannot set one)')
