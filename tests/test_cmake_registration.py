@@ -132,6 +132,13 @@ def test_a_broken_mixin_fails_the_build_at_its_entry(build: Build) -> None:
            "'nodl://robot_interfaces_nodl/no_such_interface'" in lines[0]
 
 
+def test_a_node_is_composed_with_the_rclcpp_base_at_build_time(build: Build) -> None:
+    # valid against rclpy's base, not rclcpp's: an ament_cmake package's nodes are rclcpp's,
+    # as nodl analyse, show and check take them from the package's build type
+    lines = [l for l in build.output.splitlines() if 'time_source.nodl.yaml:8:7:' in l]
+    assert lines and '[NODL308]' in lines[0], build.output
+
+
 def test_every_invalid_file_of_a_package_is_reported(build: Build) -> None:
     # both files of broken_nodl, in one build, whatever make's parallelism
     assert 'broken_nodl: invalid NoDL definitions:' in build.output

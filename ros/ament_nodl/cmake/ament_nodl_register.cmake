@@ -213,9 +213,15 @@ function(_ament_nodl_add_validation suffix)
     list(GET _pair 0 _kind)
     list(GET _pair 1 _file)
     list(APPEND _files "${_file}")
+    # A node is composed with the base of the client library an ament_cmake package's
+    # nodes get everywhere else (nodl analyse, show, check: the build type's, rclcpp).
+    set(_library "")
+    if(_kind STREQUAL "node")
+      set(_library "--client-library rclcpp ")
+    endif()
     string(APPEND _content
       "execute_process(COMMAND [==[${AMENT_NODL_EXECUTABLE}]==] validate --kind ${_kind} "
-      "--resolve --quiet --stderr [==[${_file}]==] RESULT_VARIABLE _rc)\n"
+      "--resolve ${_library}--quiet --stderr [==[${_file}]==] RESULT_VARIABLE _rc)\n"
       "if(NOT _rc EQUAL 0)\n  list(APPEND _failed [==[${_file}]==])\nendif()\n")
   endforeach()
   string(APPEND _content
