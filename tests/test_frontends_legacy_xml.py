@@ -1,11 +1,14 @@
-"""The legacy XML frontend: nodes, roles, QoS, positions, structural errors, hostile input."""
+"""The legacy XML frontend: nodes, roles, QoS, positions, structural errors, package.xml exports.
+
+The XML reader under it (positions, attribute placement, hostile input) is tested in
+test_frontends_xml_reader.py.
+"""
 
 from __future__ import annotations
 
 import os
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -15,7 +18,7 @@ from hypothesis import strategies as st
 from conftest import FIXTURES, REPO
 from nodl_schema.diagnostics import Severity
 from nodl_schema.frontends.legacy_xml import (
-    LegacyDocument, LegacyEndpoint, LegacyQoS, interface_files_from_package_xml, load_xml,
+    LegacyDocument, LegacyEndpoint, LegacyQoS, interface_files_from_package_xml,
     package_exports, parse_legacy_xml)
 from nodl_schema.reporting import format_text
 
@@ -29,10 +32,6 @@ def rel(path: Path) -> str:
 
 def parse(name: str) -> LegacyDocument:
     return parse_legacy_xml(LEGACY / name)
-
-
-def errors_at(doc: LegacyDocument) -> list[tuple[int, int]]:
-    return [(d.line, d.column) for d in doc.diagnostics if d.severity is Severity.ERROR]
 
 
 # --------------------------------------------------------------------------
@@ -131,42 +130,6 @@ def test_attributes_written_over_several_lines_have_their_own_position() -> None
     assert qos.positions['avoid_ros_namespace_conventions'] == (21, 9)
 
 
-def test_columns_count_characters_not_bytes() -> None:
-    doc = parse_legacy_xml('<interface version="1">\n  <node name="ééé" executable="x" bogus="1"/>\n'
-                           '</interface>\n')
-    assert [(d.line, d.column) for d in doc.diagnostics] == [(2, 35)]
-
-
-def test_crlf_and_cr_line_breaks_count_as_one_line() -> None:
-    for newline in ('\r\n', '\r'):
-        text = newline.join(['<interface version="1">', '  <node executable="x">',
-                             '    <topic name="t" type="a/msg/B" />', '  </node>', '</interface>'])
-        doc = parse_legacy_xml(text)
-        assert errors_at(doc) == [(3, 5)], newline
-
-
-@settings(max_examples=300, deadline=None)
-@given(st.lists(st.tuples(st.sampled_from(['a', 'pkg', 'x:y', 'value-sep', 'é', 'n_1']),
-                          st.sampled_from([' ', '  ', '\t', '\n  ', '\r\n ']),
-                          st.sampled_from(['=', ' = ', '=\n']),
-                          st.sampled_from(['"v"', "'w'", '"a>b"', '"x\ny"', '"é"', '""', '"b=\'c\'"'])),
-                max_size=5, unique_by=lambda t: t[0]),
-       st.sampled_from(['', ' ', 'é ', '<!-- c -->']), st.sampled_from(['/>', ' />', '\n/>']))
-def test_attributes_are_placed_as_one_by_one(attributes, lead, close) -> None:
-    """The placement of a tag's attributes in one match (a tag on one line) gives the
-    positions the attribute-by-attribute scan gives (every tag, on one line or not)."""
-    from nodl_schema.frontends import legacy_xml as X
-
-    tag = '<t' + ''.join(f'{space}{name}{equals}{value}' for name, space, equals, value in attributes) + close
-    text = f'<root>\n{lead}{tag}</root>'
-    element = load_xml(text).root.children[0]  # type: ignore[union-attr]
-    lines = X._Lines(text)
-    pairs = [part for a in element.attributes for part in (a.name, a.value)]
-    start = lines.offset(element.line, element.column)
-    assert element.attributes == X._place_attributes_by_name(lines, element.line, element.column, pairs, start)
-    assert [a.name for a in element.attributes] == [name for name, *_ in attributes]
-
-
 # --------------------------------------------------------------------------
 # Structural errors
 
@@ -242,12 +205,6 @@ def test_booleans_accept_xsd_spellings() -> None:
     assert doc.nodes[0].topics[0].roles == ('publisher',)
 
 
-def test_malformed_xml_is_one_positioned_error() -> None:
-    doc = parse_legacy_xml(ERRORS / 'malformed.nodl.xml')
-    assert [(d.line, d.column, d.message) for d in doc.errors] == [
-        (4, 5, 'malformed XML: mismatched tag')]
-
-
 def test_wrong_root() -> None:
     doc = parse_legacy_xml(ERRORS / 'wrong_root.nodl.xml')
     assert [(d.line, d.column) for d in doc.errors] == [(1, 1)]
@@ -281,55 +238,7 @@ def test_empty_document() -> None:
 
 
 # --------------------------------------------------------------------------
-# Hostile input
-
-
-def test_billion_laughs_is_rejected_before_any_expansion() -> None:
-    start = time.perf_counter()
-    doc = parse_legacy_xml(ERRORS / 'billion_laughs.nodl.xml')
-    assert time.perf_counter() - start < 1.0
-    assert [(d.line, d.column) for d in doc.errors] == [(2, 1)]
-    assert 'document type declarations (<!DOCTYPE ...>) are not allowed' in doc.errors[0].message
-    assert doc.nodes == []
-
-
-def test_external_entities_are_never_resolved() -> None:
-    doc = parse_legacy_xml(ERRORS / 'external_entity.nodl.xml')
-    assert [(d.line, d.column) for d in doc.errors] == [(1, 1)]
-    assert doc.nodes == []
-    assert not any('root:' in d.message for d in doc.diagnostics)
-
-
-def test_undeclared_entity_is_malformed_xml() -> None:
-    doc = parse_legacy_xml('<interface version="1"><node name="&x;"/></interface>')
-    assert [d.message for d in doc.errors] == ['malformed XML: undefined entity']
-
-
-def test_files_over_10_mb_are_rejected(tmp_path: Path) -> None:
-    big = tmp_path / 'big.nodl.xml'
-    big.write_bytes(b'<interface version="1">' + b' ' * (10 * 1024 * 1024) + b'</interface>')
-    doc = parse_legacy_xml(big)
-    assert len(doc.errors) == 1
-    assert 'larger than the limit' in doc.errors[0].message and '10 MB' in doc.errors[0].message
-
-
-def test_non_utf8_is_rejected_with_position() -> None:
-    doc = parse_legacy_xml(ERRORS / 'latin1.nodl.xml')
-    assert [(d.line, d.column) for d in doc.errors] == [(2, 18)]
-    assert 'not valid UTF-8' in doc.errors[0].message
-
-
-def test_a_declared_non_utf8_encoding_is_a_warning() -> None:
-    doc = parse_legacy_xml('<?xml version="1.0" encoding="ISO-8859-1"?>\n'
-                           '<interface version="1"><node executable="caf\u00e9"/></interface>')
-    assert doc.ok
-    assert doc.nodes[0].executable == 'caf\u00e9'
-    assert "encoding 'ISO-8859-1'" in doc.diagnostics[0].message
-
-
-def test_missing_file_is_an_os_error() -> None:
-    with pytest.raises(FileNotFoundError):
-        parse_legacy_xml(LEGACY / 'does_not_exist.nodl.xml')
+# Arbitrary text (hostile input to the XML reader: test_frontends_xml_reader.py)
 
 
 @settings(max_examples=200, deadline=None)
@@ -397,25 +306,6 @@ def test_records_compare_by_value_and_print_their_fields() -> None:
     assert repr(a).startswith("LegacyEndpoint(kind='topic', name='t'")
     with pytest.raises(TypeError):
         LegacyEndpoint(colour='red')
-
-
-def test_load_xml_keeps_the_tree() -> None:
-    tree = load_xml(LEGACY / 'role_attributes.nodl.xml')
-    assert tree.root is not None and tree.root.tag == 'interface'
-    assert [c.tag for c in tree.root.children] == ['node', 'node']
-    assert tree.root.children[0].get('executable').value == 'first'  # type: ignore[union-attr]
-
-
-def test_attributes_are_placed_when_first_read() -> None:
-    from nodl_schema.frontends.legacy_xml import XmlAttribute, XmlElement
-
-    tree = load_xml('<a>\n  <b x="1"\n     y=\'2\'/></a>')
-    element = tree.root.children[0]  # type: ignore[union-attr]
-    assert element.pairs == ['x', '1', 'y', '2']  # what a reader of values alone needs
-    assert element.attributes == [XmlAttribute('x', '1', 2, 6), XmlAttribute('y', '2', 3, 6)]
-    assert element.attributes is element.attributes  # placed once
-    made = XmlElement('c', [XmlAttribute('z', '3', 1, 4)], 1, 1)
-    assert made.pairs == ['z', '3'] and made.get('z') == XmlAttribute('z', '3', 1, 4)
 
 
 def test_module_imports_neither_dataclasses_nor_pathlib() -> None:

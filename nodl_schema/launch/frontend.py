@@ -21,7 +21,7 @@ from nodl_schema.launch.substitution_grammar import parse_if_substitutions, pars
 from nodl_schema.launch.substitutions import TextSubstitution
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers only
-    from nodl_schema.frontends.legacy_xml import XmlElement
+    from nodl_schema.frontends.xml_reader import XmlElement
 
 __all__ = ['Entity', 'TAGS', 'build_description']
 

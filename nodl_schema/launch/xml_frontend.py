@@ -23,7 +23,7 @@ def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnosti
     """Read an XML launch file (problems as diagnostics, never an exception for its content)."""
     from pathlib import Path
 
-    from nodl_schema.frontends.legacy_xml import XmlElement, load_xml
+    from nodl_schema.frontends.xml_reader import XmlElement, load_xml
 
     problems: list[Diagnostic] = []
     try:

@@ -30,8 +30,9 @@ from typing import TYPE_CHECKING, Any, Iterable
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity, has_errors
 from nodl_schema.frontends.legacy_xml import (
-    LEGACY_ONLY_QOS_VALUES, LegacyDocument, LegacyEndpoint, LegacyNode, LegacyQoS, XmlTree, legacy_document_from_tree,
-    load_xml, package_exports_from_tree)
+    LEGACY_ONLY_QOS_VALUES, LegacyDocument, LegacyEndpoint, LegacyNode, LegacyQoS, legacy_document_from_tree,
+    package_exports_from_tree)
+from nodl_schema.frontends.xml_reader import XmlTree, load_xml
 from nodl_schema.vocabulary import ENDPOINT_KINDS, KIND_NAMESPACES, QOS_DURATIONS, SECTION_KEYS
 from nodl_schema.vocabulary import SECTIONS as _VOCABULARY_SECTIONS
 

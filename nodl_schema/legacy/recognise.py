@@ -32,7 +32,8 @@ def xml_diagnostics(text: str, file: str) -> list[Diagnostic] | None:
     """What an XML document given as NoDL v2 is, as placed diagnostics (None: not XML)."""
     if not looks_like_xml(text):
         return None
-    from nodl_schema.frontends.legacy_xml import legacy_document_from_tree, load_xml
+    from nodl_schema.frontends.legacy_xml import legacy_document_from_tree
+    from nodl_schema.frontends.xml_reader import load_xml
 
     tree = load_xml(text, file)
     root = tree.root

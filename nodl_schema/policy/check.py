@@ -23,7 +23,7 @@ import os
 from typing import NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.frontends.legacy_xml import XmlElement
+from nodl_schema.frontends.xml_reader import XmlElement
 from nodl_schema.policy.model import PERMISSIONS, Policy
 from nodl_schema.policy.names import has_wildcard, resolve_policy_name, written_name
 from nodl_schema.policy.schema_check import ParsedPolicy, check_policy_structure, read_policy

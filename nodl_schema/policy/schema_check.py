@@ -33,7 +33,7 @@ import re
 from typing import TYPE_CHECKING, Iterator, NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.frontends.legacy_xml import XmlElement, XmlTree, load_xml
+from nodl_schema.frontends.xml_reader import XmlElement, XmlTree, load_xml
 from nodl_schema.policy.model import PERMISSIONS, POLICY_VERSION, QUALIFIERS
 
 if TYPE_CHECKING:

@@ -29,7 +29,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.frontends.legacy_xml import XmlElement
+from nodl_schema.frontends.xml_reader import XmlElement
 
 __all__ = ['XINCLUDE_NAMESPACES', 'MAX_DEPTH', 'Origin', 'Origins', 'expand_includes']
 
@@ -167,7 +167,7 @@ class _Expander:
 
     def read(self, include: XmlElement, origin: Origin, path: str, href: str
              ) -> tuple[XmlElement, Origin] | None:
-        from nodl_schema.frontends.legacy_xml import load_xml
+        from nodl_schema.frontends.xml_reader import load_xml
         from nodl_schema.frontends.source import read_source
 
         shown = os.path.relpath(path) if not os.path.isabs(origin.file) else path
