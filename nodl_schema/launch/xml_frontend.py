@@ -1,6 +1,6 @@
 """The XML launch frontend, read with the toolkit's safe XML parser.
 
-:func:`~nodl_schema.frontends.legacy_xml.load_xml` (expat, positions for every element and
+:func:`~nodl_schema.frontends.xml_reader.load_xml` (expat, positions for every element and
 attribute, no DTDs and no entities, the 10 MB size limit and UTF-8) gives the tree; this module
 turns elements into :class:`~nodl_schema.launch.frontend.Entity` objects: the child elements a
 tag lists as nested (``param``, ``remap``, ``arg``...) go to ``nested``, the others are actions.
