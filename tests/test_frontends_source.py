@@ -444,3 +444,19 @@ def test_read_limited_reads_what_open_reads(tmp_path: Path) -> None:
     with pytest.raises(FileNotFoundError) as by_read:
         read_limited(tmp_path / 'missing')
     assert str(by_read.value) == str(by_open.value)
+
+
+def test_read_regular_reads_a_regular_file_and_nothing_else(tmp_path: Path) -> None:
+    from nodl_schema.frontends.source import read_limited, read_regular
+
+    file = tmp_path / 'a.nodl.yaml'
+    file.write_bytes(b'nodl_version: 2\n' * 1000)
+    assert read_regular(file) == read_limited(file) == file.read_bytes()
+    assert read_regular(tmp_path / 'missing.yaml') is None
+    assert read_regular(file / 'below') is None  # a path through a file
+    assert read_regular(tmp_path) is None  # a directory
+    fifo = tmp_path / 'fifo'
+    os.mkfifo(fifo)
+    start = time.monotonic()
+    assert read_regular(fifo) is None  # without waiting for a writer
+    assert time.monotonic() - start < 5

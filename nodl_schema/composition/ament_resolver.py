@@ -15,7 +15,7 @@ import os
 from nodl_schema.composition.resolvers import (
     ResolutionError, ResolveContext, Resolved, ResolverExtension)
 from nodl_schema.files import tidy_path
-from nodl_schema.frontends.source import read_limited
+from nodl_schema.frontends.source import read_regular
 from nodl_schema.index import ament
 from nodl_schema.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, resource_name
 
@@ -37,8 +37,9 @@ def _read(resource: ament.Resource, package: str) -> Resolved:
     if content and '\n' not in content and not content.startswith('{') and ': ' not in content:
         candidate = tidy_path(content if os.path.isabs(content) else
                               os.path.join(resource.prefix, 'share', package, content))
-        if os.path.isfile(candidate):
-            return Resolved(read_limited(candidate), candidate)
+        data = read_regular(candidate)
+        if data is not None:
+            return Resolved(data, candidate)
         raise ResolutionError(f'the index entry {resource.path} points at {candidate}, '
                               'which does not exist (is the package fully installed?)', [candidate])
     return Resolved(resource.content, resource.path)

@@ -17,7 +17,7 @@ if TYPE_CHECKING:
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
-__all__ = ['MAX_BYTES', 'Source', 'SourceText', 'read_source', 'read_limited', 'decode']
+__all__ = ['MAX_BYTES', 'Source', 'SourceText', 'read_source', 'read_limited', 'read_regular', 'decode']
 
 #: Documents larger than this are rejected before parsing.
 MAX_BYTES = 10 * 1024 * 1024
@@ -112,30 +112,50 @@ def read_limited(path: str | os.PathLike[str]) -> bytes:
     A FIFO or a device such as /dev/zero reports size 0 and may never end;
     the caller's :func:`decode` rejects what is over the limit.
     """
-    # Through the descriptor, asking first for what the file says it holds (plus a byte, to
-    # see that it grew): a read allocates all it asks for, and asking a small definition
-    # for the whole limit (10 MB) cost more than the rest of reading it.  Having read all
-    # a regular file holds ends the reading (no read only to see the end).
     fd = os.open(path, os.O_RDONLY)
     try:
         status = os.fstat(fd)
         if S_ISDIR(status.st_mode):  # the error open() gives
             raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), os.fspath(path))
-        size = status.st_size if S_ISREG(status.st_mode) else -1
-        chunks = []
-        total = 0
-        ask = min(status.st_size, MAX_BYTES) + 1
-        while total <= MAX_BYTES:
-            chunk = os.read(fd, min(ask, MAX_BYTES + 1 - total))
-            if not chunk:
-                break
-            chunks.append(chunk)
-            total += len(chunk)
-            if total == size:
-                break
-            ask = _CHUNK
+        return _read_open(fd, status)
     finally:
         os.close(fd)
+
+
+def read_regular(path: str | os.PathLike[str]) -> bytes | None:
+    """A regular file's bytes as :func:`read_limited` reads them; None if there is no such
+    file or it is not a regular file (a directory, a FIFO, a device).  One system call
+    fewer than asking first (an analysis reads a thousand definitions this way)."""
+    try:
+        # O_NONBLOCK: opening a FIFO to see what it is must not wait for a writer
+        fd = os.open(path, os.O_RDONLY | getattr(os, 'O_NONBLOCK', 0))
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    try:
+        status = os.fstat(fd)
+        return _read_open(fd, status) if S_ISREG(status.st_mode) else None
+    finally:
+        os.close(fd)
+
+
+def _read_open(fd: int, status: os.stat_result) -> bytes:
+    # Through the descriptor, asking first for what the file says it holds (plus a byte, to
+    # see that it grew): a read allocates all it asks for, and asking a small definition
+    # for the whole limit (10 MB) cost more than the rest of reading it.  Having read all
+    # a regular file holds ends the reading (no read only to see the end).
+    size = status.st_size if S_ISREG(status.st_mode) else -1
+    chunks = []
+    total = 0
+    ask = min(status.st_size, MAX_BYTES) + 1
+    while total <= MAX_BYTES:
+        chunk = os.read(fd, min(ask, MAX_BYTES + 1 - total))
+        if not chunk:
+            break
+        chunks.append(chunk)
+        total += len(chunk)
+        if total == size:
+            break
+        ask = _CHUNK
     return chunks[0] if len(chunks) == 1 else b''.join(chunks)
 
 

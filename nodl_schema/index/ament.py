@@ -70,8 +70,8 @@ class _Snapshot:
 
 
 def _read_text(path: str) -> str:
-    """A file's text as ``open(path, encoding='utf-8').read()`` gives it (newlines made
-    ``\\n``), read through the file descriptor: an index entry is a few bytes, and the
+    """A regular file's text as ``open(path, encoding='utf-8').read()`` gives it (newlines
+    made ``\\n``), read through the file descriptor: an index entry is a few bytes, and the
     three layers of a text file object cost more than reading them."""
     fd = os.open(path, os.O_RDONLY)
     try:
@@ -81,6 +81,8 @@ def _read_text(path: str) -> str:
             if not chunk:
                 break
             chunks.append(chunk)
+            if len(chunk) < 65536:  # a regular file (entries are listed as files) is at its end
+                break
     finally:
         os.close(fd)
     text = b''.join(chunks).decode('utf-8')
