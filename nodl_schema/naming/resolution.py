@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 from nodl_schema.naming.remap_rules import RemapArgs, RemapRule, parse_remap_rules
 from nodl_schema.naming.validation import (_VALID_FULL_NAME, TOPIC_MAX_LENGTH, InvalidNameError,
@@ -108,9 +109,17 @@ class NodeNames:
         rules = parse_remap_rules(remap_args)
         namespace = checked_namespace(node_name, namespace)
         if not rules:  # most launched nodes: nothing renames them, and both names are checked
-            names = cls(node_name, namespace, ())
             under = namespace if namespace == '/' else namespace + '/'
-            object.__setattr__(names, '_prefixes_', (namespace, under + node_name, under))
+            fqn = under + node_name  # (join_name's result for a checked namespace)
+            if cls is not NodeNames:
+                names = cls(node_name, namespace, ())
+                object.__setattr__(names, '_prefixes_', (namespace, fqn, under))
+                return names
+            # A frozen dataclass's __init__ sets each field through object.__setattr__: the
+            # fields and what is kept beside them are put in the new object's __dict__ at once.
+            names = object.__new__(cls)
+            names.__dict__.update(name=node_name, namespace=namespace, rules=(),
+                                  _prefixes_=(namespace, fqn, under), _fqn=fqn)
             return names
         final_name = node_name_after_remaps(node_name, rules)
         # rcl_node_init: the __ns rule's node scope is compared with the name after __node
@@ -223,20 +232,56 @@ class NodeNames:
 
         An action's name resolves as a topic name (as ``rcl_action`` does).
         """
-        problem = topic_name_error(name)
+        # Every entity of every launched node comes here, and the regular expression of a full
+        # name was most of the cost: what depends on the written name alone (is it valid, which
+        # of the node's prefixes it goes under, is what it adds valid) is asked once per name.
+        problem, under, tail, tail_valid = _name_shape(name)
         if problem:
             raise InvalidNameError('topic name', name, problem)
-        resolved = self._expanded(name)
+        # (the prefixes asked even for an absolute name: they check the node's own names)
+        prefixes = self.__dict__.get('_prefixes_') or self._prefixes()
+        if under > 0:
+            resolved = prefixes[under] + tail
+        elif under:
+            resolved = self._expanded(name)  # with substitutions
+        else:
+            resolved = name
         if self.rules:
             rule = self._rule_for_expanded(resolved, service)
             if rule is not None:
                 resolved = _expand(rule.replacement, self.name, self.namespace)
-        # full_name_error's own first test, inline (every entity of every node comes here)
+                tail_valid = False
+        if tail_valid and len(resolved) <= TOPIC_MAX_LENGTH:
+            return resolved
+        # full_name_error's own first test, inline
         if len(resolved) > TOPIC_MAX_LENGTH or _VALID_FULL_NAME.fullmatch(resolved) is None:
             problem = full_name_error(resolved)
             if problem:
                 raise InvalidNameError('resolved name', resolved, problem)
         return resolved
+
+
+@lru_cache(maxsize=4096)  # the same few names are declared by many nodes (every base's)
+def _name_shape(name: str) -> tuple[str | None, int, str, bool]:
+    """``(problem, under, tail, tail_valid)`` of a written topic or service ``name``.
+
+    ``problem``: :func:`topic_name_error`.  A name without substitutions expands to the
+    node's prefix ``under`` (1: what ``~`` stands for, 2: what a relative name goes under,
+    see :meth:`NodeNames._prefixes`; 0: none, the name is absolute) followed by ``tail``;
+    ``under`` is -1 for a name with substitutions.  ``tail_valid``: that expansion is a
+    valid full name (the prefixes are: a checked namespace and node name) short of its
+    length, so the full name need not be matched again for every node.
+    """
+    problem = topic_name_error(name)
+    if problem or '{' in name:
+        return problem, -1, name, False
+    first = name[0]
+    if first == '/':
+        return None, 0, name, _VALID_FULL_NAME.fullmatch(name) is not None
+    if first == '~':
+        tail = name[1:]
+        return None, 1, tail, not tail or _VALID_FULL_NAME.fullmatch(tail) is not None
+    return None, 2, name, _VALID_FULL_NAME.fullmatch('/' + name) is not None
 
 
 def node_fqn(node_name: str, namespace: str, remap_args: RemapArgs = None) -> str:

@@ -156,7 +156,11 @@ def checked_namespace(node_name: str, namespace: str) -> str:
     if problem:
         raise InvalidNameError('node name', node_name, problem)
     namespace = normalize_namespace(namespace)
-    problem = namespace_error(namespace)
+    problem = _namespace_error(namespace)
     if problem:
         raise InvalidNameError('node namespace', namespace, problem)
     return namespace
+
+
+#: :func:`namespace_error`, asked once per namespace (the nodes of a launch share a few).
+_namespace_error = lru_cache(maxsize=1024)(namespace_error)
