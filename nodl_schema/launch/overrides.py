@@ -91,8 +91,14 @@ def match_parameter_file_nodes(keys: Iterable[str], node_fqn: str) -> list[str]:
     # A key without a wildcard names one node (each node's inline parameters carry its own
     # name, so a launched system has as many such keys as nodes): compared, not compiled.
     return [key for key in keys
-            if ((key if key[:1] == '/' else '/' + key) == node_fqn if '*' not in key
+            if ((key if key[:1] == '/' else _absolute_key(key)) == node_fqn if '*' not in key
                 else _pattern(key).fullmatch(node_fqn) is not None)]
+
+
+def _absolute_key(key: str) -> str:
+    """A node key as rcl compares it: with a leading ``/``."""
+    name = key if key.startswith('/') else '/' + key
+    return name
 
 
 def _composable_key(key: str) -> str:
@@ -218,11 +224,16 @@ def _known_at_run_time(value: Any) -> bool:
     return isinstance(value, RuntimeValue)
 
 
+#: Values that are what rcl reads back, however launch_ros writes them (most parameters are
+#: numbers or booleans: no check for a run-time value, a string inside a list, and no import).
+_AS_READ = (bool, int, float)
+
+
 def as_rcl_reads_dump(value: Any) -> Any:
     """What rcl reads back from ``yaml.dump(value)`` (launch_ros writes node dicts and
     ``Parameter`` values that way): PyYAML leaves ``'y'`` or ``'1e5'`` unquoted, rcl reads a
     bool and a double."""
-    if _known_at_run_time(value):
+    if type(value) in _AS_READ or _known_at_run_time(value):
         return value
     if isinstance(value, str) or (isinstance(value, list) and any(isinstance(v, str) for v in value)):
         import yaml
@@ -234,7 +245,7 @@ def as_rcl_reads_dump(value: Any) -> Any:
 def as_rcl_reads_text(value: Any) -> Any:
     """What rcl reads from ``-p NAME:={value}`` (launch_ros passes ``set_parameter`` values
     formatted by Python: ``'1'`` becomes the int 1, ``True`` the bool true)."""
-    if _known_at_run_time(value):
+    if type(value) in _AS_READ or _known_at_run_time(value):
         return value
     if isinstance(value, (bool, int, float)) and not isinstance(value, str):
         return value
@@ -257,27 +268,31 @@ def _file_entries(path: str, composable: bool) -> list[tuple[str, dict[str, Any]
 def process_overrides(sources: Iterable[ParameterSource], fqn: str) -> dict[str, ParameterOverride]:
     """The parameters a node started as a process called ``fqn`` receives from ``sources``
     (its records' :attr:`~nodl_schema.launch.model.LaunchedNode.parameters`), as rcl resolves them."""
+    # (tuple.__new__: a NamedTuple's own __new__ is a Python function, and every parameter of
+    # every launched node is made here)
+    new = tuple.__new__
     table: dict[str, dict[str, ParameterOverride]] = {}
     for source in sources:
-        where = source.source
+        origin = source.origin
         if source.kind == 'file':
-            if not source.path:
+            path = source.path
+            if not path:
                 continue
-            for key, values, positions, line, column in _file_entries(source.path, False):
+            for key, values, positions, line, column in _file_entries(path, False):
                 entry = table.setdefault(key, {})
                 for name, value in values.items():
                     at = positions.get(name, (line, column))
-                    entry[name] = ParameterOverride(name, value, source.path, at[0], at[1],
-                                                    source.origin, 'file', key)
+                    entry[name] = new(ParameterOverride, (name, value, path, at[0], at[1],
+                                                          origin, 'file', key))
             continue
-        entry = table.setdefault(source.node_key, {})
+        where, key = source.source, source.node_key
+        entry = table.setdefault(key, {})
+        read = as_rcl_reads_text if origin == 'global' else \
+            as_rcl_reads_dump if origin == 'node' else None
         for name, value in source.values.items():
-            if source.origin == 'global':
-                value = as_rcl_reads_text(value)
-            elif source.origin == 'node':
-                value = as_rcl_reads_dump(value)
-            entry[name] = ParameterOverride(name, value, where.file, where.line, where.column,
-                                            source.origin, 'values', source.node_key)
+            entry[name] = new(ParameterOverride, (
+                name, value if read is None else read(value), where.file, where.line,
+                where.column, origin, 'values', key))
     out: dict[str, ParameterOverride] = {}
     for key in match_parameter_file_nodes(table, fqn):
         out.update(table[key])
