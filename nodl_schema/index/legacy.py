@@ -8,7 +8,8 @@ Two ways a legacy package announces its files:
 * its ``package.xml`` (spec 000): ``<export><interface path="..."/></export>``.
 
 Each ``<node>`` becomes a registration named after its executable (or its
-name where there is none); showing or checking it converts it to v2 in memory.
+name where there is none); showing or checking it converts it to v2 in memory,
+and what is said about it points into the XML file.
 """
 
 from __future__ import annotations
@@ -93,19 +94,19 @@ def _converted(registration: Registration):  # type: ignore[no-untyped-def]
 
 def compose_legacy(registration: Registration,  # type: ignore[no-untyped-def]
                    client_library: str = 'rclpy'):
-    """The legacy node converted to v2 and composed: ``(composed or None, diagnostics)``."""
+    """The legacy node converted to v2 and composed: ``(composed or None, diagnostics)``.
+
+    Every diagnostic, and every entity's location in the composed node, is
+    placed in the legacy XML file (``registration.file``), at the element or
+    attribute the entry came from (see :mod:`nodl_schema.legacy.placement`).
+    """
     from nodl_schema.composition import compose_report
-    from nodl_schema.loading import check_source, dump_nodl
-    from nodl_schema.validation.kinds import Kind
+    from nodl_schema.legacy.placement import converted_report
 
     converted, diagnostics = _converted(registration)
     if converted is None or not converted.ok:
         return None, diagnostics
-    report = check_source(dump_nodl(converted.data, 'json', validate=False), kind=Kind.NODE,
-                          file=f'{registration.file} ({registration.name}, converted)')
-    composed, more = compose_report(report, client_library=client_library)
-    if composed is not None:
-        composed.file = registration.file
+    composed, more = compose_report(converted_report(converted), client_library=client_library)
     # Warnings about the in-memory v2 document (no descriptions, ...) say nothing the
     # conversion has not said already; only errors matter here.
     return composed, diagnostics + [d for d in more if d.severity is Severity.ERROR]

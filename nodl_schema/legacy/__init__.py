@@ -10,6 +10,11 @@ Reading is done by :mod:`nodl_schema.frontends.legacy_xml`; converting, by
         converted.file_name, converted.data, converted.diagnostics
 
     written, diagnostics = convert_file('pkg.nodl.xml', 'out/')
+
+Each :class:`Converted` carries ``origins``, where every path of its v2 data
+came from in the XML file; :mod:`nodl_schema.legacy.placement` checks the
+converted node with it, so a registered legacy node's diagnostics and entity
+locations point into the XML file.
 """
 
 from __future__ import annotations

@@ -33,13 +33,12 @@ from nodl_schema.frontends.legacy_xml import (
     LEGACY_ONLY_QOS_VALUES, LegacyDocument, LegacyEndpoint, LegacyNode, LegacyQoS, legacy_document_from_tree,
     package_exports_from_tree)
 from nodl_schema.frontends.xml_reader import XmlTree, load_xml
+from nodl_schema.legacy.converted import Converted, Origins, origin_of
 from nodl_schema.vocabulary import ENDPOINT_KINDS, KIND_NAMESPACES, QOS_DURATIONS, SECTION_KEYS
 from nodl_schema.vocabulary import SECTIONS as _VOCABULARY_SECTIONS
 
 if TYPE_CHECKING:  # pragma: no cover
     from pathlib import Path
-
-    from nodl_schema.model import Node
 
 __all__ = ['Converted', 'FileConversion', 'convert_legacy', 'render_converted', 'convert_file',
            'convert_files', 'seconds_to_ns']
@@ -79,53 +78,6 @@ _FILE_STEM = re.compile(r'[A-Za-z0-9_][A-Za-z0-9_.+-]*')
 _SUFFIX = '.nodl.yaml'
 
 
-class Converted:
-    """One converted node: its file name, v2 node definition (a plain dict) and diagnostics.
-
-    ``diagnostics`` are those of the conversion (placed in the legacy file);
-    the legacy document's own diagnostics stay on the document.
-    """
-
-    __slots__ = ('file_name', 'data', 'diagnostics', 'source', 'node')
-
-    def __init__(self, file_name: str, data: dict[str, Any], diagnostics: list[Diagnostic],
-                 source: str, node: LegacyNode) -> None:
-        self.file_name = file_name
-        self.data = data
-        self.diagnostics = diagnostics
-        #: The legacy file it was converted from (as named in diagnostics).
-        self.source = source
-        self.node = node
-
-    @property
-    def errors(self) -> list[Diagnostic]:
-        """Diagnostics of severity error."""
-        return [d for d in self.diagnostics if d.severity is Severity.ERROR]
-
-    @property
-    def ok(self) -> bool:
-        """True if the node converted into a valid v2 node definition."""
-        return not self.errors
-
-    @property
-    def document(self) -> Node | None:
-        """The converted node definition as the typed model (None if it is not valid).
-
-        The converter keeps a mapping while it works, so that whatever the v2
-        schema refuses can be placed at the legacy element it came from; what
-        is written is built from this model.
-        """
-        if not self.ok:
-            return None
-        from nodl_schema.model import Node
-
-        return Node.from_dict(self.data)
-
-    def __repr__(self) -> str:
-        return (f'Converted(file_name={self.file_name!r}, source={self.source!r}, '
-                f'diagnostics={len(self.diagnostics)})')
-
-
 def seconds_to_ns(seconds: str) -> int:
     """``'.5'`` -> ``500000000``: a legacy duration (seconds) in whole nanoseconds.
 
@@ -147,7 +99,8 @@ class _NodeConverter:
         self.node = node
         self.file = file
         self.diagnostics: list[Diagnostic] = []
-        self.origins: dict[DocPath, tuple[int, int]] = {(): (node.line, node.column)}
+        #: The source map the converted document carries (see Converted.origins).
+        self.origins: Origins = {(): (node.line, node.column)}
         #: True while converting an endpoint a second time (its second role):
         #: what there is to say about it was said the first time.
         self.quiet = False
@@ -363,10 +316,7 @@ def _validate(data: dict[str, Any], converter: _NodeConverter) -> None:
             continue  # the converter already said what is wrong there
         if d.code == 'NODL216':
             continue  # the legacy format has no descriptions: nothing the converter can do
-        path = d.path
-        while path not in converter.origins:
-            path = path[:-1]
-        line, column = converter.origins[path]
+        line, column = origin_of(converter.origins, d.path)
         key = (d.severity, d.message, line, column)
         if key in said:
             continue  # an endpoint with both roles is in two sections: say it once
@@ -411,7 +361,8 @@ def convert_legacy(doc: LegacyDocument) -> list[Converted]:
         else:
             taken[file_name] = node
         converter.diagnostics.sort(key=lambda d: (d.line, d.column))
-        out.append(Converted(file_name, data, converter.diagnostics, doc.file, node))
+        out.append(Converted(file_name, data, converter.diagnostics, doc.file, node,
+                             converter.origins))
     return out
 
 
