@@ -6,6 +6,7 @@ import pytest
 
 from conftest import FIXTURES
 from nodl_schema.system import EntityKind, NodeInstance, Provider, System, resolve_node
+from nodl_schema.system.graph import Connection
 
 SYSTEM = FIXTURES / 'system'
 
@@ -80,3 +81,42 @@ def test_connections_are_sorted_and_name_clashes_found() -> None:
     assert keys == sorted(keys)
     with pytest.raises(KeyError):
         twice.instance('/listener')  # ambiguous
+
+
+def _lone(connection: Connection) -> bool:
+    return connection.communication != 'topic' and len(connection.offering) == 1 \
+        and not connection.using
+
+
+@pytest.mark.parametrize('lone_first', [True, False])
+def test_lone_servers_left_out_on_request(lone_first: bool) -> None:
+    talker = resolve_node(SYSTEM / 'talker.nodl.yaml')
+    listener = resolve_node(SYSTEM / 'listener.nodl.yaml', client_library='rclcpp')
+
+    instances = [NodeInstance(talker, 'talker', '/'),
+                 NodeInstance(listener, 'listener', '/', ['chatter:=/talker/chatter']),
+                 NodeInstance(listener, 'listener', '/spare')]
+
+    def made() -> System:
+        return System(instances)
+
+    every = made().connections()
+    assert any(_lone(c) for c in every) and not all(_lone(c) for c in every)
+    system = made()
+    # the count does not make the lone servers; asked before or after they are made, the
+    # connections without them are every connection's others, in the same order
+    assert repr(system) == f'System(3 instances, {len(every)} connections)'
+    if not lone_first:
+        assert system.connections() == every
+    for communication in (None, 'topic', 'service', 'action'):
+        whole = [c for c in every if communication in (None, c.communication)]
+        assert system.connections(communication, lone_servers=False) == \
+            [c for c in whole if not _lone(c)]
+        assert system.connections(communication, include_client_library=False,
+                                  lone_servers=False) == \
+            [c for c in system.connections(communication, include_client_library=False)
+             if not _lone(c)]
+    lone = next(c for c in every if _lone(c))
+    assert system.connection(lone.communication, lone.name) == lone
+    assert system.connections() == every
+    assert repr(system) == f'System(3 instances, {len(every)} connections)'

@@ -9,7 +9,7 @@ need them; they carry their provider, so an analysis can leave them out.
 
 from __future__ import annotations
 
-from typing import Iterable, NamedTuple
+from typing import Iterable, Mapping, NamedTuple
 
 from nodl_schema.system.entities import Entity, EntityKind, Provider
 from nodl_schema.system.instance import InstanceEntity, NodeInstance, instances_named
@@ -78,8 +78,31 @@ class Connection(NamedTuple):
                 f'{len(self.using)} {use}')
 
 
+def _connections(communication: str, names: Iterable[str],
+                 offering: Mapping[str, InstanceEntity | list[InstanceEntity]],
+                 using: Mapping[str, InstanceEntity | list[InstanceEntity]]
+                 ) -> dict[str, Connection]:
+    """The connections of ``communication`` called ``names``, by name in that order, from
+    each side's endpoint (or list of endpoints) by name."""
+    new = tuple.__new__  # Connection(...) without its Python-level __new__, per connection
+    made = {}
+    for name in names:
+        offers, uses = offering.get(name), using.get(name)
+        # (written out rather than a helper: twice per connection)
+        made[name] = new(Connection, (
+            communication, name,
+            () if offers is None else tuple(offers) if type(offers) is list else (offers,),
+            () if uses is None else tuple(uses) if type(uses) is list else (uses,)))
+    return made
+
+
 class System:
-    """Node instances and the connections between them."""
+    """Node instances and the connections between them.
+
+    A *lone server* is a service or action that one server offers and no client uses (every
+    node's parameter services, most of a large system's connections): nothing to check on
+    it.  Those are made into connections only when they are asked for.
+    """
 
     def __init__(self, instances: Iterable[NodeInstance]) -> None:
         #: The instances, in the order given.
@@ -105,40 +128,66 @@ class System:
                 else:
                     table[name] = [found, bound]  # type: ignore[list-item]
 
-        def side(found: InstanceEntity | list[InstanceEntity] | None
-                 ) -> tuple[InstanceEntity, ...]:
-            if found is None:
-                return ()
-            return tuple(found) if type(found) is list else (found,)  # type: ignore[return-value]
-
-        new = tuple.__new__  # Connection(...) without its Python-level __new__, per connection
-        #: communication -> final name -> its connection.
+        #: communication -> final name -> its connection, lone servers left out (names sorted
+        #: as strings).
         self._by_name: dict[str, dict[str, Connection]] = {}
-        ordered: list[Connection] = []
+        #: communication -> final name -> its lone server.
+        self._lone: dict[str, dict[str, InstanceEntity]] = {}
         for communication in sorted({communication for communication, _ in sides}):
-            offering, using = sides.get((communication, True), {}), sides.get((communication, False), {})
+            offering, using = sides[communication, True], sides[communication, False]
             names = offering.keys() | using.keys()
             if not names:
                 continue
-            connections = self._by_name[communication] = {}
-            for name in sorted(names):
-                connection = connections[name] = new(Connection, (
-                    communication, name, side(offering.get(name)), side(using.get(name))))
-                ordered.append(connection)
-        #: Every connection, sorted by communication then name.
-        self._ordered: tuple[Connection, ...] = tuple(ordered)
+            if communication != 'topic':
+                lone = {name: found for name, found in offering.items()
+                        if type(found) is not list and name not in using}
+                if lone:
+                    self._lone[communication] = lone  # type: ignore[assignment]
+                    names -= lone.keys()
+            self._by_name[communication] = _connections(communication, sorted(names),
+                                                        offering, using)
+        # Every connection, lone servers too, by communication then by name; and in that
+        # order (made on first use).
+        self._all: dict[str, dict[str, Connection]] | None = None
+        self._ordered: tuple[Connection, ...] = ()
+
+    def _complete(self) -> dict[str, dict[str, Connection]]:
+        """Communication -> final name -> its connection, every one (lone servers made once)."""
+        complete = self._all
+        if complete is None:
+            complete = {}
+            for communication, made in self._by_name.items():
+                lone = self._lone.get(communication)
+                if lone:
+                    made = {**made, **_connections(communication, lone, lone, {})}
+                    made = {name: made[name] for name in sorted(made)}
+                complete[communication] = made
+            self._all = complete
+            self._ordered = tuple(connection for connections in complete.values()
+                                  for connection in connections.values())
+        return complete
 
     def connections(self, communication: str | None = None, *,
-                    include_client_library: bool = True) -> list[Connection]:
+                    include_client_library: bool = True,
+                    lone_servers: bool = True) -> list[Connection]:
         """Every connection (of one communication: ``topic``, ``service`` or ``action``).
 
         With ``include_client_library=False``, endpoints the client library
-        provides are left out, and connections left empty are dropped.
+        provides are left out, and connections left empty are dropped.  With
+        ``lone_servers=False``, services and actions one server offers and no client
+        uses are left out (a check that finds nothing on them spares making them).
         """
-        if communication is None:
-            found: Iterable[Connection] = self._ordered
+        # (the lone servers are made only when they could be among those asked for)
+        tables = self._complete() if lone_servers and (
+            communication is None or communication in self._lone) else self._by_name
+        found: Iterable[Connection]
+        if communication is not None:
+            found = tables.get(communication, {}).values()
+        elif lone_servers:
+            found = self._ordered
         else:
-            found = self._by_name.get(communication, {}).values()
+            found = [connection for connections in tables.values()
+                     for connection in connections.values()]
         if include_client_library:
             return list(found)
         out = []
@@ -171,7 +220,10 @@ class System:
     def connection(self, communication: str, name: str) -> Connection | None:
         """The connection of ``communication`` called ``name`` (final name), or None."""
         table = self._by_name.get(communication)
-        return table.get(name) if table is not None else None
+        found = table.get(name) if table is not None else None
+        if found is None and name in self._lone.get(communication, ()):
+            return self._complete()[communication][name]
+        return found
 
     def _bound(self, instance: NodeInstance | str, entity: Entity | InstanceEntity
                | tuple[EntityKind | str, str]) -> InstanceEntity:
@@ -217,4 +269,6 @@ class System:
                 if len(group) > 1}
 
     def __repr__(self) -> str:
-        return f'System({len(self.instances)} instances, {len(self._ordered)} connections)'
+        count = sum(len(connections) for connections in self._by_name.values()) + \
+            sum(len(lone) for lone in self._lone.values())  # (without making the lone ones)
+        return f'System({len(self.instances)} instances, {count} connections)'

@@ -62,10 +62,12 @@ class TypeMismatchCheck(CheckExtension):
 
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """One finding per connection whose endpoints use more than one type."""
-        for connection in context.system.connections():
+        # (a service or action one server offers and no client uses has one type: those,
+        # most connections of a system, are not even made)
+        for connection in context.system.connections(lone_servers=False):
             offering, using = connection.offering, connection.using
             if len(offering) + len(using) < 2:
-                continue  # one endpoint, one type (most services: a server and no client)
+                continue  # one endpoint, one type
             endpoints = offering + using
             first_type = endpoints[0].entity.type_name
             for e in endpoints:

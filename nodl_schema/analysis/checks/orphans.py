@@ -48,11 +48,13 @@ class OrphanCheck(CheckExtension):
         if unknown:
             names = ', '.join(n.fqn for n in unknown[:3]) + (', ...' if len(unknown) > 3 else '')
             caveat = f' (unless {names}, launched without a definition, does)'
-        for connection in context.system.connections():
+        # (a service or action one server offers and no client uses is no orphan: those, most
+        # connections of a system, are not even made)
+        for connection in context.system.connections(lone_servers=False):
             if connection.connected or connection.name in maybe:
                 continue
             if not connection.using and connection.communication != 'topic':
-                continue  # servers without clients are no problem (and most services are that)
+                continue  # servers without clients are no problem
             for bound in connection.endpoints:
                 if bound.entity.provider is Provider.CLIENT_LIBRARY:
                     continue
