@@ -116,6 +116,10 @@ class System:
         # kind -> its side's table, asked once per kind rather than per endpoint.
         table_of = {kind: sides.setdefault((kind.communication, kind.offers), {})
                     for kind in EntityKind if kind.communication is not None}
+        # (kind, name) of each name a side has more than one endpoint of (noted when its list
+        # is made: a name offered once and used by no client is a lone server, and that is
+        # most names, which are not walked again to find it)
+        repeated: list[tuple[EntityKind, str]] = []
         for instance in self.instances:
             for bound in instance.endpoints:
                 table = table_of[bound.entity.kind]
@@ -127,23 +131,28 @@ class System:
                     found.append(bound)
                 else:
                     table[name] = [found, bound]  # type: ignore[list-item]
+                    repeated.append((bound.entity.kind, name))
 
         #: communication -> final name -> its connection, lone servers left out (names sorted
         #: as strings).
         self._by_name: dict[str, dict[str, Connection]] = {}
-        #: communication -> final name -> its lone server.
-        self._lone: dict[str, dict[str, InstanceEntity]] = {}
+        #: communication -> its sides' tables, when it has lone servers (not made yet).
+        self._lone: dict[str, tuple[dict[str, InstanceEntity | list[InstanceEntity]],
+                                    dict[str, InstanceEntity | list[InstanceEntity]]]] = {}
+        self._lone_count = 0
         for communication in sorted({communication for communication, _ in sides}):
             offering, using = sides[communication, True], sides[communication, False]
-            names = offering.keys() | using.keys()
-            if not names:
+            if not offering and not using:
                 continue
-            if communication != 'topic':
-                lone = {name: found for name, found in offering.items()
-                        if type(found) is not list and name not in using}
+            if communication == 'topic':
+                names = offering.keys() | using.keys()
+            else:
+                names = using.keys() | {name for kind, name in repeated
+                                        if kind.offers and kind.communication == communication}
+                lone = len(offering) - sum(1 for name in names if name in offering)
                 if lone:
-                    self._lone[communication] = lone  # type: ignore[assignment]
-                    names -= lone.keys()
+                    self._lone[communication] = (offering, using)
+                    self._lone_count += lone
             self._by_name[communication] = _connections(communication, sorted(names),
                                                         offering, using)
         # Every connection, lone servers too, by communication then by name; and in that
@@ -157,10 +166,12 @@ class System:
         if complete is None:
             complete = {}
             for communication, made in self._by_name.items():
-                lone = self._lone.get(communication)
-                if lone:
-                    made = {**made, **_connections(communication, lone, lone, {})}
-                    made = {name: made[name] for name in sorted(made)}
+                if communication in self._lone:
+                    offering, using = self._lone[communication]
+                    names = sorted(offering.keys() | using.keys())
+                    lone = _connections(communication, [name for name in names if name not in made],
+                                        offering, using)
+                    made = {name: made.get(name) or lone[name] for name in names}
                 complete[communication] = made
             self._all = complete
             self._ordered = tuple(connection for connections in complete.values()
@@ -221,8 +232,8 @@ class System:
         """The connection of ``communication`` called ``name`` (final name), or None."""
         table = self._by_name.get(communication)
         found = table.get(name) if table is not None else None
-        if found is None and name in self._lone.get(communication, ()):
-            return self._complete()[communication][name]
+        if found is None and name in self._lone.get(communication, ({},))[0]:
+            return self._complete()[communication][name]  # a lone server
         return found
 
     def _bound(self, instance: NodeInstance | str, entity: Entity | InstanceEntity
@@ -269,6 +280,6 @@ class System:
                 if len(group) > 1}
 
     def __repr__(self) -> str:
-        count = sum(len(connections) for connections in self._by_name.values()) + \
-            sum(len(lone) for lone in self._lone.values())  # (without making the lone ones)
+        # (without making the lone servers)
+        count = sum(len(connections) for connections in self._by_name.values()) + self._lone_count
         return f'System({len(self.instances)} instances, {count} connections)'
