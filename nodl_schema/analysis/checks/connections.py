@@ -122,6 +122,19 @@ def _any_flagged(verdict_of: Any, publishers: Any, own_subs: Any, own_pubs: Any,
     return False
 
 
+def _qos_finding(context: AnalysisContext, topic: str, pub: InstanceEntity, sub: InstanceEntity,
+                 verdict: Any) -> Finding:
+    kind = 'qos-incompatible' if verdict.verdict == 'error' else 'qos-warning'
+    outcome = 'will not connect' if verdict.verdict == 'error' else 'may not connect'
+    return make_finding(
+        kind, f'topic {topic}: the publisher of {pub.instance.fqn} and '
+        f'the subscription of {sub.instance.fqn} {outcome}: {verdict.reason}',
+        context.node_of(sub.instance).location,
+        [pub.instance.fqn, sub.instance.fqn], endpoint=topic,
+        related=[_related(pub, f'the publisher of {pub.instance.fqn}'),
+                 _related(sub, f'the subscription of {sub.instance.fqn}')])
+
+
 class QoSCheck(CheckExtension):
     """A publisher and a subscription on one topic that the middleware would not connect
     (``qos-incompatible``), or would connect with a warning (``qos-warning``): exactly
@@ -138,7 +151,9 @@ class QoSCheck(CheckExtension):
         def verdict_of(pub_qos: Any, sub_qos: Any) -> Any:
             """check_qos_compatible's verdict, once per pair of profiles (None if it raises:
             a definition that passed validation has valid QoS)."""
-            key = (_qos_key(pub_qos), _qos_key(sub_qos))
+            # (_qos_key of both, written out: once per pair of endpoints)
+            key = (_QOS_POLICIES(pub_qos) if pub_qos is not None else (),
+                   _QOS_POLICIES(sub_qos) if sub_qos is not None else ())
             verdict = verdicts.get(key, _UNKNOWN)
             if verdict is _UNKNOWN:
                 try:
@@ -148,33 +163,28 @@ class QoSCheck(CheckExtension):
                 verdicts[key] = verdict
             return verdict
 
+        library = Provider.CLIENT_LIBRARY
         for connection in context.system.connections('topic'):
             publishers, subscriptions = connection.offering, connection.using
             if not publishers or not subscriptions:
                 continue
             # client library to client library pairs (/parameter_events) are never checked:
             # pair every publisher with the nodes' own subscriptions, and the nodes' own
-            # publishers with the client library's subscriptions (linear when none are own)
-            own_subs = _own(subscriptions)
-            library_subs = [s for s in subscriptions
-                            if s.entity.provider is Provider.CLIENT_LIBRARY]
+            # publishers with the client library's subscriptions (linear when none are own).
+            # (Loops rather than comprehensions: most topics have one publisher and one
+            # subscription, and there are as many topics as nodes.)
+            own_subs: list[InstanceEntity] = []
+            library_subs: list[InstanceEntity] = []
+            for s in subscriptions:
+                (library_subs if s.entity.provider is library else own_subs).append(s)
             own_pubs = _own(publishers) if library_subs else []
             if len(publishers) * len(own_subs) + len(own_pubs) * len(library_subs) > \
                     len(publishers) + len(subscriptions) and \
                     not _any_flagged(verdict_of, publishers, own_subs, own_pubs, library_subs):
                 continue  # many pairs (a topic most nodes publish and subscribe), none flagged
-            pairs = [(p, s) for p in publishers for s in own_subs]
-            pairs += [(p, s) for p in own_pubs for s in library_subs]
-            for pub, sub in pairs:
-                verdict = verdict_of(pub.entity.qos, sub.entity.qos)
-                if verdict is None or verdict.verdict == 'ok':
-                    continue
-                kind = 'qos-incompatible' if verdict.verdict == 'error' else 'qos-warning'
-                outcome = 'will not connect' if verdict.verdict == 'error' else 'may not connect'
-                yield make_finding(
-                    kind, f'topic {connection.name}: the publisher of {pub.instance.fqn} and '
-                    f'the subscription of {sub.instance.fqn} {outcome}: {verdict.reason}',
-                    context.node_of(sub.instance).location,
-                    [pub.instance.fqn, sub.instance.fqn], endpoint=connection.name,
-                    related=[_related(pub, f'the publisher of {pub.instance.fqn}'),
-                             _related(sub, f'the subscription of {sub.instance.fqn}')])
+            for pubs, subs in ((publishers, own_subs), (own_pubs, library_subs)):
+                for pub in pubs:
+                    for sub in subs:
+                        verdict = verdict_of(pub.entity.qos, sub.entity.qos)
+                        if verdict is not None and verdict.verdict != 'ok':
+                            yield _qos_finding(context, connection.name, pub, sub, verdict)

@@ -104,6 +104,17 @@ def _declared_here(entity: Any) -> list[tuple[str, int, int, str]]:
              f"'{entity.name}' is declared here as {entity.type_name}")]
 
 
+#: Values whose verdict depends on their type alone (see ParameterCheck.check).
+_SCALARS = frozenset({bool, int, float})
+
+
+def _needs_value(entity: Any) -> bool:
+    """True for a declared parameter the launch must set: no default, and a type that takes
+    a value."""
+    return entity.default_value is None and not (
+        isinstance(entity.type, TypeSpec) and entity.type.element == 'none')
+
+
 class ParameterCheck(CheckExtension):
     """Parameters set for a node against the parameters its definition declares."""
 
@@ -116,15 +127,26 @@ class ParameterCheck(CheckExtension):
         # Per resolved node (the nodes launched from one definition share it): its parameters
         # by name, and those the launch must set (no default, and a type that takes a value).
         known: dict[int, tuple[dict[str, Any], list[tuple[str, Any]]]] = {}
+        # Per parameter entity (a shared base's are the same objects in every node): does the
+        # launch have to set it.
+        needed: dict[int, bool] = {}
+        # (spec, type of value) -> launch_value_verdict, for a bool, int or float value (whose
+        # verdict depends on nothing else): most launch values are, and many share a type.
+        verdicts: dict[tuple[Any, type], str] = {}
         for node in context.analysed():
             assert node.instance is not None
             resolved = node.instance.resolved
             facts = known.get(id(resolved))
             if facts is None:
                 by_name = {e.name: e for e in resolved.entities if e.kind is _PARAMETER}
-                facts = known[id(resolved)] = (by_name, [
-                    (name, e) for name, e in by_name.items() if e.default_value is None
-                    and not (isinstance(e.type, TypeSpec) and e.type.element == 'none')])
+                required = []
+                for name, e in by_name.items():
+                    need = needed.get(id(e))
+                    if need is None:
+                        need = needed[id(e)] = _needs_value(e)
+                    if need:
+                        required.append((name, e))
+                facts = known[id(resolved)] = (by_name, required)
             declared, required = facts
             given = node.parameters
             fqn = node.fqn
@@ -140,9 +162,15 @@ class ParameterCheck(CheckExtension):
                         parameter=name)
                     continue
                 spec = entity.type
-                if not isinstance(spec, TypeSpec) or isinstance(setting.value, RuntimeValue):
+                value = setting.value
+                if not isinstance(spec, TypeSpec) or isinstance(value, RuntimeValue):
                     continue  # a value only the running launch knows is not checked
-                verdict = launch_value_verdict(setting.value, spec)
+                if type(value) in _SCALARS:
+                    verdict = verdicts.get((spec, type(value)))
+                    if verdict is None:
+                        verdict = verdicts[spec, type(value)] = launch_value_verdict(value, spec)
+                else:
+                    verdict = launch_value_verdict(value, spec)
                 if verdict == 'unset':
                     yield make_finding(
                         'parameter-invalid', f"{fqn}: parameter '{name}' ({spec.category}) is set to "
