@@ -108,15 +108,21 @@ def test_conditions_through_helper_substitutions_and_ros_processes(tmp_path: Pat
     assert "'ros2 bag record -a'" in process[0].message and 'missing from the analysis' in process[0].message
 
 
-def test_a_helper_package_that_is_not_installed_is_a_located_error(tmp_path: Path) -> None:
+def test_a_helper_package_that_is_not_installed_is_a_warning_and_the_rest_is_analysed(tmp_path: Path) -> None:
     import shutil
 
     prefix = tmp_path / 'prefix'
     shutil.copytree(REAL_WORLD / 'prefix' / 'share', prefix / 'share')  # no lib/python*/
-    problem, unread = _rover(tmp_path, prefix).diagnostics
-    assert (problem.code, problem.severity.value, problem.line) == ('NODL516', 'error', 16)
-    assert unread.code == 'NODL520'  # 'scratch' is declared by the file that could not run
-    assert "'rover_launch_tools'" in problem.message and 'missing from the analysis' in problem.message
+    modules_before = set(sys.modules)
+    result = _rover(tmp_path, prefix)
+    assert [(d.code, d.severity.value, d.line) for d in result.diagnostics] == [
+        ('NODL513', 'warning', 16), ('NODL513', 'warning', 35), ('NODL513', 'warning', 41),
+        ('NODL513', 'warning', 47), ('NODL512', 'info', 48)]
+    assert "imports 'rover_launch_tools', which is not installed here" in result.diagnostics[0].message
+    assert "rover_launch_tools.NestUnder(...) ('rover_launch_tools' is not installed here)" \
+        in result.diagnostics[2].message  # the planner's parameter file: that node is missing
+    assert [(n.kind, n.name) for n in result.nodes] == [('node', 'describer'), ('container', 'stack')]
+    assert not {m for m in set(sys.modules) - modules_before if m.startswith('rover_launch_tools')}
 
 
 def test_a_package_not_found_by_ament_index_python_is_nodl511(tmp_path: Path) -> None:
@@ -180,3 +186,199 @@ def test_what_the_launch_file_prints_goes_to_standard_error(tmp_path: Path, caps
     out, err = capsys.readouterr()
     assert out == ''  # standard output is the tools' (nodl analyse --format json)
     assert err == 'configuring the robot\ngenerating\n'
+
+
+MISSING = Path(__file__).parent / 'fixtures' / 'launch' / 'missing_modules'
+ANALYSIS_PREFIX = Path(__file__).parent / 'fixtures' / 'analysis' / 'prefix'
+
+
+def test_modules_not_installed_here_are_placeholders_and_the_analysis_goes_on() -> None:
+    """xacro and nav2_common are not installed here: one warning per module at its import,
+    the robot_description from xacro a run-time value, the registered node analysed."""
+    import importlib.util
+
+    from nodl_schema.analysis import analyse_launch
+    from nodl_schema.launch import parameter_overrides
+    from nodl_schema.launch.params import RuntimeValue
+
+    path_before, finders_before = list(sys.path), list(sys.meta_path)
+    result = load_launch(MISSING / 'robot.launch.py', {}, prefixes=[str(ANALYSIS_PREFIX)])
+    assert [(d.code, d.severity.value, d.line) for d in result.diagnostics] == [
+        ('NODL513', 'warning', 5), ('NODL513', 'warning', 10), ('NODL513', 'warning', 21),
+        ('NODL513', 'warning', 26)]
+    xacro, nav2, description, rewritten = (d.message for d in result.diagnostics)
+    assert xacro.startswith("the Python launch file imports 'xacro', which is not installed here")
+    assert 'known only when the launch runs' in xacro
+    assert "imports 'nav2_common'" in nav2  # one warning for the module, however many names
+    assert description.startswith("parameter 'robot_description': the value of xacro.process_file(...)"
+                                  ".toxml() ('xacro' is not installed here) is known only when")
+    assert 'nav2_common.launch.RewrittenYaml(...)' in rewritten and 'this node is missing' in rewritten
+    publisher, lidar = result.nodes
+    values = {k: v.value for k, v in parameter_overrides(publisher).items()}
+    assert isinstance(values['robot_description'], RuntimeValue) and values['publish_frequency'] == 20.0
+    assert (lidar.package, lidar.fqn) == ('sensors', '/lidar')
+    # the stubs do not outlive the evaluation
+    assert 'xacro' not in sys.modules and not [m for m in sys.modules if m.startswith('nav2_common')]
+    assert importlib.util.find_spec('xacro') is None
+    assert sys.path == path_before and sys.meta_path == finders_before
+
+    analysis = analyse_launch(MISSING / 'robot.launch.py', prefixes=[str(ANALYSIS_PREFIX)])
+    assert not analysis.unreadable  # warnings: exit status 0, not 2
+    analysed = {n.created_name: n for n in analysis.nodes}
+    assert analysed['lidar'].match.resolved is not None  # the registered definition is used
+    assert analysed['lidar'].instance is not None and analysed['robot_state_publisher'].instance is None
+
+
+def test_a_module_that_exists_but_raises_on_import_is_still_an_error() -> None:
+    result = load_launch(MISSING / 'raises.launch.py', {},
+                         prefixes=[str(ANALYSIS_PREFIX), str(MISSING / 'prefix')])
+    (problem,) = result.diagnostics
+    assert (problem.code, problem.severity.value, problem.line) == ('NODL516', 'error', 3)
+    assert 'RuntimeError: this helper needs a robot attached' in problem.message
+    assert 'raises_on_import' not in sys.modules
+
+
+def test_missing_submodules_of_installed_packages_and_relative_imports_stay_errors(tmp_path: Path) -> None:
+    submodule = _write(tmp_path, {'a.launch.py': 'import json.no_such_part\n'})
+    (problem,) = load_launch(submodule, {}).diagnostics
+    assert problem.code == 'NODL516' and "imports 'json.no_such_part'" in problem.message
+    relative = _write(tmp_path, {'b.launch.py': 'from .helpers import x\n'})
+    (problem,) = load_launch(relative, {}).diagnostics
+    assert problem.code == 'NODL516' and 'relative import' in problem.message
+
+
+def test_python_operations_on_placeholders_go_on(tmp_path: Path) -> None:
+    """str(), f-strings, +, os.path.join, iteration, truth, comparisons, in, indexing, with,
+    a class derived from a placeholder: the evaluation goes on; a number cannot be known."""
+    main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
+        import os
+        import importlib.util
+        from launch import LaunchDescription
+        from launch_ros.actions import Node
+        import helpers.config as config
+        from helpers import Tool
+
+        class Mine(Tool):
+            def execute(self, context):
+                raise RuntimeError('not called: the walk does not run it')
+
+        def generate_launch_description():
+            value = config.load('robot.yaml')['robot']
+            text = str(value)
+            assert text == f'{value}' == '<helpers.config.load(...)[...]: known at run time>'
+            joined = os.path.join('/opt', value, 'x.yaml')
+            assert joined == '/opt/<helpers.config.load(...)[...]: known at run time>/x.yaml'
+            assert list(value) == [] and len(value) == 0 and value and 'a' not in value
+            assert not value == 'a' and value != 'a' and not value < 1 and not isinstance(1, Tool)
+            with config.lock() as held:
+                pass
+            assert importlib.util.find_spec('more_helpers') is None  # asking is not importing
+            return LaunchDescription([
+                Node(package='p', executable='e', name='a', parameters=[
+                    {'path': joined, 'name': 'robot_' + value, 'plain': f'{value}!', 'n': 1}]),
+                Node(package='p', executable='e', name=value),
+                Node(package='p', executable='e', name='b', condition=config.enabled),
+                Node(package='p', executable='e', name='c', parameters=[os.path.join('/x', value)]),
+                Mine(1, name='m'),
+                *config.more_nodes(),
+            ] + config.tail())
+        ''')})
+    result = load_launch(main, {})
+    found = [(d.code, d.line, d.message.split(' (')[0]) for d in result.diagnostics]
+    assert found == [
+        ('NODL513', 5, "the Python launch file imports 'helpers', which is not installed here"),
+        ('NODL513', 24, "parameter 'path': the value of a text with helpers.config.load(...)[...]"),
+        ('NODL513', 24, "parameter 'name': the value of a text with helpers.config.load(...)[...]"),
+        ('NODL513', 24, "parameter 'plain': the value of a text with helpers.config.load(...)[...]"),
+        ('NODL513', 26, 'the value of helpers.config.load(...)[...]'),
+        ('NODL513', 27, 'the value of helpers.config.enabled'),
+        ('NODL513', 28, 'the value of a text with helpers.config.load(...)[...]'),
+        ('NODL512', 29, 'Mine(...)'),
+        ('NODL512', 31, 'helpers.config.tail() cannot be evaluated without running the launch')]
+    assert 'this node is missing from the analysis' in result.diagnostics[4].message
+    (node,) = result.nodes
+    assert node.fqn == '/a'
+
+    number = _write(tmp_path, {'n.launch.py': 'import helpers\n\nrate = float(helpers.RATE)\n'})
+    warning, problem = load_launch(number, {}).diagnostics
+    assert (warning.code, problem.code, problem.line) == ('NODL513', 'NODL516', 3)
+    assert "helpers.RATE comes from 'helpers', which is not installed here" in problem.message
+
+
+def test_actions_from_missing_modules_are_said_not_dropped(tmp_path: Path) -> None:
+    main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
+        from launch import LaunchDescription
+        from launch.actions import GroupAction, IncludeLaunchDescription, RegisterEventHandler
+        from launch_ros.actions import ComposableNodeContainer, Node
+        from ros_gz_bridge.actions import RosGzBridge
+        from robot_helpers import make
+
+        def generate_launch_description():
+            return LaunchDescription([
+                RosGzBridge(bridge_name='bridge', config_file='bridge.yaml'),
+                GroupAction(make.group()),
+                IncludeLaunchDescription(make.source()),
+                RegisterEventHandler(make.handler()),
+                ComposableNodeContainer(name='c', namespace='', package='rclcpp_components',
+                                        executable='component_container',
+                                        composable_node_descriptions=[make.component()]),
+                Node(package='p', executable='e', name='n', parameters=make.parameters()),
+            ])
+        ''')})
+    result = load_launch(main, {})
+    assert [(d.code, d.line) for d in result.diagnostics] == [
+        ('NODL513', 4), ('NODL513', 5), ('NODL512', 9), ('NODL512', 10), ('NODL513', 11), ('NODL512', 12),
+        ('NODL513', 15), ('NODL513', 16)]
+    bridge = result.diagnostics[2].message
+    assert bridge.startswith('ros_gz_bridge.actions.RosGzBridge(...) cannot be evaluated without running')
+    assert 'the composable node it describes is missing' in result.diagnostics[6].message
+    assert [n.kind for n in result.nodes] == ['container']
+    returned = _write(tmp_path, {'r.launch.py': textwrap.dedent('''\
+        from moveit_configs_utils import MoveItConfigsBuilder
+        from moveit_configs_utils.launches import generate_demo_launch
+
+        def generate_launch_description():
+            return generate_demo_launch(MoveItConfigsBuilder('arm').to_moveit_configs())
+        ''')})
+    warning, demo = load_launch(returned, {}).diagnostics
+    assert (warning.code, warning.line, demo.code, demo.line) == ('NODL513', 1, 'NODL512', 5)
+    assert demo.message.startswith('moveit_configs_utils.launches.generate_demo_launch(...) cannot be')
+
+
+def test_an_unknown_launch_event_handler_is_a_finding_not_an_exception(tmp_path: Path) -> None:
+    main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
+        from launch import LaunchDescription
+        from launch.actions import RegisterEventHandler
+        from launch.event_handlers import OnSomethingNew
+        from launch_ros.actions import Node
+        def generate_launch_description():
+            return LaunchDescription([RegisterEventHandler(OnSomethingNew(on_exit=[])),
+                                      Node(package='p', executable='e', name='n')])
+        ''')})
+    result = load_launch(main, {})
+    assert [(d.code, d.line) for d in result.diagnostics] == [('NODL512', 6)]
+    assert len(result.nodes) == 1
+
+
+def test_stubs_do_not_leak_into_the_next_evaluation(tmp_path: Path) -> None:
+    first = _write(tmp_path, {'a.launch.py': textwrap.dedent('''\
+        from launch import LaunchDescription
+        import xacro
+        def generate_launch_description():
+            return LaunchDescription([])
+        ''')})
+    second = _write(tmp_path, {'b.launch.py': textwrap.dedent('''\
+        import sys
+        from launch import LaunchDescription
+        assert 'xacro' not in sys.modules
+        try:
+            import xacro
+        finally:
+            assert 'xacro' in sys.modules
+        def generate_launch_description():
+            return LaunchDescription([])
+        ''')})
+    assert [(d.code, d.line) for d in load_launch(first, {}).diagnostics] == [('NODL513', 2)]
+    assert [(d.code, d.line) for d in load_launch(second, {}).diagnostics] == [('NODL513', 5)]
+    assert [(d.code, d.line) for d in load_launch(first, {}).diagnostics] == [('NODL513', 2)]
+    assert 'xacro' not in sys.modules

@@ -9,8 +9,10 @@ While a Python launch file is evaluated (and only then) the modules ``launch``,
 stand-ins (``sys.modules`` is restored afterwards).  Their classes are the actions the
 XML and YAML frontends build, so the three formats resolve alike.  An action the stand-in
 does not know (and an ``OpaqueFunction``) becomes a warning at its line saying which
-nodes may be missing.  Running a Python launch file is running its code, as
-``ros2 launch`` does: analyse only launch files you would launch.
+nodes may be missing.  A module the launch file imports that is not installed here is
+given to it as a module of placeholders, with a warning (see
+:mod:`nodl_schema.launch.python_missing`).  Running a Python launch file is running its
+code, as ``ros2 launch`` does: analyse only launch files you would launch.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.launch import actions as A
 from nodl_schema.launch import conditions as C
 from nodl_schema.launch import params as P
+from nodl_schema.launch import python_missing as M
 from nodl_schema.launch import ros_actions as R
 from nodl_schema.launch import substitutions as S
 from nodl_schema.launch.errors import LaunchProblem, Unevaluable
@@ -59,6 +62,8 @@ def _caller() -> SourceLocation:
 def _located(cls: type, name: str | None = None) -> type:
     """A subclass whose instances remember the launch-file line that created them."""
     def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
+        if M.stubs_active():  # values from a module not installed here: run-time values
+            args, kwargs = M.action_arguments(cls, args, kwargs)
         condition = kwargs.pop('condition', None)
         init: Any = getattr(cls, '__init__')
         init(self, *args, **kwargs)
@@ -167,7 +172,7 @@ def _python_paths(context: LaunchContext) -> list[str]:
 
 class _Source:
     def __init__(self, launch_file_path: Any, *args: Any, **kwargs: Any) -> None:
-        self.location = launch_file_path
+        self.location = M.run_time(launch_file_path)
 
 
 class _Handler:
@@ -188,7 +193,9 @@ class _Handler:
 
 class _RegisterEventHandler(A.Ignored):
     def __init__(self, event_handler: Any, **_: Any) -> None:
-        super().__init__(actions=getattr(event_handler, 'actions', []))
+        # An unknown handler (a placeholder) is an action: said (NODL512), not dropped.
+        super().__init__(actions=[event_handler] if isinstance(event_handler, A.Action)
+                         else getattr(event_handler, 'actions', []))
 
 
 class _Timer(A.Ignored):
@@ -203,12 +210,13 @@ class _Opaque(A.Unevaluated):
 
 
 class _ParameterFile(R.ParameterFileEntry):
-    pass
+    def __init__(self, param_file: Any, allow_substs: Any = False) -> None:
+        super().__init__(M.run_time(param_file), allow_substs)
 
 
 class _Parameter:
     def __init__(self, name: Any, value: Any, *, value_type: Any = None) -> None:
-        self.nodl_parameter = (S.normalize(name), _parameter_value(value, value_type))
+        self.nodl_parameter = (S.normalize(M.run_time(name)), _parameter_value(value, value_type))
 
 
 def _type(value_type: Any) -> Any:
@@ -220,6 +228,7 @@ def _type(value_type: Any) -> Any:
 
 
 def _parameter_value(value: Any, value_type: Any = None) -> P.ParameterValue:
+    value = M.run_time(value)
     data_type = _type(value_type)
     if isinstance(value, (S.Substitution,)) or (isinstance(value, (list, tuple)) and value and all(
             isinstance(v, (str, S.Substitution)) for v in value) and any(isinstance(v, S.Substitution)
@@ -232,10 +241,14 @@ def _parameter_value(value: Any, value_type: Any = None) -> P.ParameterValue:
 
 
 def _package_share(package: str) -> str:
+    if isinstance(package, (M.Placeholder, M.RunTimeText)):  # a package named at run time
+        return M.package_folder(package)
     return os.path.join(_package_prefix(package), 'share', package)
 
 
 def _package_prefix(package: str) -> str:
+    if isinstance(package, (M.Placeholder, M.RunTimeText)):  # a package named at run time
+        return M.package_folder(package)
     context = _CURRENT[-1][0] if _CURRENT else None
     if context is None:
         raise LookupError(package)
@@ -250,6 +263,14 @@ class PackageNotFoundError(KeyError):
 
     def __str__(self) -> str:
         return str(self.args[0]) if self.args else ''
+
+
+class _LaunchDescription(A.LaunchDescription):
+    def __init__(self, initial_entities: Any = None, **kwargs: Any) -> None:
+        super().__init__(M.entities(initial_entities), **kwargs)  # a placeholder is one action
+
+
+_LaunchDescription.__name__ = _LaunchDescription.__qualname__ = 'LaunchDescription'
 
 
 class _FindPackageShare(S.FindPackageShare):
@@ -349,7 +370,7 @@ def shim_modules() -> dict[str, types.ModuleType]:
                      perform_typed_substitution=_perform_typed_substitution,
                      ensure_argument_type=_ensure_argument_type)
     types_tuple = (str, S.Substitution, list, tuple)
-    launch = dict(LaunchDescription=A.LaunchDescription, Action=A.Action, Substitution=S.Substitution,
+    launch = dict(LaunchDescription=_LaunchDescription, Action=A.Action, Substitution=S.Substitution,
                   Condition=C.Condition, LaunchContext=object, SomeSubstitutionsType=object,
                   SomeSubstitutionsType_types_tuple=types_tuple, LaunchDescriptionEntity=object)
     modules = {
@@ -361,7 +382,7 @@ def shim_modules() -> dict[str, types.ModuleType]:
         'launch.action': _module('launch.action', dict(Action=A.Action)),
         'launch.launch_context': _module('launch.launch_context', dict(LaunchContext=object)),
         'launch.launch_description': _module('launch.launch_description',
-                                             dict(LaunchDescription=A.LaunchDescription)),
+                                             dict(LaunchDescription=_LaunchDescription)),
         'launch.condition': _module('launch.condition', dict(Condition=C.Condition)),
         'launch.frontend': _module('launch.frontend', dict(expose_action=_expose,
                                                            expose_substitution=_expose), unknown=True),
@@ -450,6 +471,7 @@ def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription
     namespace: dict[str, Any] = {'__file__': path, '__name__': '__nodl_launch__'}
     import contextlib
 
+    stubs = M.MissingModules(context, path, python_paths).__enter__()  # last on sys.meta_path
     try:
         # What the launch file itself prints goes to standard error, as ros2 launch shows it:
         # standard output carries the reports of the tools (--format json, sarif).
@@ -480,6 +502,7 @@ def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription
         context.report(_problem(path, exc))
         return None
     finally:
+        stubs.__exit__()
         _CURRENT.pop()
         sys.meta_path.remove(finder)
         for python_path in python_paths:
@@ -493,6 +516,8 @@ def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription
                 sys.modules.pop(name, None)
             else:
                 sys.modules[name] = module
+    if isinstance(description, M.Placeholder):  # made by a module not installed here: one action
+        description = A.LaunchDescription([description])
     if not isinstance(description, A.LaunchDescription):
         context.report(Diagnostic(Severity.ERROR, 'generate_launch_description() returned '
                                   f'{type(description).__name__}, not a LaunchDescription', (), path,
