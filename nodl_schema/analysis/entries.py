@@ -96,16 +96,16 @@ def _location(value: Any) -> Location:
 _ORIGINS = {'arguments': 'argument', 'global': 'global', 'node': 'inline'}
 
 
-def _resolved_settings(record: Any) -> Callable[[str], list[ParameterSetting]]:
+def _resolved_settings(record: Any, overrides: Callable[[Any, str], dict[str, Any]]
+                       ) -> Callable[[str], list[ParameterSetting]]:
     """The values a launched node receives, given its final name: which parameter-file keys
     apply and which value wins as rcl (processes) or launch_ros (composable nodes) decide it
-    (:func:`nodl_schema.launch.overrides.parameter_overrides`)."""
+    (``overrides``: :func:`nodl_schema.launch.overrides.parameter_overrides`)."""
     def settings(fqn: str) -> list[ParameterSetting]:
-        from nodl_schema.launch.overrides import parameter_overrides
-
-        return [ParameterSetting(o.name, o.value, Location(o.file, o.line, o.column),
+        new = tuple.__new__  # (a Location per value, without NamedTuple's Python __new__)
+        return [ParameterSetting(o.name, o.value, new(Location, (o.file, o.line, o.column)),
                                  'file' if o.kind == 'file' else _ORIGINS.get(o.origin, 'inline'))
-                for o in parameter_overrides(record, fqn).values()]
+                for o in overrides(record, fqn).values()]
     return settings
 
 
@@ -113,6 +113,7 @@ def entries_from_launch(records: Iterable[Any]) -> list[LaunchEntry]:
     """Launch entries from the launch reader's records
     (:class:`nodl_schema.launch.LaunchedNode`); :class:`LaunchEntry` objects pass through."""
     from nodl_schema.launch.model import remap_source
+    from nodl_schema.launch.overrides import parameter_overrides
 
     out = []
     for record in records:
@@ -123,7 +124,8 @@ def entries_from_launch(records: Iterable[Any]) -> list[LaunchEntry]:
         where = _location(record.source)  # (one immutable tuple for the entry and its file)
         parameters: list[ParameterSetting | ParameterFile] = []
         if record.parameters:  # all sources at once: rcl merges them into one table
-            parameters.append(ParameterFile(record.source.file, _resolved_settings(record), where))
+            parameters.append(ParameterFile(record.source.file,
+                                            _resolved_settings(record, parameter_overrides), where))
         out.append(LaunchEntry(
             package=str(record.package or ''), executable=record.executable,
             location=where, plugin=record.plugin, name=record.name,

@@ -293,8 +293,11 @@ def process_overrides(sources: Iterable[ParameterSource], fqn: str) -> dict[str,
             entry[name] = new(ParameterOverride, (
                 name, value if read is None else read(value), where.file, where.line,
                 where.column, origin, 'values', key))
+    keys = match_parameter_file_nodes(table, fqn)
+    if len(keys) == 1:
+        return table[keys[0]]  # (made by this call: no copy needed)
     out: dict[str, ParameterOverride] = {}
-    for key in match_parameter_file_nodes(table, fqn):
+    for key in keys:
         out.update(table[key])
     return out
 

@@ -132,6 +132,10 @@ def namespace_error(namespace: str) -> str | None:
 
 def node_name_error(name: str) -> str | None:
     """Why rmw rejects ``name`` as a node name, or ``None``."""
+    # What the checks below accept (ASCII letters, digits and '_', not starting with a
+    # digit), at once: asked for every launched node.
+    if name.isascii() and name.isidentifier() and len(name) <= NODE_NAME_MAX_LENGTH:
+        return None
     if not name:
         return 'node name must not be empty'
     if _NODE_NAME_CHARACTERS.fullmatch(name) is None:
