@@ -89,7 +89,8 @@ class LaunchEntry:
 def _location(value: Any) -> Location:
     if value is None:
         return Location('<launch>', 0, 0)
-    return Location(str(value.file), int(value.line or 0), int(value.column or 0))
+    # (tuple.__new__: NamedTuple's own __new__ is a Python function; one or more per node)
+    return tuple.__new__(Location, (str(value.file), int(value.line or 0), int(value.column or 0)))
 
 
 #: The launch reader's parameter origins -> the words of :attr:`ParameterSetting.origin`.
@@ -126,10 +127,12 @@ def entries_from_launch(records: Iterable[Any]) -> list[LaunchEntry]:
         if record.parameters:  # all sources at once: rcl merges them into one table
             parameters.append(ParameterFile(record.source.file,
                                             _resolved_settings(record, parameter_overrides), where))
+        remaps = record.remaps  # (most nodes have none: no lists made from it then)
         out.append(LaunchEntry(
             package=str(record.package or ''), executable=record.executable,
             location=where, plugin=record.plugin, name=record.name,
-            namespace=namespace, remaps=[(str(a), str(b)) for a, b in record.remaps],
-            remap_locations=[_location(remap_source(r, record.source)) for r in record.remaps],
+            namespace=namespace, remaps=[(str(a), str(b)) for a, b in remaps] if remaps else [],
+            remap_locations=[_location(remap_source(r, record.source)) for r in remaps]
+            if remaps else [],
             parameters=parameters, container=record.container, role=record.kind))
     return out

@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 from nodl_schema.naming.remap_rules import RemapArgs, RemapRule, parse_remap_rules
 from nodl_schema.naming.validation import (_VALID_FULL_NAME, TOPIC_MAX_LENGTH, InvalidNameError,
@@ -119,7 +119,7 @@ class NodeNames:
             # fields and what is kept beside them are put in the new object's __dict__ at once.
             names = object.__new__(cls)
             names.__dict__.update(name=node_name, namespace=namespace, rules=(),
-                                  _prefixes_=(namespace, fqn, under), _fqn=fqn)
+                                  _prefixes_=(namespace, fqn, under), fqn=fqn)
             return names
         final_name = node_name_after_remaps(node_name, rules)
         # rcl_node_init: the __ns rule's node scope is compared with the name after __node
@@ -136,14 +136,12 @@ class NodeNames:
     # match sides) is computed once and kept in the instance's __dict__ (the dataclass is
     # frozen, and these are not fields: equality and repr are unchanged).
 
-    @property
+    # (kept in the instance's __dict__ under its own name, where reading it again is a plain
+    # attribute look-up: every check asks every node's)
+    @cached_property
     def fqn(self) -> str:
         """``/namespace/name``."""
-        fqn: str | None = self.__dict__.get('_fqn')
-        if fqn is None:
-            fqn = join_name(self.namespace, self.name)
-            object.__setattr__(self, '_fqn', fqn)
-        return fqn
+        return join_name(self.namespace, self.name)
 
     def _checked_namespace(self) -> str:
         """The node's namespace, its name and namespace checked once (:func:`expand_name`

@@ -75,7 +75,8 @@ class UnusedRemapCheck(CheckExtension):
         A node-scoped rule (``other:chatter:=x``) for another node is not this node's to use
         (``set_remap`` gives it to every node in scope; rcl applies it to the node of that
         name only): it is a finding only when no launched node has that name (a typo)."""
-        launched_names = {n.fqn.rpartition('/')[2] for n in context.nodes}
+        # the base names of every launched node, made if a rule for another node is found
+        launched_names: set[str] | None = None
         for node in context.analysed():
             names = node.names
             assert node.instance is not None and names is not None
@@ -92,6 +93,8 @@ class UnusedRemapCheck(CheckExtension):
                     continue
                 verdict = 'is never used'
                 if not rule.applies_to(names.name):
+                    if launched_names is None:
+                        launched_names = {n.fqn.rpartition('/')[2] for n in context.nodes}
                     if rule.node in launched_names:
                         continue  # the rule of the node of that name (checked there)
                     why = (f'it is for the node {rule.node!r}, and no launched node has that name '
