@@ -88,11 +88,16 @@ def match_parameter_file_nodes(keys: Iterable[str], node_fqn: str) -> list[str]:
     without a leading ``/`` gets one.  Which value wins among matching keys is decided by
     the order of rcl's merged table: see :func:`process_overrides`.
     """
+    return [key for key in keys if _key_applies(key, node_fqn)]
+
+
+def _key_applies(key: str, node_fqn: str) -> bool:
+    """True if the node key ``key`` applies to the node called ``node_fqn``."""
     # A key without a wildcard names one node (each node's inline parameters carry its own
     # name, so a launched system has as many such keys as nodes): compared, not compiled.
-    return [key for key in keys
-            if ((key if key[:1] == '/' else _absolute_key(key)) == node_fqn if '*' not in key
-                else _pattern(key).fullmatch(node_fqn) is not None)]
+    if '*' not in key:
+        return (key if key[:1] == '/' else _absolute_key(key)) == node_fqn
+    return _pattern(key).fullmatch(node_fqn) is not None
 
 
 def _absolute_key(key: str) -> str:
@@ -290,12 +295,16 @@ def process_overrides(sources: Iterable[ParameterSource], fqn: str) -> dict[str,
         read = as_rcl_reads_text if origin == 'global' else \
             as_rcl_reads_dump if origin == 'node' else None
         for name, value in source.values.items():
+            # (a bool, int or float is read back as it is: not passed to read)
             entry[name] = new(ParameterOverride, (
-                name, value if read is None else read(value), where.file, where.line,
-                where.column, origin, 'values', key))
+                name, value if read is None or type(value) in _AS_READ else read(value),
+                where.file, where.line, where.column, origin, 'values', key))
+    if len(table) == 1:  # (most nodes: their own parameters, under their own name)
+        [(key, entry)] = table.items()
+        return entry if _key_applies(key, fqn) else {}  # (made by this call: no copy needed)
     keys = match_parameter_file_nodes(table, fqn)
     if len(keys) == 1:
-        return table[keys[0]]  # (made by this call: no copy needed)
+        return table[keys[0]]
     out: dict[str, ParameterOverride] = {}
     for key in keys:
         out.update(table[key])
