@@ -106,7 +106,7 @@ class NodeNames:
 
         Raises :class:`InvalidNameError` when rcl would refuse to create it.
         """
-        rules = parse_remap_rules(remap_args)
+        rules = parse_remap_rules(remap_args) if remap_args else []  # (most nodes: none)
         namespace = checked_namespace(node_name, namespace)
         if not rules:  # most launched nodes: nothing renames them, and both names are checked
             under = namespace if namespace == '/' else namespace + '/'

@@ -122,8 +122,8 @@ class System:
         repeated: list[tuple[EntityKind, str]] = []
         for instance in self.instances:
             for bound in instance.endpoints:
-                table = table_of[bound.entity.kind]
-                name = bound.name
+                _, entity, name = bound  # (unpacked: no attribute look-ups)
+                table = table_of[entity.kind]
                 found = table.get(name)
                 if found is None:
                     table[name] = bound
@@ -131,7 +131,7 @@ class System:
                     found.append(bound)
                 else:
                     table[name] = [found, bound]  # type: ignore[list-item]
-                    repeated.append((bound.entity.kind, name))
+                    repeated.append((entity.kind, name))
 
         #: communication -> final name -> its connection, lone servers left out (names sorted
         #: as strings).
