@@ -249,6 +249,49 @@ def test_a_configuration_known_only_at_run_time_keeps_the_nodes_that_use_it(tmp_
     assert result.diagnostics[2].message.endswith('this node is missing from the analysis')
 
 
+def test_a_parameter_file_known_only_at_run_time_keeps_its_node(tmp_path: Path) -> None:
+    """<param from="$(command ...)"> (a node's, a composable node's) and a
+    set_parameters_from_file of such a path: the nodes stay, with their known parameters, one
+    warning per entry, and their records say what only the running launch gives."""
+    main = _write(tmp_path, {
+        'main.launch.xml': textwrap.dedent('''\
+            <launch>
+              <node pkg="p" exec="e" name="a">
+                <param from="$(command 'cat a.yaml')"/>
+                <param name="rate" value="2.0"/>
+              </node>
+              <group>
+                <set_parameters_from_file filename="$(command 'cat all.yaml')"/>
+                <node pkg="p" exec="e" name="b"/>
+              </group>
+              <node pkg="p" exec="e" name="c"/>
+              <node_container pkg="rclcpp_components" exec="component_container" name="box" namespace="/">
+                <composable_node pkg="p" plugin="p::C" name="d">
+                  <param from="$(command 'cat d.yaml')"/>
+                </composable_node>
+              </node_container>
+            </launch>''')})
+    result = load_launch(main, {})
+    assert [n.name for n in result.nodes] == ['a', 'b', 'c', 'box', 'd']
+    assert [(d.code, d.severity.value, d.line) for d in result.diagnostics] == [
+        ('NODL513', 'warning', 2), ('NODL513', 'warning', 7), ('NODL513', 'warning', 12)]
+    first, scope, composable = (d.message for d in result.diagnostics)
+    assert first.startswith("parameters entry: the value comes from running 'cat a.yaml' ($(command))")
+    assert first.endswith('the node is analysed without the parameters this entry gives (the known ones '
+                          'are checked; no parameter is reported missing for it)')
+    assert scope.endswith('the nodes in its scope are analysed without the parameters it gives')
+    assert 'the composable node is analysed without the parameters' in composable
+    assert not any('missing from the analysis' in d.message for d in result.diagnostics)
+    a, b, c, box, d = result.nodes
+    assert [p.values for p in a.parameters] == [{'rate': 2.0}]
+    assert [(s.part, s.source.line) for s in a.run_time] == [('parameters', 2)]
+    assert [(s.part, s.source.line) for s in b.run_time] == [('parameters', 7)]
+    assert [(s.part, s.source.line) for s in d.run_time] == [('parameters', 12)]
+    assert c.run_time == () and box.run_time == () and c.parameters_complete
+    assert not a.parameters_complete and a.remaps_complete
+    assert a.to_dict()['run_time'] == [{'part': 'parameters', 'file': str(main), 'line': 2, 'column': 3}]
+
+
 def test_included_and_parameter_file_paths_are_tidy(tmp_path: Path) -> None:
     """'$(dirname)/../config/x.yaml' is reported as '<dir>/config/x.yaml' (the file a user would
     name), across formats; sources, include chains and parameter files alike."""

@@ -116,12 +116,19 @@ def test_a_helper_package_that_is_not_installed_is_a_warning_and_the_rest_is_ana
     modules_before = set(sys.modules)
     result = _rover(tmp_path, prefix)
     assert [(d.code, d.severity.value, d.line) for d in result.diagnostics] == [
-        ('NODL513', 'warning', 16), ('NODL513', 'warning', 35), ('NODL513', 'warning', 41),
+        ('NODL513', 'warning', 16), ('NODL513', 'warning', 35), ('NODL513', 'warning', 43),
         ('NODL513', 'warning', 47), ('NODL512', 'info', 48)]
     assert "imports 'rover_launch_tools', which is not installed here" in result.diagnostics[0].message
+    planner_file = result.diagnostics[2]  # the planner's parameter file, at its item: the node stays
     assert "rover_launch_tools.NestUnder(...) ('rover_launch_tools' is not installed here)" \
-        in result.diagnostics[2].message  # the planner's parameter file: that node is missing
-    assert [(n.kind, n.name) for n in result.nodes] == [('node', 'describer'), ('container', 'stack')]
+        in planner_file.message and 'the composable node is analysed without the parameters' \
+        in planner_file.message and 'missing from the analysis' not in planner_file.message
+    assert [(n.kind, n.name) for n in result.nodes] == [('node', 'describer'), ('container', 'stack'),
+                                                        ('composable', 'planner')]
+    planner = result.nodes[2]
+    assert not planner.parameters_complete and planner.remaps_complete
+    assert [(s.part, s.source.line) for s in planner.run_time] == [('parameters', 43)]
+    assert result.nodes[0].parameters_complete and result.nodes[0].run_time == ()
     assert not {m for m in set(sys.modules) - modules_before if m.startswith('rover_launch_tools')}
 
 
@@ -205,15 +212,19 @@ def test_modules_not_installed_here_are_placeholders_and_the_analysis_goes_on() 
     result = load_launch(MISSING / 'robot.launch.py', {}, prefixes=[str(ANALYSIS_PREFIX)])
     assert [(d.code, d.severity.value, d.line) for d in result.diagnostics] == [
         ('NODL513', 'warning', 5), ('NODL513', 'warning', 10), ('NODL513', 'warning', 21),
-        ('NODL513', 'warning', 26)]
+        ('NODL513', 'warning', 27)]
     xacro, nav2, description, rewritten = (d.message for d in result.diagnostics)
     assert xacro.startswith("the Python launch file imports 'xacro', which is not installed here")
     assert 'known only when the launch runs' in xacro
     assert "imports 'nav2_common'" in nav2  # one warning for the module, however many names
     assert description.startswith("parameter 'robot_description': the value of xacro.process_file(...)"
                                   ".toxml() ('xacro' is not installed here) is known only when")
-    assert 'nav2_common.launch.RewrittenYaml(...)' in rewritten and 'this node is missing' in rewritten
-    publisher, lidar = result.nodes
+    assert rewritten.startswith('parameters entry: the value of nav2_common.launch.RewrittenYaml(...)')
+    assert rewritten.endswith('the node is analysed without the parameters this entry gives (the known '
+                              'ones are checked; no parameter is reported missing for it)')
+    publisher, lidar, rewritten_lidar = result.nodes
+    assert rewritten_lidar.fqn == '/lidar_rewritten' and rewritten_lidar.parameters == []
+    assert not rewritten_lidar.parameters_complete
     values = {k: v.value for k, v in parameter_overrides(publisher).items()}
     assert isinstance(values['robot_description'], RuntimeValue) and values['publish_frequency'] == 20.0
     assert (lidar.package, lidar.fqn) == ('sensors', '/lidar')
@@ -292,12 +303,12 @@ def test_python_operations_on_placeholders_go_on(tmp_path: Path) -> None:
         ('NODL513', 24, "parameter 'plain': the value of a text with helpers.config.load(...)[...]"),
         ('NODL513', 26, 'the value of helpers.config.load(...)[...]'),
         ('NODL513', 27, 'the value of helpers.config.enabled'),
-        ('NODL513', 28, 'the value of a text with helpers.config.load(...)[...]'),
+        ('NODL513', 28, 'parameters entry: the value of a text with helpers.config.load(...)[...]'),
         ('NODL512', 29, 'Mine(...)'),
         ('NODL512', 31, 'helpers.config.tail() cannot be evaluated without running the launch')]
     assert 'this node is missing from the analysis' in result.diagnostics[4].message
-    (node,) = result.nodes
-    assert node.fqn == '/a'
+    assert 'the node is analysed without the parameters' in result.diagnostics[6].message
+    assert [node.fqn for node in result.nodes] == ['/a', '/c']
 
     number = _write(tmp_path, {'n.launch.py': 'import helpers\n\nrate = float(helpers.RATE)\n'})
     warning, problem = load_launch(number, {}).diagnostics
@@ -332,7 +343,8 @@ def test_actions_from_missing_modules_are_said_not_dropped(tmp_path: Path) -> No
     bridge = result.diagnostics[2].message
     assert bridge.startswith('ros_gz_bridge.actions.RosGzBridge(...) cannot be evaluated without running')
     assert 'the composable node it describes is missing' in result.diagnostics[6].message
-    assert [n.kind for n in result.nodes] == ['container']
+    assert 'the node is analysed without the parameters' in result.diagnostics[7].message
+    assert [n.kind for n in result.nodes] == ['container', 'node']
     returned = _write(tmp_path, {'r.launch.py': textwrap.dedent('''\
         from moveit_configs_utils import MoveItConfigsBuilder
         from moveit_configs_utils.launches import generate_demo_launch
@@ -382,3 +394,54 @@ def test_stubs_do_not_leak_into_the_next_evaluation(tmp_path: Path) -> None:
     assert [(d.code, d.line) for d in load_launch(second, {}).diagnostics] == [('NODL513', 5)]
     assert [(d.code, d.line) for d in load_launch(first, {}).diagnostics] == [('NODL513', 2)]
     assert 'xacro' not in sys.modules
+
+
+def test_lists_and_parameter_entries_from_missing_modules_keep_their_nodes(tmp_path: Path) -> None:
+    """MoveIt's moveit_config.robot_description as a parameters entry, remappings= and
+    arguments=/ros_arguments= given whole by a module not installed here: the node stays, one
+    NODL513 each at the argument, and the record says what only the running launch gives."""
+    main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
+        from launch import LaunchDescription
+        from launch_ros.actions import ComposableNodeContainer, Node
+        from launch_ros.descriptions import ComposableNode
+        from moveit_configs_utils import MoveItConfigsBuilder
+        import robot_helpers as h
+
+        def generate_launch_description():
+            moveit_config = MoveItConfigsBuilder('arm').to_moveit_configs()
+            return LaunchDescription([
+                Node(package='moveit_ros_move_group', executable='move_group', name='move_group',
+                     parameters=[moveit_config.robot_description, {'use_sim_time': True}]),
+                Node(package='p', executable='e', name='a', arguments=h.args(), ros_arguments=h.ros(),
+                     remappings=h.rules()),
+                ComposableNodeContainer(package='rclcpp_components', executable='component_container',
+                                        name='box', namespace='', composable_node_descriptions=[
+                    ComposableNode(package='p', plugin='p::C', name='c', remappings=h.rules())]),
+                Node(package='p', executable='e', name='plain', remappings=[('x', 'y')]),
+            ])
+        ''')})
+    result = load_launch(main, {})
+    assert [n.name for n in result.nodes] == ['move_group', 'a', 'box', 'c', 'plain']
+    found = [(d.code, d.line, d.column, d.message.split(':')[0]) for d in result.diagnostics]
+    assert found == [
+        ('NODL513', 4, 1, "the Python launch file imports 'moveit_configs_utils', which is not installed here "
+                          '(neither on the Python path nor in the Python folders of an ament prefix)'),
+        ('NODL513', 5, 1, "the Python launch file imports 'robot_helpers', which is not installed here "
+                          '(neither on the Python path nor in the Python folders of an ament prefix)'),
+        ('NODL513', 11, 26, 'parameters entry'), ('NODL513', 12, 63, 'arguments'),
+        ('NODL513', 12, 87, 'ros_arguments'), ('NODL513', 13, 25, 'remappings'),
+        ('NODL513', 16, 77, 'remappings')]
+    messages = [d.message for d in result.diagnostics]
+    assert "moveit_configs_utils.MoveItConfigsBuilder(...).to_moveit_configs().robot_description " \
+        "('moveit_configs_utils' is not installed here)" in messages[2]
+    assert messages[3].endswith('the node is analysed without its arguments (nor the -r, -p and '
+                                '--params-file rules they may hold)')
+    assert messages[5].endswith('the node is analysed without its remapping rules')
+    assert messages[6].endswith('the composable node is analysed without its remapping rules')
+    move_group, a, box, c, plain = result.nodes
+    assert [p.values for p in move_group.parameters] == [{'use_sim_time': True}]
+    assert not move_group.parameters_complete and move_group.remaps_complete
+    assert [s.part for s in a.run_time] == ['arguments', 'arguments', 'remaps']
+    assert a.arguments == [] and a.remaps == [] and not a.parameters_complete and not a.remaps_complete
+    assert [s.part for s in c.run_time] == ['remaps'] and c.parameters_complete and not c.remaps_complete
+    assert plain.run_time == () and plain.remaps == [('x', 'y')] and box.run_time == ()

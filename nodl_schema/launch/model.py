@@ -15,8 +15,8 @@ from typing import Any, NamedTuple
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
-__all__ = ['SourceLocation', 'LaunchRemap', 'ParameterSource', 'LaunchedNode', 'LaunchArgument', 'LaunchResult',
-           'NODE_KINDS', 'PARAMETER_ORIGINS']
+__all__ = ['SourceLocation', 'LaunchRemap', 'ParameterSource', 'RunTimeSource', 'LaunchedNode',
+           'LaunchArgument', 'LaunchResult', 'NODE_KINDS', 'PARAMETER_ORIGINS', 'RUN_TIME_PARTS']
 
 #: ``node`` (a process), ``container`` (a process that hosts composable nodes), ``composable``.
 NODE_KINDS = ('node', 'container', 'composable')
@@ -24,6 +24,10 @@ NODE_KINDS = ('node', 'container', 'composable')
 #: ``--params-file``), ``set_parameter``/``set_parameters_from_file`` in scope (``global``),
 #: or the node's own ``param`` entries / ``parameters=[...]`` (``node``).
 PARAMETER_ORIGINS = ('arguments', 'global', 'node')
+#: What of a node only the running launch may know: a parameter source (a parameter file
+#: whose path is a run-time value, a ``parameters`` entry computed by a module not installed
+#: here), its ``remappings`` or its ``arguments``/``ros_arguments`` given whole as such a value.
+RUN_TIME_PARTS = ('parameters', 'remaps', 'arguments')
 
 
 class SourceLocation(NamedTuple):
@@ -60,6 +64,14 @@ def remap_source(rule: Any, default: SourceLocation) -> SourceLocation:
     """Where a remapping rule of a launched node is written (``default``, the node's entry,
     for a plain pair)."""
     return getattr(rule, 'source', None) or default
+
+
+class RunTimeSource(NamedTuple):
+    """A part of a node only the running launch knows (one of :data:`RUN_TIME_PARTS`), and
+    where it is written: the node is analysed without what it gives."""
+
+    part: str
+    source: SourceLocation
 
 
 @dataclass
@@ -129,6 +141,22 @@ class LaunchedNode:
     #: True when ``namespace`` was given or pushed (launch passes ``__ns``); False when the
     #: node keeps the namespace it creates itself with (``/`` for nodes created without one).
     namespace_given: bool = False
+    #: What of the node only the running launch knows (see :data:`RUN_TIME_PARTS`), in the
+    #: order met; empty (the usual case) when everything it is given is known here.
+    run_time: tuple[RunTimeSource, ...] = ()
+
+    @property
+    def parameters_complete(self) -> bool:
+        """False when parameters may come from a source known only at run time (a parameter
+        source, or arguments that may hold ``-p``/``--params-file``): :attr:`parameters` are
+        the known ones."""
+        return not any(s.part != 'remaps' for s in self.run_time)
+
+    @property
+    def remaps_complete(self) -> bool:
+        """False when remapping rules may come from a value known only at run time (the
+        ``remappings``, or arguments that may hold ``-r``): :attr:`remaps` are the known ones."""
+        return not any(s.part != 'parameters' for s in self.run_time)
 
     @property
     def name_given(self) -> bool:
@@ -177,6 +205,8 @@ class LaunchedNode:
                        'column': self.source.column},
             'include_chain': [{'file': s.file, 'line': s.line, 'column': s.column}
                               for s in self.include_chain],
+            'run_time': [{'part': s.part, 'file': s.source.file, 'line': s.source.line,
+                          'column': s.source.column} for s in self.run_time],
         }
 
 

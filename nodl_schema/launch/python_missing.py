@@ -12,12 +12,13 @@ missing submodule of an installed package stays ``ModuleNotFoundError``.  The st
 
 A placeholder stands for any value the module would compute: its attributes, calls and
 items are placeholders too.  Where it lands it is what only the running launch knows:
-a substitution (performed: NODL513, the existing run-time value handling), an action
-(NODL512: the nodes it may start are missing).  Python operations on it go on: ``str()``,
-an f-string or ``os.path.join`` give a :class:`RunTimeText` (the marker text
-``<WHAT: known at run time>``, which an action or parameter of the stand-ins reads as a
-run-time value again, see :func:`run_time`), ``+`` with a string gives such a text and
-with a list a list ending with the placeholder; iteration gives nothing, ``len()`` is 0,
+a substitution (performed: NODL513, the existing run-time value handling; a node's
+parameter entry, ``remappings`` or ``arguments`` given as one: NODL513, the node analysed
+without it), an action (NODL512: the nodes it may start are missing).  Python operations
+on it go on: ``str()``, an f-string or ``os.path.join`` give a :class:`RunTimeText` (the
+marker text ``<WHAT: known at run time>``, which an action or parameter of the stand-ins
+reads as a run-time value again, see :func:`run_time`), ``+`` with a string gives such a
+text and with a list a list ending with the placeholder; iteration gives nothing, ``len()`` is 0,
 truth is true, ``==``/``<``/``in`` are false (``!=`` true), ``with`` works, a class of the
 launch file may derive from it (its instances are placeholders); ``int()``/``float()``
 raise, as the value is not known.
@@ -356,7 +357,8 @@ def action_arguments(cls: type, args: tuple[Any, ...], kwargs: dict[str, Any]) -
                                                                                         dict[str, Any]]:
     """The arguments of a stand-in action, with what came from a missing module made into
     what the action reads as a run-time value (call only when :func:`stubs_active`)."""
-    from nodl_schema.launch.ros_actions import ComposableNodeContainer, LoadComposableNodes
+    from nodl_schema.launch.ros_actions import (RUN_TIME_KEYWORD, ComposableNode, ComposableNodeContainer,
+                                                LoadComposableNodes, Node)
 
     if issubclass(cls, A.DeclareLaunchArgument):
         args = tuple(_plain(a) for a in args)
@@ -380,6 +382,13 @@ def action_arguments(cls: type, args: tuple[Any, ...], kwargs: dict[str, Any]) -
     for key in ('actions', 'parameters'):
         if key in kwargs:
             kwargs[key] = entities(kwargs[key])
+    # A list given whole as a placeholder would iterate as nothing: the node says instead
+    # that it is known only at run time (ros_actions.RUN_TIME_KEYWORD).
+    if issubclass(cls, (Node, ComposableNode)):
+        whole = {key: kwargs.pop(key) for key in ('remappings', 'arguments', 'ros_arguments')
+                 if isinstance(kwargs.get(key), Placeholder)}
+        if whole:
+            kwargs[RUN_TIME_KEYWORD] = whole
     if issubclass(cls, (ComposableNodeContainer, LoadComposableNodes)) and \
             kwargs.get('composable_node_descriptions') is not None:
         kwargs['composable_node_descriptions'] = [

@@ -6,6 +6,12 @@ instead of starting a process: its final namespace (pushed namespaces combined a
 launch_ros combines them), its remapping rules in the order rcl applies them, and its
 parameter sources in command-line order (see :mod:`nodl_schema.launch.overrides` for
 how they resolve to values).
+
+A part of a node only the running launch knows does not drop the node: a parameter source
+whose path is a run-time value (``$(command ...)``, a value computed by a module not
+installed here, such as nav2's ``RewrittenYaml``), or ``remappings``/``arguments`` given
+whole as such a value, is one NODL513 warning and a :class:`~nodl_schema.launch.model.RunTimeSource`
+in the record's ``run_time``: the node is analysed with what is known.
 """
 
 from __future__ import annotations
@@ -16,7 +22,7 @@ from typing import Any
 from nodl_schema.launch.actions import Action
 from nodl_schema.launch.conditions import Condition
 from nodl_schema.launch.errors import LaunchProblem, Unevaluable
-from nodl_schema.launch.model import LaunchedNode, LaunchRemap, ParameterSource, SourceLocation
+from nodl_schema.launch.model import LaunchedNode, LaunchRemap, ParameterSource, RunTimeSource, SourceLocation
 from nodl_schema.launch.params import ParameterValue, RuntimeValue, evaluate_value, normalize_python_dict
 from nodl_schema.launch.substitutions import normalize, perform
 from nodl_schema.naming import join_name, namespace_error, node_name_error, normalize_namespace
@@ -27,7 +33,7 @@ if TYPE_CHECKING:
 
 __all__ = ['PushRosNamespace', 'SetRemap', 'SetParameter', 'SetParametersFromFile', 'Node',
            'ComposableNode', 'ComposableNodeContainer', 'LoadComposableNodes', 'Container',
-           'ParameterFileEntry', 'make_namespace_absolute', 'prefix_namespace']
+           'ParameterFileEntry', 'make_namespace_absolute', 'prefix_namespace', 'RUN_TIME_KEYWORD']
 
 
 class PushRosNamespace(Action):
@@ -87,9 +93,23 @@ class SetParametersFromFile(Action):
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
         params = context.configurations.get('global_params', [])
-        params.append(perform(context, self.filename))
+        try:
+            params.append(perform(context, self.filename))
+        except Unevaluable as problem:
+            # The nodes in scope stay in the analysis, known to lack what this file gives.
+            context.warn('NODL513', f'parameter file: {problem.message}; the nodes in its scope are '
+                                    'analysed without the parameters it gives', self.location)
+            params.append(_RunTimeFile(self.location))
         context.configurations['global_params'] = params
         return None
+
+
+class _RunTimeFile:
+    """In ``global_params``: a ``set_parameters_from_file`` whose path only the running
+    launch knows (where it is written)."""
+
+    def __init__(self, location: SourceLocation) -> None:
+        self.location = location
 
 
 # -- nodes -----------------------------------------------------------------------------------
@@ -194,11 +214,14 @@ def _word_source(node: Any, index: int, first_ros: int, location: SourceLocation
     return where or location
 
 
-def _global_parameters(context: LaunchContext, location: SourceLocation) -> list[ParameterSource]:
+def _global_parameters(context: LaunchContext, location: SourceLocation,
+                       record: LaunchedNode) -> list[ParameterSource]:
     out = []
     for entry in context.configurations.get('global_params') or []:
         if isinstance(entry, tuple):
             out.append(ParameterSource('values', 'global', location, values={entry[0]: entry[1]}))
+        elif isinstance(entry, _RunTimeFile):
+            record.run_time += (RunTimeSource('parameters', entry.location),)
         else:
             out.append(ParameterSource('file', 'global', location, path=os.path.abspath(entry)))
     return out
@@ -215,8 +238,33 @@ def evaluate_parameter(context: LaunchContext, spec: Any, name: str, location: S
         return RuntimeValue(f'<{name}: known at run time>')
 
 
+def _item_place(location: SourceLocation, keyword: str, index: int) -> SourceLocation:
+    """Where item ``index`` of the ``keyword`` argument of the call at ``location`` is
+    written in a Python launch file (the argument, else the call); ``location`` elsewhere."""
+    if not location.file.endswith('.py'):
+        return location  # an XML or YAML entry: its place is the node's entry
+    from nodl_schema.launch.python_places import keyword_places
+
+    places = keyword_places(location, keyword)
+    if isinstance(places, list):
+        return places[index] if 0 <= index < len(places) else location
+    return places or location
+
+
+def _run_time_parameters(context: LaunchContext, problem: Unevaluable, record: LaunchedNode,
+                         parameters: list[Any], item: Any) -> None:
+    """A parameter source only the running launch knows: the node is kept without it."""
+    index = next(i for i, other in enumerate(parameters) if other is item)  # (only now: rare)
+    where = _item_place(record.source, 'parameters', index)
+    what = 'composable node' if record.kind == 'composable' else 'node'
+    context.warn('NODL513', f'parameters entry: {problem.message}; the {what} is analysed without the '
+                            'parameters this entry gives (the known ones are checked; no parameter is '
+                            'reported missing for it)', where)
+    record.run_time += (RunTimeSource('parameters', where),)
+
+
 def _own_parameters(context: LaunchContext, parameters: list[Any], location: SourceLocation,
-                    node_key: str) -> list[ParameterSource]:
+                    node_key: str, record: LaunchedNode) -> list[ParameterSource]:
     out = []
     for item in parameters:
         if type(item) is list:  # name-value pairs (a frontend's params): neither of the others
@@ -224,7 +272,12 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
         elif isinstance(item, ParameterFileEntry):
             from nodl_schema.files import tidy_path
 
-            path = tidy_path(perform(context, item.path))  # '$(dirname)/../config/x.yaml' tidied
+            try:
+                path = perform(context, item.path)
+            except Unevaluable as problem:
+                _run_time_parameters(context, problem, record, parameters, item)
+                continue
+            path = tidy_path(path)  # '$(dirname)/../config/x.yaml' tidied
             if not os.path.isfile(path):
                 context.warn('NODL517', f"parameter file '{path}' is not a file; launch skips it", location)
                 continue
@@ -248,6 +301,39 @@ def _named_parameters(context: LaunchContext, item: Any, location: SourceLocatio
     return ParameterSource('values', 'node', location, values=values, node_key=node_key)
 
 
+#: The keyword a frontend gives a node the lists it got whole as a value only the running
+#: launch knows (``{'remappings': value, 'arguments': value}``: see
+#: :func:`nodl_schema.launch.python_missing.action_arguments`); they are left out.
+RUN_TIME_KEYWORD = 'nodl_run_time'
+
+#: What a node lacks when one of its lists is known only at run time, by keyword.
+_RUN_TIME_LISTS = {'arguments': ('arguments', 'its arguments (nor the -r, -p and --params-file '
+                                              'rules they may hold)'),
+                   'ros_arguments': ('arguments', 'its ROS arguments (nor the -r, -p and '
+                                                  '--params-file rules they may hold)'),
+                   'remappings': ('remaps', 'its remapping rules')}
+
+
+def _run_time_lists(context: LaunchContext, lists: dict[str, Any], keywords: tuple[str, ...],
+                    record: LaunchedNode) -> None:
+    """One warning per list of ``keywords`` given whole as a run-time value; the record
+    says the node is analysed without it."""
+    what = 'composable node' if record.kind == 'composable' else 'node'
+    for keyword in keywords:
+        value = lists.get(keyword)
+        if value is None:
+            continue
+        part, words = _RUN_TIME_LISTS[keyword]
+        where = _item_place(record.source, keyword, -1)
+        try:  # what the value is, said as its substitution says it
+            perform(context, value)
+            why = 'the value is known only when the launch runs'
+        except LaunchProblem as problem:
+            why = problem.message
+        context.warn('NODL513', f'{keyword}: {why}; the {what} is analysed without {words}', where)
+        record.run_time += (RunTimeSource(part, where),)
+
+
 class Node(Action):
     """``node``: a ROS node started as a process."""
 
@@ -255,7 +341,7 @@ class Node(Action):
 
     def __init__(self, *, executable: Any, package: Any = None, name: Any = None, namespace: Any = None,
                  parameters: Any = None, remappings: Any = None, ros_arguments: Any = None,
-                 arguments: Any = None, **_: Any) -> None:
+                 arguments: Any = None, nodl_run_time: dict[str, Any] | None = None, **_: Any) -> None:
         self.executable = normalize(executable)
         self.package = None if package is None else normalize(package)
         self.name = None if name is None else normalize(name)
@@ -269,6 +355,9 @@ class Node(Action):
         #: location when unknown), and where ``args``/``ros_args`` are (``-r`` rules).
         self.remap_sources: list[SourceLocation] = []
         self.word_sources: dict[str, SourceLocation | list[SourceLocation]] = {}
+        #: ``remappings``/``arguments``/``ros_arguments`` given whole as a value only the
+        #: running launch knows (None: none, the usual case).
+        self.run_time_lists = nodl_run_time
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
         name = None
@@ -287,16 +376,20 @@ class Node(Action):
         record = LaunchedNode(self.kind, None if self.package is None else perform(context, self.package),
                               perform(context, self.executable), name, namespace or '/', self.location,
                               include_chain=context.include_chain, namespace_given=namespace is not None)
+        if self.run_time_lists:
+            _run_time_lists(context, self.run_time_lists, ('arguments', 'ros_arguments'), record)
         if self.arguments or self.ros_arguments:
             _ros_arguments(context, self, self.location, record)
         fully = name is not None and namespace is not None
         fqn = join_name(namespace or '/', name or '')
         self.node_name = fqn if name is not None else None
-        record.parameters += _global_parameters(context, self.location)
+        record.parameters += _global_parameters(context, self.location, record)
         record.parameters += _own_parameters(context, self.parameters, self.location,
-                                             fqn if fully else '/**')
+                                             fqn if fully else '/**', record)
         record.remaps += list(context.configurations.get('ros_remaps') or [])
         record.remaps += _own_remaps(context, self.remappings, self.remap_sources, self.location)
+        if self.run_time_lists:
+            _run_time_lists(context, self.run_time_lists, ('remappings',), record)
         context.result.nodes.append(record)
         return self.after(context)
 
@@ -317,7 +410,8 @@ class ComposableNode:
 
     def __init__(self, *, package: Any, plugin: Any, name: Any = None, namespace: Any = None,
                  parameters: Any = None, remappings: Any = None, extra_arguments: Any = None,
-                 condition: Condition | None = None, **_: Any) -> None:
+                 condition: Condition | None = None, nodl_run_time: dict[str, Any] | None = None,
+                 **_: Any) -> None:
         self.package, self.plugin = normalize(package), normalize(plugin)
         self.name = None if name is None else normalize(name)
         self.namespace = None if namespace is None else normalize(namespace)
@@ -326,6 +420,8 @@ class ComposableNode:
         self.condition = condition
         self.location = SourceLocation('', 0, 0)
         self.remap_sources: list[SourceLocation] = []
+        #: ``remappings`` given whole as a value only the running launch knows (as Node's).
+        self.run_time_lists = nodl_run_time
 
 
 class LoadComposableNodes(Action):
@@ -363,8 +459,11 @@ def _load(context: LaunchContext, description: ComposableNode, container: str) -
     record.remaps += list(context.configurations.get('ros_remaps') or [])
     record.remaps += _own_remaps(context, description.remappings, description.remap_sources,
                                  description.location)
-    record.parameters += _global_parameters(context, description.location)
-    record.parameters += _own_parameters(context, description.parameters, description.location, '/**')
+    if description.run_time_lists:
+        _run_time_lists(context, description.run_time_lists, ('remappings',), record)
+    record.parameters += _global_parameters(context, description.location, record)
+    record.parameters += _own_parameters(context, description.parameters, description.location, '/**',
+                                         record)
     context.result.nodes.append(record)
 
 
