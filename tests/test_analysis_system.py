@@ -39,7 +39,8 @@ def test_json_shape() -> None:
     assert set(report) == {'nodes', 'findings'}
     for node in report['nodes']:
         assert set(node) == {'name', 'package', 'executable', 'definition', 'source', 'remaps',
-                             'parameters', 'endpoints'}
+                             'remaps_complete', 'parameters', 'parameters_complete', 'endpoints'}
+        assert node['parameters_complete'] is True and node['remaps_complete'] is True
         assert set(node['source']) == {'file', 'line'}
     planner = next(n for n in report['nodes'] if n['executable'] == 'planner')
     assert planner['remaps'] == [['odm', 'odom']]
@@ -99,3 +100,40 @@ def test_the_prefixes_given_serve_every_look_up_mixins_included(monkeypatch: pyt
     # without prefixes=, AMENT_PREFIX_PATH is searched, as before
     monkeypatch.setenv('AMENT_PREFIX_PATH', MIXIN_PREFIX[0])
     assert analysis_to_dict(analyse_launch(LAUNCH / 'mixin.launch.xml'))['nodes'] == [talker]
+
+
+@pytest.mark.parametrize('name', ['run_time_params.launch.py', 'run_time_params.launch.xml'])
+def test_a_node_with_a_parameter_file_known_only_at_run_time_is_analysed(name: str) -> None:
+    """nav2's ParameterFile(RewrittenYaml(...)) (nav2_common not installed here) and XML's
+    <param from="$(command ...)">: the nodes stay, one NODL513 per such entry, the known values
+    are checked; missing-parameter is not reported for them; JSON and log say more come."""
+    analysis = analyse_launch(LAUNCH / name, prefixes=PREFIX)
+    assert [n.fqn for n in analysis.nodes] == ['/planner', '/lidar', '/box', '/camera', '/camera_known']
+    run_time = [f for f in analysis.findings
+                if f.code == 'NODL513' and 'analysed without the parameters' in f.message]
+    assert len(run_time) == 2 and all('missing from the analysis' not in f.message for f in run_time)
+    assert 'the composable node is analysed' in run_time[1].message
+    found = {(f.kind, f.nodes[0], f.parameter) for f in analysis.findings if f.parameter}
+    assert found == {('parameter-type', '/planner', 'speed'), ('unknown-parameter', '/planner', 'sped'),
+                     ('parameter-invalid', '/camera', 'fps'),
+                     ('missing-parameter', '/camera_known', 'device')}   # not /camera's device
+    nodes = {n['name']: n for n in analysis_to_dict(analysis)['nodes']}
+    assert nodes['/planner']['parameters'] == {'speed': 2, 'sped': 1.0}
+    assert [n['parameters_complete'] for n in nodes.values()] == [False, True, True, False, True]
+    log = format_log(analysis)
+    planner = log.split('node /planner\n')[1].split('\n\n')[0]
+    assert '  run time        more parameters, known only when the launch runs' in planner
+    assert '(declared default unless set at run time, ' in planner
+    known = log.split('node /camera_known\n')[1].split('\n\n')[0]
+    assert 'run time' not in known and '(declared default, ' in known
+
+
+def test_remappings_given_whole_as_a_run_time_value_keep_the_node() -> None:
+    analysis = analyse_launch(LAUNCH / 'run_time_params.launch.py', prefixes=PREFIX)
+    (remaps,) = [f for f in analysis.findings if f.code == 'NODL513' and f.message.startswith('remappings')]
+    assert remaps.message.endswith('the node is analysed without its remapping rules')
+    assert remaps.diagnostic.line == 21
+    nodes = {n['name']: n for n in analysis_to_dict(analysis)['nodes']}
+    assert nodes['/lidar']['remaps'] == [] and nodes['/lidar']['remaps_complete'] is False
+    assert nodes['/lidar']['parameters_complete'] is True
+    assert '  run time        more remapping rules, known only when the launch runs' in format_log(analysis)

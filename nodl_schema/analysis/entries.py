@@ -73,12 +73,27 @@ class LaunchEntry:
     #: ``node`` (a process), ``container`` (a process hosting composable nodes) or
     #: ``composable`` (a node loaded into a container).
     role: str = 'node'
+    #: What of the node only the running launch knows, and where it is written:
+    #: ``('parameters', where)`` (a parameter source), ``('remaps', where)`` (its remapping
+    #: rules), ``('arguments', where)`` (arguments that may hold ``-p`` and ``-r`` rules).
+    #: Empty (the usual case) when everything it is given is known.
+    run_time: tuple[tuple[str, Location], ...] = ()
 
     def remap_location(self, index: int) -> Location:
         """Where rule ``index`` of :attr:`remaps` is written."""
         if 0 <= index < len(self.remap_locations):
             return self.remap_locations[index]
         return self.location
+
+    @property
+    def parameters_complete(self) -> bool:
+        """False when more parameters may come at run time than :attr:`parameters` give."""
+        return not self.run_time or all(part == 'remaps' for part, _ in self.run_time)
+
+    @property
+    def remaps_complete(self) -> bool:
+        """False when more remapping rules may come at run time than :attr:`remaps`."""
+        return not self.run_time or all(part == 'parameters' for part, _ in self.run_time)
 
     @property
     def composable(self) -> bool:
@@ -128,11 +143,15 @@ def entries_from_launch(records: Iterable[Any]) -> list[LaunchEntry]:
             parameters.append(ParameterFile(record.source.file,
                                             _resolved_settings(record, parameter_overrides), where))
         remaps = record.remaps  # (most nodes have none: no lists made from it then)
-        out.append(LaunchEntry(
+        entry = LaunchEntry(
             package=str(record.package or ''), executable=record.executable,
             location=where, plugin=record.plugin, name=record.name,
             namespace=namespace, remaps=[(str(a), str(b)) for a, b in remaps] if remaps else [],
             remap_locations=[_location(remap_source(r, record.source)) for r in remaps]
             if remaps else [],
-            parameters=parameters, container=record.container, role=record.kind))
+            parameters=parameters, container=record.container, role=record.kind)
+        unknown = getattr(record, 'run_time', ())
+        if unknown:  # (rare: a part only the running launch knows)
+            entry.run_time = tuple((part, _location(place)) for part, place in unknown)
+        out.append(entry)
     return out

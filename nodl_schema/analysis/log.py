@@ -5,8 +5,9 @@ name (and how the name came about: given, recorded at registration, assumed, ren
 rule), where it is launched, what it runs (and in which container), its definition and
 client library, its remapping rules in rcl's order with where each is written, every
 parameter with its final value and origin (given values with their place, declared
-defaults with the definition's), and every endpoint with its final name, type, declared
-name, layer and QoS.  Then every finding (info included) with its place, the nodes,
+defaults with the definition's; ``run time`` lines say where parameters or remapping
+rules only the running launch knows come from), and every endpoint with its final name,
+type, declared name, layer and QoS.  Then every finding (info included) with its place, the nodes,
 endpoint or parameter it concerns and its related places.  The text is deterministic:
 the same launch, definitions and toolkit give the same bytes (no time stamps).
 """
@@ -24,6 +25,12 @@ __all__ = ['format_log']
 
 #: The width of the label column.
 _LABEL = 16
+#: A part of a node known only at run time -> what the log says of it.
+_RUN_TIME = {'parameters': 'more parameters, known only when the launch runs (not listed; none is '
+                           'reported missing)',
+             'remaps': 'more remapping rules, known only when the launch runs (not listed)',
+             'arguments': 'arguments known only when the launch runs (not listed; they may hold '
+                          'parameters and remapping rules)'}
 #: A launch entry's role -> the words for it.
 _ROLES = {'node': 'process', 'container': 'container process', 'composable': 'composable node'}
 
@@ -75,17 +82,21 @@ def _node(node: AnalysedNode) -> list[str]:
         out.append(_line('client library', node.instance.resolved.client_library))
     for index, (source, target) in enumerate(entry.remaps):
         out.append(_line('remap', f'{source} -> {target}  ({entry.remap_location(index)})'))
+    for part, where in entry.run_time:
+        out.append(_line('run time', _RUN_TIME.get(part, part) + f'  ({where})'))
     given = node.parameters
     for name, setting in given.items():
         out.append(_line('parameter', f'{name} = {_value(setting.value)}  '
                                       f'({setting.origin}, {setting.location})'))
     if node.instance is not None:
+        default = 'declared default' if not entry.run_time or entry.parameters_complete \
+            else 'declared default unless set at run time'
         for bound in node.instance.entities:
             entity = bound.entity
             if not entity.is_parameter or bound.name in given:
                 continue
             value = _value(entity.default_value) if entity.default_value is not None else 'unset'
-            out.append(_line('parameter', f'{bound.name} = {value}  (declared default, '
+            out.append(_line('parameter', f'{bound.name} = {value}  ({default}, '
                                           f'{entity.location})'))
         for bound in node.instance.endpoints:
             entity = bound.entity

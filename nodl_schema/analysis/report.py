@@ -6,13 +6,19 @@ The JSON shape (``--format json``)::
                 "definition": "/path/camera.nodl.yaml" | null,
                 "source": {"file": "robot.launch.xml", "line": 12},
                 "remaps": [["from", "to"], ...],          # in the order rcl applies them
+                "remaps_complete": true,                  # false: more rules come at run time
                 "parameters": {"fps": 30.0, ...},         # the final values it receives
+                "parameters_complete": true,              # false: more values come at run time
                 "endpoints": {"publishers": [["~/image", "/robot/camera/image"], ...], ...}}],
      "findings": [{"code": "NODL553", "kind": "qos-incompatible", "severity": "error",
                    "message": "...", "file": "...", "line": 12, "column": 5,
                    "nodes": ["/lidar", "/planner"], "endpoint": "/scan"}]}
 
-A composable node's ``executable`` is its plugin class.
+A composable node's ``executable`` is its plugin class.  ``parameters_complete`` /
+``remaps_complete`` are false when the launch gives the node parameters or remapping
+rules only the running launch knows (a parameter file whose path is a run-time value,
+``remappings=``/``arguments=`` computed by a module not installed here: a NODL513
+warning): ``parameters`` and ``remaps`` are then the known ones.
 """
 
 from __future__ import annotations
@@ -42,7 +48,9 @@ def node_to_dict(node: AnalysedNode) -> dict[str, Any]:
         'definition': node.match.file,
         'source': {'file': entry.location.file, 'line': entry.location.line},
         'remaps': [[source, target] for source, target in entry.remaps],
+        'remaps_complete': not entry.run_time or entry.remaps_complete,
         'parameters': node.parameter_values(),
+        'parameters_complete': not entry.run_time or entry.parameters_complete,
         'endpoints': endpoints,
     }
 

@@ -8,6 +8,11 @@ parameter, a boolean for a ``string``, a list of integers for a
 validators of the declaration (the validator table; custom validators are
 not evaluated).  A read-only parameter takes its launch value at declaration,
 as rcl does, so overriding it at launch is no finding.
+
+A node given parameters only the running launch knows (a parameter file whose path is a
+run-time value, such as nav2's ``RewrittenYaml``: the launch reader's NODL513 warning says
+so) has its known values checked as any other's; ``missing-parameter`` is not reported
+for it, since the unknown source may set the parameter.
 """
 
 from __future__ import annotations
@@ -193,6 +198,8 @@ class ParameterCheck(CheckExtension):
                         'parameter-invalid', f"{fqn}: parameter '{name}' = {_show(setting.value)} "
                         f'breaks {key}: {why}', where, [fqn], parameter=name,
                         related=_declared_here(entity))
+            if required and node.entry.run_time and not node.entry.parameters_complete:
+                continue  # a source known only at run time may set them: no claim either way
             for name, entity in required:
                 if name in given:
                     continue
