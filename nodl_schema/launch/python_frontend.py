@@ -33,6 +33,7 @@ from nodl_schema.launch import ros_actions as R
 from nodl_schema.launch import substitutions as S
 from nodl_schema.launch.errors import LaunchProblem, Unevaluable
 from nodl_schema.launch.model import SourceLocation
+from nodl_schema.launch.python_places import frame_location
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -45,18 +46,7 @@ _CURRENT: list[Any] = []  # [(context, path)] while a file is evaluated
 
 def _caller() -> SourceLocation:
     path = _CURRENT[-1][1] if _CURRENT else ''
-    frame = sys._getframe(2)
-    while frame is not None:
-        if frame.f_code.co_filename == path:
-            column = 1
-            try:
-                positions = list(frame.f_code.co_positions())[frame.f_lasti // 2]
-                column = (positions[2] or 0) + 1
-            except (AttributeError, IndexError):
-                pass
-            return SourceLocation(path, frame.f_lineno, column)
-        frame = frame.f_back  # type: ignore[assignment]
-    return SourceLocation(path, 0, 0)
+    return frame_location(path, sys._getframe(2))
 
 
 def _located(cls: type, name: str | None = None) -> type:

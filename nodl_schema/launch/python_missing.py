@@ -39,6 +39,7 @@ from nodl_schema.launch import conditions as C
 from nodl_schema.launch import substitutions as S
 from nodl_schema.launch.errors import Unevaluable
 from nodl_schema.launch.model import SourceLocation
+from nodl_schema.launch.python_places import frame_location
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -65,25 +66,10 @@ def stubs_active() -> bool:
     return bool(_ACTIVE) and bool(_ACTIVE[-1].stubbed)
 
 
-def _location(path: str, frame: Any) -> SourceLocation:
-    """Where the innermost frame of the launch file ``path`` is (line and column)."""
-    while frame is not None:
-        if frame.f_code.co_filename == path:
-            column = 1
-            try:
-                positions = list(frame.f_code.co_positions())[frame.f_lasti // 2]
-                column = (positions[2] or 0) + 1
-            except (AttributeError, IndexError):
-                pass
-            return SourceLocation(path, frame.f_lineno, column)
-        frame = frame.f_back
-    return SourceLocation(path, 0, 0)
-
-
 def _where() -> SourceLocation:
     if not _ACTIVE:
         return SourceLocation('', 0, 0)
-    return _location(_ACTIVE[-1].path, sys._getframe(2))
+    return frame_location(_ACTIVE[-1].path, sys._getframe(2))
 
 
 def _short(what: str) -> str:
@@ -434,9 +420,9 @@ class MissingModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
             return None
         filename = frame.f_code.co_filename
         if filename == self.path:
-            return _location(self.path, frame), ''
+            return frame_location(self.path, frame), ''
         if filename.startswith(self.helper_roots):
-            return _location(self.path, frame), filename
+            return frame_location(self.path, frame), filename
         return None
 
     def find_spec(self, fullname: str, path: Any, target: Any = None) -> Any:

@@ -11,10 +11,11 @@ from __future__ import annotations
 
 import ast
 import os
+from typing import Any
 
 from nodl_schema.launch.model import SourceLocation
 
-__all__ = ['keyword_places']
+__all__ = ['keyword_places', 'frame_location']
 
 _TREES: dict[tuple[str, float, int], dict[tuple[int, int], ast.Call]] = {}
 
@@ -55,3 +56,19 @@ def keyword_places(call: SourceLocation, keyword: str) -> list[SourceLocation] |
             return [SourceLocation(call.file, e.lineno, e.col_offset + 1) for e in value.elts]
         return SourceLocation(call.file, value.lineno, value.col_offset + 1)
     return None
+
+
+def frame_location(path: str, frame: Any) -> SourceLocation:
+    """Where the innermost frame of the launch file ``path`` from ``frame`` outwards is (its
+    line, and its column where the interpreter records one); line 0 if none is."""
+    while frame is not None:
+        if frame.f_code.co_filename == path:
+            column = 1
+            try:
+                positions = list(frame.f_code.co_positions())[frame.f_lasti // 2]
+                column = (positions[2] or 0) + 1
+            except (AttributeError, IndexError):
+                pass
+            return SourceLocation(path, frame.f_lineno, column)
+        frame = frame.f_back
+    return SourceLocation(path, 0, 0)
