@@ -137,3 +137,18 @@ def test_remappings_given_whole_as_a_run_time_value_keep_the_node() -> None:
     assert nodes['/lidar']['remaps'] == [] and nodes['/lidar']['remaps_complete'] is False
     assert nodes['/lidar']['parameters_complete'] is True
     assert '  run time        more remapping rules, known only when the launch runs' in format_log(analysis)
+
+
+def test_a_parameter_file_rcl_cannot_parse_is_an_error_once_at_its_line() -> None:
+    # A node given such a file fails to start: the file's problem is said once (however many
+    # nodes are given it), where it is, related to where the launch file gives it, and before
+    # the checks' findings.
+    analysis = analyse_launch(LAUNCH / 'broken_params.launch.xml', prefixes=PREFIX)
+    broken = [f for f in analysis.findings if f.diagnostic.file.endswith('broken.params.yaml')]
+    assert len(broken) == 1
+    finding = broken[0]
+    assert finding.severity.value == 'error' and finding.code == 'NODL003'
+    assert finding.diagnostic.line == 5
+    assert ('the parameter file is given here' in [r[3] for r in finding.diagnostic.related])
+    assert analysis.findings[0] is finding  # launch-file problems first
+    assert len(analysis.nodes) == 2

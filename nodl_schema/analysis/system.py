@@ -66,7 +66,7 @@ class Analysis:
 
 def _sort_key(finding: Finding) -> tuple[Any, ...]:
     d = finding.diagnostic
-    return (finding.kind == LAUNCH_KIND and 0 or 1, d.file, d.line, d.column, d.code)
+    return (0 if finding.kind == LAUNCH_KIND else 1, d.file, d.line, d.column, d.code)
 
 
 def analyse_entries(entries: Iterable[LaunchEntry | Any], *, client_library: str | None = None,
@@ -91,7 +91,8 @@ def analyse_entries(entries: Iterable[LaunchEntry | Any], *, client_library: str
     from nodl_schema.analysis.matching import DefinitionMatcher
     from nodl_schema.index import ament
 
-    findings: list[Finding] = list(launch_findings)
+    entries = list(entries)
+    findings: list[Finding] = list(launch_findings) + _parameter_file_findings(entries)
     # The index is listed once (not looked up file by file per node), and the collector
     # does not rescan, every 700 allocations, what the analysis keeps until its end.
     with ament.snapshot(), batch_collection():
@@ -102,6 +103,28 @@ def analyse_entries(entries: Iterable[LaunchEntry | Any], *, client_library: str
         findings.extend(run_checks(context, dict(checks) if checks is not None else None))
     findings.sort(key=_sort_key)
     return Analysis(nodes, findings, launch_file, context)
+
+
+def _parameter_file_findings(records: Iterable[Any]) -> list[Finding]:
+    """What is wrong with the parameter files the launch gives its nodes (unreadable, not
+    YAML, not a parameter file): a node given such a file fails to start, as rcl cannot
+    parse it.  Each file is said once, at its own line, related to where it is given."""
+    from nodl_schema.launch.params import load_parameter_file
+
+    out: list[Finding] = []
+    seen: set[str] = set()
+    for record in records:
+        for source in getattr(record, 'parameters', None) or ():
+            path = getattr(source, 'path', None)
+            if getattr(source, 'kind', None) != 'file' or not path or path in seen:
+                continue
+            seen.add(path)
+            where = source.source
+            given = (where.file, where.line, where.column, 'the parameter file is given here')
+            for diagnostic in load_parameter_file(path).diagnostics:
+                out.append(_launch_finding(diagnostic.replace(
+                    related=(*diagnostic.related, given))))
+    return out
 
 
 def _launch_finding(diagnostic: Diagnostic) -> Finding:
