@@ -120,6 +120,11 @@ def test_python_operations_on_placeholders_go_on(tmp_path: Path) -> None:
     found = [(d.code, d.line, d.message.split(' (')[0]) for d in result.diagnostics]
     assert found == [
         ('NODL513', 5, "the Python launch file imports 'helpers', which is not installed here"),
+        ('NODL512', 18, 'helpers.config.load(...)[...] is iterated, but its items are known only when the '
+                        'launch runs'),
+        # *config.more_nodes(): the interpreter places the unpacking at the list it is in
+        ('NODL512', 23, 'helpers.config.more_nodes() is iterated, but its items are known only when the '
+                        'launch runs'),
         ('NODL513', 24, "parameter 'path': the value of a text with helpers.config.load(...)[...]"),
         ('NODL513', 24, "parameter 'name': the value of a text with helpers.config.load(...)[...]"),
         ('NODL513', 24, "parameter 'plain': the value of a text with helpers.config.load(...)[...]"),
@@ -128,8 +133,8 @@ def test_python_operations_on_placeholders_go_on(tmp_path: Path) -> None:
         ('NODL513', 28, 'parameters entry: the value of a text with helpers.config.load(...)[...]'),
         ('NODL512', 29, 'Mine(...)'),
         ('NODL512', 31, 'helpers.config.tail() cannot be evaluated without running the launch')]
-    assert 'this node is missing from the analysis' in result.diagnostics[4].message
-    assert 'the node is analysed without the parameters' in result.diagnostics[6].message
+    assert 'this node is missing from the analysis' in result.diagnostics[6].message
+    assert 'the node is analysed without the parameters' in result.diagnostics[8].message
     assert [node.fqn for node in result.nodes] == ['/a', '/c']
 
     number = _write(tmp_path, {'n.launch.py': 'import helpers\n\nrate = float(helpers.RATE)\n'})
@@ -252,3 +257,37 @@ def test_lists_and_parameter_entries_from_missing_modules_keep_their_nodes(tmp_p
     assert a.arguments == [] and a.remaps == [] and not a.parameters_complete and not a.remaps_complete
     assert [s.part for s in c.run_time] == ['remaps'] and c.parameters_complete and not c.remaps_complete
     assert plain.run_time == () and plain.remaps == [('x', 'y')] and box.run_time == ()
+
+
+def test_placeholders_unpacked_into_parameters_or_iterated_are_said_not_dropped() -> None:
+    """MoveIt's {**moveit_config.to_dict(), 'speed': 2}, dict.update() and dict() with a value of
+    a module not installed here: the node stays, one NODL513 at its parameters entry, the names
+    written out checked and none reported missing; nodes made in a loop over such a value: one
+    NODL512 at the loop (once however often it runs)."""
+    from nodl_schema.analysis import analyse_launch
+    from nodl_schema.analysis.report import analysis_to_dict
+
+    analysis = analyse_launch(MISSING / 'unpack.launch.py', prefixes=[str(ANALYSIS_PREFIX)])
+    said = [(f.code, f.diagnostic.line, f.diagnostic.column) for f in analysis.findings
+            if f.code in ('NODL512', 'NODL513')]
+    assert said == [('NODL513', 6, 1), ('NODL512', 11, 5), ('NODL513', 22, 26), ('NODL513', 23, 78),
+                    ('NODL513', 28, 44), ('NODL513', 30, 44), ('NODL512', 35, 9)]
+    messages = [f.message for f in analysis.findings if f.code in ('NODL512', 'NODL513')]
+    assert messages[1].startswith('moveit_configs_utils.MoveItConfigsBuilder(...).to_moveit_configs()'
+                                  '.sensor_names is iterated, but its items are known only when the launch '
+                                  "runs (it comes from 'moveit_configs_utils', which is not installed here)")
+    assert messages[1].endswith('what would be made from its items (nodes, parameters, arguments...) is '
+                                'missing from the analysis')
+    assert messages[2].startswith('parameters entry: the value of the entries of moveit_configs_utils.'
+                                  'MoveItConfigsBuilder(...).to_moveit_configs().to_dict() (')
+    assert all(m.endswith('no parameter is reported missing for it)') for m in messages[2:6])
+    nodes = {n['name']: n for n in analysis_to_dict(analysis)['nodes']}
+    assert list(nodes) == ['/planner', '/merged', '/box', '/camera', '/camera_nested', '/camera_known']
+    assert nodes['/planner']['parameters'] == {'speed': 2} and nodes['/merged']['parameters'] == {
+        'robot_name': 'arm'}
+    assert nodes['/camera_nested']['parameters'] == {'fps': 30.0}  # the nested marker is no name
+    assert [n['parameters_complete'] for n in nodes.values()] == [False, False, True, False, False, True]
+    found = {(f.kind, f.nodes[0], f.parameter) for f in analysis.findings if f.parameter}
+    assert found == {('parameter-type', '/planner', 'speed'), ('parameter-invalid', '/camera', 'fps'),
+                     ('missing-parameter', '/camera_known', 'device')}  # not /camera's nor the others'
+    assert not analysis.unreadable

@@ -18,10 +18,13 @@ without it), an action (NODL512: the nodes it may start are missing).  Python op
 on it go on: ``str()``, an f-string or ``os.path.join`` give a :class:`RunTimeText` (the
 marker text ``<WHAT: known at run time>``, which an action or parameter of the stand-ins
 reads as a run-time value again, see :func:`run_time`), ``+`` with a string gives such a
-text and with a list a list ending with the placeholder; iteration gives nothing, ``len()`` is 0,
-truth is true, ``==``/``<``/``in`` are false (``!=`` true), ``with`` works, a class of the
-launch file may derive from it (its instances are placeholders); ``int()``/``float()``
-raise, as the value is not known.
+text and with a list a list ending with the placeholder; iteration gives nothing (NODL512 at
+the loop, once per place: what would be made from its items is missing), unpacking it into a
+dict (``{**value}``, ``update()``, ``dict()``) one marker key (:meth:`Placeholder.keys`: in a
+node's parameters entry, parameters only the running launch knows), ``len()`` is 0, truth
+is true, ``==``/``<``/``in`` are false (``!=`` true), ``with`` works, a class of the launch
+file may derive from it (its instances are placeholders); ``int()``/``float()`` raise, as
+the value is not known.
 """
 
 from __future__ import annotations
@@ -46,7 +49,7 @@ if TYPE_CHECKING:
     from nodl_schema.launch.context import LaunchContext
 
 __all__ = ['MissingModules', 'Placeholder', 'RunTimeText', 'run_time', 'action_arguments', 'entities',
-           'package_folder', 'stubs_active']
+           'package_folder', 'stubs_active', 'unpacked']
 
 #: Attribute look-ups from the toolkit's own code (``hasattr(item, 'nodl_parameter')``...)
 #: must not be answered with a placeholder: only the launch file's code gets them.
@@ -160,7 +163,19 @@ class Placeholder(A.Action, S.Substitution):
     def __delitem__(self, key: Any) -> None:
         return None
 
+    def keys(self) -> list[RunTimeText]:
+        """``{**value}``, ``dict.update(value)``, ``dict(value)``: one marker key, the text of a
+        placeholder standing for the entries only the running launch knows (a node's
+        ``parameters`` entry reads it as such: :func:`unpacked`); its item is a placeholder."""
+        entries = _derive(self, f'the entries of {self._nodl_what}')
+        entries.__dict__['_nodl_entries'] = True
+        return [entries._text()]
+
     def __iter__(self) -> Any:
+        # Its items are not known: it iterates as nothing, and the launch file's loop over it
+        # makes nothing, which is said once per place (a loop of nodes would vanish unsaid).
+        if _ACTIVE:
+            _ACTIVE[-1].iterated(self, _where())
         return iter(())
 
     def __len__(self) -> int:
@@ -308,6 +323,16 @@ def run_time(value: Any, depth: int = 0) -> Any:
     return value
 
 
+def unpacked(name: Any) -> Placeholder | None:
+    """The placeholder a parameter name (a substitution or a list of them) holds that stands
+    for the entries of a placeholder unpacked into the dict (``{**value}``: see
+    :meth:`Placeholder.keys`), if any."""
+    for part in name if isinstance(name, list) else [name]:
+        if isinstance(part, Placeholder) and part.__dict__.get('_nodl_entries'):
+            return part
+    return None
+
+
 def entities(value: Any) -> Any:
     """What a launch file gives as a list of actions: a placeholder is one (unknown) action."""
     return [value] if isinstance(value, Placeholder) else value
@@ -394,6 +419,7 @@ class MissingModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         self.stubbed: list[str] = []
         self.created: list[str] = []
         self.markers: dict[str, Placeholder] = {}
+        self._iterated: set[SourceLocation] = set()  # where a placeholder was iterated (said once)
 
     def __enter__(self) -> MissingModules:
         sys.meta_path.append(self)
@@ -408,6 +434,16 @@ class MissingModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
             if isinstance(module, _StubModule):
                 del sys.modules[name]
         self.markers.clear()
+
+    def iterated(self, value: Placeholder, where: SourceLocation) -> None:
+        """A NODL512 warning, once per place, that ``value`` was iterated as nothing."""
+        if where in self._iterated:
+            return
+        self._iterated.add(where)
+        self.context.warn('NODL512', f"{value._nodl_what} is iterated, but its items are known only when "
+                          f"the launch runs (it comes from '{value._nodl_module}', which is not installed "
+                          'here): it is taken as empty, and what would be made from its items (nodes, '
+                          'parameters, arguments...) is missing from the analysis', where)
 
     def _importer(self) -> tuple[SourceLocation, str] | None:
         """Where the launch file imports, and the helper file importing if not the launch

@@ -9,8 +9,9 @@ how they resolve to values).
 
 A part of a node only the running launch knows does not drop the node: a parameter source
 whose path is a run-time value (``$(command ...)``, a value computed by a module not
-installed here, such as nav2's ``RewrittenYaml``), or ``remappings``/``arguments`` given
-whole as such a value, is one NODL513 warning and a :class:`~nodl_schema.launch.model.RunTimeSource`
+installed here, such as nav2's ``RewrittenYaml``), a parameters dict such a value is unpacked
+into (``{**config, 'x': 1}``: the names written out are known), or ``remappings``/``arguments``
+given whole as such a value, is one NODL513 warning and a :class:`~nodl_schema.launch.model.RunTimeSource`
 in the record's ``run_time``: the node is analysed with what is known.
 """
 
@@ -268,7 +269,7 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
     out = []
     for item in parameters:
         if type(item) is list:  # name-value pairs (a frontend's params): neither of the others
-            out.append(_named_parameters(context, item, location, node_key))
+            out.append(_named_parameters(context, item, location, node_key, record, parameters))
         elif isinstance(item, ParameterFileEntry):
             from nodl_schema.files import tidy_path
 
@@ -288,17 +289,32 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
             out.append(ParameterSource('values', 'node', location,
                                        values={pname: evaluate_parameter(context, spec, pname, location)}))
         else:
-            out.append(_named_parameters(context, item, location, node_key))
+            out.append(_named_parameters(context, item, location, node_key, record, parameters))
     return out
 
 
-def _named_parameters(context: LaunchContext, item: Any, location: SourceLocation,
-                      node_key: str) -> ParameterSource:
+def _named_parameters(context: LaunchContext, item: Any, location: SourceLocation, node_key: str,
+                      record: LaunchedNode, parameters: list[Any]) -> ParameterSource:
     values: dict[str, Any] = {}
     for name, spec in item:
-        pname = perform(context, name)
+        try:
+            pname = perform(context, name)
+        except Unevaluable as problem:
+            # A Python dict with a value of a module not installed here unpacked into it
+            # ({**config, 'x': 1}): the parameters it gives only the running launch knows,
+            # the ones written out are checked (any other name not known stays a problem).
+            if not _unpacked(name):
+                raise
+            _run_time_parameters(context, problem, record, parameters, item)
+            continue
         values[pname] = evaluate_parameter(context, spec, pname, location)
     return ParameterSource('values', 'node', location, values=values, node_key=node_key)
+
+
+def _unpacked(name: Any) -> bool:
+    from nodl_schema.launch.python_missing import unpacked
+
+    return unpacked(name) is not None
 
 
 #: The keyword a frontend gives a node the lists it got whole as a value only the running
