@@ -20,6 +20,7 @@ __all__ = [
     'ValidationError',
     'DocPath',
     'format_path',
+    'Diagnosed',
 ]
 
 #: A location inside a document: mapping keys and sequence indices.
@@ -164,6 +165,24 @@ class Diagnostic:
             'related': [{'file': f, 'line': li, 'column': c, 'message': m}
                         for f, li, c, m in self.related],
         }
+
+
+class Diagnosed:
+    """What a result holding ``diagnostics`` says of them: its ``errors`` and whether it is
+    ``ok`` (no error).  A mixin (no slots of its own) for the readers' results."""
+
+    __slots__ = ()
+    diagnostics: list[Diagnostic]
+
+    @property
+    def errors(self) -> list[Diagnostic]:
+        """The diagnostics of severity error."""
+        return [d for d in self.diagnostics if d.severity is Severity.ERROR]
+
+    @property
+    def ok(self) -> bool:
+        """True if no diagnostic is an error."""
+        return not self.errors
 
 
 def has_errors(diagnostics: Iterable[Diagnostic], strict: bool = False) -> bool:

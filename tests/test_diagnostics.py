@@ -49,3 +49,18 @@ def test_code_ends_the_line_and_related_locations_are_in_the_dict() -> None:
     assert d.to_dict()['related'] == [{'file': 'g.yaml', 'line': 1, 'column': 2,
                                        'message': 'the overridden one'}]
     assert d.replace(code='NODL101') != d
+
+
+def test_a_diagnosed_result_says_its_errors_and_whether_it_is_ok() -> None:
+    from nodl_schema.diagnostics import Diagnosed, Diagnostic, Severity
+
+    class Result(Diagnosed):
+        __slots__ = ('diagnostics',)
+
+        def __init__(self, diagnostics: list[Diagnostic]) -> None:
+            self.diagnostics = diagnostics
+
+    warning = Diagnostic(Severity.WARNING, 'w', (), 'f', 1, 1)
+    error = Diagnostic(Severity.ERROR, 'e', (), 'f', 2, 1)
+    assert Result([warning]).ok and Result([warning]).errors == []
+    assert not Result([warning, error]).ok and Result([warning, error]).errors == [error]

@@ -28,7 +28,7 @@ import os
 import re
 from typing import TYPE_CHECKING, Any, Iterable, NamedTuple, Sequence
 
-from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.diagnostics import Diagnosed, Diagnostic, Severity
 from nodl_schema.frontends.xml_reader import XmlAttribute, XmlElement, XmlTree, load_xml
 from nodl_schema.vocabulary import QOS_DURATIONS, QOS_ENUMS, legacy_roles
 
@@ -179,7 +179,7 @@ class LegacyNode(_Record):
     positions: dict[str, tuple[int, int]]
 
 
-class LegacyDocument(_Record):
+class LegacyDocument(_Record, Diagnosed):
     """A parsed legacy file: its nodes and every diagnostic found reading it.
 
     Elements with a structural error are left out of ``nodes``; a document
@@ -194,16 +194,6 @@ class LegacyDocument(_Record):
     diagnostics: list[Diagnostic]
     line: int
     column: int
-
-    @property
-    def errors(self) -> list[Diagnostic]:
-        """Diagnostics of severity error."""
-        return [d for d in self.diagnostics if d.severity is Severity.ERROR]
-
-    @property
-    def ok(self) -> bool:
-        """True if the document has no errors."""
-        return not self.errors
 
 
 # --------------------------------------------------------------------------

@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
-from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.diagnostics import Diagnosed, Diagnostic
 
 __all__ = ['SourceLocation', 'LaunchRemap', 'ParameterSource', 'RunTimeSource', 'LaunchedNode',
            'LaunchArgument', 'LaunchResult', 'NODE_KINDS', 'PARAMETER_ORIGINS', 'RUN_TIME_PARTS']
@@ -224,7 +224,7 @@ class LaunchArgument:
 
 
 @dataclass
-class LaunchResult:
+class LaunchResult(Diagnosed):
     """Everything read from a launch file and the files it includes."""
 
     file: str
@@ -234,13 +234,3 @@ class LaunchResult:
     diagnostics: list[Diagnostic] = field(default_factory=list)
     #: Every launch file read, in the order first read.
     files: list[str] = field(default_factory=list)
-
-    @property
-    def errors(self) -> list[Diagnostic]:
-        """The diagnostics of severity error."""
-        return [d for d in self.diagnostics if d.severity is Severity.ERROR]
-
-    @property
-    def ok(self) -> bool:
-        """True if no error was found."""
-        return not self.errors

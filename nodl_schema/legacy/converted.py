@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
+from nodl_schema.diagnostics import Diagnosed, Diagnostic, DocPath
 
 if TYPE_CHECKING:  # pragma: no cover
     from nodl_schema.frontends.legacy_xml import LegacyNode
@@ -41,7 +41,7 @@ def origin_of(origins: Origins, path: DocPath) -> tuple[int, int]:
     return origins.get((), (1, 1))
 
 
-class Converted:
+class Converted(Diagnosed):
     """One converted node: its file name, v2 node definition (a plain dict) and diagnostics.
 
     ``diagnostics`` are those of the conversion (placed in the legacy file);
@@ -62,16 +62,6 @@ class Converted:
         self.node = node
         #: v2 document path -> (line, column) of the XML element or attribute it came from.
         self.origins: Origins = origins if origins is not None else {(): (node.line, node.column)}
-
-    @property
-    def errors(self) -> list[Diagnostic]:
-        """Diagnostics of severity error."""
-        return [d for d in self.diagnostics if d.severity is Severity.ERROR]
-
-    @property
-    def ok(self) -> bool:
-        """True if the node converted into a valid v2 node definition."""
-        return not self.errors
 
     @property
     def document(self) -> Node | None:
