@@ -23,7 +23,7 @@ export AMENT_PREFIX_PATH := $(abspath $(VENV))
 export CMAKE_PREFIX_PATH := $(abspath $(VENV))
 export PATH := $(abspath $(BIN)):$(PATH)
 
-.PHONY: demo test bench install clean FORCE
+.PHONY: demo test bench install lock clean FORCE
 
 install: $(STAMP)
 
@@ -36,7 +36,7 @@ STALE_VENV := yes
 endif
 endif
 
-$(DEPS): pyproject.toml $(CONSTRAINTS) $(if $(STALE_VENV),FORCE)
+$(DEPS): pyproject.toml $(CONSTRAINTS) tools/lock.in $(if $(STALE_VENV),FORCE)
 	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info[:2] != ($(subst .,$(comma),$(ROS_WHEELS_PYTHON))))' 2>/dev/null || { \
 	  echo "make: '$(PYTHON)' is not Python $(ROS_WHEELS_PYTHON), which the ROS 2 wheels need."; \
 	  echo "      Install python$(ROS_WHEELS_PYTHON), or run: make PYTHON=/path/to/python$(ROS_WHEELS_PYTHON) $(MAKECMDGOALS)"; \
@@ -46,8 +46,8 @@ $(DEPS): pyproject.toml $(CONSTRAINTS) $(if $(STALE_VENV),FORCE)
 	  rm -rf $(VENV); fi
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	@echo "Installing the dependencies into $(VENV) (the first time: about 100 packages, ROS 2 included)"
-	$(BIN)/python -m pip install --quiet --disable-pip-version-check --upgrade pip 'setuptools>=77,<80' wheel -c $(CONSTRAINTS)
-	$(BIN)/python tools/pip_install.py -c $(CONSTRAINTS) '.[test]'
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check --upgrade pip setuptools wheel -c $(CONSTRAINTS)
+	$(BIN)/python tools/pip_install.py -c $(CONSTRAINTS) '.[test]' -r tools/lock.in
 	touch $(DEPS)
 
 FORCE:
@@ -59,13 +59,20 @@ $(STAMP): $(DEPS) $(SOURCES)
 demo: $(STAMP)
 	$(BIN)/python examples/demo.py
 
-# The suite waits (ROS discovery, builds, compiles) more than it computes, so it runs on
-# twice as many workers as a 2-core machine has cores. Each worker gets whole modules
-# (their module-scoped builds and nodes are made once), the costliest first
+# The suite runs on as many workers as the machine has cores. Each worker gets whole
+# modules (their module-scoped builds and nodes are made once), the costliest first
 # (tests/durations.json; see tests/conftest.py), and a ROS domain of its own.
-TEST_WORKERS ?= 4
+TEST_WORKERS ?= $(shell nproc 2>/dev/null || echo 2)
 test: $(STAMP)
 	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder
+
+# The lock, constraints.txt: every package of the environment pinned with ==. It is
+# regenerated only on purpose: `make lock` keeps the pinned versions and resolves what
+# pyproject.toml or tools/lock.in added; `make lock UPGRADE=1` moves everything to the
+# newest versions pyproject.toml admits. Run `make test` on the result before committing.
+lock: $(DEPS)
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check uv -c $(CONSTRAINTS)
+	$(BIN)/python tools/lock.py $(if $(UPGRADE),--upgrade)
 
 bench: $(STAMP)
 	$(BIN)/python bench/run.py
