@@ -22,6 +22,7 @@ from pathlib import Path
 import pytest
 
 from conftest import REPO
+from test_lock import LOCK, normal, read_lock
 
 VERSIONS = ('3.10', '3.12')
 
@@ -79,8 +80,9 @@ def venv(request: pytest.FixtureRequest, wheel: Path,
     made = subprocess.run([python, '-m', 'venv', '--without-pip', str(root)], capture_output=True,
                           text=True, timeout=120)
     assert made.returncode == 0, made.stderr
-    # this environment's pip installs into the new one (no ensurepip: faster)
-    result = pip('--python', str(root / 'bin' / 'python'), 'install', str(wheel))
+    # this environment's pip installs into the new one (no ensurepip: faster), with the
+    # lock's pins wherever they exist for this version (PyYAML, and tomli on 3.10)
+    result = pip('--python', str(root / 'bin' / 'python'), 'install', '-c', str(LOCK), str(wheel))
     assert result.returncode == 0, result.stdout + result.stderr
     return root
 
@@ -100,6 +102,19 @@ def test_the_environment_is_the_wanted_python_without_ros(venv: Path) -> None:
     version, no_rclpy, module = probe.stdout.splitlines()
     assert version in VERSIONS and no_rclpy == 'True'
     assert module.startswith(str(venv))
+
+
+def test_the_dependencies_are_the_locked_ones(venv: Path) -> None:
+    probe = run(venv, str(venv / 'bin' / 'python'), '-I', '-c',
+                'import importlib.metadata as m\n'
+                'for d in m.distributions(): print(d.metadata["Name"], d.version)')
+    assert probe.returncode == 0, probe.stderr
+    installed = dict(line.split(' ', 1) for line in probe.stdout.splitlines())
+    pins = read_lock()
+    checked = {normal(name): version for name, version in installed.items()
+               if normal(name) in pins}
+    assert 'pyyaml' in checked
+    assert checked == {name: pins[name][0] for name in checked}
 
 
 def test_nodl_validate_on_the_examples(venv: Path) -> None:
