@@ -90,6 +90,9 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL216': ('warning', 'a parameter or endpoint has no description'),
     'NODL217': ('error', 'invalid mixin reference'),
     'NODL218': ('warning', 'a mixin is listed twice'),
+    'NODL219': ('error', 'a name or description holds a control character (C0/C1 but tab and newline)'),
+    'NODL220': ('error', 'a name or description holds a bidirectional control (Trojan Source: '
+                'U+202A-202E, U+2066-2069)'),
     'NODL230': ('warning', 'QoS history KEEP_ALL with a depth: the middleware ignores the depth'),
     # -- NODL3xx: composition ----------------------------------------------
     'NODL301': ('error', 'a mixin reference cannot be resolved'),
@@ -233,7 +236,11 @@ def close_codes(text: str) -> list[str]:
     """Catalogued codes that look like ``text`` (for a "did you mean" hint)."""
     import difflib
 
-    return difflib.get_close_matches(text.upper(), list(CODES), n=3, cutoff=0.6)
+    wanted = text.upper()
+    # the codes a prefix names come first ('nodl21': NODL210...), then those spelled alike
+    starting = [code for code in CODES if len(wanted) > 4 and code.startswith(wanted) and code != wanted]
+    alike = difflib.get_close_matches(wanted, list(CODES), n=3, cutoff=0.6)
+    return (starting + [code for code in alike if code not in starting])[:3]
 
 
 def catalogue_markdown() -> str:

@@ -62,6 +62,9 @@ def format_path(path: DocPath) -> str:
             out.append(f'.{part}' if out else part)
         else:
             quoted = part.replace('\\', '\\\\').replace('"', '\\"')
+            if not quoted.isprintable():  # a path is shown on one line: no control or bidi character
+                from nodl_schema.text_safety import visible
+                quoted = visible(quoted, one_line=True)
             out.append(f'["{quoted}"]')
     return ''.join(out)
 
@@ -108,6 +111,10 @@ class Diagnostic:
 
     def __setattr__(self, name: str, value: Any) -> None:
         raise AttributeError('Diagnostic is immutable; use .at() or .replace()')
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        # Pickled by its fields (a launch read in a child process sends its diagnostics back).
+        return (Diagnostic, tuple(getattr(self, f) for f in self._FIELDS))
 
     def _key(self) -> tuple[Any, ...]:
         return tuple(getattr(self, f) for f in self._FIELDS)

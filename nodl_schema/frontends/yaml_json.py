@@ -33,6 +33,7 @@ from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.frontends import yaml_events
 from nodl_schema.frontends.source import SourceText
 from nodl_schema.frontends.yaml_events import MAX_ALIAS_NODES, MAX_DEPTH
+from nodl_schema.text_safety import line_column, locate_unsafe, offset_of
 
 __all__ = ['MAX_DEPTH', 'MAX_ALIAS_NODES', 'ParsedDocument', 'parse_document', 'is_strict_json']
 
@@ -86,7 +87,11 @@ class ParsedDocument:
 
         When the path does not exist (a missing key), the deepest existing
         ancestor is used.  ``(0, 0)`` if the text cannot be placed at all.
+        The anchors ``key-char`` and ``value-char`` place the first unsafe character (see
+        :mod:`nodl_schema.text_safety`) of that key or value, where the text shows it.
         """
+        if anchor.endswith('-char'):
+            return self._character_position(path, anchor[:-5])
         if self._spans is not None:
             found = yaml_events.span_position(self._spans, path, anchor)
             if found is not None:
@@ -97,6 +102,23 @@ class ParsedDocument:
         key_node, node = _walk(root, path)
         mark = key_node.start_mark if anchor == 'key' and key_node is not None else node.start_mark
         return (mark.line + 1, mark.column + 1)
+
+    def _character_position(self, path: DocPath, anchor: str) -> tuple[int, int]:
+        line, column = self.position(path, anchor)
+        value: Any = self.data
+        if anchor == 'key':
+            value = path[-1] if path else None
+        else:
+            for part in path:
+                try:
+                    value = value[part]
+                except (KeyError, IndexError, TypeError):
+                    return line, column
+        if not line or not isinstance(value, str):
+            return line, column
+        text = self.source.text
+        found = locate_unsafe(text, offset_of(text, line, column), value)
+        return line_column(text, found) if found >= 0 else (line, column)
 
     def place(self, diagnostic: Diagnostic) -> Diagnostic:
         """Return ``diagnostic`` with this document's file, line and column."""

@@ -14,6 +14,7 @@ if TYPE_CHECKING:
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.diagnostics import format_path
+from nodl_schema.validation.characters import check_text_fields
 from nodl_schema.validation.messages import show
 from nodl_schema.validation.parameters import check_parameter
 from nodl_schema.vocabulary import SECTION_WORDS
@@ -31,6 +32,7 @@ def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Semantic checks of an interface definition found at ``path``."""
     if not isinstance(data, dict):
         return
+    check_text_fields(data, path, out)
     parameters = data.get('parameters')
     if isinstance(parameters, dict):
         for name, param in parameters.items():
@@ -49,6 +51,7 @@ def check_interface(data: Any, path: DocPath, out: list[Diagnostic]) -> None:
             name = entry.get('name')
             entry_path = path + (section, index)
             _check_qos(entry.get('qos'), entry_path + ('qos',), out)
+            check_text_fields(entry, entry_path, out)
             if isinstance(name, str):
                 if name in first_index:
                     earlier = format_path(path + (section, first_index[name]))

@@ -21,6 +21,7 @@ if TYPE_CHECKING:
     from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
+from nodl_schema.validation.characters import check_text
 from nodl_schema.validation.messages import described, show, subject
 from nodl_schema.vocabulary import NAME_SUBSTITUTIONS
 
@@ -95,6 +96,8 @@ def check_ros_name(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
         out.append(Diagnostic(Severity.ERROR, f'{subject(path)} must be a string, not '
                               f'{described(value)}', path, code='NODL103'))
         return
+    if check_text(value, 'ROS name', path, out):
+        return
     problem = ros_name_problem(value)
     if problem:
         out.append(Diagnostic(Severity.ERROR, f'invalid ROS name {show(value)}: {problem}', path,
@@ -103,7 +106,7 @@ def check_ros_name(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
 
 def check_parameter_name(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Format check ``nodl-parameter-name`` (applied to mapping keys)."""
-    if isinstance(value, str):
+    if isinstance(value, str) and not check_text(value, 'parameter name', path, out, 'key'):
         problem = parameter_name_problem(value)
         if problem:
             out.append(Diagnostic(Severity.ERROR, f'invalid parameter name {show(value)}: {problem}',

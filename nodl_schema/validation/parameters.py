@@ -20,6 +20,7 @@ if TYPE_CHECKING:
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.model.parameter_types import (
     ALL_TYPE_WORDS, ARRAY_TYPES, SCALAR_TYPES, TypeSpec, element_fits, parse_type)
+from nodl_schema.validation.characters import check_text, check_text_fields
 from nodl_schema.validation.messages import article, described, did_you_mean, show
 from nodl_schema.validation.validators import APPLICABILITY, VALIDATORS
 
@@ -64,7 +65,7 @@ def check_parameter_type(value: Any, path: DocPath, out: list[Diagnostic]) -> No
 
 def check_validator_name(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Format check ``nodl-validator-name`` (applied to keys of ``validation``)."""
-    if not isinstance(value, str):
+    if not isinstance(value, str) or check_text(value, 'validator name', path, out, 'key'):
         return
     bare = value[:-2] if value.endswith('<>') else value
     if bare in BUILTIN_VALIDATORS:
@@ -92,6 +93,7 @@ def check_parameter(param: Any, path: DocPath, out: list[Diagnostic]) -> None:
     """Semantic checks of one parameter definition found at ``path``."""
     if not isinstance(param, dict):
         return
+    check_text_fields(param, path, out)
     spec = parse_type(param.get('type'))
     if spec is None:
         return  # the structural check has reported the type

@@ -381,7 +381,8 @@ def _at_key(check: Check, key: str, path: DocPath, out: list[Diagnostic]) -> Non
     """Run a ``propertyNames`` check: what it finds is about the key, not its value."""
     found: list[Diagnostic] = []
     check(key, path, found)
-    out.extend(d.replace(anchor='key') for d in found)
+    # (an anchor on a character of the key stays on that character)
+    out.extend(d if d.anchor == 'key-char' else d.replace(anchor='key') for d in found)
 
 
 def _override_message(body: Check, message: str) -> Check:
