@@ -62,6 +62,12 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL016': ('error', 'JSON syntax error (in a file read as strict JSON)'),
     'NODL020': ('error', 'a path given to a command cannot be read: missing, not permitted, a socket, '
                          'a dangling link, a directory that cannot be scanned or holds no NoDL files'),
+    # -- NODL03x: writing files (nodl_schema.writing) -----------------------
+    'NODL030': ('error', 'a file cannot be written (no space, the file size limit, permissions); the previous file is left unchanged'),
+    'NODL031': ('error', 'an output would replace a file nodl did not write (it has no nodl marker); --force replaces it'),
+    'NODL032': ('error', 'an output would replace a file edited since nodl wrote it (its nodl marker no longer matches); --force replaces it'),
+    'NODL033': ('error', 'an output path names one of the inputs (the same file, through links or hard links)'),
+    'NODL034': ('error', 'an output path is a directory, not a file'),
     # -- NODL1xx: structure (the JSON Schemas) ------------------------------
     'NODL101': ('error', 'unknown key'),
     'NODL102': ('error', 'a required key is missing'),
@@ -93,6 +99,10 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL219': ('error', 'a name or description holds a control character (C0/C1 but tab and newline)'),
     'NODL220': ('error', 'a name or description holds a bidirectional control (Trojan Source: '
                 'U+202A-202E, U+2066-2069)'),
+    'NODL221': ('error', 'launch file: a node name, namespace or remapping rule holds a control character '
+                'or bidirectional control'),
+    'NODL222': ('warning', 'launch file: a parameter value holds a control character or bidirectional '
+                'control (the node gets it as written)'),
     'NODL230': ('warning', 'QoS history KEEP_ALL with a depth: the middleware ignores the depth'),
     # -- NODL3xx: composition ----------------------------------------------
     'NODL301': ('error', 'a mixin reference cannot be resolved'),
@@ -139,6 +149,9 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL518': ('error', 'launch parameter: a value launch cannot type (a mapping, a mixed list, bad YAML)'),
     'NODL519': ('error', 'launch node: an invalid node name, namespace or remapping rule'),
     'NODL520': ('warning', 'launch argument: given but declared by no launch file'),
+    'NODL521': ('error', 'launch substitution: a value (let, arg default, $(var), joined path) would pass the 16 MiB limit'),
+    'NODL530': ('warning', 'assumed-duplicate-node: two launched nodes share a final name the analysis assumed '
+                '(launched without a name, none recorded); the programs may name themselves apart'),
     # -- NODL55x-59x: system analysis (nodl analyse) ------------------------
     'NODL550': ('error', 'duplicate-node: two launched nodes end up with the same fully qualified name'),
     'NODL551': ('warning', 'multiple-publishers: more than one node publishes a topic (not on the allow list)'),
@@ -172,6 +185,9 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL611': ('error', 'policy: two nodes share one fully qualified name (DDS security cannot tell them apart)'),
     'NODL612': ('error', 'policy: the system has no nodes to write a policy for'),
     'NODL613': ('warning', 'policy: a node name in the enclave mapping is no node of the system (a misspelt name?)'),
+    'NODL614': ('error', 'policy XInclude: more includes than the limit (an include bomb?); the rest are not expanded'),
+    'NODL615': ('error', 'policy XInclude: the included text passes the total size limit; the rest is not expanded'),
+    'NODL616': ('error', "policy XInclude: an href leads outside the including file's folder (after '..' and symbolic links)"),
     # -- NODL70x: parameter files checked against definitions (nodl params check) --
     'NODL701': ('error', "parameter file: a parameter the node's definition does not declare (a warning "
                 'under a wildcard key, which also serves other nodes)'),
@@ -181,6 +197,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL704': ('error', 'parameter file: a required parameter (no default) is set by none of the files'),
     'NODL705': ('warning', 'parameter file: no node key of the files applies to the node'),
     'NODL706': ('error', 'parameter file check: the launch file cannot be read, or starts no node with a definition'),
+    'NODL707': ('error', 'code generation: an option is not a valid name (--node-name, --class-name, --namespace, a package name, a keyword)'),
+    'NODL708': ('error', 'code generation: a generated file would be written outside the output folder'),
     # -- NODL8xx: dialects and conversion ----------------------------------
     'NODL801': ('error', 'legacy XML: an element, attribute or text the legacy format does not have'),
     'NODL802': ('error', 'legacy XML: a required attribute is missing or empty'),
@@ -201,6 +219,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL816': ('warning', 'conversion: an executable holds several nodes; each gets a file named after both'),
     'NODL817': ('error', 'legacy XML (or other XML) given where a NoDL v2 document is read; nodl convert '
                 'converts legacy files'),
+    'NODL818': ('error', "include dialect: a 'ref' is not a URI (scheme://body, such as nodl://PACKAGE/NAME "
+                'or local://FILE); a bare path or a malformed URI (nodl:/x, ://x) names no resolver'),
     'NODL851': ('warning', "include dialect: the reference implementation's include/includes file is read "
                 'as a node definition (base + mixins + main); nodl convert rewrites it'),
     'NODL852': ('error', 'include dialect: an include entry is not a mapping with one ref'),

@@ -199,7 +199,8 @@ def test_unused_remap_follows_rcl(tmp_path: Path) -> None:
 
 #: The same unused rules written in each format: (file name, text, {rule: (line, column)}).
 #: A finding about a rule points at the rule (the <remap>, the set_remap, the args with -r),
-#: its related place at the node's entry.
+#: its related places at the entries of the nodes given it (the set_remap, given to the three
+#: nodes, is one finding for all).
 REMAP_PLACES = [
     ('r.launch.xml',
      '<launch>\n'
@@ -215,9 +216,9 @@ REMAP_PLACES = [
      '    </composable_node>\n'
      '  </node_container>\n'
      '</launch>\n',
-     {'/planner': (3, 3), '/camera': (9, 5)},
-     {('/planner', 'scna:=/a'): (2, 3), ('/planner', 'gte_map:=/m'): (4, 9),
-      ('/planner', 'odm:=/odom'): (6, 5), ('/camera', 'scna:=/a'): (2, 3), ('/camera', 'imgae:=/i'): (10, 7)}),
+     {'/planner': (3, 3), '/box': (8, 3), '/camera': (9, 5)},
+     {(('/planner', '/box', '/camera'), 'scna:=/a'): (2, 3), ('/planner', 'gte_map:=/m'): (4, 9),
+      ('/planner', 'odm:=/odom'): (6, 5), ('/camera', 'imgae:=/i'): (10, 7)}),
     ('r.launch.yaml',
      'launch:\n'
      '  - set_remap: {from: scna, to: /a}\n'
@@ -240,9 +241,9 @@ REMAP_PLACES = [
      '          name: camera\n'
      '          remap:\n'
      '            - {from: imgae, to: /i}\n',
-     {'/planner': (3, 5), '/camera': (17, 11)},
-     {('/planner', 'scna:=/a'): (2, 5), ('/planner', 'gte_map:=/m'): (7, 7),
-      ('/planner', 'odm:=/odom'): (10, 11), ('/camera', 'scna:=/a'): (2, 5), ('/camera', 'imgae:=/i'): (21, 15)}),
+     {'/planner': (3, 5), '/box': (11, 5), '/camera': (17, 11)},
+     {(('/planner', '/box', '/camera'), 'scna:=/a'): (2, 5), ('/planner', 'gte_map:=/m'): (7, 7),
+      ('/planner', 'odm:=/odom'): (10, 11), ('/camera', 'imgae:=/i'): (21, 15)}),
     ('r.launch.py',
      'from launch import LaunchDescription\n'
      'from launch_ros.actions import ComposableNodeContainer, Node, SetRemap\n'
@@ -261,9 +262,9 @@ REMAP_PLACES = [
      "            ComposableNode(package='sensors', plugin='sensors::CameraDriver', name='camera',\n"
      "                           remappings=[('imgae', '/i')])]),\n"
      '    ])\n',
-     {'/planner': (9, 9), '/camera': (15, 13)},
-     {('/planner', 'scna:=/a'): (8, 9), ('/planner', 'gte_map:=/m'): (10, 58),
-      ('/planner', 'odm:=/odom'): (12, 26), ('/camera', 'scna:=/a'): (8, 9), ('/camera', 'imgae:=/i'): (16, 40)}),
+     {'/planner': (9, 9), '/box': (13, 9), '/camera': (15, 13)},
+     {(('/planner', '/box', '/camera'), 'scna:=/a'): (8, 9), ('/planner', 'gte_map:=/m'): (10, 58),
+      ('/planner', 'odm:=/odom'): (12, 26), ('/camera', 'imgae:=/i'): (16, 40)}),
 ]
 
 
@@ -277,11 +278,46 @@ def test_a_finding_about_a_remap_points_at_the_rule(tmp_path: Path, name: str, t
     analysis = analyse_launch(launch, prefixes=PREFIX)
     found = {}
     for finding in _of(analysis, 'unused-remap'):
-        (node,) = finding.nodes
+        nodes = finding.nodes
         rule = finding.message.split("'")[1]
         d = finding.diagnostic
         assert d.file == str(launch)
-        found[node, rule] = (d.line, d.column)
-        # the node's entry is the related place
-        assert [(r[1], r[2]) for r in d.related] == [entries[node]], d.related
+        found[nodes if len(nodes) > 1 else nodes[0], rule] = (d.line, d.column)
+        # the entries of the nodes given the rule are the related places
+        assert [(r[1], r[2]) for r in d.related] == [entries[n] for n in nodes], d.related
     assert found == expected
+
+
+def test_a_rule_given_to_many_nodes_is_one_finding_at_the_rule() -> None:
+    """A set_remap given to 14 nodes is one finding at the set_remap (not one per node), and
+    none when a node in its scope uses it or may use it (a node without a definition); a
+    node-scoped rule whose node is launched outside its scope says so."""
+    launch = LAUNCH / 'shared_remaps.launch.xml'
+    analysis = analyse_launch(launch, prefixes=PREFIX)
+    planners = tuple(f'/planner_{i}' for i in range(14))
+    found = {f.diagnostic.line: f for f in _of(analysis, 'unused-remap')}
+    assert sorted(found) == [4, 6, 7]  # scna, lidar:cmd_vel, planner_0:dokc; not scan, odm
+    for finding in found.values():
+        assert finding.nodes == planners and finding.diagnostic.file == str(launch)
+        assert len(finding.diagnostic.related) == 14  # each node's entry
+    assert "'scna:=/scan_filtered', given to 14 nodes, is never used" in found[4].message
+    assert "has a topic, service or action '/scna'" in found[4].message
+    assert found[4].endpoint == '/scna'
+    assert "/lidar, launched at" in found[6].message and 'outside its scope' in found[6].message
+    assert 'it applies only to /planner_0, which has no' in found[7].message
+
+
+def test_a_duplicate_on_an_assumed_name_is_a_warning_that_says_so() -> None:
+    """Two spawners (no name=, no recorded NODE_NAME) share only the name the analysis
+    assumed: a NODL530 warning naming the assumption; recorded names and __node rules are
+    known, so their duplicates stay NODL550 errors."""
+    analysis = analyse_launch(LAUNCH / 'assumed_names.launch.xml', prefixes=PREFIX)
+    assumed = [(f.diagnostic.line, f.nodes, f.code, f.severity.value)
+               for f in _of(analysis, 'assumed-duplicate-node')]
+    assert assumed == [(4, ('/spawner',), 'NODL530', 'warning'),
+                       (7, ('/imu_filter',), 'NODL530', 'warning')]
+    spawner = _of(analysis, 'assumed-duplicate-node')[0]
+    assert "assumed the name 'spawner'" in spawner.message and 'name=' in spawner.message
+    errors = [(f.diagnostic.line, f.nodes, f.severity.value) for f in _of(analysis, 'duplicate-node')]
+    assert errors == [(10, ('/lidar',), 'error'), (13, ('/driver',), 'error')]
+    assert not analysis.errors or all(f.kind != 'assumed-duplicate-node' for f in analysis.errors)

@@ -39,6 +39,7 @@ KINDS: dict[str, str] = {
     'unnamed-node': 'NODL565',
     'not-analysable': 'NODL566',
     'broken-check': 'NODL567',
+    'assumed-duplicate-node': 'NODL530',
 }
 #: code -> kind.
 KIND_OF_CODE: dict[str, str] = {code: kind for kind, code in KINDS.items()}

@@ -29,7 +29,7 @@ class AnalysedNode:
     # Every launched node lives until the analysis ends: slots spare each one a __dict__
     # (an object more for the garbage collector to walk).
     __slots__ = ('entry', 'match', 'created_name', 'names', 'rules', 'rule_locations', 'settings',
-                 'instance')
+                 'instance', 'name_assumed')
 
     def __init__(self, entry: LaunchEntry, match: Match, name: str, names: NodeNames | None,
                  rules: list[RemapRule], settings: list[ParameterSetting],
@@ -50,6 +50,10 @@ class AnalysedNode:
         self.settings = settings
         #: Its instance (None without a usable definition).
         self.instance = instance
+        #: True when its name is the analysis's guess: launched without ``name=``, its
+        #: registration records no ``NODE_NAME`` and no ``__node`` rule renames it, so
+        #: the executable's name is assumed (the program may name itself otherwise).
+        self.name_assumed = False
 
     @property
     def fqn(self) -> str:
@@ -133,6 +137,9 @@ def build_node(entry: LaunchEntry, match: Match, findings: list[Finding]) -> Ana
             settings.append(item)
     node = AnalysedNode(entry, match, name, names, rules, settings, None)
     node.rule_locations = rule_locations
+    if not entry.name and not match.node_name:
+        node.name_assumed = names is None or names.name == name and not any(
+            rule.kind == 'node' and rule.applies_to(name) for rule in names.rules)
     if match.resolved is None or names is None:
         if match.file is not None and match.resolved is None:
             first = match.problems[0] if match.problems else None
