@@ -98,11 +98,14 @@ class Report:
 
 
 def check_source(source: Source, *, kind: Kind | str | None = None,
-                 file: str | None = None) -> Report:
+                 file: str | None = None, installed: bool = False) -> Report:
     """Read, parse and validate one document; never raises for bad content.
 
     ``kind`` enforces a kind of document (default: detect it).  ``file``
     names the document in diagnostics (default: the path, or ``<string>``).
+    ``installed``: the document is one the reference implementation's
+    ``ament_nodl_register`` installed (ament resource type ``nodl``), read as
+    a node definition even without ``include`` (see :func:`nodl_schema.dialects.adapt`).
     I/O errors such as a missing file propagate as :class:`OSError`.
     """
     wanted = Kind(kind) if kind is not None else None
@@ -121,7 +124,7 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
         return Report(text.file, None, parsed.data, list(parsed.diagnostics), parsed)
     # A dialect (the reference's include files, generate_parameter_library files) is read
     # as NoDL v2 where it has a NoDL meaning; its diagnostics land on the original text.
-    dialect = adapt(parsed)
+    dialect = adapt(parsed, installed)
     early: list[Diagnostic] = []
     if dialect is not None:
         if dialect.data is None:  # recognised, but not a NoDL document: say what it is

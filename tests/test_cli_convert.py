@@ -167,7 +167,10 @@ def test_converts_an_include_document_to_base_mixins_and_main(tmp_path: Path) ->
     assert data['base'] == 'node'
     # local:// paths stay correct relative to where the file is written.
     assert data['mixins'] == ['nodl://arm_common/heartbeat', '../shared/joint_limits.nodl.yaml']
-    assert 'include' not in data and 'codegen' not in data
+    assert 'include' not in data
+    # The codegen block is kept, as the node's codegen.
+    assert data['codegen'] == {'cpp': {'class': 'ArmDriverBase',
+                                       'header': 'arm_driver/arm_driver_base.hpp'}}
     env = dict(os.environ, AMENT_PREFIX_PATH=str(DIALECTS / 'include' / 'prefix'))
     again = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve',
                             str(out_dir / 'arm_driver.nodl.yaml')], cwd=REPO, text=True,

@@ -47,18 +47,61 @@ def test_one_warning_names_the_dialect_at_the_include_key() -> None:
     [warning] = report.warnings
     assert warning.code == 'NODL851'
     assert (warning.line, warning.column) == (5, 1)
-    assert "'include' dialect" in warning.message and 'codegen is ignored' in warning.message
+    assert "'include' dialect" in warning.message and 'codegen kept' in warning.message
     assert warning.path == ('include',)
 
 
-def test_the_codegen_block_is_kept_and_ignored() -> None:
+CODEGEN = {'cpp': {'class': 'ArmDriverBase', 'header': 'arm_driver/arm_driver_base.hpp'}}
+
+
+def test_the_codegen_block_is_kept_as_the_nodes_codegen() -> None:
     import yaml
 
     data = yaml.safe_load((PKG / 'arm_driver.nodl.yaml').read_text())
     reading = read_include(data)
-    assert reading.codegen == {'cpp': {'class': 'ArmDriverBase',
-                                       'header': 'arm_driver/arm_driver_base.hpp'}}
-    assert 'codegen' not in reading.data and 'codegen' not in reading.data['main']
+    assert reading.codegen == CODEGEN
+    assert reading.data['codegen'] == CODEGEN and 'codegen' not in reading.data['main']
+
+
+def test_codegen_survives_load_and_dump() -> None:
+    node = nodl_schema.load_node(PKG / 'arm_driver.nodl.yaml')
+    assert node.codegen == CODEGEN
+    again = nodl_schema.load_node(nodl_schema.dump_nodl(node))
+    assert again.codegen == CODEGEN and again == node
+    assert nodl_schema.load_node(nodl_schema.dump_nodl(node, 'json')).codegen == CODEGEN
+
+
+@pytest.mark.parametrize(('ref', 'line', 'wording'), [
+    ('nodl:/x', 3, "is not a URI: a scheme is followed by '://' (did you mean 'nodl://x'?)"),
+    ('://x', 3, "has no scheme before '://'"),
+    ('common/limits.nodl.yaml', 3, 'is a path, not a URI (write local://common/limits.nodl.yaml)'),
+    ('./limits.nodl.yaml', 3, 'is a path, not a URI (write local://limits.nodl.yaml)'),
+    ('/opt/limits.nodl.yaml', 3, 'is a path, not a URI (an absolute path'),
+    ('nodl:///name', 3, 'has an empty authority'),
+    ('local://', 3, 'has nothing after the scheme'),
+    ('NODL://pkg/name', 3, "has an invalid scheme 'NODL'"),
+    ('has space://pkg/name', 3, "has an invalid scheme 'has space'"),
+    ('local://a b.yaml', 3, 'holds white space'),
+])
+def test_an_include_reference_that_is_not_a_uri_is_an_error_at_its_value(
+        ref: str, line: int, wording: str) -> None:
+    text = f'nodl_version: 2\ninclude:\n  - ref: "{ref}"\n  - ref: nodl://pkg/fine\n'
+    report = check_source(text, file='node.nodl.yaml')
+    [error] = report.errors
+    assert (error.code, error.path_text, error.line, error.column) == (
+        'NODL818', 'include[0].ref', line, 10)
+    assert error.message == f"'{ref}' {wording}" or error.message.startswith(f"'{ref}' {wording}")
+
+
+@pytest.mark.parametrize('ref', ['nodl://pkg/name', 'local://shared/limits.nodl.yaml',
+                                 'local://../common/x.nodl.yaml', 'test://in_memory/doc',
+                                 'https://example.com/x.nodl.yaml', 'git+ssh://host/repo'])
+def test_uris_of_any_scheme_are_include_references(ref: str) -> None:
+    from nodl_schema.dialects.include import uri_problem
+
+    assert uri_problem(ref) is None
+    report = check_source(f'nodl_version: 2\ninclude:\n  - ref: {ref}\n')
+    assert not report.errors, report.errors
 
 
 def test_includes_spelling_and_the_lifecycle_base_description() -> None:

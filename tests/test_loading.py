@@ -519,3 +519,59 @@ def test_a_path_given_as_str_says_to_pass_a_path() -> None:
         load_nodl('examples/laser_driver.nodl.yaml')
     [error] = caught.value.diagnostics
     assert "pathlib.Path('examples/laser_driver.nodl.yaml')" in error.message
+
+
+# -- the reference implementation's schema suite -------------------------------------------
+
+REFERENCE_SUITE = FIXTURES / 'reference_schema_suite'
+#: Documents the reference's schema accepts and the toolkit rejects, and why (see the README
+#: of the fixture folder).  Nothing the reference rejects is accepted here.
+STRICTER = {
+    'include_scheme_specific_shape_is_not_the_schemas_business__0.yaml':
+        "nodl://pkg names no document: NODL217 at the reference (the reference's resolver "
+        'fails later, when it looks the document up)',
+    'include_scheme_specific_shape_is_not_the_schemas_business__1.yaml':
+        'nodl://pkg/nested/name: a registered name holds no /, NODL217 at the reference',
+}
+
+
+def _suite(verdict: str) -> list[Path]:
+    return sorted((REFERENCE_SUITE / verdict).glob('*.yaml'))
+
+
+def test_the_reference_suite_is_all_here() -> None:
+    # 34 documents its tests expect to be valid, 34 invalid (commit 915a4da).
+    assert (len(_suite('valid')), len(_suite('invalid'))) == (34, 34)
+    assert set(STRICTER) <= {p.name for p in _suite('valid')}
+
+
+@pytest.mark.parametrize('path', _suite('valid'), ids=lambda p: p.stem)
+def test_documents_the_reference_accepts(path: Path) -> None:
+    report = check_source(path)
+    if path.name in STRICTER:
+        assert [d.code for d in report.errors] == ['NODL217'], report.diagnostics
+        assert report.errors[0].path_text == 'include[0].ref'
+    else:
+        assert not report.errors, report.errors
+
+
+@pytest.mark.parametrize('path', _suite('invalid'), ids=lambda p: p.stem)
+def test_documents_the_reference_rejects(path: Path) -> None:
+    report = check_source(path)
+    assert report.errors, f'{path.name} is accepted; the reference rejects it'
+    for error in report.errors:  # each at a place in the file, none a traceback
+        assert error.line >= 1 and error.code
+
+
+@pytest.mark.parametrize(('name', 'code', 'where'), [
+    ('codegen_non_object_rejected', 'NODL103', 'codegen'),
+    ('codegen_non_object_value_rejected', 'NODL103', 'codegen.cpp'),
+    ('include_non_uri_ref_rejected__1', 'NODL818', 'include[0].ref'),  # a bare path
+    ('include_non_uri_ref_rejected__2', 'NODL818', 'include[0].ref'),  # ./path
+    ('include_non_uri_ref_rejected__5', 'NODL818', 'include[0].ref'),  # ://pkg/name
+    ('include_non_uri_ref_rejected__6', 'NODL818', 'include[0].ref'),  # nodl:/pkg/name
+    ('include_non_uri_ref_rejected__7', 'NODL818', 'include[0].ref'),  # has space://
+])
+def test_the_reference_rejects_for_the_same_reason(name: str, code: str, where: str) -> None:
+    [error] = check_source(REFERENCE_SUITE / 'invalid' / f'{name}.yaml').errors
+    assert (error.code, error.path_text) == (code, where)

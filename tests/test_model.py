@@ -9,7 +9,7 @@ from typing import Any
 import pytest
 
 from nodl_schema.loading import (
-    check_source, dump_nodl, load_nodl, validate_interface, validate_node)
+    check_source, dump_nodl, load_interface, load_node, load_nodl, validate_interface, validate_node)
 from nodl_schema.model import (
     ENDPOINT_SECTIONS, QOS_POLICIES, ActionEndpoint, Base, Interface, Node, ParameterDefinition,
     QoSProfile, ServiceEndpoint, TopicEndpoint)
@@ -290,3 +290,31 @@ def test_valid_fixtures_cover_every_kind_and_both_formats() -> None:
     kinds = {type(load_nodl(p)).__name__ for p in VALID}
     assert kinds == {'ParameterDefinition', 'Interface', 'Node'}
     assert any(p.suffix == '.json' for p in VALID) and any(p.suffix == '.yaml' for p in VALID)
+
+
+CODEGEN = {'cpp': {'role': 'base_class', 'header': 'rclcpp/rclcpp.hpp'}, 'python': {}}
+
+
+def test_codegen_of_an_interface_is_kept_as_written() -> None:
+    data = {'nodl_version': 2, 'description': 'd', 'codegen': copy.deepcopy(CODEGEN),
+            'publishers': []}
+    iface = Interface.from_dict(data)
+    assert iface.codegen == CODEGEN
+    assert list(iface.to_dict()) == ['nodl_version', 'description', 'codegen', 'publishers']
+    assert iface.to_dict() == data
+    # A copy: changing what was read does not change the model, nor the other way round.
+    data['codegen']['cpp']['role'] = 'changed'
+    assert iface.codegen == CODEGEN
+    iface.to_dict()['codegen']['python']['x'] = 1
+    assert iface.codegen == CODEGEN
+    assert load_interface(dump_nodl(iface)) == iface
+
+
+def test_codegen_of_a_node_is_kept_as_written() -> None:
+    data = {'nodl_version': 2, 'base': 'node', 'codegen': copy.deepcopy(CODEGEN),
+            'main': {'nodl_version': 2}}
+    node = Node.from_dict(data)
+    assert node.codegen == CODEGEN and node.main.codegen is None
+    assert node.to_dict() == data
+    assert load_node(dump_nodl(node, 'json')) == node
+    assert 'codegen' not in Node.from_dict({'nodl_version': 2, 'main': {'nodl_version': 2}}).to_dict()

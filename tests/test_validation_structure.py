@@ -67,7 +67,7 @@ def test_unknown_key_names_the_closest(key: str, suggestion: str) -> None:
 def test_unknown_key_without_a_close_match_lists_the_keys() -> None:
     found = errors({'nodl_version': 2, 'author': 'me'}, Kind.INTERFACE)
     assert [d.message for d in found] == [
-        "unknown key 'author'; expected one of: nodl_version, description, parameters, "
+        "unknown key 'author'; expected one of: nodl_version, description, codegen, parameters, "
         'publishers, subscriptions, service_servers, service_clients, action_servers, '
         'action_clients']
 

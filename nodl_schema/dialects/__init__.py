@@ -74,8 +74,19 @@ class Adapted:
         self.extra = extra or {}
 
 
-def adapt(parsed: ParsedDocument) -> Adapted | None:
-    """Read a parsed document of a dialect (None for a plain NoDL document)."""
+def adapt(parsed: ParsedDocument, installed: bool = False) -> Adapted | None:
+    """Read a parsed document of a dialect (None for a plain NoDL document).
+
+    ``installed``: the document is what the reference implementation's
+    ``ament_nodl_register`` installs (resource type ``nodl``): a node's flat
+    interface, with or without ``include``, read as an include-dialect node
+    without the warning that suggests converting it.  A NoDL v2 node
+    definition (``base``, ``main`` or ``mixins``) is still read as one.
+    """
+    if installed and _installed_reference(parsed.data):
+        from nodl_schema.dialects.include import adapt_include
+
+        return adapt_include(parsed, announce=False)
     dialect = recognise(parsed.data)
     if dialect is None:
         return None
@@ -86,3 +97,11 @@ def adapt(parsed: ParsedDocument) -> Adapted | None:
     from nodl_schema.dialects.genparamlib import adapt_genparamlib
 
     return adapt_genparamlib(parsed)
+
+
+def _installed_reference(data: Any) -> bool:
+    """True for a document the reference registers (a mapping with nodl_version, no v2 node key)."""
+    from nodl_schema.validation.kinds import NODE_KEYS
+
+    return (isinstance(data, dict) and 'nodl_version' in data
+            and not any(key in data for key in NODE_KEYS))

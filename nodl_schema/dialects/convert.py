@@ -140,8 +140,6 @@ def convert_dialect(path: str, dialect: str | None = None, out_dir: str | None =
         file_name = os.path.basename(path)
         header = (f'Converted by nodl convert from {os.path.basename(path)} (the reference '
                   f"implementation's '{reading.key}' dialect).")
-        if reading.codegen is not None:
-            header += '\nIts codegen block has no NoDL v2 meaning and was left out.'
     else:
         from nodl_schema.dialects.genparamlib import read_genparamlib, remapped
 

@@ -8,7 +8,7 @@ flat interface plus a list of documents to merge in::
       - ref: nodl://rclcpp/node                # a built-in base description
       - ref: nodl://my_pkg/diagnostics         # a registered interface definition
       - ref: local://common/limits.nodl.yaml   # a file, relative to this one
-    codegen: {...}                             # code generator settings: kept, not read
+    codegen: {...}                             # code generator settings: kept as they are
     publishers: [...]
 
 NoDL v2 says the same with layers: a built-in base description becomes
@@ -19,6 +19,8 @@ document are placed back at the original keys and lines.
 """
 
 from __future__ import annotations
+
+import re
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
@@ -32,7 +34,8 @@ from nodl_schema.frontends.yaml_json import ParsedDocument
 from nodl_schema.validation.kinds import INCLUDE_KEYS, NODE_KEYS
 
 __all__ = ['INCLUDE_KEYS', 'BASE_DESCRIPTIONS', 'LOCAL_SCHEME', 'CODEGEN_KEY',
-           'is_include_document', 'IncludeReading', 'read_include', 'remapped', 'adapt_include']
+           'is_include_document', 'IncludeReading', 'read_include', 'remapped', 'adapt_include',
+           'uri_problem']
 
 #: The reference's built-in base descriptions and the NoDL v2 base each one is.
 BASE_DESCRIPTIONS = {
@@ -41,10 +44,14 @@ BASE_DESCRIPTIONS = {
 }
 #: The reference's scheme for files relative to the including document.
 LOCAL_SCHEME = 'local://'
-#: The code generators' block: kept (``IncludeReading.codegen``), never read.
+#: The code generators' block: kept (the node's ``codegen``), never interpreted.
 CODEGEN_KEY = 'codegen'
 
 _DIALECT_CODE = 'NODL851'
+_URI_CODE = 'NODL818'
+#: What the reference implementation's schema accepts as an include reference.
+_URI = re.compile(r'[a-z][a-z0-9+.-]*://[^\s/][^\s]*')
+_SCHEME_WORD = re.compile(r'[a-z][a-z0-9+.-]*')
 _ENTRY_CODE = 'NODL852'
 _BOTH_CODE = 'NODL853'
 
@@ -120,21 +127,67 @@ def _reference(entry: Any, path: DocPath, out: list[Diagnostic]) -> str | None:
         out.append(_entry_error(f"'ref' is a reference such as nodl://PACKAGE/NAME or local://FILE, "
                                 f'not {described(ref)}', path + ('ref',)))
         return None
+    problem = uri_problem(ref)
+    if problem is not None:
+        out.append(Diagnostic(Severity.ERROR, problem, path + ('ref',), code=_URI_CODE))
+        return None
     return ref
 
 
-def read_include(data: dict[str, Any]) -> IncludeReading:
-    """Read an include-dialect document (see :func:`is_include_document`) as a node definition."""
+def uri_problem(ref: str) -> str | None:
+    """What keeps ``ref`` from being an include reference (a ``scheme://body`` URI), or None.
+
+    The reference implementation's schema takes a lower-case scheme, ``://``
+    and a body that neither starts with ``/`` nor holds white space; whether
+    the scheme has a resolver, and what its body must look like, is decided
+    when the reference is resolved (and, for ``nodl://``, by the mixin rules).
+    """
+    from nodl_schema.validation.messages import show
+
+    if _URI.fullmatch(ref):
+        return None
+    shown = show(ref)
+    scheme, sep, body = ref.partition(':')
+    if sep and _SCHEME_WORD.fullmatch(scheme.lower()) and not body.startswith('//'):
+        fixed = f"{scheme.lower()}://{body.lstrip('/')}"
+        return (f"{shown} is not a URI: a scheme is followed by '://' (did you mean {show(fixed)}?)")
+    if ref.startswith(':') or (sep and not scheme):
+        return f"{shown} has no scheme before '://'; write nodl://PACKAGE/NAME or local://FILE"
+    if '://' not in ref:
+        path = ref[2:] if ref.startswith('./') else ref
+        hint = ('an absolute path cannot name the same file on another machine; use '
+                'nodl://PACKAGE/NAME' if ref.startswith('/') else f'write local://{path}')
+        return f'{shown} is a path, not a URI ({hint})'
+    if _SCHEME_WORD.fullmatch(scheme) is None:
+        return (f'{shown} has an invalid scheme {show(scheme)}: a scheme is lower-case letters, '
+                "digits, '+', '.' or '-', starting with a letter")
+    if not body[2:]:
+        return f'{shown} has nothing after the scheme; write nodl://PACKAGE/NAME or local://FILE'
+    if body[2:].startswith('/'):
+        return (f"{shown} has an empty authority (a '/' right after '://'); a local:// path is "
+                'relative to the including file, a nodl:// reference is nodl://PACKAGE/NAME')
+    return f'{shown} holds white space; a URI cannot'
+
+
+def read_include(data: dict[str, Any], announce: bool = True) -> IncludeReading:
+    """Read an include-dialect document (see :func:`is_include_document`) as a node definition.
+
+    A document without ``include`` is read too (as a node of its flat interface
+    alone): that is what the reference implementation registers in the ament
+    index for a node that includes nothing.  ``announce=False`` leaves out the
+    warning that names the dialect (for such an installed document, which its
+    user cannot convert).  The ``codegen`` block is kept, as the node's ``codegen``.
+    """
     from nodl_schema.validation.messages import described
 
     present = [key for key in INCLUDE_KEYS if key in data]
-    key = present[0]
+    key = present[0] if present else INCLUDE_KEYS[0]
     out: list[Diagnostic] = []
     if len(present) > 1:
         out.append(Diagnostic(Severity.ERROR, "'include' and 'includes' are two spellings of one key; "
                               'list every include under one of them', (present[1],), anchor='key',
                               code=_BOTH_CODE))
-    entries = data[key]
+    entries = data.get(key)
     if entries is None:
         entries = []
     elif not isinstance(entries, list):
@@ -166,14 +219,17 @@ def read_include(data: dict[str, Any]) -> IncludeReading:
         node['base'] = base
     if mixins:
         node['mixins'] = mixins
+    if CODEGEN_KEY in data:
+        node[CODEGEN_KEY] = data[CODEGEN_KEY]
     node['main'] = main
     layers = ' + '.join(([f'base: {base}'] if base else []) + ([f'{len(mixins)} mixin(s)'] if mixins
                                                                 else []) + ['main'])
-    out.insert(0, Diagnostic(
-        Severity.WARNING, f"this file is written in the reference implementation's '{key}' dialect; "
-        f'it is read as a node definition ({layers}){"; codegen is ignored" if CODEGEN_KEY in data else ""}'
-        '; `nodl convert FILE -o DIR` rewrites it as base + mixins + main', (key,), anchor='key',
-        code=_DIALECT_CODE))
+    if announce and present:
+        out.insert(0, Diagnostic(
+            Severity.WARNING, f"this file is written in the reference implementation's '{key}' dialect; "
+            f'it is read as a node definition ({layers}{", codegen kept" if CODEGEN_KEY in data else ""})'
+            '; `nodl convert FILE -o DIR` rewrites it as base + mixins + main', (key,), anchor='key',
+            code=_DIALECT_CODE))
     return IncludeReading(key, node, out, mixin_origins, base_origin, data.get(CODEGEN_KEY))
 
 
@@ -182,11 +238,12 @@ def remapped(parsed: ParsedDocument, reading: IncludeReading) -> ParsedDocument:
     return RemappedDocument(parsed, reading)
 
 
-def adapt_include(parsed: ParsedDocument) -> Adapted:
-    """The loader's view of an include-dialect document (an :class:`~nodl_schema.dialects.Adapted`)."""
+def adapt_include(parsed: ParsedDocument, announce: bool = True) -> Adapted:
+    """The loader's view of an include-dialect document (an :class:`~nodl_schema.dialects.Adapted`);
+    ``announce`` as for :func:`read_include`."""
     from nodl_schema.dialects import INCLUDE, Adapted
 
-    reading = read_include(parsed.data)
+    reading = read_include(parsed.data, announce)
     placed = [parsed.place(d) for d in reading.diagnostics]
     return Adapted(INCLUDE, reading.data, remapped(parsed, reading), placed,
                    {CODEGEN_KEY: reading.codegen} if reading.codegen is not None else None)

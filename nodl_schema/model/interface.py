@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field
 from typing import Any, Union
 
@@ -111,11 +112,17 @@ class Interface:
     service_clients: list[ServiceEndpoint] | None = None
     action_servers: list[ActionEndpoint] | None = None
     action_clients: list[ActionEndpoint] | None = None
+    #: Settings for code generators, keyed by tool (``cpp``, ``python``...), kept as written
+    #: and never interpreted (the reference implementation's ``codegen``).
+    codegen: dict[str, dict[str, Any]] | None = None
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> 'Interface':
         """Build from a validated mapping."""
         iface = cls(data.get('nodl_version', 2), data.get('description'))
+        codegen = data.get('codegen')
+        if codegen is not None:
+            iface.codegen = copy.deepcopy(codegen)
         params = data.get('parameters')
         if params is not None:
             iface.parameters = {name: ParameterDefinition.from_dict(p) for name, p in params.items()}
@@ -130,6 +137,8 @@ class Interface:
         out: dict[str, Any] = {'nodl_version': self.nodl_version}
         if self.description is not None:
             out['description'] = self.description
+        if self.codegen is not None:
+            out['codegen'] = copy.deepcopy(self.codegen)
         if self.parameters is not None:
             out['parameters'] = {name: p.to_dict() for name, p in self.parameters.items()}
         for section in ENDPOINT_SECTIONS:

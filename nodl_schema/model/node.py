@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import enum
 from dataclasses import dataclass, field
 from typing import Any, Union
@@ -34,6 +35,9 @@ class Node:
     nodl_version: int = 2
     base: Base | None = None
     mixins: list[Mixin] | None = None
+    #: Settings for code generators, keyed by tool, kept as written and never interpreted
+    #: (the reference implementation's ``codegen``; an include-dialect file's lands here).
+    codegen: dict[str, dict[str, Any]] | None = None
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> 'Node':
@@ -46,6 +50,7 @@ class Node:
             Base(base) if base is not None else None,
             [m if isinstance(m, str) else Interface.from_dict(m) for m in mixins]
             if mixins is not None else None,
+            copy.deepcopy(data['codegen']) if data.get('codegen') is not None else None,
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -55,5 +60,7 @@ class Node:
             out['base'] = Base(self.base).value
         if self.mixins is not None:
             out['mixins'] = [m if isinstance(m, str) else m.to_dict() for m in self.mixins]
+        if self.codegen is not None:
+            out['codegen'] = copy.deepcopy(self.codegen)
         out['main'] = self.main.to_dict()
         return out
