@@ -245,7 +245,7 @@ def test_file_names_of_describe_all() -> None:
 
 @pytest.fixture(scope='module')
 def session():
-    with ros_session('describe_tests') as node:
+    with ros_session() as node:
         yield node
 
 

@@ -52,7 +52,7 @@ def actions() -> Iterator[NodeProcess]:
 
 @pytest.fixture(scope='module')
 def session():
-    with ros_session('observe_tests') as node:
+    with ros_session() as node:
         yield node
 
 
@@ -235,7 +235,7 @@ def test_namesakes_are_counted_after_the_discovery_window_of_a_fresh_session(ros
 
 def test_the_discovery_window_counts_from_the_session_start_within_the_timeout(ros_node) -> None:
     node = ros_node('plain_node.py', 'alone', '/obs_twin')
-    with ros_session('window_tests') as session:
+    with ros_session() as session:
         wait_for_node(session, node.fqn, 10)
         # a session that has only just started discovering waits out the window ...
         session.nodl_started = time.monotonic()
@@ -272,7 +272,7 @@ def test_node_dying_while_observed_again_and_again_gives_a_live_error(ros_node) 
     start = time.monotonic()
     error: LiveError | None = None
     observations = 0
-    with ros_session('dying_watch') as session:
+    with ros_session() as session:
         while time.monotonic() - start < lifetime + 15:
             call = time.monotonic()
             try:
@@ -320,7 +320,7 @@ def test_node_whose_endpoints_never_settle_is_observed_at_the_deadline(ros_node,
     script.write_text(_FLAPPING_NODE, encoding='utf-8')
     node = ros_node(str(script), 'flapper', '/obs')
     timeout = 1.0
-    with ros_session('flap_watch') as session:
+    with ros_session() as session:
         wait_for_node(session, node.fqn, 15)
         start = time.monotonic()
         observed = observe_node(node.fqn, timeout=timeout, parameters=False, session=session)
@@ -356,7 +356,7 @@ def test_node_that_never_answers_parameter_requests(ros_node, tmp_path) -> None:
     script.write_text(_SILENT_NODE, encoding='utf-8')
     node = ros_node(str(script), 'silent', '/obs')
     timeout = 1.0
-    with ros_session('silent_watch') as session:
+    with ros_session() as session:
         wait_for_node(session, node.fqn, 15)
         start = time.monotonic()
         observed = observe_node(node.fqn, timeout=timeout, session=session)

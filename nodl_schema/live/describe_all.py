@@ -8,7 +8,7 @@ from typing import Any
 
 from nodl_schema.live.describe import describe_node, render_description
 from nodl_schema.live.observe import DISCOVERY_WINDOW, list_nodes
-from nodl_schema.live.session import LiveError, ros_session
+from nodl_schema.live.session import LiveError, is_hidden_node, ros_session
 
 __all__ = ['describe_all', 'file_name_for']
 
@@ -56,6 +56,11 @@ def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = Tru
         os.makedirs(directory, exist_ok=True)
         written = []
         for fqn in names:
+            if is_hidden_node(fqn):
+                # as `ros2 node list` does without --all: a tool's or daemon's node
+                written.append((fqn, '(skipped)', ['a hidden node (its name starts with _), '
+                                                   'left out']))
+                continue
             try:
                 description = describe_node(fqn, timeout=timeout, parameters=parameters,
                                             session=node, client_library=client_library)

@@ -13,7 +13,8 @@ from typing import Any
 
 from nodl_schema.live.qos import qos_from_rclpy
 from nodl_schema.naming import join_name
-from nodl_schema.live.session import LiveError, NodeNotFound, did_you_mean, ros_session, split_node_name
+from nodl_schema.live.session import (LiveError, NodeNotFound, did_you_mean, is_toolkit_node,
+                                      ros_session, split_node_name, without_toolkit_nodes)
 from nodl_schema.vocabulary import SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
@@ -82,27 +83,29 @@ class ObservedNode:
 
 
 def list_nodes(node: Any) -> list[str]:
-    """Fully qualified names of the nodes in the graph (other than ``node``)."""
-    own = node.get_fully_qualified_name()
+    """Fully qualified names of the nodes in the graph, less the toolkit's own observers.
+
+    Hidden nodes (``_name``) other than the toolkit's are listed: each verb says
+    what it does with them.
+    """
     names = []
     for name, namespace in node.get_node_names_and_namespaces():
         fqn = join_name(namespace, name)
-        if fqn != own:
+        if not is_toolkit_node(fqn):
             names.append(fqn)
     return sorted(set(names))
 
 
 def count_nodes(node: Any) -> dict[str, int]:
-    """How many nodes in the graph have each fully qualified name (other than ``node``).
+    """How many nodes in the graph have each fully qualified name (less the toolkit's own).
 
     A name held more than once is a name several nodes share (usually in
     several processes): the graph cannot tell their endpoints apart.
     """
-    own = node.get_fully_qualified_name()
     counts: dict[str, int] = {}
     for name, namespace in node.get_node_names_and_namespaces():
         fqn = join_name(namespace, name)
-        if fqn != own:
+        if not is_toolkit_node(fqn):
             counts[fqn] = counts.get(fqn, 0) + 1
     return counts
 
@@ -182,7 +185,7 @@ def _settle(node: Any, name: str, namespace: str, fqn: str, timeout: float,
 def _topic_qos(node: Any, topic: str, name: str, namespace: str, publishers: bool) -> Any:
     infos = (node.get_publishers_info_by_topic(topic) if publishers
              else node.get_subscriptions_info_by_topic(topic))
-    for info in infos:
+    for info in without_toolkit_nodes(infos):
         if info.node_name == name and info.node_namespace == namespace:
             return info.qos_profile
     return None

@@ -2,13 +2,44 @@
 
 from __future__ import annotations
 
+import itertools
 import os
 import time
-from typing import Any, Iterator
+from typing import Any, Iterable, Iterator
 from contextlib import contextmanager
 
 __all__ = ['LiveError', 'NodeNotFound', 'DuplicateNode', 'require_rclpy', 'ros_session',
-           'split_node_name', 'node_name_problem', 'did_you_mean']
+           'split_node_name', 'node_name_problem', 'did_you_mean', 'OBSERVER_PREFIX',
+           'HIDDEN_NODE_PREFIX', 'is_hidden_node', 'is_toolkit_node', 'without_toolkit_nodes']
+
+#: A node whose name starts with this is hidden, as ROS hides nodes (``ros2 node list``
+#: leaves them out without ``--all``): tools and daemons.
+HIDDEN_NODE_PREFIX = '_'
+#: The toolkit's own observer nodes are named ``_nodl_observer_<pid>_<n>``: hidden, and
+#: unique per process and per session, so that two sessions (in one process or in two)
+#: are never namesakes of each other.
+OBSERVER_PREFIX = '_nodl_observer_'
+_SESSIONS = itertools.count(1)
+
+
+def is_hidden_node(fqn: str) -> bool:
+    """Whether the node ``/namespace/name`` is hidden (its name starts with ``_``)."""
+    return fqn.rpartition('/')[2].startswith(HIDDEN_NODE_PREFIX)
+
+
+def is_toolkit_node(fqn: str) -> bool:
+    """Whether ``/namespace/name`` is one of the toolkit's own observer nodes (any process's)."""
+    return fqn.rpartition('/')[2].startswith(OBSERVER_PREFIX)
+
+
+def without_toolkit_nodes(infos: Iterable[Any]) -> list[Any]:
+    """Topic endpoint infos (``get_publishers_info_by_topic``...) less the toolkit's own.
+
+    Every observer node publishes ``/parameter_events`` and serves
+    ``~/get_type_description``, as every rclpy node does; they are not the user's.
+    """
+    return [i for i in infos
+            if not i.node_name.startswith(OBSERVER_PREFIX)]
 
 
 class LiveError(Exception):
@@ -74,8 +105,12 @@ def split_node_name(name: str) -> tuple[str, str]:
 
 
 @contextmanager
-def ros_session(name: str = 'nodl_observer') -> Iterator[Any]:
-    """Yield an observer node in a private rclpy context; everything is shut down after."""
+def ros_session() -> Iterator[Any]:
+    """Yield an observer node in a private rclpy context; everything is shut down after.
+
+    The node is hidden and unique (see :data:`OBSERVER_PREFIX`); the live features
+    leave it, and every other session's, out of what they report.
+    """
     rclpy = require_rclpy()
     from rclpy.executors import SingleThreadedExecutor
 
@@ -84,7 +119,8 @@ def ros_session(name: str = 'nodl_observer') -> Iterator[Any]:
                                       '--log-level', 'fatal'])
     node = None
     try:
-        node = rclpy.create_node(f'{name}_{os.getpid()}', context=context,
+        node = rclpy.create_node(f'{OBSERVER_PREFIX}{os.getpid()}_{next(_SESSIONS)}',
+                                 context=context,
                                  start_parameter_services=False,
                                  enable_rosout=False)
         executor = SingleThreadedExecutor(context=context)

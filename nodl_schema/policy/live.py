@@ -19,10 +19,7 @@ from nodl_schema.policy.enclaves import EnclaveMapping
 from nodl_schema.policy.generate import PolicyResult, policy_for_instances
 from nodl_schema.policy.model import Source
 
-__all__ = ['LivePolicy', 'live_policy', 'HIDDEN_NODE_PREFIX']
-
-#: Nodes whose name starts with this are hidden (tools, daemons): left out and listed.
-HIDDEN_NODE_PREFIX = '_'
+__all__ = ['LivePolicy', 'live_policy']
 
 
 class LivePolicy(NamedTuple):
@@ -62,15 +59,15 @@ def live_policy(*, timeout: float = 5.0, settle: float = 3.5, distro: str = DEFA
     """
     from nodl_schema.live.describe_all import _discover
     from nodl_schema.live.observe import observe_node
-    from nodl_schema.live.session import LiveError, ros_session
+    from nodl_schema.live.session import LiveError, is_hidden_node, ros_session
 
     instances = []
     unobserved: list[str] = []
     observed_names: list[str] = []
-    with ros_session('_nodl_policy_observer') as node:
+    with ros_session() as node:
         names = _discover(node, timeout, settle)
         for fqn in names:
-            if fqn.rsplit('/', 1)[-1].startswith(HIDDEN_NODE_PREFIX):
+            if is_hidden_node(fqn):
                 unobserved.append(f'{fqn}: a hidden node, left out')
                 continue
             try:
