@@ -34,7 +34,8 @@ __all__ = [
     # document kinds
     'Kind', 'NODE_KEYS', 'INTERFACE_KEYS',
     # ament index
-    'NODE_RESOURCE', 'INTERFACE_RESOURCE', 'LEGACY_RESOURCE', 'NODE_INFO_RESOURCE', 'RESOURCE_TYPES',
+    'NODE_RESOURCE', 'INTERFACE_RESOURCE', 'LEGACY_RESOURCE', 'NODE_INFO_RESOURCE', 'REFERENCE_RESOURCE',
+    'RESOURCE_TYPES',
     'RESOURCE_SEPARATOR', 'resource_name',
     # parameter types
     'SCALAR_TYPES', 'ARRAY_TYPES', 'FIXED_BASES', 'PARAMETER_TYPES', 'ALL_TYPE_WORDS',
@@ -160,6 +161,11 @@ LEGACY_RESOURCE = 'nodl_desc'
 #: Resource type of what a registered node records besides its file (its plugin class, its
 #: default node name: ``nodl_node_info/<package>__<executable>``, see :mod:`nodl_schema.index.node_info`).
 NODE_INFO_RESOURCE = 'nodl_node_info'
+#: Resource type the reference implementation's current ``ament_nodl_register(NAME FILE f
+#: [PACKAGE p])`` installs (``nodl/<package>__<name>``, the entry holding the document itself,
+#: its ``local://`` includes rewritten to ``nodl://``): read as a node definition of executable
+#: NAME and, for ``nodl://<package>/<name>``, as a document to include.
+REFERENCE_RESOURCE = 'nodl'
 #: Document kind -> resource type it is registered under.
 RESOURCE_TYPES: dict[Kind, str] = {Kind.NODE: NODE_RESOURCE, Kind.INTERFACE: INTERFACE_RESOURCE}
 #: Between the package and the executable (or interface name) in a resource name.

@@ -140,3 +140,21 @@ def test_json_output_stays_json_when_a_python_launch_file_prints(tmp_path: Path)
     assert done.returncode == 0, done.stderr
     assert json.loads(done.stdout)['nodes'] == []
     assert 'starting up' in done.stderr
+
+
+def test_a_system_of_nodes_registered_by_the_references_ament_nodl_register() -> None:
+    prefix = REPO / 'tests' / 'fixtures' / 'index' / 'reference'
+    launch = REPO / 'tests' / 'fixtures' / 'index' / 'reference_launch' / 'robot.launch.xml'
+    env = dict(os.environ, AMENT_PREFIX_PATH=str(prefix), NO_COLOR='1')
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'analyse', str(launch),
+                             '--format', 'json'], cwd=REPO, env=env, capture_output=True,
+                            text=True, timeout=120)
+    assert result.returncode == 0, result.stdout + result.stderr
+    report = json.loads(result.stdout)
+    nodes = {n['name']: n for n in report['nodes']}
+    assert set(nodes) == {'/talker', '/listener', '/front/lidar'}, report['nodes']
+    assert all('definition' in n and 'ref_robot__' in str(n['definition']) for n in nodes.values())
+    # The talker's and the listener's definitions meet on /chatter; the lidar's rewritten
+    # include (nodl://ref_robot/sensor_common) gives it /clock, which nothing publishes.
+    codes = {f['code'] for f in report['findings']}
+    assert 'NODL555' in codes and not {'NODL306', 'NODL301'} & codes, report['findings']

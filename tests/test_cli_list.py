@@ -109,3 +109,14 @@ def test_kind_with_nothing_to_list_says_which_kind() -> None:
     result = nodl('--kind', 'interface', 'delta')
     assert result.returncode == 0 and result.stdout == ''
     assert "no interface definitions registered for package 'delta'" in result.stderr
+
+
+def test_lists_what_the_references_ament_nodl_register_installed() -> None:
+    reference = str(INDEX / 'reference')
+    result = nodl('ref_robot', prefixes=reference)
+    assert result.returncode == 0, result.stderr
+    entry = os.path.join(reference, 'share', 'ament_index', 'resource_index', 'nodl', 'ref_robot__')
+    assert rows(result.stdout) == [('ref_robot', 'node', name, entry + name)
+                                   for name in ('lidar', 'listener', 'sensor_common', 'talker')]
+    everything = json.loads(nodl('--format', 'json', prefixes=reference).stdout)
+    assert ('custom_pkg', 'custom_exe') in {(r['package'], r['name']) for r in everything}

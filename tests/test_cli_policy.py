@@ -75,3 +75,27 @@ def test_invalid_definition_exits_1_without_writing(tmp_path: Path):
     result = nodl(str(bad))
     assert result.returncode == 1 and result.stdout == ''
     assert f'{bad}:3:' in result.stderr and 'no policy written' in result.stderr
+
+
+def test_a_policy_for_nodes_registered_by_the_references_ament_nodl_register(tmp_path: Path):
+    import os
+
+    fixtures = REPO / 'tests' / 'fixtures' / 'index'
+    env = dict(os.environ, AMENT_PREFIX_PATH=str(fixtures / 'reference'))
+    out = tmp_path / 'robot.policy.xml'
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy',
+                             str(fixtures / 'reference_launch' / 'robot.launch.xml'), '-o', str(out)],
+                            cwd=REPO, env=env, text=True, capture_output=True, timeout=60)
+    assert result.returncode == 0, result.stdout + result.stderr
+    policy = out.read_text()
+    for enclave in ('/talker', '/listener', '/front/lidar'):
+        assert f'<enclave path="{enclave}">' in policy
+    # From the flat documents, and through the lidar's rewritten include.
+    assert '<topic>chatter</topic>' in policy
+    assert "subscription '/clock' (nodl://ref_robot/sensor_common)" in policy
+    # A definition given as PACKAGE EXECUTABLE (here the PACKAGE override's) is found too.
+    named = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', 'custom_pkg', 'custom_exe',
+                            '--name', '/reset_node'], cwd=REPO, env=env, text=True,
+                           capture_output=True, timeout=60)
+    assert named.returncode == 0, named.stdout + named.stderr
+    assert '<service>~/reset</service>' in named.stdout

@@ -188,3 +188,17 @@ def test_a_node_that_redefines_its_base_cannot_be_shown() -> None:
     assert result.returncode == 1
     assert result.stdout == ''
     assert 'NODL307' in result.stderr and 'Traceback' not in result.stderr
+
+
+def test_show_a_node_the_references_ament_nodl_register_installed() -> None:
+    reference = str(FIXTURES / 'index' / 'reference')
+    result = nodl('ref_robot', 'lidar', '--layers', prefixes=reference)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith("# client library: rclcpp (package 'ref_robot' is built with "
+                                    'ament_cmake)\n')
+    assert '# layer: nodl://ref_robot/sensor_common\n  frame_id:' in result.stdout
+    shown = load_interface(nodl('ref_robot', 'talker', prefixes=reference).stdout)
+    assert shown.codegen == {'cpp': {'role': 'base_class', 'header': 'ref_robot/talker_base.hpp'}}
+    assert set(shown.parameters) == {'greeting'}
+    included = load_interface(nodl('nodl://ref_robot/sensor_common', prefixes=reference).stdout)
+    assert set(included.parameters) == {'frame_id'}

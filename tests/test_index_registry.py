@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES
+import nodl_schema
 from nodl_schema.composition import ResolutionError
 from nodl_schema.index.registry import (
     Registration, describe_missing, find_node, list_registrations, read_registration)
@@ -142,3 +143,85 @@ def test_names_may_contain_double_underscores_after_the_package(tmp_path: Path) 
     [registration] = list_registrations(prefixes=[str(tmp_path)])
     assert (registration.package, registration.name) == ('pkg', 'my__exe')
     assert find_node('pkg', 'my__exe', [str(tmp_path)]) is not None
+
+
+# -- what the reference implementation's current ament_nodl_register installs ---------------
+# tests/fixtures/index/reference is such an install: nodl/<package>__<name> entries holding
+# the (local:// -> nodl:// rewritten) documents, copies under share/<package>/nodl/, and a
+# PACKAGE override (custom_pkg) that is no installed package.
+
+REFERENCE = str(FIXTURES / 'index' / 'reference')
+
+
+def reference_entry(name: str) -> str:
+    return entry(REFERENCE, 'nodl', name)
+
+
+def test_the_reference_registrations_are_listed_as_nodes() -> None:
+    assert list_registrations(prefixes=[REFERENCE]) == [
+        Registration('custom_pkg', 'custom_exe', 'node', reference_entry('custom_pkg__custom_exe')),
+        Registration('ref_robot', 'lidar', 'node', reference_entry('ref_robot__lidar')),
+        Registration('ref_robot', 'listener', 'node', reference_entry('ref_robot__listener')),
+        Registration('ref_robot', 'sensor_common', 'node', reference_entry('ref_robot__sensor_common')),
+        Registration('ref_robot', 'talker', 'node', reference_entry('ref_robot__talker')),
+    ]
+    assert list_registrations('ref_robot', [REFERENCE], kind='interface') == []
+    assert [r.name for r in list_registrations('custom_pkg', [REFERENCE], kind='node')] == ['custom_exe']
+
+
+def test_a_reference_registration_is_found_and_read_as_a_node() -> None:
+    found = find_node('ref_robot', 'talker', [REFERENCE])
+    assert found == Registration('ref_robot', 'talker', 'node', reference_entry('ref_robot__talker'))
+    assert 'Publishes greetings' in read_registration(found, [REFERENCE]).text
+    assert find_node('ref_robot', 'nothing', [REFERENCE]) is None
+    assert describe_missing('ref_robot', 'nothing', [REFERENCE]) == (
+        "package 'ref_robot' registers no node definition for 'nothing' (it has: lidar, listener, "
+        'sensor_common, talker)')
+
+
+def test_a_node_of_our_own_registration_wins_over_the_references(tmp_path: Path) -> None:
+    own = tmp_path / 'share' / 'ament_index' / 'resource_index' / 'nodl_nodes'
+    own.mkdir(parents=True)
+    (own / 'ref_robot__talker').write_text('nodl_version: 2\nmain:\n  nodl_version: 2\n')
+    prefixes = [REFERENCE, str(tmp_path)]
+    talker = [r for r in list_registrations('ref_robot', prefixes) if r.name == 'talker']
+    assert talker == [Registration('ref_robot', 'talker', 'node', str(own / 'ref_robot__talker'))]
+    assert find_node('ref_robot', 'talker', prefixes) == talker[0]
+
+
+def test_a_flat_reference_document_composes_as_a_node_of_its_interface() -> None:
+    from nodl_schema.index.registry import compose_registered
+
+    composed, diagnostics, source = compose_registered('ref_robot', 'talker', [REFERENCE])
+    assert composed is not None, diagnostics
+    assert source == reference_entry('ref_robot__talker')
+    # No dialect warning for an installed document: its user cannot convert it.
+    assert [d.code for d in diagnostics] == []
+    assert [l.label for l in composed.layers] == ['main']
+    assert set(composed.interface.parameters) == {'greeting'}
+    assert composed.node.codegen == composed.interface.codegen == {
+        'cpp': {'role': 'base_class', 'header': 'ref_robot/talker_base.hpp'}}
+
+
+def test_rewritten_includes_resolve_through_the_reference_registrations() -> None:
+    from nodl_schema.index.registry import compose_registered
+
+    composed, diagnostics, _ = compose_registered('ref_robot', 'lidar', [REFERENCE], 'rclcpp')
+    assert composed is not None, diagnostics
+    assert [l.label for l in composed.layers] == [
+        'base:node', 'nodl://ref_robot/sensor_common', 'main']
+    assert {'frame_id', 'use_sim_time'} <= set(composed.interface.parameters)
+    assert '/clock' in {s.name for s in composed.interface.subscriptions}
+    assert composed.interface.codegen == {'cpp': {'role': 'base_class'}}
+
+
+def test_a_missing_nodl_reference_names_both_resource_types(tmp_path: Path) -> None:
+    from nodl_schema import compose
+
+    text = 'nodl_version: 2\ninclude:\n  - ref: nodl://ref_robot/no_such\n'
+    with pytest.raises(nodl_schema.ValidationError) as caught:
+        compose(text, prefixes=[REFERENCE])
+    [error] = caught.value.errors
+    assert ("package 'ref_robot' registers no interface definition 'no_such' (it registers: lidar, "
+            'listener, sensor_common, talker)') in error.message
+    assert reference_entry('ref_robot__no_such') in error.message

@@ -5,7 +5,12 @@ Interface definitions are registered under the resource type
 resource's content is the path of the installed file relative to
 ``share/<package>`` (what ``ament_nodl_register_interface`` and the Python
 helper write), an absolute path (the build-time staging index), or the
-document itself (as the reference implementation registers it).
+document itself.
+
+What the reference implementation's current ``ament_nodl_register`` installs
+(resource type ``nodl``, same ``<package>__<name>`` key, the document itself
+as content) is found too, after ``nodl_interfaces``: the reference resolves
+``nodl://<package>/<name>`` there.
 """
 
 from __future__ import annotations
@@ -17,7 +22,7 @@ from nodl_schema.composition.resolvers import (
 from nodl_schema.files import tidy_path
 from nodl_schema.frontends.source import read_regular
 from nodl_schema.index import ament
-from nodl_schema.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, resource_name
+from nodl_schema.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, REFERENCE_RESOURCE, resource_name
 
 __all__ = ['AmentIndexResolver', 'read_registered', 'INTERFACE_RESOURCE', 'NODE_RESOURCE',
            'resource_name']
@@ -61,18 +66,20 @@ class AmentIndexResolver(ResolverExtension):
         prefixes = list(given) if given is not None else ament.prefix_paths()
         where = 'prefixes searched' if given is not None else 'AMENT_PREFIX_PATH'
         key = resource_name(package, name)
-        resource = ament.get_resource(INTERFACE_RESOURCE, key, prefixes)
+        resource = (ament.get_resource(INTERFACE_RESOURCE, key, prefixes)
+                    or ament.get_resource(REFERENCE_RESOURCE, key, prefixes))
         if resource is not None:
             return read_registered(resource, package)
-        searched = [ament.resource_file(p, INTERFACE_RESOURCE, key) for p in prefixes]
+        searched = [ament.resource_file(p, t, key) for t in (INTERFACE_RESOURCE, REFERENCE_RESOURCE)
+                    for p in prefixes]
         if not prefixes:
             if given is not None:
                 raise ResolutionError('no ament prefix was given to search, so no package can be found')
             raise ResolutionError('AMENT_PREFIX_PATH is empty, so no package can be found; '
                                   'source the workspace (install/setup.bash) first')
         prefix = resource_name(package, '')
-        available = sorted(n[len(prefix):] for n in ament.get_resources(INTERFACE_RESOURCE, prefixes)
-                           if n.startswith(prefix))
+        available = sorted({n[len(prefix):] for t in (INTERFACE_RESOURCE, REFERENCE_RESOURCE)
+                            for n in ament.get_resources(t, prefixes) if n.startswith(prefix)})
         if available:
             raise ResolutionError(f"package '{package}' registers no interface definition "
                                   f"'{name}' (it registers: {', '.join(available)})", searched)

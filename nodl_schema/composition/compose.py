@@ -245,6 +245,10 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None,
     diagnostics += merged.diagnostics
     if any(d.severity is Severity.ERROR for d in merged.diagnostics):
         return None, diagnostics
+    if node.codegen is not None:  # the node's code generator settings, as written (not merged)
+        import copy
+
+        merged.interface.codegen = copy.deepcopy(node.codegen)
     return ComposedNode(node, report.file, layers, merged.interface, diagnostics,
                         merged.declarations, client_library), diagnostics
 

@@ -3,6 +3,12 @@
 * ``nodl_nodes/<package>__<executable>``: a node definition for an executable;
 * ``nodl_interfaces/<package>__<name>``: an interface definition, used as
   ``nodl://<package>/<name>``;
+* ``nodl/<package>__<name>``: what the reference implementation's current
+  ``ament_nodl_register(NAME FILE f [PACKAGE p])`` installs, the entry holding
+  the document itself: a node definition of executable ``name`` (read in the
+  include dialect, a flat document as a node of that interface alone), and
+  also what ``nodl://<package>/<name>`` finds when no interface definition of
+  that name is registered;
 * legacy packages: the ``nodl_desc/<package>`` marker (spec 001) and a
   ``package.xml`` that exports ``<interface path="..."/>`` (spec 000).
 """
@@ -19,6 +25,7 @@ from typing import NamedTuple
 from nodl_schema import composition, loading
 from nodl_schema.composition.ament_resolver import (
     INTERFACE_RESOURCE, NODE_RESOURCE, read_registered, resource_name)
+from nodl_schema.vocabulary import REFERENCE_RESOURCE
 from nodl_schema.composition.resolvers import ResolutionError, Resolved
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.index import ament
@@ -28,7 +35,9 @@ from nodl_schema.vocabulary import RESOURCE_SEPARATOR
 __all__ = ['Registration', 'list_registrations', 'find_node', 'read_registration',
            'compose_registered', 'describe_missing']
 
-_KINDS = {NODE_RESOURCE: 'node', INTERFACE_RESOURCE: 'interface'}
+_KINDS = {NODE_RESOURCE: 'node', INTERFACE_RESOURCE: 'interface', REFERENCE_RESOURCE: 'node'}
+#: Where a node definition may be registered, in the order they are looked up.
+_NODE_RESOURCES = (NODE_RESOURCE, REFERENCE_RESOURCE)
 
 
 class Registration(NamedTuple):
@@ -70,6 +79,10 @@ def list_registrations(package: str | None = None, prefixes: list[str] | None = 
     found: list[Registration] = []
     if kind in (None, 'node'):
         found += _v2(NODE_RESOURCE, prefixes, package)
+        # The reference's registrations: a node's own registration wins over one of the same name.
+        own = {(r.package, r.name) for r in found}
+        found += [r for r in _v2(REFERENCE_RESOURCE, prefixes, package)
+                  if (r.package, r.name) not in own]
     if kind in (None, 'interface'):
         found += _v2(INTERFACE_RESOURCE, prefixes, package)
     if kind in (None, 'node'):
@@ -90,9 +103,21 @@ def find_node(package: str, executable: str,
                             lambda: _find_node(package, executable, prefixes))
 
 
+def _node_resource(package: str, executable: str, prefixes: list[str] | None
+                   ) -> tuple[str, ament.Resource] | None:
+    """The resource type and entry a node definition is registered as (own type first)."""
+    key = resource_name(package, executable)
+    for resource_type in _NODE_RESOURCES:
+        resource = ament.get_resource(resource_type, key, prefixes)
+        if resource is not None:
+            return resource_type, resource
+    return None
+
+
 def _find_node(package: str, executable: str, prefixes: list[str]) -> Registration | None:
-    resource = ament.get_resource(NODE_RESOURCE, resource_name(package, executable), prefixes)
-    if resource is not None:
+    found = _node_resource(package, executable, prefixes)
+    if found is not None:
+        resource = found[1]
         try:
             return Registration(package, executable, 'node', read_registered(resource, package).file)
         except ResolutionError:
@@ -107,12 +132,23 @@ def _find_node(package: str, executable: str, prefixes: list[str]) -> Registrati
 
 def read_registration(registration: Registration, prefixes: list[str] | None = None) -> Resolved:
     """The text of a registered v2 definition."""
-    resource_type = NODE_RESOURCE if registration.kind == 'node' else INTERFACE_RESOURCE
-    resource = ament.get_resource(resource_type, resource_name(registration.package, registration.name),
-                                  prefixes)
+    return _read_registration(registration, prefixes)[0]
+
+
+def _read_registration(registration: Registration, prefixes: list[str] | None
+                       ) -> tuple[Resolved, bool]:
+    """The text of a registered v2 definition, and whether the reference's macro installed it."""
+    resource: ament.Resource | None
+    if registration.kind == 'node':
+        found = _node_resource(registration.package, registration.name, prefixes)
+        resource_type, resource = found if found is not None else (NODE_RESOURCE, None)
+    else:
+        resource_type = INTERFACE_RESOURCE
+        resource = ament.get_resource(resource_type, resource_name(registration.package,
+                                                                   registration.name), prefixes)
     if resource is None:
         raise ResolutionError(f'{registration.package}/{registration.name} is not registered')
-    return read_registered(resource, registration.package)
+    return read_registered(resource, registration.package), resource_type == REFERENCE_RESOURCE
 
 
 def describe_missing(package: str, executable: str, prefixes: list[str] | None = None) -> str:
@@ -151,10 +187,10 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
         composed, diagnostics = compose_legacy(registration, client_library)
         return composed, diagnostics, registration.file
     try:
-        resolved = read_registration(registration, prefixes)
+        resolved, installed = _read_registration(registration, prefixes)
     except ResolutionError as exc:  # an entry whose file is gone (a partly removed install)
         return None, [Diagnostic(Severity.ERROR, exc.message, (), where, code='NODL015')], where
     composed, diagnostics = composition.compose_report(
-        loading.check_source(resolved.text, kind=Kind.NODE, file=resolved.file),
+        loading.check_source(resolved.text, kind=Kind.NODE, file=resolved.file, installed=installed),
         client_library=client_library, prefixes=prefixes)
     return composed, diagnostics, resolved.file
