@@ -225,3 +225,41 @@ def test_a_missing_nodl_reference_names_both_resource_types(tmp_path: Path) -> N
     assert ("package 'ref_robot' registers no interface definition 'no_such' (it registers: lidar, "
             'listener, sensor_common, talker)') in error.message
     assert reference_entry('ref_robot__no_such') in error.message
+
+
+def test_a_package_installed_by_a_re_creation_of_the_references_macro(tmp_path: Path) -> None:
+    # Configure and install a real CMake package with tests/fixtures/reference_ament_nodl's
+    # re-creation of the reference's ament_nodl_register, then read the install.
+    import shutil
+    import subprocess
+    import sys
+
+    here = FIXTURES / 'reference_ament_nodl'
+    cmake = shutil.which('cmake')
+    assert cmake is not None, 'cmake is needed (it is installed with the ROS build tools)'
+    build, install = tmp_path / 'build', tmp_path / 'install'
+    for step in ([cmake, '-S', str(here / 'ref_pkg'), '-B', str(build),
+                  f'-DNODL_TEST_MACRO={here / "ament_nodl_register.cmake"}'],
+                 [cmake, '--install', str(build), '--prefix', str(install)]):
+        done = subprocess.run(step, capture_output=True, text=True, timeout=60)
+        assert done.returncode == 0, done.stdout + done.stderr
+    prefixes = [str(install)]
+    assert [(r.package, r.name, r.kind) for r in list_registrations(prefixes=prefixes)] == [
+        ('other_pkg', 'reset_node', 'node'), ('ref_pkg', 'camera', 'node'),
+        ('ref_pkg', 'sensor_common', 'node')]
+    # The local:// include was rewritten on install; it resolves through the index.
+    entry_text = (install / 'share' / 'ament_index' / 'resource_index' / 'nodl' / 'ref_pkg__camera')
+    assert '- ref: nodl://ref_pkg/sensor_common' in entry_text.read_text()
+    from nodl_schema.index.registry import compose_registered
+
+    composed, diagnostics, _ = compose_registered('ref_pkg', 'camera', prefixes)
+    assert composed is not None, diagnostics
+    assert [l.label for l in composed.layers] == ['base:node', 'nodl://ref_pkg/sensor_common', 'main']
+    assert composed.interface.parameters['frame_id'].default_value == 'camera_link'
+    assert composed.node.codegen == {'cpp': {'role': 'base_class'}}
+    shown = subprocess.run([sys.executable, '-m', 'nodl_schema', 'show', 'other_pkg', 'reset_node'],
+                           cwd=FIXTURES.parent.parent, env=dict(os.environ, AMENT_PREFIX_PATH=str(install)),
+                           text=True,
+                           capture_output=True, timeout=60)
+    assert shown.returncode == 0, shown.stderr
+    assert '~/reset' in shown.stdout
