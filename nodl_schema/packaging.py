@@ -71,6 +71,17 @@ class NodlBuildError(SystemExit):
         self.diagnostics: list[Diagnostic] = list(diagnostics)
 
 
+def _write(path: str, text: str) -> None:
+    """Write an ament index marker atomically (:func:`nodl_schema.writing.write_file`); a
+    failure is a :class:`NodlBuildError` naming the file."""
+    from nodl_schema.writing import WriteError, write_file
+
+    try:
+        write_file(path, text)
+    except WriteError as exc:
+        raise NodlBuildError(str(exc)) from None
+
+
 def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
                     interfaces: Mapping[str, str] | None = None, *,
                     validate: bool = True, staging_dir: str = os.path.join('build', 'nodl_index'),
@@ -112,8 +123,7 @@ def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
         os.makedirs(folder, exist_ok=True)
         for key, file in registry.items():
             marker = os.path.join(folder, resource_name(package, key))
-            with open(marker, 'w', encoding='utf-8') as f:
-                f.write(f'nodl/{os.path.basename(file)}')
+            _write(marker, f'nodl/{os.path.basename(file)}')
             entries.setdefault(f'{_INDEX}/{resource_type}', []).append(marker)
     entries[f'share/{package}/nodl'] = sorted(set(installed.values()))
     _node_info(package, nodes, dict(plugins or {}), dict(node_names or {}), staging_dir, entries)
@@ -161,11 +171,10 @@ def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, s
     folder = os.path.join(stage, 'share', 'ament_index', 'resource_index', INTERFACE_RESOURCE)
     os.makedirs(folder, exist_ok=True)
     for key, file in interfaces.items():
-        with open(os.path.join(folder, resource_name(package, key)), 'w', encoding='utf-8') as f:
-            f.write(os.path.abspath(file))
+        _write(os.path.join(folder, resource_name(package, key)), os.path.abspath(file))
     packages = os.path.join(stage, 'share', 'ament_index', 'resource_index', 'packages')
     os.makedirs(packages, exist_ok=True)
-    open(os.path.join(packages, package), 'w').close()
+    _write(os.path.join(packages, package), '')
 
     previous = os.environ.get('AMENT_PREFIX_PATH')
     os.environ['AMENT_PREFIX_PATH'] = os.pathsep.join(p for p in (stage, previous) if p)
@@ -266,8 +275,7 @@ def _node_info(package: str, nodes: Mapping[str, str], plugins: dict[str, str],
             continue
         os.makedirs(folder, exist_ok=True)
         marker = os.path.join(folder, resource_name(package, key))
-        with open(marker, 'w', encoding='utf-8') as f:
-            f.write(content)
+        _write(marker, content)
         entries.setdefault(f'{_INDEX}/{NODE_INFO_RESOURCE}', []).append(marker)
     if problems:
         raise NodlBuildError('\n'.join(problems))

@@ -9,6 +9,8 @@ from pathlib import Path
 
 from conftest import FIXTURES, REPO
 
+from nodl_schema.writing import unmark
+
 LEGACY = FIXTURES / 'legacy'
 
 
@@ -95,7 +97,7 @@ def test_package_xml(tmp_path: Path) -> None:
     result = nodl('convert', rel(LEGACY / 'package' / 'package.xml'), '-o', str(tmp_path))
     assert result.returncode == 0, result.stdout
     assert sorted(p.name for p in tmp_path.iterdir()) == ['listener.nodl.yaml', 'talker.nodl.yaml']
-    talker = (tmp_path / 'talker.nodl.yaml').read_text(encoding='utf-8')
+    talker = unmark((tmp_path / 'talker.nodl.yaml').read_text(encoding='utf-8'))
     assert talker.startswith(f'# Converted from {rel(LEGACY / "package" / "interfaces" / "talker.nodl.xml")}')
 
 
@@ -188,7 +190,8 @@ def test_converts_a_genparamlib_file_by_content_and_with_from(tmp_path: Path) ->
         assert result.stdout.count('warning:') == 1
         assert '1 interface definition written' in result.stdout
     text = (tmp_path / 'gripper_controller.nodl.yaml').read_text()
-    assert text.startswith('# Converted by nodl convert from gripper_controller.yaml')
+    assert text.startswith('# nodl: generated; sha256=')
+    assert unmark(text).startswith('# Converted by nodl convert from gripper_controller.yaml')
     assert 'malformed XML' not in text
 
 
@@ -215,3 +218,35 @@ def test_converting_an_include_document_out_of_its_package_warns_at_the_local_in
     # at the local:// include (line 8), not at nodl://arm_common/heartbeat
     assert warning.startswith(f'{source}:8:') and warning.endswith('[NODL854]')
     assert 'cannot use this local include' in warning
+
+
+def test_a_users_file_is_never_replaced_without_force(tmp_path: Path) -> None:
+    mine = tmp_path / 'first.nodl.yaml'
+    mine.write_text('# my own definition\n', encoding='utf-8')
+    refused = nodl('convert', rel(LEGACY / 'qos_child.nodl.xml'), '-o', str(tmp_path))
+    assert refused.returncode == 2 and 'Traceback' not in refused.stderr
+    assert refused.stderr == (f'{mine}: error: the file was not written by nodl (it has no nodl '
+                              'marker): not replaced; give another output path, or --force to '
+                              'replace it [NODL031]\n')
+    assert mine.read_text(encoding='utf-8') == '# my own definition\n'
+    assert not (tmp_path / 'second.nodl.yaml').exists()  # nothing of that input is written
+    forced = nodl('convert', rel(LEGACY / 'qos_child.nodl.xml'), '-o', str(tmp_path), '--force')
+    assert forced.returncode == 0, forced.stdout + forced.stderr
+    assert (tmp_path / 'second.nodl.yaml').is_file()
+    assert mine.read_text(encoding='utf-8') == (
+        LEGACY / 'expected' / 'qos_child' / 'first.nodl.yaml').read_text(encoding='utf-8')
+
+
+def test_an_input_is_never_an_output(tmp_path: Path) -> None:
+    source = FIXTURES / 'dialects' / 'genparamlib' / 'gripper_controller.yaml'
+    inputs = tmp_path / 'in'
+    inputs.mkdir()
+    include = tmp_path / 'gripper_controller.nodl.yaml'  # what the genparamlib input converts to
+    include.write_text('# nodl: generated; sha256=' + '0' * 64 + '\n', encoding='utf-8')
+    copy = inputs / 'gripper_controller.yaml'
+    copy.write_bytes(source.read_bytes())
+    result = nodl('convert', str(copy), str(include), '-o', str(tmp_path), '--force')
+    assert result.returncode == 2
+    assert f'{include}: error: -o names an input of the command ({include})' in result.stderr
+    assert '[NODL033]' in result.stderr and 'Traceback' not in result.stderr
+    assert include.read_text(encoding='utf-8') == '# nodl: generated; sha256=' + '0' * 64 + '\n'

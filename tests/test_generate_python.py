@@ -25,6 +25,7 @@ from nodl_schema.generate import (
 )
 from nodl_schema.generate.python import generate_python
 from nodl_schema.system import resolve_node
+from nodl_schema.writing import mark
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'generate'
 KINDS = ('talker', 'managed_camera', 'everything')
@@ -102,12 +103,24 @@ def test_cli_generate_and_check(tmp_path: Path) -> None:
            '-o', str(tmp_path)]
     first = subprocess.run(run, capture_output=True, text=True, timeout=60)
     assert first.returncode == 0, first.stderr
-    assert (tmp_path / 'talker_base.py').read_text() == _generate('talker')
+    written = (tmp_path / 'talker_base.py').read_text()
+    assert written == mark(_generate('talker'), '#')  # the marker first, then the module
     assert subprocess.run(run + ['--check'], capture_output=True, timeout=60).returncode == 0
-    (tmp_path / 'talker_base.py').write_text('stale\n')
+    (tmp_path / 'talker_base.py').write_text(written + '# an edit\n')
     stale = subprocess.run(run + ['--check'], capture_output=True, text=True, timeout=60)
     assert stale.returncode == 1
     assert 'talker_base.py: stale or missing' in stale.stderr
+    refused = subprocess.run(run, capture_output=True, text=True, timeout=60)
+    assert refused.returncode == 2 and 'Traceback' not in refused.stderr
+    assert refused.stderr.splitlines()[-1] == (
+        f'{tmp_path / "talker_base.py"}: error: the file was edited since nodl wrote it (its text no '
+        'longer matches its nodl marker): not replaced; keep your changes elsewhere and give --force '
+        'to replace it [NODL032]')
+    assert (tmp_path / 'talker_base.py').read_text() == written + '# an edit\n'
+    forced = subprocess.run(run + ['--force'], capture_output=True, text=True, timeout=60)
+    assert forced.returncode == 0 and (tmp_path / 'talker_base.py').read_text() == written
+    bad = subprocess.run(run + ['--node-name', '../talker'], capture_output=True, text=True, timeout=60)
+    assert bad.returncode == 2 and '[NODL707]' in bad.stderr and not (tmp_path.parent / 'talker_base.py').exists()
     unknown = subprocess.run(run[:-4] + ['--language', 'cobol', '-o', str(tmp_path)],
                              capture_output=True, text=True, timeout=60)
     assert unknown.returncode == 2

@@ -15,6 +15,7 @@ from nodl_schema.frontends.legacy_xml import parse_legacy_xml
 from nodl_schema.legacy import (
     Converted, convert_file, convert_files, convert_legacy, render_converted, seconds_to_ns)
 from nodl_schema.reporting import format_text
+from nodl_schema.writing import WriteError, marker_state, unmark
 
 LEGACY = FIXTURES / 'legacy'
 EXPECTED = LEGACY / 'expected'
@@ -76,7 +77,8 @@ def test_converted_output_validates_with_load_node(fixture: str, tmp_path: Path)
     assert not [d for d in diagnostics if d.severity is Severity.ERROR]
     for path in written:
         text = path.read_text(encoding='utf-8')
-        assert text.startswith(f'# Converted from {LEGACY / fixture}.nodl.xml by `nodl convert`\n')
+        assert marker_state(text) == 'valid'  # the marker first, then the header
+        assert unmark(text).startswith(f'# Converted from {LEGACY / fixture}.nodl.xml by `nodl convert`\n')
         node = nodl_schema.load_node(path)
         assert node.nodl_version == 2 and node.main.nodl_version == 2
 
@@ -348,7 +350,7 @@ def test_package_xml_converts_every_exported_file(tmp_path: Path) -> None:
         str(LEGACY / 'package' / 'interfaces' / 'listener.nodl.xml')}
     talker = nodl_schema.load_node(tmp_path / 'talker.nodl.yaml')
     assert talker.main.publishers[0].qos.depth == 10  # type: ignore[index]
-    header = (tmp_path / 'listener.nodl.yaml').read_text(encoding='utf-8').splitlines()[0]
+    header = unmark((tmp_path / 'listener.nodl.yaml').read_text(encoding='utf-8')).splitlines()[0]
     assert header == (f'# Converted from {LEGACY / "package" / "interfaces" / "listener.nodl.xml"}'
                       ' by `nodl convert`')
 
@@ -385,7 +387,10 @@ def test_unwritable_output_is_a_problem_not_an_exception(tmp_path: Path) -> None
     blocker.write_text('not a directory')
     [result] = convert_files([LEGACY / 'role_both.nodl.xml'], blocker)
     assert not result.readable
-    assert result.problem is not None and result.problem.startswith('cannot write ')
+    assert result.problem == ''  # the reason is the last diagnostic, coded, at the output
+    last = result.diagnostics[-1]
+    assert last.code == 'NODL030' and last.file.startswith(str(blocker) + os.sep)
+    assert blocker.read_text() == 'not a directory'
 
 
 def test_render_converted_has_a_header() -> None:
@@ -403,21 +408,38 @@ def test_render_converted_has_a_header() -> None:
         text.replace('# nodl: ignore=NODL216', '# no directive')).diagnostics)
 
 
-def test_a_failed_write_names_the_output_and_keeps_what_was_written(tmp_path: Path) -> None:
+def test_an_output_that_cannot_be_replaced_names_it_and_writes_none(tmp_path: Path) -> None:
     (tmp_path / 'second.nodl.yaml').mkdir()  # the second node's output cannot be written
     [result] = convert_files([LEGACY / 'role_attributes.nodl.xml'], tmp_path)
-    assert result.problem is not None
-    assert result.problem.startswith(f'cannot write {tmp_path / "second.nodl.yaml"}: ')
-    assert result.written == [str(tmp_path / 'first.nodl.yaml')]
-    assert (tmp_path / 'first.nodl.yaml').is_file()
+    assert result.problem == ''
+    assert (result.diagnostics[-1].code, result.diagnostics[-1].file) == (
+        'NODL034', str(tmp_path / 'second.nodl.yaml'))
+    assert result.written == [] and not (tmp_path / 'first.nodl.yaml').exists()  # checked first
 
 
-def test_convert_file_raises_the_documented_oserror_when_it_cannot_write(tmp_path: Path) -> None:
+def test_converted_files_are_marked_and_a_users_file_is_kept(tmp_path: Path) -> None:
+    [result] = convert_files([LEGACY / 'role_attributes.nodl.xml'], tmp_path)
+    first = tmp_path / 'first.nodl.yaml'
+    assert marker_state(first.read_text(encoding='utf-8')) == 'valid'
+    [again] = convert_files([LEGACY / 'role_attributes.nodl.xml'], tmp_path)  # nodl's: replaced
+    assert again.readable and again.written == result.written
+    first.write_text(first.read_text(encoding='utf-8') + '# my note\n', encoding='utf-8')
+    [edited] = convert_files([LEGACY / 'role_attributes.nodl.xml'], tmp_path)
+    assert edited.diagnostics[-1].code == 'NODL032' and edited.written == []
+    assert first.read_text(encoding='utf-8').endswith('# my note\n')
+    [forced] = convert_files([LEGACY / 'role_attributes.nodl.xml'], tmp_path, force=True)
+    assert forced.readable and marker_state(first.read_text(encoding='utf-8')) == 'valid'
+    assert convert_files([LEGACY / 'role_attributes.nodl.xml'], tmp_path,
+                         inputs=[str(first)])[0].diagnostics[-1].code == 'NODL033'
+
+
+def test_convert_file_raises_the_documented_write_error_when_it_cannot_write(tmp_path: Path) -> None:
     blocker = tmp_path / 'a_file'
     blocker.write_text('not a directory', encoding='utf-8')
-    with pytest.raises(OSError) as info:  # not a private exception type
+    with pytest.raises(WriteError) as info:  # not a private exception type
         convert_file(LEGACY / 'role_attributes.nodl.xml', blocker / 'out')
-    assert type(info.value).__module__ == 'builtins'
+    assert info.value.diagnostic.code == 'NODL030'
+    assert info.value.diagnostic.file == str(blocker / 'out' / 'first.nodl.yaml')
 
 
 def test_a_valid_conversion_is_written_from_the_typed_model() -> None:

@@ -131,12 +131,12 @@ class guarded_streams:
 
 
 def write_file(path: str, text: str) -> None:
-    """Write ``text`` to ``path`` (UTF-8); any failure is an :class:`OutputError`."""
-    try:
-        with open(path, 'w', encoding='utf-8') as f:
-            f.write(text)
-    except OSError as exc:
-        raise OutputError(f'cannot write {path}: {exc.strerror or exc}') from None
+    """Write the report ``text`` to ``path`` (UTF-8) atomically (:func:`nodl_schema.writing.write_file`:
+    a report is always replaceable); a failure is a :class:`~nodl_schema.writing.WriteError`,
+    which the runner prints as one line (exit status 2), the previous file intact."""
+    from nodl_schema.writing import write_file as write_atomically
+
+    write_atomically(path, text)
 
 
 class Progress:

@@ -105,6 +105,7 @@ def run_verb(parser: argparse.ArgumentParser, args: argparse.Namespace, dest: st
         parser.print_help()
         return EXIT_USAGE
     from nodl_schema.cli.output import OutputError, guarded_streams
+    from nodl_schema.writing import WriteError
 
     with guarded_streams(getattr(args, 'color', 'auto')) as (out, _):
         try:
@@ -122,6 +123,12 @@ def run_verb(parser: argparse.ArgumentParser, args: argparse.Namespace, dest: st
         except OutputError as exc:
             _silence_stdout()
             _report(f'error: {exc}')
+            return EXIT_USAGE
+        except WriteError as exc:  # a file not written or not replaced: its own coded line
+            try:
+                sys.stderr.write(f'{exc.diagnostic}\n')
+            except OSError:
+                pass
             return EXIT_USAGE
         except Exception as exc:  # noqa: BLE001 - the last line of defence
             name = type(verb).__name__

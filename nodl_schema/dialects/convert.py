@@ -15,7 +15,7 @@ import os
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any
+    from typing import Any, Sequence
 
 from nodl_schema.diagnostics import Diagnostic, Severity, has_errors
 from nodl_schema.dialects import GENPARAMLIB, INCLUDE, recognise
@@ -159,14 +159,21 @@ def convert_dialect(path: str, dialect: str | None = None, out_dir: str | None =
     return DialectConversion(path, wanted, file_name, data, placed, header)
 
 
-def convert_dialect_file(path: str, out_dir: str, dialect: str | None = None
+def convert_dialect_file(path: str, out_dir: str, dialect: str | None = None, *,
+                         force: bool = False, inputs: Sequence[str] = ()
                          ) -> tuple[FileConversion, str | None]:
     """Convert ``path`` and write the result into ``out_dir`` (nothing on errors).
 
     Returns the outcome and the dialect the input was read in.  Never raises
-    for bad input: an unreadable input or unwritable output is a
-    :class:`FileConversion` with a ``problem``.
+    for bad input: an unreadable input is a :class:`FileConversion` with a
+    ``problem``; an output that cannot be written or replaced (it is ``path``
+    or one of ``inputs``: NODL033; a file nodl did not write, or an edited
+    one, unless ``force``: NODL031/NODL032; a failed write: NODL030) is one
+    with an empty ``problem`` and that diagnostic last.  The output is written
+    atomically, with a content marker (:mod:`nodl_schema.writing`).
     """
+    from nodl_schema.writing import WriteError, output_is_input, write_marked
+
     try:
         conversion = convert_dialect(path, dialect, out_dir)
     except OSError as exc:
@@ -175,11 +182,11 @@ def convert_dialect_file(path: str, out_dir: str, dialect: str | None = None
         return FileConversion(path, [], conversion.diagnostics), conversion.dialect
     target = os.path.join(out_dir, conversion.file_name)
     try:
-        os.makedirs(out_dir, exist_ok=True)
-        with open(target, 'w', encoding='utf-8', newline='\n') as stream:
-            stream.write(conversion.text())
-    except OSError as exc:
-        return FileConversion(path, [], conversion.diagnostics,
-                              f'cannot write {target}: {(exc.strerror or str(exc)).lower()}'), \
+        clash = output_is_input(target, [path, *inputs], '-o')
+        if clash is not None:
+            raise WriteError(clash)
+        write_marked(target, conversion.text(), force=force, make_parents=True)
+    except WriteError as exc:
+        return FileConversion(path, [], conversion.diagnostics + [exc.diagnostic], ''), \
             conversion.dialect
     return FileConversion(path, [target], conversion.diagnostics), conversion.dialect

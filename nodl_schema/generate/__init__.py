@@ -28,10 +28,12 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Callable, Sequence
 
+    from nodl_schema.diagnostics import Diagnostic
     from nodl_schema.system import ResolvedNode
 
 __all__ = ['GENERATOR_GROUP', 'GeneratedFile', 'GenerateOptions', 'GeneratorExtension',
-           'GenerationError', 'load_generators', 'generate', 'write_files', 'default_class_name']
+           'GenerationError', 'load_generators', 'generate', 'write_files', 'default_class_name',
+           'check_options']
 
 #: The entry point group of generators (entry point name = ``--language`` value).
 GENERATOR_GROUP = 'nodl.generators'
@@ -122,27 +124,87 @@ def generate(node: ResolvedNode, language: str, options: GenerateOptions,
     return generator.generate(node, options)
 
 
-def write_files(files: Sequence[GeneratedFile], out_dir: str, *, check: bool = False) -> list[str]:
+def check_options(options: GenerateOptions, language: str = '') -> list[Diagnostic]:
+    """NODL707 for each option that is not a valid name: ``node_name`` (rmw's node name rules),
+    ``class_name`` (an ASCII identifier, not a keyword of ``language``: it names classes and
+    files), ``namespace`` (C++: identifiers separated by ``::``, no keywords)."""
+    from nodl_schema.diagnostics import Diagnostic, Severity
+    from nodl_schema.generate.identifiers import CPP_KEYWORDS, KEYWORDS, is_identifier
+    from nodl_schema.naming.validation import node_name_error
+
+    problems: list[str] = []
+    why = node_name_error(options.node_name)
+    if why is not None:
+        problems.append(f'--node-name {options.node_name!r}: {why}')
+    keywords = KEYWORDS.get(language, frozenset())
+    if not (options.class_name.isascii() and is_identifier(options.class_name)):
+        problems.append(f'--class-name {options.class_name!r}: a class name is letters, digits and _, '
+                        'not starting with a digit')
+    elif options.class_name in keywords:
+        problems.append(f'--class-name {options.class_name!r}: a {language} keyword')
+    if options.namespace and language == 'cpp':
+        parts = options.namespace.split('::')
+        if not all(part.isascii() and is_identifier(part) and part not in CPP_KEYWORDS for part in parts):
+            problems.append(f'--namespace {options.namespace!r}: a C++ namespace is identifiers '
+                            'separated by ::, no keywords')
+    return [Diagnostic(Severity.ERROR, f'{problem}; give a valid name', file='<command line>',
+                       code='NODL707') for problem in problems]
+
+
+def write_files(files: Sequence[GeneratedFile], out_dir: str, *, check: bool = False,
+                force: bool = False) -> list[str]:
     """Write ``files`` under ``out_dir``; return the paths whose content changed.
 
-    A file whose content is already the same is not touched (its time stamp
-    stays, so build systems do not rebuild).  With ``check=True`` nothing is
-    written: the result lists the files that are missing or stale.
+    Each file is written as :func:`nodl_schema.writing.write_marked` writes
+    it: atomically, with a content marker, never over a file of the user's
+    or one edited since it was generated (unless ``force``).  A file whose
+    content is already the same is not touched (its time stamp stays, so
+    build systems do not rebuild).  With ``check=True`` nothing is written:
+    the result lists the files that are missing or stale (the marker
+    included, so a hand-edited file is stale).  Every file is checked before
+    any is written, so a refusal writes nothing.  Raises
+    :class:`~nodl_schema.writing.WriteError`: NODL708 for a path outside
+    ``out_dir``, NODL031/NODL032 for a file that is not nodl's to replace,
+    NODL030 when a write fails.
     """
-    changed: list[str] = []
+    from nodl_schema.writing import WriteError, check_replaceable, marked_text, write_marked
+
+    planned: list[tuple[str, str]] = []
     for item in files:
+        problem = _outside(item.path, out_dir)
+        if problem is not None:
+            raise WriteError(problem)
         path = os.path.join(out_dir, item.path)
+        planned.append((path, marked_text(path, item.text)))
+    changed: list[str] = []
+    for path, text in planned:
         try:
             with open(path, encoding='utf-8', newline='') as f:
-                same = f.read() == item.text
-        except OSError:
+                same = f.read() == text
+        except (OSError, UnicodeDecodeError):
             same = False
         if same:
             continue
         changed.append(path)
-        if check:
-            continue
-        os.makedirs(os.path.dirname(path) or '.', exist_ok=True)
-        with open(path, 'w', encoding='utf-8', newline='') as f:
-            f.write(item.text)
+        if not check:
+            refusal = check_replaceable(path, text, force=force)
+            if refusal is not None:
+                raise WriteError(refusal)
+    if not check:
+        for path, text in planned:
+            if path in changed:
+                write_marked(path, text, force=True, make_parents=True)  # checked above
     return changed
+
+
+def _outside(relative: str, out_dir: str) -> Diagnostic | None:
+    """NODL708 when the generated path ``relative`` would land outside ``out_dir``."""
+    from nodl_schema.diagnostics import Diagnostic, Severity
+
+    normal = os.path.normpath(relative)
+    if (not relative or os.path.isabs(relative) or normal == os.curdir or normal == os.pardir
+            or normal.startswith(os.pardir + os.sep) or '\0' in relative):
+        return Diagnostic(Severity.ERROR, f'a generated file would be written outside the output '
+                          f'folder ({relative!r}); check --node-name and --class-name, or the '
+                          'generator plug-in', file=out_dir, code='NODL708')
+    return None

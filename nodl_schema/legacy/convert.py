@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import os
 import re
-from typing import TYPE_CHECKING, Any, Iterable
+from typing import TYPE_CHECKING, Any, Iterable, Sequence
 
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity, has_errors
 from nodl_schema.frontends.legacy_xml import (
@@ -39,6 +39,8 @@ from nodl_schema.vocabulary import SECTIONS as _VOCABULARY_SECTIONS
 
 if TYPE_CHECKING:  # pragma: no cover
     from pathlib import Path
+
+    from nodl_schema.writing import WriteError
 
 __all__ = ['Converted', 'FileConversion', 'convert_legacy', 'render_converted', 'convert_file',
            'convert_files', 'seconds_to_ns']
@@ -455,8 +457,11 @@ def _gather(path: str) -> tuple[list[Converted], list[Diagnostic]]:
     return converted, diagnostics  # sorted once, by the caller
 
 
-def _convert(path: str, out_dir: str, taken: dict[str, str]) -> tuple[list[str], list[Diagnostic]]:
-    """Convert one input; write nothing if anything in it is an error.  OSError propagates."""
+def _convert(path: str, out_dir: str, taken: dict[str, str], force: bool = False,
+             inputs: Sequence[str] = ()) -> tuple[list[str], list[Diagnostic]]:
+    """Convert one input; write nothing if anything in it is an error.  OSError reading
+    propagates; an output that cannot be written or replaced is a :class:`_WriteFailed`
+    (checked for every output before any is written)."""
     converted, diagnostics = _gather(path)
     planned: dict[str, Converted] = {}
     for item in converted:
@@ -474,34 +479,38 @@ def _convert(path: str, out_dir: str, taken: dict[str, str]) -> tuple[list[str],
             planned[key] = item
     if has_errors(diagnostics):
         return [], _sorted(diagnostics)
+    from nodl_schema.writing import (
+        WriteError, check_replaceable, marked_text, output_is_input, write_marked)
+
     written: list[str] = []
-    if planned:
-        try:
-            os.makedirs(out_dir, exist_ok=True)
-        except OSError as exc:
-            raise _WriteFailed(out_dir, exc, written, _sorted(diagnostics)) from None
+    texts = {key: render_converted(item) for key, item in planned.items()}
+    for key, item in planned.items():  # a refusal writes none of this input's files
+        target = os.path.join(out_dir, item.file_name)
+        refusal = output_is_input(target, [path, *inputs], '-o') or check_replaceable(
+            target, marked_text(target, texts[key]), force=force)
+        if refusal is not None:
+            raise _WriteFailed(WriteError(refusal), written, _sorted(diagnostics))
     for key, item in planned.items():
         target = os.path.join(out_dir, item.file_name)
         try:
-            with open(target, 'w', encoding='utf-8', newline='\n') as stream:
-                stream.write(render_converted(item))
-        except OSError as exc:
-            raise _WriteFailed(target, exc, written, _sorted(diagnostics)) from None
+            write_marked(target, texts[key], force=True, make_parents=True)  # checked above
+        except WriteError as exc:
+            raise _WriteFailed(exc, written, _sorted(diagnostics)) from None
         taken[key] = f'{item.source}:{item.node.line}'
         written.append(target)
     return written, _sorted(diagnostics)
 
 
 class _WriteFailed(Exception):
-    """Writing an output failed; carries what had been written before."""
+    """Writing an output failed or was refused; carries what had been written before."""
 
-    def __init__(self, target: str, error: OSError, written: list[str],
+    def __init__(self, error: WriteError, written: list[str],
                  diagnostics: list[Diagnostic]) -> None:
-        super().__init__(target)
+        super().__init__(str(error))
         self.error = error
-        self.problem = f'cannot write {target}: {_reason(error)}'
         self.written = written
-        self.diagnostics = diagnostics
+        #: The input's diagnostics, then the one saying why the output was not written.
+        self.diagnostics = diagnostics + [error.diagnostic]
 
 
 def convert_file(path: str | os.PathLike[str],
@@ -511,25 +520,33 @@ def convert_file(path: str | os.PathLike[str],
     Writes one ``<executable>.nodl.yaml`` per node, with a header saying what
     it was converted from, and returns the written paths and every
     diagnostic (file:line:column in the legacy files).  If any diagnostic is
-    an error, nothing is written.  I/O errors reading ``path`` or writing into
-    ``out_dir`` propagate as :class:`OSError`.
+    an error, nothing is written.  I/O errors reading ``path`` propagate as
+    :class:`OSError`; an output that cannot be written, or would replace a file
+    nodl did not write (or one edited since), raises
+    :class:`~nodl_schema.writing.WriteError`.
     """
     from pathlib import Path
 
     try:
         written, diagnostics = _convert(os.fspath(path), os.fspath(out_dir), {})
-    except _WriteFailed as failure:  # private: the documented OSError is what escapes
+    except _WriteFailed as failure:  # private: the documented WriteError is what escapes
         raise failure.error from None
     return [Path(p) for p in written], diagnostics
 
 
 def convert_files(paths: Iterable[str | os.PathLike[str]],
-                  out_dir: str | os.PathLike[str]) -> list[FileConversion]:
+                  out_dir: str | os.PathLike[str], *, force: bool = False,
+                  inputs: Sequence[str] = ()) -> list[FileConversion]:
     """Convert several inputs into ``out_dir`` (what ``nodl convert`` does).
 
-    Never raises for bad input: an unreadable input or an unwritable output
-    is a :class:`FileConversion` with a ``problem``; two nodes that would be
-    written to the same file are an error.
+    Never raises for bad input: an unreadable input is a
+    :class:`FileConversion` with a ``problem``; two nodes that would be
+    written to the same file are an error.  Outputs are written as
+    :func:`nodl_schema.writing.write_marked` writes them; one that cannot be
+    written or replaced (an input: NODL033, this one or one of ``inputs``; a
+    file nodl did not write or an edited one, unless ``force``: NODL031,
+    NODL032; a failed write: NODL030) gives an empty ``problem`` and that
+    diagnostic last.
     """
     out = os.fspath(out_dir)
     taken: dict[str, str] = {}
@@ -537,9 +554,9 @@ def convert_files(paths: Iterable[str | os.PathLike[str]],
     for raw in paths:
         path = os.fspath(raw)
         try:
-            written, diagnostics = _convert(path, out, taken)
+            written, diagnostics = _convert(path, out, taken, force, inputs)
         except _WriteFailed as failure:
-            results.append(FileConversion(path, failure.written, failure.diagnostics, failure.problem))
+            results.append(FileConversion(path, failure.written, failure.diagnostics, ''))
             continue
         except OSError as exc:  # reading the input
             results.append(FileConversion(path, problem=_reason(exc)))

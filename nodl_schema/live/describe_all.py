@@ -9,6 +9,7 @@ from typing import Any
 from nodl_schema.live.describe import describe_node, render_description
 from nodl_schema.live.observe import DISCOVERY_WINDOW, list_nodes
 from nodl_schema.live.session import LiveError, is_hidden_node, ros_session
+from nodl_schema.writing import write_marked
 
 __all__ = ['describe_all', 'file_name_for']
 
@@ -43,13 +44,17 @@ def _discover(node: Any, timeout: float, settle: float, quiet: float = 0.5) -> l
 
 def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = True,
                  format: str = 'yaml', settle: float = DISCOVERY_WINDOW,
-                 client_library: str | None = None) -> list[tuple[str, str, list[str]]]:
+                 client_library: str | None = None, force: bool = False
+                 ) -> list[tuple[str, str, list[str]]]:
     """Describe every node in the graph into ``directory``; returns (node, file, notes) per node.
 
     Discovery is given up to ``timeout`` seconds (see :func:`_discover`); every
     node is then observed in the same session.  A node that vanishes while it
     is described is reported in its notes and skipped.  ``client_library``: see
     :func:`~nodl_schema.live.describe.describe_observed` (by default deduced per node).
+    Each file is written as :func:`~nodl_schema.writing.write_marked` writes it: a file
+    there that nodl did not write, or that was edited, stops the run with a
+    :class:`~nodl_schema.writing.WriteError` unless ``force``.
     """
     with ros_session() as node:
         names = _discover(node, timeout, settle)
@@ -68,7 +73,6 @@ def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = Tru
                 written.append((fqn, '(skipped)', [str(exc)]))
                 continue
             path = os.path.join(directory, file_name_for(fqn, format))
-            with open(path, 'w', encoding='utf-8') as f:
-                f.write(render_description(description, format))
+            write_marked(path, render_description(description, format), force=force)
             written.append((fqn, path, description.warnings + description.notes))
     return written

@@ -64,6 +64,13 @@ class AnalyseVerb(Verb):
             print(f'{args.launch_file}: error: cannot read the launch file: {why} [NODL020]',
                   file=sys.stderr)
             return EXIT_USAGE
+        from nodl_schema.writing import output_is_input
+
+        for option, output in (('-o', args.output), ('--log', args.log), ('--graph', args.graph)):
+            clash = output_is_input(output, [args.launch_file], option) if output else None
+            if clash is not None:
+                print(clash, file=sys.stderr)
+                return EXIT_USAGE
         try:
             policy = DiagnosticPolicy(args, prog)
             from nodl_schema.analysis.settings import load_settings

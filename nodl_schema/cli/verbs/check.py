@@ -65,6 +65,13 @@ class CheckVerb(Verb):
             print(f'nodl check: error: {problem}', file=sys.stderr)
             return EXIT_USAGE
         definition = args.definition[0] if len(args.definition) == 1 else tuple(args.definition)
+        if args.junit and isinstance(definition, str):
+            from nodl_schema.writing import output_is_input
+
+            clash = output_is_input(args.junit, [definition], '--junit')
+            if clash is not None:
+                print(clash, file=sys.stderr)
+                return EXIT_USAGE
         try:  # --ignore / --error, and the nodl.toml or [tool.nodl] found upward from the file
             policy = DiagnosticPolicy(args, 'nodl check')
             if isinstance(definition, str):  # known before observing: a bad one fails at once
@@ -105,11 +112,8 @@ class CheckVerb(Verb):
             sys.stdout.write(format_check_text(result, args.verbose))
         if args.format in ('json', 'junit', 'sarif'):  # the verdict for a person, apart
             print(format_check_text(result).splitlines()[-1], file=sys.stderr)
-        if args.junit:
-            try:
-                with open(args.junit, 'w', encoding='utf-8') as f:
-                    f.write(format_check_junit(result))
-            except OSError as exc:
-                print(f'nodl check: error: cannot write {args.junit}: {exc.strerror}', file=sys.stderr)
-                return EXIT_USAGE
+        if args.junit:  # a report: replaced atomically; a failure is one line, exit status 2
+            from nodl_schema.cli.output import write_file
+
+            write_file(args.junit, format_check_junit(result))
         return EXIT_OK if result.conforms else EXIT_FAILURE

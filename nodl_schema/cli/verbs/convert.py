@@ -37,7 +37,9 @@ class ConvertVerb(Verb):
                             help='where to write the NoDL v2 files: one <executable>.nodl.yaml per '
                                  'legacy node, the same file name for an include-dialect document, '
                                  '<namespace>.nodl.yaml for a generate_parameter_library file '
-                                 '(created if missing; existing files are replaced)')
+                                 '(created if missing; files nodl wrote there are replaced)')
+        parser.add_argument('--force', action='store_true',
+                            help='replace files nodl did not write, or converted files edited since')
         parser.add_argument('--from', dest='source_format', choices=(LEGACY, *DIALECTS),
                             help='the format of the inputs (default: recognised by content)')
 
@@ -56,8 +58,12 @@ class ConvertVerb(Verb):
                 for path in result.written:  # before an output could not be written
                     out.write(f'wrote {path}\n')
                 written += len(result.written)
-                out.write(format_text(result.diagnostics))
-                print(f'{result.path}: error: {result.problem}', file=sys.stderr)
+                out.write(format_text(result.diagnostics[:-1] if not result.problem else
+                                      result.diagnostics))
+                if result.problem:  # the input could not be read
+                    print(f'{result.path}: error: {result.problem}', file=sys.stderr)
+                else:  # an output not written or not replaced: its own coded line
+                    print(result.diagnostics[-1], file=sys.stderr)
                 continue
             tally.files += 1
             tally.add(result.diagnostics)
@@ -85,13 +91,14 @@ class ConvertVerb(Verb):
         if legacy:
             from nodl_schema.legacy.convert import convert_files
 
-            results += convert_files(legacy, args.output_dir)
+            results += convert_files(legacy, args.output_dir, force=args.force, inputs=args.files)
         from nodl_schema.dialects import GENPARAMLIB
         from nodl_schema.dialects.convert import convert_dialect_file
 
         for path in args.files:
             if path not in legacy:
-                result, dialect = convert_dialect_file(path, args.output_dir, args.source_format)
+                result, dialect = convert_dialect_file(path, args.output_dir, args.source_format,
+                                                       force=args.force, inputs=args.files)
                 results.append(result)
                 if dialect == GENPARAMLIB:
                     self._interfaces.update(result.written)

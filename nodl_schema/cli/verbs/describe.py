@@ -27,6 +27,9 @@ class DescribeVerb(Verb):
                             help="do not read the node's parameters")
         parser.add_argument('--format', choices=('yaml', 'json'), default='yaml',
                             help='output format (default: yaml)')
+        parser.add_argument('--force', action='store_true',
+                            help='-o: replace files nodl did not write or that were edited since '
+                                 '(a JSON file, which has no room for a marker, always needs it)')
         from nodl_schema.cli.arguments import add_client_library_argument
 
         add_client_library_argument(parser, 'deduced from the node: rclcpp if it subscribes to '
@@ -35,7 +38,7 @@ class DescribeVerb(Verb):
     def main(self, args: argparse.Namespace) -> int:
         import os
 
-        from nodl_schema.cli.output import OutputError, write_file
+        from nodl_schema.cli.output import OutputError
         from nodl_schema.live.describe import describe_node, render_description
         from nodl_schema.live.session import LiveError
 
@@ -56,7 +59,7 @@ class DescribeVerb(Verb):
                 try:
                     written = describe_all(args.output, timeout=args.timeout,
                                            parameters=not args.no_parameters, format=args.format,
-                                           client_library=args.client_library)
+                                           client_library=args.client_library, force=args.force)
                 except OSError as exc:
                     raise OutputError(f'cannot write {exc.filename or args.output}: '
                                       f'{exc.strerror or exc}') from None
@@ -85,10 +88,9 @@ class DescribeVerb(Verb):
         if not args.output:
             sys.stdout.write(text)
             return EXIT_OK
-        try:
-            os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
-        except OSError as exc:
-            raise OutputError(f'cannot write {args.output}: {exc.strerror or exc}') from None
-        write_file(args.output, text)
+        from nodl_schema.writing import write_marked
+
+        # marked, atomic; a user's or an edited file needs --force (the runner prints why not)
+        write_marked(args.output, text, force=args.force, make_parents=True)
         print(f'{description.fqn} -> {args.output}')
         return EXIT_OK

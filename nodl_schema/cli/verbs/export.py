@@ -25,6 +25,9 @@ class ExportVerb(Verb):
                                  'executables (looked up in the ament index)')
         parser.add_argument('-o', '--output', required=True, metavar='FILE',
                             help="the file to write ('-' for standard output)")
+        parser.add_argument('--force', action='store_true',
+                            help='replace the file even if nodl did not write it or it was edited '
+                                 'since')
         parser.add_argument('--namespace', metavar='NAME',
                             help='the top-level key (the namespace of the generated code; default: '
                                  'the definition file name without .nodl.yaml, or the executable)')
@@ -73,13 +76,14 @@ class ExportVerb(Verb):
         if args.output == '-':
             sys.stdout.write(text)
             return EXIT_OK
-        try:
-            with open(args.output, 'w', encoding='utf-8', newline='\n') as stream:
-                stream.write(text)
-        except OSError as exc:
-            print(f'nodl export: error: cannot write {args.output}: {exc.strerror or exc}',
-                  file=sys.stderr)
+        from nodl_schema.writing import output_is_input, write_marked
+
+        inputs = [source.source] + (args.definition if len(args.definition) == 1 else [])
+        clash = output_is_input(args.output, inputs)
+        if clash is not None:
+            print(clash, file=sys.stderr)
             return EXIT_USAGE
+        write_marked(args.output, text, force=args.force)  # a refusal or failure: the runner's line
         count = sum(1 for _ in _leaves(exported.data))
         print(f'wrote {args.output} ({count} parameter{"s" if count != 1 else ""})', file=sys.stderr)
         return EXIT_OK

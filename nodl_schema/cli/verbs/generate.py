@@ -31,14 +31,18 @@ class GenerateVerb(Verb):
                             help='C++: register the class as an rclcpp component')
         parser.add_argument('--check', action='store_true',
                             help='write nothing; fail if a generated file is missing or differs')
+        parser.add_argument('--force', action='store_true',
+                            help='replace files nodl did not write, or generated files edited since')
         parser.epilog = ('The generator implements what the node itself provides (main); the base '
                          "comes from the language's client library, mixins from other code. "
                          'Regenerating is idempotent: unchanged files are not rewritten.')
 
     def main(self, args: argparse.Namespace) -> int:
+        import os
+
         from nodl_schema.generate import (
-            GenerateOptions, GenerationError, default_class_name, default_node_name, load_generators,
-            write_files)
+            GenerateOptions, GenerationError, check_options, default_class_name, default_node_name,
+            load_generators, write_files)
         from nodl_schema.generate.definition import resolve_target, target_name
         from nodl_schema.reporting import format_text, without_info
 
@@ -52,6 +56,15 @@ class GenerateVerb(Verb):
             print(f'nodl generate: error: no generator for language {args.language!r} '
                   f'(available: {known})', file=sys.stderr)
             return EXIT_USAGE
+        name = target_name(args.target)
+        options = GenerateOptions(
+            class_name=default_class_name(name) if args.class_name is None else args.class_name,
+            node_name=default_node_name(name) if args.node_name is None else args.node_name,
+            namespace=args.namespace, component=args.component)
+        problems = check_options(options, getattr(generator, 'LANGUAGE', '') or args.language)
+        if problems:  # before reading the definition: a usage error
+            sys.stderr.write(format_text(problems))
+            return EXIT_USAGE
         try:
             node, diagnostics, _ = resolve_target(args.target, generator.CLIENT_LIBRARY or None)
         except (OSError, ValueError) as exc:
@@ -62,21 +75,20 @@ class GenerateVerb(Verb):
             sys.stderr.write(format_text(shown))
         if node is None:
             return EXIT_FAILURE
-        name = target_name(args.target)
-        options = GenerateOptions(
-            class_name=args.class_name or default_class_name(name),
-            node_name=args.node_name or default_node_name(name),
-            namespace=args.namespace, component=args.component)
         try:
             files = generator.generate(node, options)
         except GenerationError as exc:
             print(f'nodl generate: error: {exc}', file=sys.stderr)
             return EXIT_FAILURE
-        try:
-            changed = write_files(files, args.output, check=args.check)
-        except OSError as exc:
-            print(f'nodl generate: error: {exc}', file=sys.stderr)
-            return EXIT_USAGE
+        from nodl_schema.writing import output_is_input
+
+        for item in files:  # the definition (or a mixin of it) is never overwritten
+            clash = output_is_input(os.path.join(args.output, item.path), [node.file])
+            if clash is not None:
+                print(clash, file=sys.stderr)
+                return EXIT_USAGE
+        # a refusal (a file of the user's, an edited one) or a failed write: the runner's one line
+        changed = write_files(files, args.output, check=args.check, force=args.force)
         if args.check:
             for path in changed:
                 print(f'{path}: stale or missing: run nodl generate without --check to update it',

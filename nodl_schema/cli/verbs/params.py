@@ -24,6 +24,9 @@ class ParamsVerb(Verb):
                             help='the fully qualified node name (default: /NODE, the node name '
                                  'derived from the executable or file name)')
         parser.add_argument('-o', '--output', metavar='FILE', help='write the defaults here (default: stdout)')
+        parser.add_argument('--force', action='store_true',
+                            help='-o: replace the file even if nodl did not write it or it was '
+                                 'edited since')
         parser.add_argument('--definition', nargs='+', metavar='DEFINITION',
                             help='check: the node definition (FILE or PACKAGE EXECUTABLE)')
         parser.add_argument('--launch', metavar='LAUNCH_FILE',
@@ -91,15 +94,18 @@ class ParamsVerb(Verb):
         if fqn is None:
             return EXIT_USAGE
         text = defaults_yaml(node, fqn)  # type: ignore[arg-type]
-        if args.output is None:
+        if args.output is None or args.output == '-':
             sys.stdout.write(text)
             return EXIT_OK
-        try:
-            with open(args.output, 'w', encoding='utf-8') as f:
-                f.write(text)
-        except OSError as exc:
-            print(f'nodl params: error: {args.output}: {exc.strerror}', file=sys.stderr)
+        from nodl_schema.writing import output_is_input, write_marked
+
+        inputs = [getattr(node, 'file', '')] + (args.args if len(args.args) == 1 else [])
+        clash = output_is_input(args.output, inputs)
+        if clash is not None:
+            print(clash, file=sys.stderr)
             return EXIT_USAGE
+        # marked, atomic; a user's or an edited file needs --force (the runner prints the refusal)
+        write_marked(args.output, text, force=args.force)
         return EXIT_OK
 
     def _check(self, args: argparse.Namespace) -> int:

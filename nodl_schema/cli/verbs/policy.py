@@ -47,6 +47,9 @@ class PolicyVerb(Verb):
                                  '(NODE:FROM:=TO for one node; repeatable)')
         parser.add_argument('-o', '--output', metavar='FILE',
                             help='write the policy to FILE (default: standard output)')
+        parser.add_argument('--force', action='store_true',
+                            help='-o: replace the file even if nodl did not write it or it was '
+                                 'edited since')
         parser.add_argument('--check', metavar='POLICY_FILE',
                             help='compare an existing policy with what the system needs: missing and '
                                  'extra grants (writes nothing)')
@@ -80,6 +83,8 @@ class PolicyVerb(Verb):
         add_diagnostic_options(parser)
 
     def main(self, args: argparse.Namespace) -> int:
+        import os
+
         from nodl_schema.cli.diagnostic_options import DiagnosticPolicy, PolicyError
         from nodl_schema.policy.distros import DEFAULT_DISTRO, check_distro
 
@@ -102,6 +107,14 @@ class PolicyVerb(Verb):
             return _usage('give a launch file, node definitions (FILE or PACKAGE EXECUTABLE), or --live')
         if args.check and args.output:
             return _usage('--check writes nothing: drop -o')
+        if args.output and args.output != '-':
+            from nodl_schema.writing import output_is_input
+
+            inputs = [t for t in targets if os.path.isfile(t)] + [args.enclave_map or '']
+            clash = output_is_input(args.output, inputs)
+            if clash is not None:
+                print(clash, file=sys.stderr)
+                return EXIT_USAGE
         enclaves: Any = args.enclave_per or 'node'
         if args.enclave_map:
             from nodl_schema.policy.enclaves import load_enclave_mapping
@@ -135,11 +148,10 @@ class PolicyVerb(Verb):
             print('nodl policy: no policy written: SROS 2 would reject it', file=sys.stderr)
             return EXIT_FAILURE
         if args.output and args.output != '-':
-            try:
-                with open(args.output, 'w', encoding='utf-8') as f:
-                    f.write(text)
-            except OSError as exc:
-                return _usage(f'cannot write {args.output}: {exc.strerror or exc}')
+            from nodl_schema.writing import write_marked
+
+            # marked, atomic; a user's or an edited policy needs --force (the runner prints why not)
+            write_marked(args.output, text, force=args.force, style='xml')
         else:
             sys.stdout.write(text)
         return EXIT_OK
