@@ -64,3 +64,14 @@ def test_a_diagnosed_result_says_its_errors_and_whether_it_is_ok() -> None:
     error = Diagnostic(Severity.ERROR, 'e', (), 'f', 2, 1)
     assert Result([warning]).ok and Result([warning]).errors == []
     assert not Result([warning, error]).ok and Result([warning, error]).errors == [error]
+
+
+def test_a_diagnostic_pickles_to_an_equal_one() -> None:
+    """A launch read in the sandbox child sends its diagnostics back pickled."""
+    import pickle
+
+    from nodl_schema.diagnostics import Diagnostic, Severity
+
+    diagnostic = Diagnostic(Severity.WARNING, 'm', ('a', 0), 'f.launch.py', 3, 4, anchor='key',
+                            code='NODL513', related=(('g', 1, 2, 'there'),))
+    assert pickle.loads(pickle.dumps(diagnostic)) == diagnostic

@@ -179,7 +179,8 @@ def test_sys_exit_in_the_launch_file_is_a_finding_not_an_exit(tmp_path: Path) ->
     assert "sys.exit('no robot here')" in problem.message
 
 
-def test_what_the_launch_file_prints_goes_to_standard_error(tmp_path: Path, capsys: Any) -> None:
+def test_what_the_launch_file_prints_goes_to_standard_error(tmp_path: Path, capfd: Any) -> None:
+    # capfd: the launch file runs in a forked child, which writes to the file descriptors
     main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
         from launch import LaunchDescription
         from launch_ros.actions import Node
@@ -190,7 +191,7 @@ def test_what_the_launch_file_prints_goes_to_standard_error(tmp_path: Path, caps
         ''')})
     result = load_launch(main, {})
     assert len(result.nodes) == 1 and not result.diagnostics
-    out, err = capsys.readouterr()
+    out, err = capfd.readouterr()
     assert out == ''  # standard output is the tools' (nodl analyse --format json)
     assert err == 'configuring the robot\ngenerating\n'
 
@@ -208,3 +209,28 @@ def test_an_unknown_launch_event_handler_is_a_finding_not_an_exception(tmp_path:
     result = load_launch(main, {})
     assert [(d.code, d.line) for d in result.diagnostics] == [('NODL512', 6)]
     assert len(result.nodes) == 1
+
+
+def test_an_exception_in_generate_launch_description_is_at_its_line_and_column() -> None:
+    """The innermost frame in the launch file, at the expression that raised, with the
+    exception's own message (not the reader's internals)."""
+    from conftest import FIXTURES
+
+    path = FIXTURES / 'launch' / 'sandbox' / 'raises.launch.py'
+    result = load_launch(path, {})
+    assert [(d.code, d.file, d.line, d.column) for d in result.diagnostics] == [
+        ('NODL516', str(path), 6, 12)]
+    assert result.diagnostics[0].message.startswith("the Python launch file raised KeyError: 'robot'")
+    assert 'python_frontend' not in result.diagnostics[0].message
+
+
+def test_a_recursion_error_is_at_the_recursing_line(tmp_path: Path) -> None:
+    main = _write(tmp_path, {'x.launch.py': textwrap.dedent('''\
+        def down(n):
+            return  down(n + 1)
+        def generate_launch_description():
+            return down(0)
+        ''')})
+    result = load_launch(main, {})
+    assert [(d.code, d.line, d.column) for d in result.diagnostics] == [('NODL516', 2, 13)]
+    assert 'recurses without end (RecursionError' in result.diagnostics[0].message

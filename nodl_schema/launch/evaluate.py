@@ -16,7 +16,8 @@ from nodl_schema.launch.actions import Action, DeclareLaunchArgument, GroupActio
 from nodl_schema.launch.context import LaunchContext
 from nodl_schema.launch.errors import MAX_INCLUDE_DEPTH, LaunchProblem, Unevaluable
 from nodl_schema.launch.model import LaunchResult, SourceLocation
-from nodl_schema.launch.substitutions import perform, perform_or_defer
+from nodl_schema.launch.sandbox import LaunchLimits
+from nodl_schema.launch.substitutions import Oversized, perform, perform_bounded
 
 __all__ = ['load_launch', 'include', 'read_launch_file', 'launch_format']
 
@@ -37,8 +38,12 @@ def launch_format(path: str) -> str:
     return 'unknown'
 
 
-def read_launch_file(path: str, context: LaunchContext) -> LaunchDescription | None:
-    """Read one launch file into a :class:`LaunchDescription` (None, reported, if it cannot be)."""
+def read_launch_file(path: str, context: LaunchContext,
+                     site: SourceLocation | None = None) -> LaunchDescription | None:
+    """Read one launch file into a :class:`LaunchDescription` (None, reported, if it cannot be).
+
+    ``site``: the include entry it is read for (where a Python launch file that is not run,
+    or fails its sandbox, is reported)."""
     kind = launch_format(path)
     if kind == 'unknown':
         try:
@@ -50,7 +55,7 @@ def read_launch_file(path: str, context: LaunchContext) -> LaunchDescription | N
     if kind == 'python':
         from nodl_schema.launch.python_frontend import read_python_launch
 
-        return read_python_launch(path, context)
+        return read_python_launch(path, context, site)
     if kind == 'xml':
         from nodl_schema.launch.xml_frontend import read_xml_launch
 
@@ -79,7 +84,7 @@ def _describe_without_context(context: LaunchContext, action: Any,
         return None
     seen.add(real)
     scratch.current_file = path
-    return read_launch_file(path, scratch)
+    return read_launch_file(path, scratch, action.location)
 
 
 def _argument_names_without_context(context: LaunchContext, action: Any) -> list[str]:
@@ -178,7 +183,7 @@ def include(context: LaunchContext, action: Any) -> list[Action] | None:
                             + (' (or is not a file)' if os.path.exists(path) else ''))
     arguments = [(perform(context, k), v) for k, v in action.launch_arguments]
     saved = (context.current_file, context.include_chain)
-    description = read_launch_file(path, context)
+    description = read_launch_file(path, context, where)
     if path not in context.result.files:
         context.result.files.append(path)
     if description is None:
@@ -186,9 +191,12 @@ def include(context: LaunchContext, action: Any) -> list[Action] | None:
     missing = _missing_required_argument(context, description, [name for name, _ in arguments], path)
     if missing is not None:
         raise missing
-    values = [(name, perform_or_defer(context, value)) for name, value in arguments]
+    values = [(name, perform_bounded(context, value, f"launch argument '{name}' given to '{path}'", where))
+              for name, value in arguments]
     for name, value in values:
         context.configurations[name] = value
+        if isinstance(value, Oversized):  # reported at the include; the file is still read
+            context.problem(value.problem.again(), where)
     context.current_file = path
     if where.line:
         context.include_chain = (*context.include_chain, where)
@@ -244,16 +252,27 @@ def _visit(context: LaunchContext, root: Action) -> None:
 
 def load_launch(path: str | os.PathLike[str], arguments: dict[str, str] | None = None, *,
                 environment: dict[str, str] | None = None,
-                prefixes: list[str] | None = None) -> LaunchResult:
+                prefixes: list[str] | None = None, limits: LaunchLimits | None = None) -> LaunchResult:
     """Read a launch file (XML, YAML or Python) as ``ros2 launch PATH name:=value...`` would.
 
     ``arguments`` are the launch arguments; ``environment`` (default ``os.environ``) is what
     ``$(env)`` reads and where ``AMENT_PREFIX_PATH`` is taken from unless ``prefixes`` is given.
+    ``limits``: whether the launch's Python code (Python launch files, ``$(eval)``) runs, and
+    for how long and with how much memory (default :class:`~nodl_schema.launch.sandbox.LaunchLimits`:
+    it runs in a forked child, 30 s, 2048 MiB; see :mod:`nodl_schema.launch.sandbox`).
     Never raises for a problem in a launch file: see :attr:`LaunchResult.diagnostics`.
     """
-    from nodl_schema.launch.actions import IncludeLaunchDescription
+    from nodl_schema.launch.sandbox import contained
 
     name = os.path.abspath(os.fspath(path))
+    return contained(lambda: _walk(name, arguments, environment, prefixes), name, limits)
+
+
+def _walk(name: str, arguments: dict[str, str] | None, environment: dict[str, str] | None,
+          prefixes: list[str] | None) -> LaunchResult:
+    """:func:`load_launch` of ``name`` in this process."""
+    from nodl_schema.launch.actions import IncludeLaunchDescription
+
     result = LaunchResult(name)
     context = LaunchContext(result, environment, prefixes)
     context.current_file = name

@@ -409,33 +409,61 @@ def _forget_modules(paths: list[str]) -> None:
             del sys.modules[name]
 
 
-def _problem(path: str, exc: BaseException) -> Diagnostic:
+def _problem(path: str, exc: BaseException, text: str = '') -> Diagnostic:
+    """The diagnostic for what the launch file's code raised, at the innermost line of the
+    launch file the traceback passes through (the column of the failing expression)."""
     import traceback
 
-    line = 0
+    line = column = 0
     for frame in traceback.extract_tb(exc.__traceback__):
         if frame.filename == path:
             line = frame.lineno or 0
+            column = _column(text, line, frame.colno)
     missing = '; the nodes this launch file would start are missing from the analysis'
+    if isinstance(exc, MemoryError):
+        from nodl_schema.launch.sandbox import memory_problem
+
+        code, message = memory_problem(f"the Python launch file '{path}'")
+        return Diagnostic(Severity.ERROR, message + missing, (), path, line, column or (1 if line else 0),
+                          code=code)
+    if isinstance(exc, RecursionError):
+        return Diagnostic(Severity.ERROR, 'the Python launch file recurses without end (RecursionError: '
+                          f'{exc}){missing}', (), path, line, column or (1 if line else 0), code='NODL516')
     if isinstance(exc, PackageNotFoundError):
-        return Diagnostic(Severity.ERROR, f'{exc}{missing}', (), path, line, 1 if line else 0,
+        return Diagnostic(Severity.ERROR, f'{exc}{missing}', (), path, line, column or (1 if line else 0),
                           code='NODL511')
     if isinstance(exc, SystemExit):
         return Diagnostic(Severity.ERROR, f'the Python launch file exits (sys.exit({exc.code!r})) '
                           f'before it gives its launch description{missing}', (), path, line,
-                          1 if line else 0, code='NODL516')
+                          column or (1 if line else 0), code='NODL516')
     if isinstance(exc, ModuleNotFoundError) and exc.name:
         return Diagnostic(Severity.ERROR, f"the Python launch file imports '{exc.name}', which is not "
                           'installed here (neither on the Python path nor in the Python folders of an '
                           'ament prefix); install or source the package that provides it'
-                          f'{missing}', (), path, line, 1 if line else 0, code='NODL516')
+                          f'{missing}', (), path, line, column or (1 if line else 0), code='NODL516')
     return Diagnostic(Severity.ERROR, f'the Python launch file raised {type(exc).__name__}: {exc}'
-                      .split('\n')[0] + missing, (), path, line, 1 if line else 0, code='NODL516')
+                      .split('\n')[0] + missing, (), path, line, column or (1 if line else 0), code='NODL516')
 
 
-def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription | None:
-    """Evaluate ``generate_launch_description()`` of a Python launch file with the stand-ins."""
+def _column(text: str, line: int, offset: int | None) -> int:
+    """The 1-based column (in characters) of a frame's UTF-8 byte ``offset`` in ``line``."""
+    if offset is None or not text or line < 1:
+        return 0
+    lines = text.splitlines()
+    if line > len(lines):
+        return 0
+    return len(lines[line - 1].encode('utf-8', 'surrogatepass')[:offset].decode('utf-8', 'replace')) + 1
+
+
+def read_python_launch(path: str, context: LaunchContext,
+                       site: SourceLocation | None = None) -> A.LaunchDescription | None:
+    """Evaluate ``generate_launch_description()`` of a Python launch file with the stand-ins.
+
+    Under :func:`nodl_schema.launch.load_launch` this runs in its sandbox child (or not at all,
+    ``--no-exec``: one NODL525 at ``site``, the include entry, or at the file's first line).
+    """
     from nodl_schema.frontends.source import decode, read_limited
+    from nodl_schema.launch.sandbox import admit, running
 
     try:
         text, problem = decode(read_limited(path), path)
@@ -447,6 +475,15 @@ def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription
         assert problem is not None
         context.report(problem)
         return None
+    what = f"the Python launch file '{path}'"
+    where = site if site is not None and site.line else SourceLocation(path, 1, 1)
+    refusal = admit('file', os.path.realpath(path), what)
+    if refusal is not None:
+        context.report(Diagnostic(refusal.severity, refusal.message, (), where.file, where.line,
+                                  where.column, code=refusal.code))
+        return None
+    guard = running(os.path.realpath(path), what, where)
+    guard.__enter__()
     shims = shim_modules()
     saved = {name: sys.modules.get(name) for name in shims}
     stale = [name for name in sys.modules if name.partition('.')[0] in _STAND_IN_PACKAGES
@@ -476,7 +513,7 @@ def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription
                 return None
             description = generate()
     except SystemExit as exc:  # sys.exit() in the user's code ends the launch, not the analysis
-        context.report(_problem(path, exc))
+        context.report(_problem(path, exc, text))
         return None
     except SyntaxError as exc:
         context.report(Diagnostic(Severity.ERROR, f'Python syntax error: {exc.msg}', (), path,
@@ -486,12 +523,13 @@ def read_python_launch(path: str, context: LaunchContext) -> A.LaunchDescription
         context.report(exc.diagnostic(path, 0, 0))
         return None
     except RecursionError as exc:
-        context.report(_problem(path, exc))
+        context.report(_problem(path, exc, text))
         return None
     except Exception as exc:  # the user's code: any error is a finding, never a crash
-        context.report(_problem(path, exc))
+        context.report(_problem(path, exc, text))
         return None
     finally:
+        guard.__exit__(None, None, None)
         stubs.__exit__()
         _CURRENT.pop()
         sys.meta_path.remove(finder)

@@ -98,7 +98,7 @@ class SetParametersFromFile(Action):
             params.append(perform(context, self.filename))
         except Unevaluable as problem:
             # The nodes in scope stay in the analysis, known to lack what this file gives.
-            context.warn('NODL513', f'parameter file: {problem.message}; the nodes in its scope are '
+            context.warn(problem.code, f'parameter file: {problem.message}; the nodes in its scope are '
                                     'analysed without the parameters it gives', self.location)
             params.append(_RunTimeFile(self.location))
         context.configurations['global_params'] = params
@@ -138,6 +138,9 @@ def make_namespace_absolute(namespace: str | None) -> str | None:
 
 class ParameterFileEntry:
     """A parameter file in a node's ``parameters`` (``param from=``, a path, ``ParameterFile``)."""
+
+    #: Where it is written when a frontend knows (``<param from=...>``), else None.
+    location: SourceLocation | None = None
 
     def __init__(self, param_file: Any, allow_substs: Any = False) -> None:
         self.path = normalize(param_file)
@@ -234,9 +237,9 @@ def evaluate_parameter(context: LaunchContext, spec: Any, name: str, location: S
     try:
         return evaluate_value(context, spec, name)
     except Unevaluable as problem:
-        context.warn('NODL513', f"parameter '{name}': {problem.message}; the node is analysed "
+        context.warn(problem.code, f"parameter '{name}': {problem.message}; the node is analysed "
                                 'without this value', location)
-        return RuntimeValue(f'<{name}: known at run time>')
+        return RuntimeValue(name)
 
 
 def _item_place(location: SourceLocation, keyword: str, index: int) -> SourceLocation:
@@ -256,9 +259,9 @@ def _run_time_parameters(context: LaunchContext, problem: Unevaluable, record: L
                          parameters: list[Any], item: Any) -> None:
     """A parameter source only the running launch knows: the node is kept without it."""
     index = next(i for i, other in enumerate(parameters) if other is item)  # (only now: rare)
-    where = _item_place(record.source, 'parameters', index)
+    where = getattr(item, 'location', None) or _item_place(record.source, 'parameters', index)
     what = 'composable node' if record.kind == 'composable' else 'node'
-    context.warn('NODL513', f'parameters entry: {problem.message}; the {what} is analysed without the '
+    context.warn(problem.code, f'parameters entry: {problem.message}; the {what} is analysed without the '
                             'parameters this entry gives (the known ones are checked; no parameter is '
                             'reported missing for it)', where)
     record.run_time += (RunTimeSource('parameters', where),)
@@ -273,16 +276,22 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
         elif isinstance(item, ParameterFileEntry):
             from nodl_schema.files import tidy_path
 
+            where = item.location or location
             try:
                 path = perform(context, item.path)
             except Unevaluable as problem:
                 _run_time_parameters(context, problem, record, parameters, item)
                 continue
+            except LaunchProblem as problem:
+                raise _placed(problem, where)
             path = tidy_path(path)  # '$(dirname)/../config/x.yaml' tidied
             if not os.path.isfile(path):
-                context.warn('NODL517', f"parameter file '{path}' is not a file; launch skips it", location)
+                context.warn('NODL517', f"parameter file '{path}' is not a file; launch skips it", where)
                 continue
-            out.append(ParameterSource('file', 'node', location, path=path))
+            source = ParameterSource('file', 'node', where, path=path)
+            if item.allow_substs is not False and _allow_substs(context, item.allow_substs, where):
+                _substitute_file(context, source, record, where)
+            out.append(source)
         elif hasattr(item, 'nodl_parameter'):
             name, spec = item.nodl_parameter
             pname = perform(context, name)
@@ -293,10 +302,51 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
     return out
 
 
+def _allow_substs(context: LaunchContext, value: Any, where: SourceLocation) -> bool:
+    """Whether a parameter file's text is substituted first (``allow_substs``: a bool, or
+    text or substitutions that launch reads as one)."""
+    if isinstance(value, bool) or value is None:
+        return bool(value)
+    from nodl_schema.launch.substitutions import to_bool
+
+    try:
+        return to_bool(context, normalize(value))
+    except LaunchProblem as problem:
+        raise _placed(problem, where)
+
+
+def _substitute_file(context: LaunchContext, source: ParameterSource, record: LaunchedNode,
+                     where: SourceLocation) -> None:
+    """launch_ros's ``ParameterFile(..., allow_substs=True)``: the file's text, every
+    substitution in it (``$(var name)``, ``$(env NAME)``, ``$(find-pkg-share pkg)``...)
+    performed in the launch's context, is what the node reads (``source.text``)."""
+    from nodl_schema.launch.params import read_parameter_text
+    from nodl_schema.launch.substitution_grammar import parse_substitution
+
+    assert source.path is not None
+    text, problem = read_parameter_text(source.path)
+    if text is None:
+        return  # said where unreadable parameter files are (the analysis, at the file)
+    try:
+        source.text = perform(context, parse_substitution(text))
+    except Unevaluable as unknown:
+        what = 'composable node' if record.kind == 'composable' else 'node'
+        context.warn(unknown.code, f"parameter file '{source.path}' (allow_substs): {unknown.message}; "
+                                f'the {what} is analysed without the parameters it gives', where)
+        record.run_time += (RunTimeSource('parameters', where),)
+        source.path = None  # (its values are unknown: none are read from the text as written)
+    except LaunchProblem as failed:
+        raise LaunchProblem(failed.code, f"parameter file '{source.path}' (allow_substs): "
+                                         f'{failed.message}', where.file, where.line, where.column)
+
+
 def _named_parameters(context: LaunchContext, item: Any, location: SourceLocation, node_key: str,
                       record: LaunchedNode, parameters: list[Any]) -> ParameterSource:
     values: dict[str, Any] = {}
+    places: dict[str, SourceLocation] = {}
     for name, spec in item:
+        # an XML or YAML <param> knows where it is written: its findings sit there
+        where = getattr(spec, 'location', None) or location
         try:
             pname = perform(context, name)
         except Unevaluable as problem:
@@ -307,8 +357,24 @@ def _named_parameters(context: LaunchContext, item: Any, location: SourceLocatio
                 raise
             _run_time_parameters(context, problem, record, parameters, item)
             continue
-        values[pname] = evaluate_parameter(context, spec, pname, location)
-    return ParameterSource('values', 'node', location, values=values, node_key=node_key)
+        except LaunchProblem as problem:
+            raise _placed(problem, where)
+        try:
+            values[pname] = evaluate_parameter(context, spec, pname, where)
+        except LaunchProblem as problem:
+            raise _placed(problem, where)
+        if where is not location:
+            places[pname] = where
+    return ParameterSource('values', 'node', location, values=values, node_key=node_key,
+                           places=places)
+
+
+def _placed(problem: LaunchProblem, where: SourceLocation) -> LaunchProblem:
+    """``problem`` at ``where`` unless it already has a place of its own."""
+    if problem.file and problem.line:
+        return problem
+    problem.file, problem.line, problem.column = where.file, where.line, where.column
+    return problem
 
 
 def _unpacked(name: Any) -> bool:

@@ -23,7 +23,8 @@ if TYPE_CHECKING:
 
     from nodl_schema.launch.context import LaunchContext
 
-from nodl_schema.launch.errors import LaunchProblem, Unevaluable
+from nodl_schema.launch.errors import (MAX_SUBSTITUTION_CHARS, LaunchProblem, SubstitutionTooLarge, Unevaluable,
+                                       too_large_message)
 
 __all__ = [
     'Substitution', 'TextSubstitution', 'LaunchConfiguration', 'EnvironmentVariable',
@@ -31,7 +32,7 @@ __all__ = [
     'ThisLaunchFile', 'AnonName', 'NotSubstitution', 'AndSubstitution', 'OrSubstitution',
     'AnySubstitution', 'AllSubstitution', 'EqualsSubstitution', 'NotEqualsSubstitution',
     'IfElseSubstitution', 'PathJoinSubstitution', 'PathSubstitution', 'Command', 'FindExecutable',
-    'FileContent', 'ExecutableInPackage', 'Deferred', 'perform_or_defer', 'LaunchLogDir', 'ParameterSubstitution', 'normalize', 'perform',
+    'FileContent', 'ExecutableInPackage', 'Deferred', 'Oversized', 'perform_or_defer', 'perform_bounded', 'check_joined_size', 'LaunchLogDir', 'ParameterSubstitution', 'normalize', 'perform',
     'to_bool', 'yaml_bool',
 ]
 
@@ -82,13 +83,34 @@ def _normalize_items(value: Any) -> list[Substitution]:
 
 
 def perform(context: LaunchContext, value: Any) -> str:
-    """Perform every substitution of ``value`` and join the texts."""
+    """Perform every substitution of ``value`` and join the texts.
+
+    Raises :class:`~nodl_schema.launch.errors.SubstitutionTooLarge` (NODL521) as soon as the
+    texts together pass :data:`~nodl_schema.launch.errors.MAX_SUBSTITUTION_CHARS`, before the
+    oversized text is made."""
     if type(value) is list and len(value) == 1:
         part = value[0]
         # Plain text (most attributes): its text, without a copy, a generator and a join.
         if type(part) is TextSubstitution and type(part.text) is str:
+            if len(part.text) > MAX_SUBSTITUTION_CHARS:
+                raise SubstitutionTooLarge(too_large_message('a text substitution', made=True))
             return part.text
-    return ''.join(s.perform(context) for s in normalize(value))
+    texts = []
+    size = 0
+    for s in normalize(value):
+        text = s.perform(context)
+        size += len(text)
+        if size > MAX_SUBSTITUTION_CHARS:
+            raise SubstitutionTooLarge()
+        texts.append(text)
+    return ''.join(texts)
+
+
+def check_joined_size(texts: list[str], separator: str = '') -> None:
+    """:class:`SubstitutionTooLarge` if ``separator.join(texts)`` would pass the substitution
+    limit (checked before the text is made)."""
+    if sum(map(len, texts)) + len(separator) * max(len(texts) - 1, 0) > MAX_SUBSTITUTION_CHARS:
+        raise SubstitutionTooLarge()
 
 
 def yaml_bool(text: str) -> bool:
@@ -129,6 +151,30 @@ class Deferred:
 
     def __init__(self, message: str) -> None:
         self.message = message
+        #: Where the ``let`` (or ``arg`` default) that sets it is written, when known.
+        self.location: tuple[str, int, int] | None = None
+
+
+class Oversized:
+    """A launch configuration whose value passed the substitution limit (reported once, at
+    its ``let`` or ``arg``): where it is used, the same located problem is raised again, which
+    the walk reports only once, so that what uses it stops without a cascade of errors."""
+
+    def __init__(self, problem: SubstitutionTooLarge) -> None:
+        self.problem = problem
+
+
+def perform_bounded(context: LaunchContext, value: Any, what: str,
+                    at: tuple[str, int, int]) -> str | Deferred | Oversized:
+    """``perform_or_defer`` for the value of configuration ``what`` set at ``at``: a value
+    past the substitution limit becomes :class:`Oversized`, its problem placed at ``at``."""
+    try:
+        return perform_or_defer(context, value)
+    except SubstitutionTooLarge as problem:
+        if problem.line:  # from another configuration, reported where that one is set
+            return Oversized(problem)
+        return Oversized(SubstitutionTooLarge(
+            too_large_message(what) + '; what uses it is not analysed', *at))
 
 
 def perform_or_defer(context: LaunchContext, value: Any) -> str | Deferred:
@@ -152,7 +198,11 @@ class LaunchConfiguration(Substitution):
         if isinstance(value, str):
             return value
         if isinstance(value, Deferred):
-            raise Unevaluable(f"launch configuration '{name}': {value.message}")
+            where = value.location
+            set_at = f' (set at {where[0]}:{where[1]}:{where[2]})' if where and where[1] else ''
+            raise Unevaluable(f"launch configuration '{name}'{set_at}: {value.message}")
+        if isinstance(value, Oversized):
+            raise value.problem.again()
         if self.default is not None:
             return perform(context, self.default)
         context.note_missing_configuration(name)
@@ -172,6 +222,8 @@ class EnvironmentVariable(Substitution):
 
     def perform(self, context: LaunchContext) -> str:
         name = perform(context, self.name)
+        if name in context.oversized_environment:
+            raise context.oversized_environment[name].again()
         value = context.environment.get(name)
         if value is None and self.default_value is not None:
             value = perform(context, self.default_value)
@@ -211,24 +263,20 @@ class PythonExpression(Substitution):
         self.python_modules = [m if isinstance(m, str) else m for m in python_modules]
 
     def perform(self, context: LaunchContext) -> str:
-        import importlib
+        # Imports and evaluation run in the launch's sandbox child, or not at all (--no-exec).
+        from nodl_schema.launch.model import SourceLocation
+        from nodl_schema.launch.sandbox import python_expression
 
         expression = perform(context, self.expression)
-        names: dict[str, Any] = {}
-        for module_name in self.python_modules:
-            module_name = perform(context, module_name) if not isinstance(module_name, str) else module_name
-            try:
-                module = math if module_name == 'math' else importlib.import_module(module_name)
-            except ImportError as exc:
-                raise LaunchProblem('NODL510', f"$(eval): cannot import module '{module_name}': {exc}")
-            if module.__name__ == 'math':
-                names.update(vars(module))
-            names[module.__name__] = module
-        try:
-            return str(eval(expression, {}, names))  # noqa: S307 - what launch itself does
-        except Exception as exc:  # any error of the user's expression
-            raise LaunchProblem('NODL510', f'$(eval) of {expression!r} failed: '
-                                           f'{type(exc).__name__}: {exc}')
+        modules = [m if isinstance(m, str) else perform(context, m) for m in self.python_modules]
+        result = python_expression(expression, modules,
+                                   SourceLocation(context.current_file or '<launch>', 1, 1))
+        if isinstance(result, (str, bytes, list, tuple, dict, set)) and len(result) > MAX_SUBSTITUTION_CHARS:
+            raise SubstitutionTooLarge(too_large_message('the result of $(eval)'))
+        text = str(result)
+        if len(text) > MAX_SUBSTITUTION_CHARS:
+            raise SubstitutionTooLarge(too_large_message('the result of $(eval)'))
+        return text
 
 
 class ThisLaunchFileDir(Substitution):
@@ -375,7 +423,11 @@ class PathJoinSubstitution(Substitution):
         self.parts = [normalize(s) for s in substitutions]
 
     def perform(self, context: LaunchContext) -> str:
-        return os.path.join(*[perform(context, p) for p in self.parts]) if self.parts else ''
+        if not self.parts:
+            return ''
+        texts = [perform(context, p) for p in self.parts]
+        check_joined_size(texts, os.sep)  # the joined path is no longer than this
+        return os.path.join(*texts)
 
     def __truediv__(self, other: Any) -> 'PathJoinSubstitution':
         joined = PathJoinSubstitution([])
@@ -479,6 +531,13 @@ class ParameterSubstitution(Substitution):
         for entry in reversed(list(context.configurations.get('global_params') or [])):
             if isinstance(entry, tuple) and entry[0] == name:
                 value = entry[1]
-                return value if isinstance(value, str) else yaml.dump(value).strip().removesuffix('...').strip()
+                if isinstance(value, str):
+                    return value
+                if isinstance(value, (list, tuple)) and len(value) > MAX_SUBSTITUTION_CHARS // 2:
+                    raise SubstitutionTooLarge(too_large_message(f"parameter '{name}' as text"))
+                text = yaml.dump(value).strip().removesuffix('...').strip()
+                if len(text) > MAX_SUBSTITUTION_CHARS:
+                    raise SubstitutionTooLarge(too_large_message(f"parameter '{name}' as text"))
+                return text
         raise LaunchProblem('NODL510', f"parameter '{name}' is not set (with set_parameter) "
                                        'in this scope')
