@@ -73,7 +73,9 @@ def test_regenerating_is_byte_identical_and_leaves_files_alone(kind: str, tmp_pa
 def test_description_is_escaped_and_names_are_mapped() -> None:
     text = _generate('everything')
     compile(text, 'everything_base.py', 'exec')
-    assert '\\"\\"\\" in it' in text
+    # the value unchanged; a backslash only as \\u (else D301), ''' quotes around \"\"\" (else D300)
+    assert '\'\'\'\nThe generated base of the everything node: EverythingBase.\n\n' in text
+    assert 'description with \\u005c and \"\"\" in it.\n\'\'\'\n' in text
     # '~/out' and 'out' both sanitise to out: the exact one keeps it, the mapping says so
     assert "#   publisher 'out' (std_msgs/msg/Int32) -> self.pub_out\n" in text
     assert "#   publisher '~/out' (std_msgs/msg/String) -> self.pub_out_2\n" in text
@@ -86,8 +88,11 @@ def test_description_is_escaped_and_names_are_mapped() -> None:
 def test_ruff_and_mypy_pass_on_generated_code(module_dir: Path) -> None:
     ruff = shutil.which('ruff', path=str(VENV_BIN)) or shutil.which('ruff')
     assert ruff, 'ruff is part of the test extra'
-    # 99: ament_flake8's limit (the lint test of an ament_python package checks generated files too)
+    # 99: ament_flake8's limit (the lint test of an ament_python package checks generated files too);
+    # imports sorted by module, `import` and `from` mixed: flake8-import-order's google style, which
+    # ament_flake8 configures (the real ament_flake8 runs in tests/test_scaffold.py)
     lint = subprocess.run([ruff, 'check', '--isolated', '--no-cache', '--select', 'E,F,W,I,B,N',
+                           '--config', 'lint.isort.force-sort-within-sections = true',
                            '--line-length', '99', str(module_dir)],
                           capture_output=True, text=True, timeout=120)
     assert lint.returncode == 0, lint.stdout + lint.stderr
@@ -214,7 +219,8 @@ def test_required_parameter_missing_refuses_to_start(module_dir: Path) -> None:
                           '--module-dir', str(module_dir), '--kind', 'everything'],
                          capture_output=True, text=True, timeout=60, cwd=nodes)
     assert run.returncode == 1, run.stdout + run.stderr
-    assert 'required parameter(s) required_scale not set' in run.stdout
+    assert ("everything: required parameter 'required_scale' (double) is not set: pass it with "
+            '--ros-args -p required_scale:=VALUE or a parameter file') in run.stdout
     invalid = subprocess.run([sys.executable, str(nodes / 'generated_node.py'), '--name', 'everything',
                               '--module-dir', str(module_dir), '--kind', 'everything', '--ros-args',
                               '-p', 'required_scale:=1.0', '-p', 'mode:=medium'],
@@ -437,3 +443,36 @@ def test_lines_stay_within_ament_flake8s_limit(tmp_path: Path) -> None:
                            '--line-length', '99', str(tmp_path / generated.path)],
                           capture_output=True, text=True, timeout=120)
     assert lint.returncode == 0, lint.stdout + lint.stderr
+
+
+def test_parameter_names_python_would_mangle_work_in_a_running_node(client: Client, tmp_path: Path) -> None:
+    """__x, __x__, _Class__x, a.__b, __init__, __slots__: inside a class Python mangles
+    ``self.__x`` to ``self._Class__x``; the generated node still declares each parameter under
+    its own name and reads it into its own field, in a real rclpy node."""
+    import importlib
+
+    from rclpy.parameter import Parameter
+
+    path = FIXTURES / 'mangled.nodl.yaml'
+    [generated] = generate_python(resolve_node(path), GenerateOptions('Mangled', 'mangled'))
+    (tmp_path / generated.path).write_text(generated.text, encoding='utf-8')
+    sys.path.insert(0, str(tmp_path))
+    try:
+        module = importlib.import_module(generated.path[:-3])
+        node = module.MangledBase('mangled', namespace='/gen', context=client.context)
+        try:
+            names = {'__x', '__x__', '_Class__x', 'a.__b', '__init__', '__slots__'}
+            assert names <= set(node._parameters)
+            params = node.params
+            assert (params.x, params.x_2, params.class_x, params.a.b, params.init, params.slots) == (
+                1, 2, 3, 'four', True, 6.5)
+            results = node.set_parameters([Parameter('__x', value=10), Parameter('__x__', value=20),
+                                           Parameter('a.__b', value='five')])
+            assert all(r.successful for r in results)
+            assert (node.params.x, node.params.x_2, node.params.a.b) == (10, 20, 'five')
+            assert node.get_parameter('__x').value == 10
+        finally:
+            node.destroy_node()
+    finally:
+        sys.path.remove(str(tmp_path))
+        sys.modules.pop(generated.path[:-3], None)

@@ -155,7 +155,8 @@ def test_runtime_required_parameter_refuses_to_start() -> None:
                           '--definition', str(FIXTURES / 'everything.nodl.yaml'), '--kind', 'everything'],
                          capture_output=True, text=True, timeout=60, cwd=NODES)
     assert run.returncode == 1, run.stdout + run.stderr
-    assert 'required parameter(s) required_scale not set' in run.stdout
+    assert ("everything: required parameter 'required_scale' (double) is not set: pass it with "
+            '--ros-args -p required_scale:=VALUE or a parameter file') in run.stdout
 
 
 def test_runtime_every_kind_of_callback(ros_node: Any, client: Client) -> None:

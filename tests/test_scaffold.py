@@ -223,3 +223,190 @@ def test_python_package_files_keep_ament_flake8s_line_length(tmp_path: Path) -> 
                            '--line-length', '99', str(tmp_path / 'demo_nodes')],
                           capture_output=True, text=True, timeout=120)
     assert lint.returncode == 0, lint.stdout + lint.stderr
+
+
+# -- package names, --license, --maintainer ---------------------------------------------------
+
+@pytest.mark.parametrize('package, why', [
+    ('class', 'Python and a C++ keyword'), ('def', 'a Python keyword'), ('lambda', 'a Python keyword'),
+    ('int', 'a C++ keyword'), ('namespace', 'a C++ keyword'), ('new', 'a C++ keyword'),
+    ('a__b', 'not a valid ROS package name'), ('a', 'not a valid ROS package name')])
+def test_package_names_that_are_keywords_or_break_rep_144_are_refused(package: str, why: str) -> None:
+    import re
+
+    with pytest.raises(ScaffoldError, match=re.escape(why)):
+        plan('ament_python', package)
+
+
+AUTHOR = ('Jane Doe', 'jane.doe@example.com')
+TEMPLATES = FIXTURES / 'scaffold' / 'ament_copyright'
+#: SPDX id -> ament_copyright's template of the license's file header.
+SPDX_TEMPLATES = {'Apache-2.0': 'apache2', 'BSD-2-Clause': 'bsd_2clause', 'BSD-3-Clause': 'bsd_3clause',
+                  'BSL-1.0': 'boost1', 'GPL-3.0-or-later': 'gplv3', 'LGPL-3.0-or-later': 'lgplv3',
+                  'MIT': 'mit', 'MIT-0': 'mit0'}
+
+
+def ament_copyright_accepts(text: str, template: str) -> tuple[str, str] | None:
+    """``(years, holder)`` when ``text`` passes ament_copyright's documented rules, else None.
+
+    The rules: past a shebang or coding line and empty lines, a block of comment
+    lines with one token (``#`` or ``//``), the token and one character cut from
+    each line; in it a ``copyright [(c)] YEARS HOLDER`` line; the text after it
+    holds every part of the license's header template (split at its
+    placeholders), in order, once runs of white space are one space.
+    """
+    import re
+
+    lines = text.splitlines()
+    while lines and (lines[0].startswith('#!') or 'coding' in lines[0] or not lines[0].strip()):
+        lines.pop(0)
+    if not lines:
+        return None
+    token = '//' if lines[0].startswith('//') else '#' if lines[0].startswith('#') else None
+    if token is None:
+        return None
+    block = []
+    for line in lines:
+        if not line.startswith(token):
+            break
+        block.append(line[len(token) + 1:])
+    body = '\n'.join(block)
+    found = re.search(r'^\s*copyright(?:\s+\(c\))?\s+(\d{4}(?:-\d{4})?(?:,\s*\d{4}(?:-\d{4})?)*),?'
+                      r'\s+([^\n]+)$', body, re.IGNORECASE | re.MULTILINE)
+    if not found:
+        return None
+    rest = ' '.join(body[found.end():].split())
+    at = -1
+    for part in re.split(r'\{copyright_holder\}|\{copyright\}', template):
+        part = ' '.join(part.split())
+        if not part:
+            continue
+        index = rest.find(part)
+        if index <= at:
+            return None
+        at = index
+    return found[1], found[2]
+
+
+@pytest.mark.parametrize('spdx', sorted(SPDX_TEMPLATES))
+def test_license_and_maintainer_go_into_package_xml_and_headers_ament_copyright_accepts(
+        spdx: str) -> None:
+    from catkin_pkg.package import parse_package_string
+    from nodl_schema.scaffold import authorship
+
+    template = (TEMPLATES / f'{SPDX_TEMPLATES[spdx]}_header.txt').read_text(encoding='utf-8')
+    author = authorship(spdx.lower(), AUTHOR, year=2025)  # any case of the SPDX id
+    for build_type in ('ament_python', 'ament_cmake'):
+        result = plan_package('demo_nodes', load_nodes(SOURCES, build_type), build_type, author=author)
+        files = {f.path: f for f in result.files}
+        package = parse_package_string(files['package.xml'].text)
+        package.validate()
+        assert package.licenses == [spdx]
+        assert [(m.name, m.email) for m in package.maintainers] == [AUTHOR]
+        sources = [f for f in result.files if f.path.endswith(('.py', '.cpp')) and f.text.strip()
+                   and not f.path.endswith('_base.py')]
+        assert sources
+        for item in sources:
+            assert ament_copyright_accepts(item.text, template) == ('2025', 'Jane Doe'), item.path
+        # the checker is no pushover: another license's notice, or none, fails it
+        other = (TEMPLATES / ('mit_header.txt' if spdx != 'MIT' else 'apache2_header.txt')).read_text()
+        assert ament_copyright_accepts(sources[0].text, other) is None
+        assert ament_copyright_accepts('"""No header."""\n', template) is None
+        if build_type == 'ament_python':
+            assert f'license={spdx!r}' in files['setup.py'].text
+            assert "maintainer_email='jane.doe@example.com'" in files['setup.py'].text
+            assert '@pytest.mark.skip' not in files['test/test_copyright.py'].text
+        else:
+            assert 'ament_cmake_copyright_FOUND' not in files['CMakeLists.txt'].text
+
+
+def test_without_a_license_the_copyright_test_says_how_to_get_one() -> None:
+    files = {f.path: f.text for f in plan('ament_python').files}
+    assert '@pytest.mark.skip' in files['test/test_copyright.py']
+    assert '--license SPDX --maintainer NAME EMAIL' in files['test/test_copyright.py']
+    assert 'Copyright' not in files['demo_nodes/talker.py']
+
+
+@pytest.mark.parametrize('license, maintainer, message', [
+    ('GPL-2.0-only', AUTHOR, "is not a license whose file headers ament_copyright checks; use one of: "
+                             "Apache-2.0, BSD-2-Clause"),
+    ('apache2', AUTHOR, r'\(give the SPDX id\)'),
+    ('MIT', None, '--license needs --maintainer NAME EMAIL'),
+    (None, ('Jane Doe', 'jane@localhost'), 'with a full domain'),
+    (None, ('Jane Doe', 'jane.example.com'), 'with a full domain'),
+    (None, ('Jane\nDoe', 'jane@example.com'), 'on one line'),
+    (None, ('', 'jane@example.com'), 'give a name'),
+])
+def test_unknown_licenses_and_bad_maintainers_are_refused(license: str | None,
+                                                          maintainer: tuple[str, str] | None,
+                                                          message: str) -> None:
+    from nodl_schema.scaffold import authorship
+
+    with pytest.raises(ScaffoldError, match=message):
+        authorship(license, maintainer)
+
+
+# -- required parameters -----------------------------------------------------------------------
+
+def test_a_required_parameter_gets_a_commented_placeholder_in_the_parameter_and_launch_files() -> None:
+    import xml.etree.ElementTree as ET
+
+    import yaml
+
+    files = {f.path: f.text for f in plan('ament_python').files}
+    params = files['config/everything.params.yaml']
+    assert ('    # required_scale: <double>  # required: set it here (uncomment) or with '
+            '--ros-args -p required_scale:=VALUE') in params.splitlines()
+    assert 'required_scale' not in str(yaml.safe_load(params))  # only a comment
+    launch = files['launch/demo_nodes.launch.xml']
+    parser = ET.XMLParser(target=ET.TreeBuilder(insert_comments=True))
+    root = ET.fromstring(launch, parser=parser)
+    everything = root.find("node[@exec='everything']")
+    assert everything is not None
+    comments = [c.text for c in everything if c.tag is ET.Comment]
+    assert comments == [' <param name="required_scale" value="<double>"/>  required: set it here or '
+                        'in config/everything.params.yaml; everything does not start without it ']
+    talker = root.find("node[@exec='talker']")
+    assert talker is not None and not [c for c in talker if c.tag is ET.Comment]
+
+
+# -- the linters the package's own tests run -------------------------------------------------------
+
+BUILTINS = FIXTURES / 'scaffold' / 'builtin_names.nodl.yaml'
+
+
+def _lint(tool: str, cwd: Path) -> subprocess.CompletedProcess[str]:
+    """Run ament's linter ``tool`` (its console script: its own configuration and plugins)."""
+    return subprocess.run([str(VENV / 'bin' / tool)], cwd=cwd, capture_output=True, text=True,
+                          timeout=300)
+
+
+@pytest.mark.parametrize('license', [None, 'Apache-2.0'])
+def test_python_packages_pass_ament_flake8_and_ament_pep257(license: str | None,
+                                                            tmp_path: Path) -> None:
+    """The real ament_flake8 (its ament_flake8.ini, every flake8 plugin it expects) and
+    ament_pep257 (pydocstyle) pass on every file of a created package, the generated bases
+    included; a parameter named like a builtin (``id``, ``list``, ``type``) included."""
+    from nodl_schema.scaffold import authorship
+
+    plugins = subprocess.run([str(VENV / 'bin' / 'flake8'), '--version'], capture_output=True,
+                             text=True, timeout=60).stdout.replace('-\n', '-')
+    for plugin in ('flake8-blind-except', 'flake8-builtins', 'flake8-class-newline',
+                   'flake8-comprehensions', 'flake8-deprecated', 'flake8-docstrings',
+                   'flake8-import-order', 'flake8-quotes'):
+        assert plugin in plugins, plugins
+    author = authorship(license, AUTHOR if license else None)
+    nodes = load_nodes(SOURCES + [[str(BUILTINS)]], 'ament_python')
+    write_package(plan_package('demo_nodes', nodes, 'ament_python', author=author), str(tmp_path))
+    package = tmp_path / 'demo_nodes'
+    for tool in ('ament_flake8', 'ament_pep257'):
+        result = _lint(tool, package)
+        assert result.returncode == 0, tool + '\n' + result.stdout + result.stderr
+    assert 'demo_nodes/builtin_names_base.py' in _lint('ament_flake8', package).stdout
+    # and they are no pushovers: a builtin as an argument, a docstring out of style, fail them
+    (package / 'demo_nodes' / 'extra.py').write_text(
+        '"""Extra."""\n\n\ndef twice(id):\n    """Returns twice the id."""\n    return 2 * id\n',
+        encoding='utf-8')
+    flake8 = _lint('ament_flake8', package)
+    assert flake8.returncode == 1 and 'A002' in flake8.stdout, flake8.stdout
+    assert _lint('ament_pep257', package).returncode == 1

@@ -15,6 +15,8 @@ import re
 import textwrap
 from typing import Any, Callable
 
+from nodl_schema.text_safety import python_escapes, visible
+
 __all__ = ['literal', 'docstring', 'comment', 'VALIDATOR_EXPRESSIONS', 'validator_expression',
            'python_value', 'LINE_LENGTH', 'mark_long_lines']
 
@@ -49,22 +51,34 @@ def literal(value: Any) -> str:
 
 
 def docstring(text: str, indent: str = '') -> str:
-    """``text`` as a docstring (escaped: backslashes and quotes cannot end or change it), its
-    lines within :data:`LINE_LENGTH` with the quotes (a word longer than a line stays whole)."""
+    """``text`` as a docstring, its lines within :data:`LINE_LENGTH` with the quotes (a word
+    longer than a line stays whole).
+
+    As ament_pep257 and ament_flake8 (pydocstyle) want it: a multi-line docstring
+    starts on the line after the quotes (D213), and a backslash, or a quote that
+    would end the docstring, is written as a ``\\u`` escape (any other backslash
+    escape is D301), so the value is ``text`` exactly; a text that holds three
+    double quotes is quoted with three single ones (D300).  Callers make the first
+    paragraph a one-line summary ending with a period (D205, D400).
+    """
     width = max(40, LINE_LENGTH - len(indent) - 7)  # the quotes, and an escaped closing quote
-    escaped = text.strip().replace('\\', '\\\\').replace('"""', '\\"\\"\\"')
+    quote = "'" if '"""' in text.strip() else '"'
+    code = '\\u0027' if quote == "'" else '\\u0022'
+    escaped = text.strip().replace('\\', '\\u005c').replace(quote * 3, quote * 2 + code)
+    # control and bidi characters and the line separators too (see nodl_schema.text_safety)
+    escaped = python_escapes(escaped)
     paragraphs = [textwrap.fill(p, width, break_long_words=False, break_on_hyphens=False)
                   for p in escaped.split('\n\n')]
     body = '\n\n'.join(paragraphs)
-    if body.endswith('"'):
-        body = body[:-1] + '\\"'
+    if body.endswith(quote):
+        body = body[:-1] + code
     lines = body.splitlines() or ['']
     if len(lines) == 1:
-        return f'{indent}"""{lines[0]}"""\n'
-    out = f'{indent}"""{lines[0]}\n'
-    for line in lines[1:]:
+        return f'{indent}{quote * 3}{lines[0]}{quote * 3}\n'
+    out = f'{indent}{quote * 3}\n'
+    for line in lines:
         out += f'{indent}{line.rstrip()}\n' if line.strip() else '\n'
-    return out + f'{indent}"""\n'
+    return out + f'{indent}{quote * 3}\n'
 
 
 #: A string literal or comment start, as Python's tokenizer reads them: a triple quote opens a
@@ -114,8 +128,10 @@ def mark_long_lines(text: str) -> str:
 
 
 def comment(text: str, indent: str = '') -> str:
-    """``text`` as comment lines (each line prefixed with ``# ``)."""
-    return ''.join(f'{indent}# {line}'.rstrip() + '\n' for line in (text.strip().splitlines() or ['']))
+    """``text`` as comment lines (each line prefixed with ``# ``); control and bidi characters
+    are written as visible escapes (a comment has no escapes of its own)."""
+    return ''.join(f'{indent}# {visible(line)}'.rstrip() + '\n'
+                   for line in (text.strip().splitlines() or ['']))
 
 
 def _bounds(a: Any) -> str:

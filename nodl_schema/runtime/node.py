@@ -137,7 +137,7 @@ class _NodlMixin:
             else:
                 node.declare_parameter(parameter.name, python_default(parameter), descriptor)
         values = {p.name: self._nodl_initial(p.name) for p in plan.parameters}
-        check_required(node.get_name(), [p.name for p in plan.parameters
+        check_required(node.get_name(), [(p.name, p.type_name) for p in plan.parameters
                                          if values[p.name] is None and not p.dynamic_typing])
         values = {n: normalized(v) for n, v in values.items()}
         problems = problems_of(plan, values, values, prepared.custom)

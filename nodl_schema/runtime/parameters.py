@@ -19,7 +19,7 @@ from nodl_schema.generate.parameters import ParameterPlan, ParametersPlan, Struc
 from nodl_schema.runtime.errors import RuntimeDefinitionError
 
 __all__ = ['ParameterSnapshot', 'normalized', 'build_snapshot', 'descriptor_of', 'problems_of',
-           'custom_validator_problems']
+           'custom_validator_problems', 'required_message']
 
 #: A custom validator: ``(value, arguments as written) -> None if valid, else why not``.
 CustomValidator = Callable[[Any, Any], 'str | None']
@@ -114,9 +114,14 @@ def python_default(parameter: ParameterPlan) -> Any:
     return python_value(parameter.default, parameter.type.base)
 
 
-def check_required(node_name: str, missing: list[str]) -> None:
-    """Raise for required parameters that were not given."""
+def required_message(node_name: str, name: str, type_name: str) -> str:
+    """The one line a node that cannot start without the parameter ``name`` reports."""
+    return (f'{node_name}: required parameter {name!r} ({type_name}) is not set: pass it with '
+            f'--ros-args -p {name}:=VALUE or a parameter file')
+
+
+def check_required(node_name: str, missing: list[tuple[str, str]]) -> None:
+    """Raise for required parameters (``(name, type)``) that were not given: one line each."""
     if missing:
-        raise RuntimeDefinitionError(
-            f'{node_name}: required parameter(s) {", ".join(missing)} not set; give them with '
-            '--ros-args -p NAME:=VALUE or in a parameter file')
+        raise RuntimeDefinitionError('\n'.join(required_message(node_name, name, type_name)
+                                               for name, type_name in missing))

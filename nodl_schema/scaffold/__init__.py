@@ -35,8 +35,9 @@ if TYPE_CHECKING:
     from nodl_schema.diagnostics import Diagnostic
     from nodl_schema.system import ResolvedNode
 
-__all__ = ['BUILD_TYPES', 'ScaffoldError', 'NodeSource', 'PlannedFile', 'PackagePlan',
-           'executable_name', 'load_nodes', 'plan_package', 'write_package', 'WriteReport']
+__all__ = ['BUILD_TYPES', 'ScaffoldError', 'NodeSource', 'PlannedFile', 'PackagePlan', 'Authorship',
+           'executable_name', 'load_nodes', 'plan_package', 'write_package', 'WriteReport',
+           'authorship', 'check_package_name']
 
 #: ``--build-type`` -> the client library of its nodes.
 BUILD_TYPES: dict[str, str] = {'ament_python': 'rclpy', 'ament_cmake': 'rclcpp'}
@@ -64,6 +65,63 @@ class NodeSource:
     node: ResolvedNode
     #: The definition's relative mixins (paths relative to its folder), copied alongside it.
     mixins: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class Authorship:
+    """Who maintains the package and under which license (``--maintainer``, ``--license``).
+
+    Without them ``package.xml`` gets ``ros2 pkg create``'s TODO placeholders and no
+    file a copyright header (the package's copyright test is skipped until there is one).
+    """
+
+    #: ``(name, e-mail)`` of the maintainer, or None.
+    maintainer: tuple[str, str] | None = None
+    #: SPDX id of a license from :data:`nodl_schema.scaffold.licenses.LICENSES`, or None.
+    license: str | None = None
+    #: The year of the copyright notices.
+    year: int = 1970
+
+    def header(self, prefix: str) -> str:
+        """The copyright and license comment a source file starts with ('' without a license)."""
+        if self.license is None or self.maintainer is None:
+            return ''
+        from nodl_schema.scaffold.licenses import copyright_header, license_for
+
+        return copyright_header(license_for(self.license), self.maintainer[0], self.year, prefix)
+
+
+def authorship(license: str | None = None, maintainer: Sequence[str] | None = None,
+               year: int | None = None) -> Authorship:
+    """Checked authorship: a known SPDX ``license`` (any case), ``maintainer`` as (NAME, EMAIL).
+
+    A license needs a maintainer (the copyright holder of the headers).  Raises
+    :class:`ScaffoldError` saying what to give instead.
+    """
+    from nodl_schema.scaffold.licenses import check_maintainer, license_for
+
+    spdx = None
+    if license is not None:
+        try:
+            spdx = license_for(license).spdx
+        except ValueError as exc:
+            raise ScaffoldError(str(exc)) from None
+    pair = None
+    if maintainer is not None:
+        name, email = maintainer
+        try:
+            check_maintainer(name, email)
+        except ValueError as exc:
+            raise ScaffoldError(str(exc)) from None
+        pair = (name, email)
+    if spdx is not None and pair is None:
+        raise ScaffoldError('--license needs --maintainer NAME EMAIL: the copyright notices name '
+                            'the maintainer as the copyright holder')
+    if year is None:
+        import time
+
+        year = time.localtime().tm_year
+    return Authorship(pair, spdx, year)
 
 
 @dataclass(frozen=True)
@@ -138,17 +196,37 @@ def load_nodes(sources: Sequence[Sequence[str]], build_type: str) -> list[NodeSo
     return nodes
 
 
+def check_package_name(package: str) -> None:
+    """Raise :class:`ScaffoldError` for a name that cannot be a ROS package of Python or C++ code.
+
+    REP 144's rules (lowercase letters, digits and single ``_``, starting with a
+    letter, two characters at least), and not a Python or C++ keyword: the name is
+    the package's Python module and its C++ namespace.
+    """
+    from nodl_schema.generate.identifiers import CPP_KEYWORDS, PYTHON_KEYWORDS
+
+    if not _PACKAGE_NAME.fullmatch(package) or len(package) < 2 or '__' in package:
+        raise ScaffoldError(f'{package!r} is not a valid ROS package name: lowercase letters, '
+                            'digits and single _, starting with a letter, at least 2 characters')
+    keyword = [language for language, words in (('Python', PYTHON_KEYWORDS), ('C++', CPP_KEYWORDS))
+               if package in words]
+    if keyword:
+        raise ScaffoldError(f'{package!r} is a {" and a ".join(keyword)} keyword: the package name '
+                            f'is its Python module and C++ namespace; choose another '
+                            f'(e.g. {package}_nodes)')
+
+
 def plan_package(package: str, nodes: Sequence[NodeSource], build_type: str, *,
-                 component: bool = False) -> PackagePlan:
+                 component: bool = False, author: Authorship | None = None) -> PackagePlan:
     """Every file of the package ``package`` holding ``nodes`` (see the module docstring).
 
     ``component`` (ament_cmake only): every node is an rclcpp component.
+    ``author``: the maintainer and license (package.xml, setup.py, copyright headers).
     """
     if component and build_type != 'ament_cmake':
         raise ScaffoldError('--component needs --build-type ament_cmake (rclcpp components)')
-    if not _PACKAGE_NAME.fullmatch(package):
-        raise ScaffoldError(f'{package!r} is not a valid ROS package name: lowercase letters, '
-                            'digits and _, starting with a letter')
+    check_package_name(package)
+    author = author or Authorship()
     if build_type not in BUILD_TYPES:
         raise ScaffoldError(f'unknown build type {build_type!r}; expected one of: '
                             f'{", ".join(BUILD_TYPES)}')
@@ -156,15 +234,15 @@ def plan_package(package: str, nodes: Sequence[NodeSource], build_type: str, *,
     from nodl_schema.scaffold.common import common_files
 
     try:
-        files = common_files(package, list(nodes), build_type, component)
+        files = common_files(package, list(nodes), build_type, component, author)
         if build_type == 'ament_python':
             from nodl_schema.scaffold.python_package import python_files
 
-            files += python_files(package, list(nodes))
+            files += python_files(package, list(nodes), author)
         else:
             from nodl_schema.scaffold.cmake_package import cmake_files
 
-            files += cmake_files(package, list(nodes), component)
+            files += cmake_files(package, list(nodes), component, author)
     except GenerationError as exc:
         raise ScaffoldError(str(exc)) from None
     files.sort(key=lambda f: f.path)
@@ -178,30 +256,44 @@ def write_package(plan: PackagePlan, out_dir: str, *, update: bool = False,
     A new package needs a folder that does not exist yet.  ``update``:
     rewrite the generated files and add missing user files, keeping every
     user file that exists.  ``force``: replace user files too.  Raises
-    :class:`ScaffoldError` for a folder that exists without either, and
-    OSError when a file cannot be written.
+    :class:`ScaffoldError` for a folder that exists without either.
+
+    Files are written atomically (:mod:`nodl_schema.writing`); generated
+    files carry a content marker, and ``update`` refuses to replace one that
+    was edited since (or has no marker) unless ``force``: a
+    :class:`~nodl_schema.writing.WriteError` (NODL031/NODL032), raised
+    before anything is written, as is NODL030 when a write fails.
     """
+    from nodl_schema.writing import WriteError, check_replaceable, marked_text, write_file
+
     root = os.path.join(out_dir, plan.package)
     if os.path.exists(root) and not (update or force):
         raise ScaffoldError(f'{root} exists; use --update to regenerate its generated files and add '
                             'missing ones, or --force to replace every file')
     report = WriteReport()
+    pending: list[tuple[str, str, PlannedFile]] = []
     for item in plan.files:
         path = os.path.join(root, item.path)
         shown = os.path.join(plan.package, item.path)
-        exists = os.path.exists(path)
+        exists = os.path.lexists(path)
         if exists and not item.generated and not force:
             report.kept.append(shown)
             continue
-        if exists:
-            with open(path, encoding='utf-8', newline='') as f:
-                if f.read() == item.text:
-                    report.unchanged.append(shown)
-                    continue
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-        with open(path, 'w', encoding='utf-8', newline='') as f:
-            f.write(item.text)
-        if item.executable:
-            os.chmod(path, 0o755)
-        report.written.append(shown)
+        text = marked_text(path, item.text) if item.generated else item.text
+        if exists and not os.path.islink(path):
+            try:
+                with open(path, encoding='utf-8', newline='') as f:
+                    same = f.read() == text
+            except (OSError, UnicodeDecodeError):
+                same = False
+            if same:
+                report.unchanged.append(shown)
+                continue
+        refusal = check_replaceable(path, text, force=force)
+        if refusal is not None:
+            raise WriteError(refusal)
+        pending.append((path, text, item))
+    for path, text, item in pending:
+        write_file(path, text, mode=0o755 if item.executable else None, make_parents=True)
+        report.written.append(os.path.join(plan.package, item.path))
     return report

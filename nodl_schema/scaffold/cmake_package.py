@@ -8,7 +8,7 @@ subclass, written once, with a placeholder for every callback and ``main``.
 from __future__ import annotations
 
 from nodl_schema.generate import GenerateOptions, default_class_name
-from nodl_schema.scaffold import NodeSource, PlannedFile
+from nodl_schema.scaffold import Authorship, NodeSource, PlannedFile
 from nodl_schema.scaffold.common import definition_path
 
 __all__ = ['cmake_files', 'cpp_options']
@@ -24,7 +24,7 @@ def _cmake_string(text: str) -> str:
     return '"' + text.replace('\\', '\\\\').replace('"', '\\"').replace('$', '\\$') + '"'
 
 
-def _cmakelists(package: str, nodes: list[NodeSource], component: bool) -> str:
+def _cmakelists(package: str, nodes: list[NodeSource], component: bool, licensed: bool) -> str:
     lines = ['cmake_minimum_required(VERSION 3.8)', f'project({package})', '',
              'if(CMAKE_COMPILER_IS_GNUCXX OR CMAKE_CXX_COMPILER_ID MATCHES "Clang")',
              '  add_compile_options(-Wall -Wextra -Wpedantic)', 'endif()', '',
@@ -61,9 +61,12 @@ def _cmakelists(package: str, nodes: list[NodeSource], component: bool) -> str:
     lines += ['install(DIRECTORY config launch DESTINATION share/${PROJECT_NAME})', '',
               'if(BUILD_TESTING)',
               '  find_package(ament_lint_auto REQUIRED)',
-              '  # Remove these two once the files carry a license and copyright notice',
-              '  set(ament_cmake_copyright_FOUND TRUE)',
-              '  set(ament_cmake_cpplint_FOUND TRUE)',
+              *(['  # Remove this once the files pass cpplint',
+                 '  set(ament_cmake_cpplint_FOUND TRUE)'] if licensed else
+                ['  # Remove these two once the files carry a license and copyright notice',
+                 '  # (nodl new --license SPDX --maintainer NAME EMAIL writes them)',
+                 '  set(ament_cmake_copyright_FOUND TRUE)',
+                 '  set(ament_cmake_cpplint_FOUND TRUE)']),
               '  ament_lint_auto_find_test_dependencies()',
               '  find_package(ament_cmake_pytest REQUIRED)',
               '  ament_add_pytest_test(conformance test/test_conformance.py TIMEOUT 120)',
@@ -71,16 +74,19 @@ def _cmakelists(package: str, nodes: list[NodeSource], component: bool) -> str:
     return '\n'.join(lines) + '\n'
 
 
-def cmake_files(package: str, nodes: list[NodeSource], component: bool = False) -> list[PlannedFile]:
+def cmake_files(package: str, nodes: list[NodeSource], component: bool = False,
+                author: Authorship = Authorship()) -> list[PlannedFile]:
     """CMakeLists.txt and ``src/<exe>.cpp`` per node (``component``: each node an rclcpp component
     registered with ``RCLCPP_COMPONENTS_REGISTER_NODE``, and an executable that runs it alone)."""
     from nodl_schema.generate.cpp import plan_cpp
     from nodl_schema.generate.cpp.user import render_user_source
 
-    files = [PlannedFile('CMakeLists.txt', _cmakelists(package, nodes, component), False)]
+    files = [PlannedFile('CMakeLists.txt',
+                         _cmakelists(package, nodes, component, author.license is not None), False)]
     for node in nodes:
         options = cpp_options(package, node, component)
         plan = plan_cpp(node.node, options)
         files.append(PlannedFile(f'src/{node.executable}.cpp',
-                                 render_user_source(plan, options.class_name), False))
+                                 author.header('//') + render_user_source(plan, options.class_name),
+                                 False))
     return files

@@ -11,16 +11,17 @@ from __future__ import annotations
 
 import os
 import posixpath
+import re
 from typing import Iterable
 
 from nodl_schema.model import Base
 from nodl_schema.model.parameter_types import TypeSpec
-from nodl_schema.scaffold import NodeSource, PlannedFile, ScaffoldError
+from nodl_schema.scaffold import Authorship, NodeSource, PlannedFile, ScaffoldError
 from nodl_schema.scaffold.text import markdown, markdown_code, python_string, xml_attribute, xml_text
 from nodl_schema.system.entities import EntityKind, InterfaceType
 
 __all__ = ['common_files', 'interface_packages', 'definition_path', 'is_lifecycle',
-           'params_path', 'required_placeholders']
+           'params_path', 'required_placeholders', 'required_parameters', 'generated_base_path']
 
 #: What a placeholder value of each element kind is, for required parameters in tests.
 _PLACEHOLDERS = {'bool': 'false', 'int': '0', 'double': '0.0', 'string': "''", 'byte': '0'}
@@ -73,6 +74,22 @@ def required_placeholders(node: NodeSource) -> list[tuple[str, str]]:
     return sorted(out)
 
 
+def required_parameters(node: NodeSource) -> list[tuple[str, str]]:
+    """``(name, type)`` of each parameter the node must be given (no default), in declaration
+    order (as the parameter file lists them)."""
+    from nodl_schema.generate.parameters import plan_parameters
+    from nodl_schema.system.entities import Provider
+
+    entities = node.node.provided_by(Provider.IMPLEMENTATION, Provider.OTHER_CODE)
+    plan = plan_parameters([e for e in entities if e.is_parameter])
+    return [(p.name, p.type_name) for p in plan.parameters if p.required]
+
+
+def generated_base_path(package: str, node: NodeSource) -> str:
+    """Where an ament_python package keeps the node's generated base (``<pkg>/<exe>_base.py``)."""
+    return f'{package}/{node.executable}_base.py'
+
+
 def _definitions(nodes: list[NodeSource]) -> list[PlannedFile]:
     files: dict[str, tuple[str, str]] = {}
     for node in nodes:
@@ -97,7 +114,8 @@ def _definitions(nodes: list[NodeSource]) -> list[PlannedFile]:
     return [PlannedFile(target, text, generated=True) for target, (_, text) in files.items()]
 
 
-def _package_xml(package: str, nodes: list[NodeSource], build_type: str, component: bool = False) -> str:
+def _package_xml(package: str, nodes: list[NodeSource], build_type: str, component: bool = False,
+                 author: Authorship = Authorship()) -> str:
     descriptions = [n.node.node.main.description for n in nodes if n.node.node.main.description]
     description = ' '.join(descriptions) or f'The nodes {", ".join(n.executable for n in nodes)}.'
     lines = ['<?xml version="1.0"?>',
@@ -107,8 +125,8 @@ def _package_xml(package: str, nodes: list[NodeSource], build_type: str, compone
              f'  <name>{package}</name>',
              '  <version>0.0.0</version>',
              f'  <description>{xml_text(description)}</description>',
-             '  <maintainer email="todo@todo.todo">TODO</maintainer>',
-             '  <license>TODO: License declaration</license>', '']
+             _maintainer_xml(author), f'  <license>{xml_text(author.license or "TODO: License declaration")}</license>',
+             '']
     if build_type == 'ament_cmake':
         lines.append('  <buildtool_depend>ament_cmake</buildtool_depend>')
     lines += ['  <!-- ament_nodl registers the definitions and, for C++, generates the bases -->',
@@ -153,6 +171,20 @@ def _package_xml(package: str, nodes: list[NodeSource], build_type: str, compone
     return '\n'.join(l for i, l in enumerate(lines) if l or (i and lines[i - 1])) + '\n'
 
 
+def _maintainer_xml(author: Authorship) -> str:
+    if author.maintainer is None:
+        return '  <maintainer email="todo@todo.todo">TODO</maintainer>'
+    name, email = author.maintainer
+    return f'  <maintainer email="{xml_attribute(email)}">{xml_text(name)}</maintainer>'
+
+
+def _xml_comment(text: str) -> str:
+    """``text`` inside an XML comment (which cannot hold ``--``)."""
+    while '--' in text:
+        text = text.replace('--', '-\u2010')
+    return f'<!-- {text} -->'
+
+
 def _launch(package: str, nodes: list[NodeSource]) -> str:
     lines = ['<launch>',
              f'  <!-- Starts the nodes of {xml_text(package)}, each with its parameter file. -->']
@@ -160,8 +192,13 @@ def _launch(package: str, nodes: list[NodeSource]) -> str:
         lines += [f'  <node pkg="{xml_attribute(package)}" exec="{xml_attribute(node.executable)}" '
                   f'name="{xml_attribute(node.executable)}" output="screen">',
                   f'    <param from="$(find-pkg-share {xml_attribute(package)})/'
-                  f'{xml_attribute(params_path(node))}"/>',
-                  '  </node>']
+                  f'{xml_attribute(params_path(node))}"/>']
+        for name, type_name in required_parameters(node):
+            placeholder = f'<param name="{xml_attribute(name)}" value="<{type_name}>"/>'
+            lines.append('    ' + _xml_comment(
+                f'{placeholder}  required: set it here or in {params_path(node)}; '
+                f'{node.executable} does not start without it'))
+        lines += ['  </node>']
     lines.append('</launch>')
     return '\n'.join(lines) + '\n'
 
@@ -170,16 +207,32 @@ def _params(node: NodeSource) -> str:
     from nodl_schema.naming import join_name
     from nodl_schema.params.defaults import defaults_yaml
 
-    return defaults_yaml(node.node, join_name('/', node.executable))
+    text = defaults_yaml(node.node, join_name('/', node.executable))
+    # the parameter file's note on a required parameter becomes a placeholder to uncomment
+    required = iter(required_parameters(node))
+    lines = []
+    for line in text.split('\n'):
+        match = _REQUIRED_NOTE.fullmatch(line)
+        if match:
+            name, type_name = next(required)
+            line = (f'{match[1]}# {match[2]}: <{type_name}>  # required: set it here (uncomment) '
+                    f'or with --ros-args -p {name}:=VALUE')
+        lines.append(line)
+    return '\n'.join(lines)
 
 
-def _conformance_test(package: str, nodes: list[NodeSource]) -> str:
+#: How ``nodl params`` notes a parameter without a default: indent, key.
+_REQUIRED_NOTE = re.compile(r'( *)# (.+): required \(.+\): no default, give a value')
+
+
+def _conformance_test(package: str, nodes: list[NodeSource], author: Authorship) -> str:
     entries = []
     for node in nodes:
         arguments = [f'{name}:={value}' for name, value in required_placeholders(node)]
         entries.append(f'    ({python_string(node.executable)}, {is_lifecycle(node)}, '
                        f'{arguments!r}),')
-    return f'''"""The nodes of {package} conform to their NoDL definitions.
+    return author.header('#') + f'''"""
+The nodes of {package} conform to their NoDL definitions.
 
 Each installed executable is started with its parameter file; the
 nodl_conformance fixture (the NoDL toolkit's pytest plugin) then checks the
@@ -284,8 +337,6 @@ def _readme(package: str, nodes: list[NodeSource], build_type: str) -> str:
 
 
 _LINT_TESTS = {
-    'test/test_copyright.py': ('ament_copyright', 'main', 'copyright', "['.', 'test']",
-                               'Found errors'),
     'test/test_flake8.py': ('ament_flake8', 'main_with_errors', 'flake8', '[]',
                             'Found {} code style errors / warnings'),
     'test/test_pep257.py': ('ament_pep257', 'main', 'pep257', "['.', 'test']",
@@ -293,30 +344,53 @@ _LINT_TESTS = {
 }
 
 
-def _lint_test(module: str, function: str, marker: str, argv: str, message: str) -> str:
+def _copyright_test(package: str, nodes: list[NodeSource], author: Authorship) -> str:
+    bases = ''.join(f'    {python_string(generated_base_path(package, n))},\n' for n in nodes)
+    skip = ''
+    if author.license is None:
+        skip = ("\n# Remove the skip once the files carry a license and copyright notice\n"
+                "# (nodl new --license SPDX --maintainer NAME EMAIL writes them).\n"
+                "@pytest.mark.skip(reason='no copyright notice in the created files yet')")
+    return (author.header('#') + 'import os\n\nfrom ament_copyright.main import main\nimport pytest\n\n'
+            '# The generated bases carry no notice of their own: `nodl generate --check` keeps them\n'
+            '# exactly as generated from the definitions (excluded as paths, and as file names\n'
+            '# for ament_copyright releases that match --exclude against names).\n'
+            'PACKAGE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))\n'
+            f'GENERATED = [\n{bases}]\n\n{skip}\n'
+            '@pytest.mark.copyright\n@pytest.mark.linter\ndef test_copyright():\n'
+            "    excluded = [os.path.join(PACKAGE, path) for path in GENERATED]\n"
+            "    excluded += [os.path.basename(path) for path in GENERATED]\n"
+            "    rc = main(argv=['.', 'test', '--exclude', *excluded])\n"
+            "    assert rc == 0, 'Found errors'\n")
+
+
+def _lint_test(module: str, function: str, marker: str, argv: str, message: str,
+               author: Authorship) -> str:
     if function == 'main_with_errors':
-        return (f'from {module}.main import main_with_errors\nimport pytest\n\n\n'
+        return author.header('#') + (f'from {module}.main import main_with_errors\nimport pytest\n\n\n'
                 f'@pytest.mark.{marker}\n@pytest.mark.linter\ndef test_{marker}():\n'
                 f'    rc, errors = main_with_errors(argv={argv})\n'
                 f"    assert rc == 0, \\\n        '{message}'.format(len(errors)) + \\\n"
                 "        '\\n'.join(errors)\n")
-    skip = ("\n# Remove the skip once the files carry a license and copyright notice.\n"
-            "@pytest.mark.skip(reason='no copyright notice in the created files yet')"
-            if marker == 'copyright' else '')
-    return (f'from {module}.main import main\nimport pytest\n\n{skip}\n'
+    return author.header('#') + (f'from {module}.main import main\nimport pytest\n\n\n'
             f'@pytest.mark.{marker}\n@pytest.mark.linter\ndef test_{marker}():\n'
             f"    rc = main(argv={argv})\n    assert rc == 0, '{message}'\n")
 
 
 def common_files(package: str, nodes: list[NodeSource], build_type: str,
-                 component: bool = False) -> list[PlannedFile]:
+                 component: bool = False, author: Authorship = Authorship()) -> list[PlannedFile]:
     """The files of the package that do not depend on its build type's build files."""
     files = _definitions(nodes)
-    files += [PlannedFile('package.xml', _package_xml(package, nodes, build_type, component), False),
+    files += [PlannedFile('package.xml', _package_xml(package, nodes, build_type, component, author),
+                          False),
               PlannedFile(f'launch/{package}.launch.xml', _launch(package, nodes), False),
               PlannedFile('README.md', _readme(package, nodes, build_type), False),
-              PlannedFile('test/test_conformance.py', _conformance_test(package, nodes), False)]
+              PlannedFile('test/test_conformance.py', _conformance_test(package, nodes, author),
+                          False)]
     files += [PlannedFile(params_path(n), _params(n), False) for n in nodes]
     if build_type == 'ament_python':
-        files += [PlannedFile(path, _lint_test(*spec), False) for path, spec in _LINT_TESTS.items()]
+        files += [PlannedFile(path, _lint_test(*spec, author), False)
+                  for path, spec in _LINT_TESTS.items()]
+        files.append(PlannedFile('test/test_copyright.py', _copyright_test(package, nodes, author),
+                                 False))
     return files

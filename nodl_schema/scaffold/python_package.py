@@ -13,7 +13,7 @@ from __future__ import annotations
 import ast
 
 from nodl_schema.generate import GenerateOptions, default_class_name
-from nodl_schema.scaffold import NodeSource, PlannedFile, ScaffoldError
+from nodl_schema.scaffold import Authorship, NodeSource, PlannedFile, ScaffoldError
 from nodl_schema.scaffold.common import definition_path
 from nodl_schema.scaffold.text import python_string
 
@@ -47,8 +47,14 @@ def _placeholder(method: ast.FunctionDef, returns: str) -> list[str]:
     raise ScaffoldError(f'no placeholder for a callback returning {returns}')
 
 
-def user_module(package: str, node: NodeSource, base_module: str, base_text: str) -> str:
-    """The user's subclass of the generated base, with ``main``."""
+def user_module(package: str, node: NodeSource, base_module: str, base_text: str,
+                author: Authorship = Authorship()) -> str:
+    """The user's subclass of the generated base, with ``main``.
+
+    ``main`` reports a parameter the node cannot start without (the base's
+    ``ParameterError``) on one line and returns 1, the exit status of the
+    installed executable.
+    """
     tree = ast.parse(base_text)
     lines = base_text.splitlines()
     class_name = default_class_name(node.executable)
@@ -72,28 +78,42 @@ def user_module(package: str, node: NodeSource, base_module: str, base_text: str
                     '                            arguments: Any) -> str | None:',
                     '        return None  # TODO: check value with function; return why it fails']
     text = '\n'.join(methods)
-    imports = _imports(tree, text)
     doc = f'The implementation of the {node.executable} node (written once by nodl new: yours).'
     out = [f'"""{doc}"""', '', 'from __future__ import annotations', '']
-    out += imports
-    out += ['', 'import rclpy', 'from rclpy.executors import ExternalShutdownException', '',
-            f'from {package}.{base_module} import {base_class}', '', '',
-            f'class {class_name}({base_class}):',
+    stdlib, third_party = _imports(tree, text)
+    out += sorted(stdlib + ['import sys'], key=_import_key) + ['']
+    # one group, sorted by module (flake8-import-order's google style, as ament_flake8 sets it)
+    third_party += ['import rclpy', 'from rclpy.executors import ExternalShutdownException',
+                    f'from {package}.{base_module} import '
+                    + ', '.join(sorted([base_class, 'ParameterError'], key=str.lower))]
+    out += sorted(third_party, key=_import_key)
+    out += ['', '', f'class {class_name}({base_class}):',
             f'    """The {node.executable} node: implement its callbacks here."""']
     out += methods if methods else ['']
-    out += ['', '', 'def main(args: list[str] | None = None) -> None:',
-            f'    """Run the {node.executable} node until it is shut down."""',
+    out += ['', '', 'def main(args: list[str] | None = None) -> int:',
+            f'    """Run the {node.executable} node until it is shut down; return the exit status."""',
             '    rclpy.init(args=args)',
-            f'    node = {class_name}()',
+            '    try:',
+            f'        node = {class_name}()',
+            '    except ParameterError as exc:  # a parameter it needs is missing or invalid',
+            '        print(exc, file=sys.stderr)',
+            '        rclpy.try_shutdown()',
+            '        return 1',
             '    try:',
             '        rclpy.spin(node)',
             '    except (KeyboardInterrupt, ExternalShutdownException):',
             '        pass',
             '    finally:',
             '        node.destroy_node()',
-            '        rclpy.try_shutdown()', '', '',
-            "if __name__ == '__main__':", '    main()']
-    return '\n'.join(out) + '\n'
+            '        rclpy.try_shutdown()',
+            '    return 0', '', '',
+            "if __name__ == '__main__':", '    sys.exit(main())']
+    return author.header('#') + '\n'.join(out) + '\n'
+
+
+def _import_key(line: str) -> tuple[str, int]:
+    """Sort key of an import line: its module, case-insensitively (``import`` and ``from`` mixed)."""
+    return line.split()[1].lower(), 0 if line.startswith('import ') else 1
 
 
 def _empty_custom(tree: ast.Module) -> bool:
@@ -103,13 +123,16 @@ def _empty_custom(tree: ast.Module) -> bool:
     return True
 
 
-def _imports(tree: ast.Module, text: str) -> list[str]:
-    """The generated module's imports that ``text`` uses (names, or dotted modules)."""
+def _imports(tree: ast.Module, text: str) -> tuple[list[str], list[str]]:
+    """The generated module's imports that ``text`` uses (names, or dotted modules): those of the
+    standard library, and the others."""
     import re
+    import sys
 
     used = set(re.findall(r'[A-Za-z_][A-Za-z0-9_.]*', text))
     roots = {u.split('.')[0] for u in used}
     out: list[str] = []
+    stdlib: list[str] = []
     for item in tree.body:
         if isinstance(item, ast.Import):
             names = [a for a in item.names if (a.asname or a.name).split('.')[0] in roots]
@@ -117,17 +140,19 @@ def _imports(tree: ast.Module, text: str) -> list[str]:
         elif isinstance(item, ast.ImportFrom) and item.module and item.module != '__future__':
             names = [a for a in item.names if (a.asname or a.name) in roots]
             if names:
-                out.append(f'from {item.module} import ' + ', '.join(
-                    a.name + (f' as {a.asname}' if a.asname else '') for a in names))
-    return out
+                line = f'from {item.module} import ' + ', '.join(
+                    a.name + (f' as {a.asname}' if a.asname else '') for a in names)
+                (stdlib if item.module.split('.')[0] in sys.stdlib_module_names else out).append(line)
+    return stdlib, out
 
 
-def _setup_py(package: str, nodes: list[NodeSource]) -> str:
-    registered = ',\n'.join(f'                         {python_string(n.executable)}: '
+def _setup_py(package: str, nodes: list[NodeSource], author: Authorship) -> str:
+    registered = ',\n'.join(f'                {python_string(n.executable)}: '
                             f'{python_string(definition_path(n))}' for n in nodes)
+    name, email = author.maintainer or ('TODO', 'todo@todo.todo')
     scripts = ',\n'.join(f'            {python_string(f"{n.executable} = {package}.{n.executable}:main")}'
                          for n in nodes)
-    return f'''"""Build and install {package}: its module, its node definitions and their registration."""
+    return author.header('#') + f'''"""Build and install {package}: its module, its node definitions and their registration."""
 
 from glob import glob
 
@@ -146,18 +171,21 @@ setup(
         ('share/' + package_name + '/config', glob('config/*.yaml')),
         ('share/' + package_name + '/launch', glob('launch/*.launch.xml')),
 {_wrapped_comment(f'The definitions: validated now, installed to share/{package}/nodl, registered in the ament index (nodl show / nodl check {package} EXECUTABLE find them).', '        ')}
-        *nodl_data_files(package_name,
-                         nodes={{
+        *nodl_data_files(
+            package_name,
+            nodes={{
 {registered},
-                         }}),
+            }}),
     ],
     install_requires=['setuptools'],
     zip_safe=True,
-    maintainer='TODO',
-    maintainer_email='todo@todo.todo',
-    description='TODO: Package description',
-    license='TODO: License declaration',
-    tests_require=['pytest'],
+    maintainer={python_string(name)},
+    maintainer_email={python_string(email)},
+    description={_string_lines(_description(nodes), '    description=')},
+    license={python_string(author.license or 'TODO: License declaration')},
+    extras_require={{
+        'test': ['pytest'],
+    }},
     entry_points={{
         'console_scripts': [
 {scripts},
@@ -167,9 +195,32 @@ setup(
 '''
 
 
+def _description(nodes: list[NodeSource]) -> str:
+    from nodl_schema.scaffold.text import one_line
+
+    text = ' '.join(one_line(n.node.node.main.description) for n in nodes
+                    if n.node.node.main.description)
+    return text or f'The nodes {", ".join(n.executable for n in nodes)}.'
+
+
+def _string_lines(text: str, head: str) -> str:
+    """A string literal of ``text`` after ``head``, split into parenthesized adjacent literals
+    when the line would pass 99 columns."""
+    if len(head) + len(python_string(text)) + 1 <= 99:
+        return python_string(text)
+    import textwrap
+
+    chunks = textwrap.wrap(text, 99 - 8 - 4, break_long_words=True, drop_whitespace=False)
+    indent = ' ' * 8
+    return '(\n' + ''.join(f'{indent}{python_string(c)}\n' for c in chunks) + '    )'
+
+
 def _setup_cfg(package: str) -> str:
+    # [tool:pytest]: colcon test runs pytest over test/ (the lint tests, the staleness test and
+    # the conformance test), with JUnit results for colcon test-result
     return (f'[develop]\nscript_dir=$base/lib/{package}\n'
-            f'[install]\ninstall_scripts=$base/lib/{package}\n')
+            f'[install]\ninstall_scripts=$base/lib/{package}\n'
+            '[tool:pytest]\ntestpaths = test\njunit_family = xunit2\n')
 
 
 def _wrapped(text: str, width: int = 95) -> str:
@@ -185,7 +236,7 @@ def _wrapped_comment(text: str, indent: str) -> str:
     return '\n'.join(f'{indent}# {line}' for line in _wrapped(text, 99 - len(indent) - 2).splitlines())
 
 
-def _staleness_test(package: str, nodes: list[NodeSource]) -> str:
+def _staleness_test(package: str, nodes: list[NodeSource], author: Authorship) -> str:
     entries = '\n'.join(f'    ({python_string(n.executable)}, '
                         f'{python_string(default_class_name(n.executable))}, '
                         f'{python_string(definition_path(n))}),' for n in nodes)
@@ -193,7 +244,8 @@ def _staleness_test(package: str, nodes: list[NodeSource]) -> str:
     how = _wrapped(f'They are committed with the package; after changing a definition, regenerate them '
                    f'with `nodl new {package} --from ... --build-type ament_python --update` or '
                    f'`nodl generate nodl/FILE --language python -o {package}`.')
-    return f'''"""{doc}
+    return author.header('#') + f'''"""
+{doc}
 
 {how}
 """
@@ -224,17 +276,18 @@ def test_generated_base_is_up_to_date(executable, class_name, definition):
 '''
 
 
-def python_files(package: str, nodes: list[NodeSource]) -> list[PlannedFile]:
+def python_files(package: str, nodes: list[NodeSource],
+                 author: Authorship = Authorship()) -> list[PlannedFile]:
     """setup.py, setup.cfg, the index marker, the module: generated bases and user stubs."""
-    files = [PlannedFile('setup.py', _setup_py(package, nodes), False),
+    files = [PlannedFile('setup.py', _setup_py(package, nodes, author), False),
              PlannedFile('setup.cfg', _setup_cfg(package), False),
              PlannedFile(f'resource/{package}', '', False),
              PlannedFile(f'{package}/__init__.py', '', False),
-             PlannedFile('test/test_generated.py', _staleness_test(package, nodes), False)]
+             PlannedFile('test/test_generated.py', _staleness_test(package, nodes, author), False)]
     for node in nodes:
         name, text = generate_base(package, node)
         files.append(PlannedFile(f'{package}/{name}', text, True))
         module = name[:-len('.py')] if name.endswith('.py') else name
         files.append(PlannedFile(f'{package}/{node.executable}.py',
-                                 user_module(package, node, module, text), False))
+                                 user_module(package, node, module, text, author), False))
     return files

@@ -28,6 +28,14 @@ class NewVerb(Verb):
                             help='ament_cmake: make each node an rclcpp component (a library '
                                  'registered with RCLCPP_COMPONENTS_REGISTER_NODE, and an '
                                  'executable that runs it alone)')
+        parser.add_argument('--license', metavar='SPDX',
+                            help='the license, as an SPDX id ament_copyright knows (Apache-2.0, '
+                                 'BSD-2-Clause, BSD-3-Clause, BSL-1.0, GPL-3.0-or-later, '
+                                 'LGPL-3.0-or-later, MIT, MIT-0): written into package.xml and a '
+                                 'copyright header in every source file; needs --maintainer')
+        parser.add_argument('--maintainer', nargs=2, metavar=('NAME', 'EMAIL'),
+                            help="the maintainer in package.xml (and setup.py), and the copyright "
+                                 "holder of the headers")
         parser.add_argument('--update', action='store_true',
                             help='the package exists: regenerate its generated files, add missing '
                                  'ones, keep every file of yours')
@@ -42,7 +50,8 @@ class NewVerb(Verb):
 
     def main(self, args: argparse.Namespace) -> int:
         from nodl_schema.reporting import format_text
-        from nodl_schema.scaffold import ScaffoldError, load_nodes, plan_package, write_package
+        from nodl_schema.scaffold import (
+            ScaffoldError, authorship, check_package_name, load_nodes, plan_package, write_package)
 
         sources: list[list[str]] = []
         for group in args.sources:
@@ -51,8 +60,11 @@ class NewVerb(Verb):
             else:
                 sources.extend([item] for item in group)
         try:
+            check_package_name(args.package)
+            author = authorship(args.license, args.maintainer)
             nodes = load_nodes(sources, args.build_type)
-            plan = plan_package(args.package, nodes, args.build_type, component=args.component)
+            plan = plan_package(args.package, nodes, args.build_type, component=args.component,
+                                author=author)
             report = write_package(plan, args.output, update=args.update, force=args.force)
         except ScaffoldError as exc:
             if exc.diagnostics:
