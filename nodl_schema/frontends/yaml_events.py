@@ -8,13 +8,21 @@ also enforces what a YAML loader does not:
 - duplicate keys are problems (with the first key's line), not silently
   collapsed;
 - nesting deeper than :data:`MAX_DEPTH` stops the pass at the collection
-  that crosses the limit, so no recursion ever sees a deep document;
+  that crosses the limit, so no recursion ever sees a deep document; and
+  :func:`read` finds flow collections (``[[[[...``) that cross it on one
+  line before libyaml reads them (libyaml's scanner reads a line's tokens
+  ahead of its events, and has a nesting limit of its own: the toolkit's
+  limit and message come first, whatever the parser's limit is);
 - alias expansion is counted as aliases are met (an anchored node's
   expanded size and height are known when it ends), so recursive aliases,
   "billion laughs" and aliases that nest the data too deeply stop the pass
   at the alias, and documents without anchors pay nothing for it;
 - tags other than YAML's standard scalar, mapping and sequence tags are
-  problems.
+  problems;
+- merge keys follow the YAML merge-key specification
+  (https://yaml.org/type/merge.html), whatever the installed PyYAML does:
+  with ``<<: [*a, *b]`` a key of ``*a`` wins over the same key of ``*b``, and
+  a key written in the mapping itself wins over every merged one.
 
 Scalars resolve as PyYAML's ``SafeLoader`` resolves them (YAML 1.1, using
 PyYAML's own table of implicit resolvers), except timestamps, which stay
@@ -30,6 +38,8 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Any, Callable
 
+import re
+
 import yaml
 from yaml.events import (
     AliasEvent, DocumentEndEvent, MappingEndEvent, MappingStartEvent, ScalarEvent,
@@ -43,8 +53,8 @@ try:
 except ImportError:  # PyYAML built without libyaml
     _CParser = None  # type: ignore[misc, assignment]
 
-__all__ = ['MAX_DEPTH', 'MAX_ALIAS_NODES', 'Stop', 'Problem', 'build', 'event_source', 'quote',
-           'span_position']
+__all__ = ['MAX_DEPTH', 'MAX_ALIAS_NODES', 'Stop', 'Problem', 'build', 'event_source', 'read',
+           'quote', 'span_position']
 
 MAX_DEPTH = 100
 MAX_ALIAS_NODES = 10_000
@@ -135,6 +145,191 @@ def event_source(text: str) -> Callable[[], Any]:
     return yaml.SafeLoader(text).get_event
 
 
+def read(text: str, spans: dict[Any, Any] | None = None,
+         seen: list[tuple[str, Any]] | None = None) -> tuple[Any, list[Problem]]:
+    """:func:`build` for ``text``, with the toolkit's nesting limit applied first.
+
+    libyaml's scanner reads the tokens of a line ahead of the events the pass
+    sees (up to 1,024 characters), and refuses nesting beyond a limit of its
+    own (PyYAML 6.0.4: 1,000 levels) with a message of its own.  So before
+    libyaml reads the text, this finds where flow collections (``[``, ``{``)
+    may first nest deeper than :data:`MAX_DEPTH` (a quick scan: quoted scalars,
+    comments and block scalars skipped where they start a node), and
+    reads the text only up to there: if the document does cross the limit,
+    the pass stops there with :data:`TOO_DEEP` at the collection that
+    crosses it, as it does for any other deep document.  Should a parser
+    still refuse nesting (text the scan reads as a scalar), the same
+    :class:`Stop` is raised instead of its error.  Raises as :func:`build`."""
+    cut = _flow_crossing(text)
+    if cut >= 0:
+        try:  # (the prefix nests at most MAX_DEPTH + 1 levels: no parser limit in reach)
+            build(event_source(text[:cut + 1]))
+        except Stop as stop:
+            if stop.code == TOO_DEEP:
+                raise
+        except yaml.YAMLError:
+            pass  # (the text ends inside the collection: it did not cross the limit)
+    try:
+        return build(event_source(text), spans, seen)
+    except yaml.YAMLError as exc:
+        instead = _parser_nesting_limit(text, exc)
+        if instead is None:
+            raise
+        raise instead from None
+
+
+#: What the flow scan stops at: flow indicators, quotes, comments, block scalar indicators.
+_FLOW_SCAN = re.compile(r'''[\[\]{}"'#|>]''')
+_BLOCK_HEADER = re.compile(r'[|>][-+0-9]*[ \t]*(?:#[^\n]*)?(?=\r?\n|$)')
+#: After these (spaces between), a quote or ``|``/``>`` starts a node; after anything else
+#: (``don't``, ``a 'b'``, ``x > y``) it is part of a plain scalar.
+_NODE_STARTS = frozenset('\n[{,:?-')
+
+
+def _before(text: str, at: int) -> tuple[str, int]:
+    """The character before ``at`` on its line, spaces skipped (``'\\n'`` at the line's
+    start), and where it is."""
+    index = at - 1
+    while index >= 0 and text[index] in ' \t':
+        index -= 1
+    if index < 0 or text[index] == '\r':
+        return '\n', index
+    return text[index], index
+
+
+def _starts_node(text: str, at: int) -> bool:
+    char, index = _before(text, at)
+    if char in _NODE_STARTS:
+        return True
+    start = index  # a property before it: '&anchor "x"', '!!str "x"'
+    while start > 0 and text[start - 1] not in ' \t\r\n[{,':
+        start -= 1
+    return text[start] in '&!'
+
+
+def _flow_crossing(text: str) -> int:
+    """Where flow collections may first nest deeper than :data:`MAX_DEPTH`: the index of the
+    ``[`` or ``{`` that would be level ``MAX_DEPTH + 1``, or -1.
+
+    Brackets inside quoted scalars, comments and block scalars are skipped only where
+    those start a node, and a closing bracket outside any flow collection (in a plain
+    scalar) does not count, so the count is not lower than the real nesting but for a
+    plain scalar that looks like the start of a quoted one (``'tis`` opening a line of a
+    multi-line plain scalar): :func:`read` then turns the parser's nesting error into the
+    toolkit's."""
+    if text.count('[') + text.count('{') <= MAX_DEPTH or not _dense_line(text):
+        return -1
+    depth = 0
+    search = _FLOW_SCAN.search
+    at = 0
+    while True:
+        found = search(text, at)
+        if found is None:
+            return -1
+        index = found.start()
+        char = text[index]
+        at = index + 1
+        if char == '[' or char == '{':
+            depth += 1
+            if depth > MAX_DEPTH:
+                return index
+        elif char == ']' or char == '}':
+            if depth:
+                depth -= 1
+        elif char == '#':
+            if index == 0 or text[index - 1] in ' \t\r\n':
+                end = text.find('\n', index)
+                at = len(text) if end < 0 else end
+        elif char == '"' or char == "'":
+            if _starts_node(text, index):
+                at = _quote_end(text, index, char)
+        elif depth == 0 and _before(text, index)[0] in '\n:-?':  # '|' or '>' in block context
+            header = _BLOCK_HEADER.match(text, index)
+            if header is not None:
+                at = _block_scalar_end(text, index, header.end())
+    return -1
+
+
+def _dense_line(text: str) -> bool:
+    """True if a line holds more than :data:`MAX_DEPTH` ``[`` and ``{``.
+
+    Nesting over several lines reaches the pass before a parser reads far ahead (libyaml
+    reads ahead within a line), so the pass itself stops it at level ``MAX_DEPTH + 1``;
+    only a line that opens more than ``MAX_DEPTH`` collections can take a parser's
+    scanner past a limit of ``2 * MAX_DEPTH`` or more before the pass sees level
+    ``MAX_DEPTH + 1`` (and should a parser's limit be lower, :func:`read` still turns
+    its error into the toolkit's)."""
+    lines = text.split('\n')
+    if max(map(len, lines)) <= MAX_DEPTH:  # (most documents: no line is that long)
+        return False
+    return any(line.count('[') + line.count('{') > MAX_DEPTH
+               for line in lines if len(line) > MAX_DEPTH)
+
+
+def _quote_end(text: str, start: int, quote: str) -> int:
+    """Just after the quoted scalar that starts at ``start`` (the text's end if it is not
+    closed): ``''`` is a quote in single quotes, a backslash escapes in double quotes."""
+    at = start + 1
+    while True:
+        end = text.find(quote, at)
+        if end < 0:
+            return len(text)
+        if quote == "'":
+            if text.startswith("''", end):
+                at = end + 2
+                continue
+            return end + 1
+        backslashes = end
+        while text[backslashes - 1] == '\\':
+            backslashes -= 1
+        if (end - backslashes) % 2 == 0:
+            return end + 1
+        at = end + 1
+
+
+def _block_scalar_end(text: str, indicator: int, header_end: int) -> int:
+    """Where the block scalar whose header ends at ``header_end`` ends: at the first line
+    (blank lines aside) indented no more than the node it is the value of (the line's
+    indentation, or where the key starts after ``- `` entries: never later than YAML ends it)."""
+    line_start = text.rfind('\n', 0, indicator) + 1
+    line = text[line_start:indicator]
+    stripped = line.lstrip(' ')
+    while stripped[:2] in ('- ', '? '):
+        stripped = stripped[2:].lstrip(' ')
+    parent = len(line) - len(stripped)
+    at = text.find('\n', header_end)
+    while at >= 0:
+        start = at + 1
+        end = text.find('\n', start)
+        content = text[start:] if end < 0 else text[start:end]
+        body = content.lstrip(' ')
+        if body.strip() and len(content) - len(body) <= parent:
+            return start
+        at = end
+    return len(text)
+
+
+def _parser_nesting_limit(text: str, exc: Any) -> Stop | None:
+    """A parser's own nesting limit reached (text the flow scan took for a scalar): the
+    toolkit's :class:`Stop`, placed at the collection that crosses :data:`MAX_DEPTH`
+    (found by PyYAML's Python parser, read up to where the parser stopped)."""
+    mark = getattr(exc, 'problem_mark', None)
+    if mark is None or 'nesting' not in str(getattr(exc, 'problem', '')):
+        return None
+    lines = text.split('\n', mark.line + 1)
+    offset = sum(len(line) + 1 for line in lines[:mark.line]) + mark.column
+    message = (f'document nests deeper than {MAX_DEPTH} levels; NoDL documents are never '
+               'this deep')
+    try:
+        build(yaml.SafeLoader(text[:offset + 1]).get_event)
+    except Stop as stop:
+        if stop.code == TOO_DEEP:
+            return stop
+    except yaml.YAMLError:
+        pass
+    return Stop(TOO_DEEP, message, mark)
+
+
 def _plain_tag(text: str) -> str:
     for tag, pattern in _IMPLICIT.get(text[:1], ()):
         if pattern.match(text):
@@ -215,15 +410,17 @@ def _merged(out: dict[Any, Any], merges: list[tuple[Any, Any]], problems: list[P
     out.update(merged)
 
 
-def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
-          ) -> tuple[Any, list[Problem]]:
+def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None,
+          seen: list[tuple[str, Any]] | None = None) -> tuple[Any, list[Problem]]:
     """Read one document's events and return its data and its problems.
 
     ``get_event`` comes from :func:`event_source`.  Raises :class:`Stop` for
     a problem that makes the document unusable, and PyYAML's ``YAMLError``
     for a syntax error.  With ``spans``, the document's source map is kept
     there (read it with :func:`span_position`; only for a document without
-    problems).
+    problems).  With ``seen``, every anchor, alias and merge key is listed
+    there in document order, as ``('anchor' | 'alias' | 'merge', mark)``
+    (for readers that refuse them, such as rcl's parameter-file parser).
     """
     problems: list[Problem] = []
     get_event()  # StreamStartEvent
@@ -264,6 +461,8 @@ def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
                     tag = _plain_tag(text)
                     if tag == _MERGE and is_map and key is _NO_KEY:
                         value = _MERGE_KEY
+                        if seen is not None:
+                            seen.append(('merge', event.start_mark))
                     else:
                         value = _construct(tag, text)
                         if value is _MISS:  # '<<' as a value, '=': tags NoDL has no use for
@@ -275,6 +474,8 @@ def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
                 if event.anchor in anchors:
                     _anchor_twice(anchors[event.anchor][1], event)
                 anchors[event.anchor] = [value, event, 1, 0]
+                if seen is not None:
+                    seen.append(('anchor', event.start_mark))
         elif cls is MappingStartEvent or cls is SequenceStartEvent:
             count += 1
             tag = event.tag
@@ -296,6 +497,8 @@ def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
                 if event.anchor in anchors:
                     _anchor_twice(anchors[event.anchor][1], event)
                 anchors[event.anchor] = [new, event, None, 0]  # open: an alias to it recurses
+                if seen is not None:
+                    seen.append(('anchor', event.start_mark))
                 anchored = (count - 1, deepest)
                 deepest = depth - 1
             if depth > deepest:
@@ -322,6 +525,8 @@ def build(get_event: Callable[[], Any], spans: dict[Any, Any] | None = None
                      tuple(events)) if is_map else (None, None, tuple(events)))
             cur, is_map, key, key_event, key_events, merges, start, anchored, events = stack.pop()
         elif cls is AliasEvent:
+            if seen is not None:
+                seen.append(('alias', event.start_mark))
             entry = anchors.get(event.anchor)  # type: ignore[assignment]
             if entry is None:
                 raise Stop(SYNTAX, f"YAML alias '*{event.anchor}' refers to no anchor; define "

@@ -67,6 +67,9 @@ class ParsedDocument:
         self._composed = False
         #: The source map of :func:`yaml_events.build` (None: place by composing the tree).
         self._spans: dict[Any, Any] | None = None
+        #: The YAML anchors, aliases and merge keys of the text, in order, as ``(kind, line,
+        #: column)`` (kind ``anchor``, ``alias`` or ``merge``): for readers that refuse them.
+        self.aliasing: list[tuple[str, int, int]] = []
 
     @property
     def ok(self) -> bool:
@@ -244,8 +247,9 @@ def parse_document(source: SourceText) -> ParsedDocument:
 def _parse_yaml(doc: ParsedDocument) -> None:
     text, file = doc.source
     spans: dict[Any, Any] = {}
+    seen: list[tuple[str, Any]] = []
     try:
-        doc.data, problems = yaml_events.build(yaml_events.event_source(text), spans)
+        doc.data, problems = yaml_events.read(text, spans, seen)
     except yaml_events.Stop as stop:
         doc.diagnostics.append(_error(file, stop.message, stop.code, stop.mark))
     except yaml.YAMLError as exc:
@@ -256,6 +260,7 @@ def _parse_yaml(doc: ParsedDocument) -> None:
     else:
         if not problems:  # (a duplicate key or a bad key leaves the map behind the data)
             doc._spans = spans
+        doc.aliasing = [(kind, mark.line + 1, mark.column + 1) for kind, mark in seen]
         for code, message, event, path in problems:
             doc.diagnostics.append(_error(file, message, code, event.start_mark, path))
 
@@ -326,7 +331,7 @@ def _json_problems(doc: ParsedDocument, duplicates: bool) -> None:
     (JSON is YAML flow syntax; json itself reports neither with a position)."""
     text, file = doc.source
     try:
-        _, problems = yaml_events.build(yaml_events.event_source(text))
+        _, problems = yaml_events.read(text)
     except yaml_events.Stop as stop:
         doc.diagnostics.append(_error(file, stop.message, stop.code, stop.mark))
         doc.data = None
