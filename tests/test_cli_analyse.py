@@ -158,3 +158,31 @@ def test_a_system_of_nodes_registered_by_the_references_ament_nodl_register() ->
     # include (nodl://ref_robot/sensor_common) gives it /clock, which nothing publishes.
     codes = {f['code'] for f in report['findings']}
     assert 'NODL555' in codes and not {'NODL306', 'NODL301'} & codes, report['findings']
+
+
+SANDBOX = REPO / 'tests' / 'fixtures' / 'launch' / 'sandbox'
+
+
+def test_no_exec_runs_no_python_launch_file_and_exits_2() -> None:
+    done = run('analyse', '--no-exec', str(SANDBOX / 'good.launch.py'))
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert re.search(r'good\.launch\.py:1:1: error: .*is not run: --no-exec is set.*\[NODL525\]', done.stdout)
+
+
+def test_a_crashing_launch_file_is_a_located_error_not_a_dead_analyser() -> None:
+    done = run('analyse', '--launch-memory', '256', str(SANDBOX / 'segfault.launch.py'))
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert re.search(r'segfault\.launch\.py:1:1: error: .*killed by SIGSEGV.*\[NODL527\]', done.stdout)
+    assert 'Traceback' not in done.stderr and 'Fatal Python error' not in done.stderr
+    done = run('analyse', '--launch-timeout', '1', str(SANDBOX / 'mixed.launch.xml'), '--format', 'json')
+    assert done.returncode == 1, done.stdout + done.stderr  # the rest is read: errors, not unreadable
+    report = json.loads(done.stdout)
+    assert [n['name'] for n in report['nodes']] == ['/talker', '/listener']
+    assert [(f['code'], f['line']) for f in report['findings'] if f['code'] == 'NODL527'] == [('NODL527', 5)]
+
+
+def test_help_says_what_runs() -> None:
+    text = ' '.join(run('analyse', '--help').stdout.split())
+    assert 'Reading a Python launch file runs its code, and $(eval ...) runs Python' in text
+    assert '$(command ...) is never run' in text and '--no-exec' in text
+    assert '(default: 30)' in text and '(default: 2048)' in text

@@ -60,3 +60,25 @@ def test_two_files_say_what_is_accepted(verb: list[str]) -> None:
     assert result.returncode == 2
     assert 'is a file, so one is expected: give FILE, or PACKAGE EXECUTABLE' in result.stderr
     assert 'not registered' not in result.stderr
+
+
+def test_launch_limits_are_positive_numbers() -> None:
+    from nodl_schema.cli.arguments import mebibytes, positive_seconds
+
+    assert positive_seconds('0.5') == 0.5 and mebibytes('512') == 512.0
+    for bad in ('0', '-1', 'nan', 'inf', 'soon'):
+        for check in (positive_seconds, mebibytes):
+            with pytest.raises(argparse.ArgumentTypeError):
+                check(bad)
+
+
+@pytest.mark.parametrize('verb', [['analyse', 'x.launch.py'], ['policy', 'x.launch.py'],
+                                  ['params', 'check', 'p.yaml', '--launch', 'x.launch.py']])
+@pytest.mark.parametrize('option, message', [
+    (['--launch-timeout', '0'], "argument --launch-timeout: '0': expected a number of seconds greater than 0"),
+    (['--launch-memory', 'lots'], "argument --launch-memory: 'lots' is not a number of MiB"),
+])
+def test_bad_launch_limits_exit_2_in_one_line(verb: list[str], option: list[str], message: str) -> None:
+    result = nodl(*verb, *option)
+    assert result.returncode == 2 and result.stderr.rstrip().splitlines()[-1].endswith(message), result.stderr
+    assert 'Traceback' not in result.stderr

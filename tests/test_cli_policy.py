@@ -99,3 +99,13 @@ def test_a_policy_for_nodes_registered_by_the_references_ament_nodl_register(tmp
                            capture_output=True, timeout=60)
     assert named.returncode == 0, named.stdout + named.stderr
     assert '<service>~/reset</service>' in named.stdout
+
+
+def test_a_python_launch_file_runs_in_the_sandbox_and_no_exec_refuses_it() -> None:
+    launch = 'tests/fixtures/launch/sandbox/good.launch.py'
+    result = nodl(launch, '--allow-missing')
+    assert result.returncode == 0, result.stderr
+    assert '<enclave path="/talker">' in result.stdout
+    result = nodl(launch, '--no-exec')
+    assert result.returncode == 2 and 'is not run: --no-exec is set' in result.stderr
+    assert '[NODL525]' in result.stderr

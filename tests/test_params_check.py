@@ -138,3 +138,14 @@ def test_an_empty_list_leaves_a_statically_typed_array_unset(tmp_path: Path) -> 
     found = check_parameter_files([str(params)], _node(), '/everything')
     assert _codes(found) == [('NODL703', 4, 5)]
     assert 'unset' in found[0].message and found[0].related
+
+
+def test_no_exec_reads_no_python_launch_file(tmp_path: Path) -> None:
+    from nodl_schema.launch.sandbox import LaunchLimits
+    from nodl_schema.params import check_launch_parameters
+
+    launch = Path(__file__).parent / 'fixtures' / 'launch' / 'sandbox' / 'good.launch.py'
+    params = tmp_path / 'p.yaml'
+    params.write_text('/talker:\n  ros__parameters: {}\n')
+    found = check_launch_parameters(str(launch), [str(params)], limits=LaunchLimits(execute=False))
+    assert [(d.code, d.line) for d in found] == [('NODL525', 1)]

@@ -18,6 +18,10 @@ from nodl_schema.analysis.findings import Finding
 from nodl_schema.analysis.instances import AnalysedNode, build_node
 from nodl_schema.diagnostics import Diagnostic, Severity
 
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from nodl_schema.launch.sandbox import LaunchLimits
+
 __all__ = ['Analysis', 'analyse_entries', 'analyse_launch', 'LAUNCH_KIND']
 
 #: The kind of findings that come from reading the launch files themselves.
@@ -109,19 +113,21 @@ def _parameter_file_findings(records: Iterable[Any]) -> list[Finding]:
     """What is wrong with the parameter files the launch gives its nodes (unreadable, not
     YAML, not a parameter file): a node given such a file fails to start, as rcl cannot
     parse it.  Each file is said once, at its own line, related to where it is given."""
-    from nodl_schema.launch.params import load_parameter_file
+    from nodl_schema.launch.params import load_parameter_file, parse_parameter_text
 
     out: list[Finding] = []
-    seen: set[str] = set()
+    seen: set[tuple[str, str | None]] = set()
     for record in records:
         for source in getattr(record, 'parameters', None) or ():
             path = getattr(source, 'path', None)
-            if getattr(source, 'kind', None) != 'file' or not path or path in seen:
+            text = getattr(source, 'text', None)  # the file substituted first (allow_substs)
+            if getattr(source, 'kind', None) != 'file' or not path or (path, text) in seen:
                 continue
-            seen.add(path)
+            seen.add((path, text))
             where = source.source
             given = (where.file, where.line, where.column, 'the parameter file is given here')
-            for diagnostic in load_parameter_file(path).diagnostics:
+            loaded = load_parameter_file(path) if text is None else parse_parameter_text(path, text)
+            for diagnostic in loaded.diagnostics:
                 out.append(_launch_finding(diagnostic.replace(
                     related=(*diagnostic.related, given))))
     return out
@@ -134,9 +140,14 @@ def _launch_finding(diagnostic: Diagnostic) -> Finding:
 def analyse_launch(launch_file: str | os.PathLike[str], arguments: Mapping[str, str] | None = None,
                    *, client_library: str | None = None, prefixes: list[str] | None = None,
                    settings: AnalysisSettings | None = None,
-                   checks: Mapping[str, object] | None = None) -> Analysis:
+                   checks: Mapping[str, object] | None = None,
+                   limits: LaunchLimits | None = None) -> Analysis:
     """Analyse the system a launch file (XML, YAML or Python) starts, with launch
     ``arguments`` (``name -> value``, as ``name:=value`` on the command line).
+
+    ``limits``: whether the launch's Python code (Python launch files, ``$(eval)``) runs,
+    and for how long and with how much memory (:class:`~nodl_schema.launch.sandbox.LaunchLimits`;
+    default: it runs in a forked child, 30 s, 2048 MiB).
 
     ``prefixes``: the ament prefixes every look-up searches (``$(find-pkg-share)``, the
     nodes' definitions and their ``nodl://`` mixins); default: ``AMENT_PREFIX_PATH``."""
@@ -145,7 +156,7 @@ def analyse_launch(launch_file: str | os.PathLike[str], arguments: Mapping[str, 
 
     path = os.fspath(launch_file)
     with batch_collection():
-        result = load_launch(path, dict(arguments or {}), prefixes=prefixes)
+        result = load_launch(path, dict(arguments or {}), prefixes=prefixes, limits=limits)
     records, diagnostics, unreadable = _launch_result(result, path)
     analysis = analyse_entries(records, client_library=client_library, prefixes=prefixes,
                                settings=settings, checks=checks,
@@ -156,8 +167,9 @@ def analyse_launch(launch_file: str | os.PathLike[str], arguments: Mapping[str, 
 
 
 #: Codes that mean the launch file itself could not be read or parsed (exit status 2):
-#: reading and syntax (NODL0xx), a missing file, a Python file that does not evaluate.
-_UNREADABLE = ('NODL515', 'NODL516')
+#: reading and syntax (NODL0xx), a missing file, a Python file that does not evaluate, is
+#: not run (--no-exec) or stops its sandbox (ends, crashes, runs out of time or memory).
+_UNREADABLE = ('NODL515', 'NODL516', 'NODL525', 'NODL527', 'NODL528', 'NODL529')
 
 
 def _launch_result(result: Any, path: str) -> tuple[list[Any], list[Diagnostic], bool]:

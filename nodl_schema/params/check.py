@@ -19,6 +19,10 @@ from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.generate.parameters import ParametersPlan, plan_parameters, value_problems
 from nodl_schema.system import Entity, ResolvedNode
 
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from nodl_schema.launch.sandbox import LaunchLimits
+
 __all__ = ['check_parameter_files', 'check_launch_parameters', 'is_wildcard_key']
 
 
@@ -110,17 +114,19 @@ def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) ->
 
 def check_launch_parameters(launch_file: str, files: Sequence[str] = (),
                             arguments: dict[str, str] | None = None,
-                            prefixes: list[str] | None = None) -> list[Diagnostic]:
+                            prefixes: list[str] | None = None,
+                            limits: LaunchLimits | None = None) -> list[Diagnostic]:
     """The parameters a launch file gives its nodes, and ``files``, checked against the nodes' definitions.
 
     The launch file's own parameter files and values are checked by the launch
     analysis (NODL560-563); ``files`` are checked for every launched node that
     has a definition, under its final name.  ``prefixes``: the install prefixes
-    definitions are looked up in (default: ``AMENT_PREFIX_PATH``).
+    definitions are looked up in (default: ``AMENT_PREFIX_PATH``).  ``limits``: how the
+    launch's Python code runs, if at all (:class:`~nodl_schema.launch.sandbox.LaunchLimits`).
     """
     from nodl_schema.analysis.system import LAUNCH_KIND, analyse_launch
 
-    analysis = analyse_launch(launch_file, arguments or {}, prefixes=prefixes)
+    analysis = analyse_launch(launch_file, arguments or {}, prefixes=prefixes, limits=limits)
     out = [f.diagnostic for f in analysis.findings
            if (f.kind == LAUNCH_KIND and f.severity is Severity.ERROR)
            or f.code in ('NODL560', 'NODL561', 'NODL562', 'NODL563')]

@@ -16,14 +16,19 @@ from nodl_schema.policy.distros import DEFAULT_DISTRO
 from nodl_schema.policy.enclaves import EnclaveMapping
 from nodl_schema.policy.generate import MissingNode, PolicyResult, policy_for_instances
 
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from nodl_schema.launch.sandbox import LaunchLimits
+
 __all__ = ['launch_policy']
 
 
 def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | None = None, *,
                   client_library: str | None = None, distro: str = DEFAULT_DISTRO,
                   enclaves: str | EnclaveMapping = 'node', allow_missing: bool = False,
-                  prefixes: list[str] | None = None) -> PolicyResult:
-    """The policy of the system ``path`` launches with ``arguments``.
+                  prefixes: list[str] | None = None, limits: LaunchLimits | None = None) -> PolicyResult:
+    """The policy of the system ``path`` launches with ``arguments`` (``limits``: how the
+    launch's Python code runs, if at all; see :class:`~nodl_schema.launch.sandbox.LaunchLimits`).
 
     OSError if the launch file cannot be read at all; ValueError if it cannot
     be parsed (its diagnostics in the message).
@@ -36,7 +41,7 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
         raise OSError(2, 'No such file or directory' if not os.path.isdir(path) else 'is a directory',
                       path)
     analysis = analyse_launch(path, dict(arguments or {}), client_library=client_library,
-                              prefixes=prefixes, checks={})
+                              prefixes=prefixes, checks={}, limits=limits)
     launch_problems = [f.diagnostic for f in analysis.findings]
     if analysis.unreadable:
         raise ValueError('; '.join(str(d) for d in launch_problems) or f'{path} cannot be read')

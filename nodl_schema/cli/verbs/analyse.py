@@ -14,7 +14,7 @@ class AnalyseVerb(Verb):
     failure = 'the analysis found errors'
 
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
-        from nodl_schema.cli.arguments import add_client_library_argument
+        from nodl_schema.cli.arguments import add_client_library_argument, add_launch_code_arguments
         from nodl_schema.cli.diagnostic_options import add_diagnostic_options
 
         parser.add_argument('launch_file', metavar='LAUNCH_FILE',
@@ -23,6 +23,7 @@ class AnalyseVerb(Verb):
         parser.add_argument('launch_arguments', nargs='*', metavar='NAME:=VALUE',
                             help='launch arguments, as for ros2 launch')
         add_client_library_argument(parser)
+        add_launch_code_arguments(parser)
         parser.add_argument('--format', choices=('text', 'json', 'sarif', 'junit'), default='text',
                             help='how to print the report (default: text)')
         parser.add_argument('-o', '--output', metavar='FILE',
@@ -83,8 +84,10 @@ class AnalyseVerb(Verb):
         from nodl_schema.analysis import analyse_launch
         from nodl_schema.analysis import report
 
+        from nodl_schema.cli.arguments import launch_limits
+
         analysis = analyse_launch(args.launch_file, arguments, client_library=args.client_library,
-                                  settings=settings)
+                                  settings=settings, limits=launch_limits(args))
         try:
             analysis.apply_overrides(policy.apply)
         except PolicyError as exc:

@@ -34,6 +34,9 @@ class ParamsVerb(Verb):
                                  'launch file itself gives are checked too)')
         parser.add_argument('--launch-argument', action='append', default=[], metavar='NAME:=VALUE',
                             help='check: a launch argument (repeatable)')
+        from nodl_schema.cli.arguments import add_launch_code_arguments
+
+        add_launch_code_arguments(parser)
         parser.epilog = ('Node keys match as rcl matches them (/** any number of name tokens, /* one); '
                          'values are typed as rcl types them and checked as strictly as a node does: '
                          'the type exactly, every validator; required parameters must be set.')
@@ -138,7 +141,10 @@ class ParamsVerb(Verb):
                           file=sys.stderr)
                     return EXIT_USAGE
                 arguments[name] = value
-            diagnostics = check_launch_parameters(args.launch, files, arguments)
+            from nodl_schema.cli.arguments import launch_limits
+
+            diagnostics = check_launch_parameters(args.launch, files, arguments,
+                                                  limits=launch_limits(args))
         if diagnostics:
             sys.stdout.write(format_text(diagnostics))
         errors = sum(1 for d in diagnostics if d.severity is Severity.ERROR)

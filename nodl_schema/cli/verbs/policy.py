@@ -78,8 +78,10 @@ class PolicyVerb(Verb):
                                  'entities (humble, iron, jazzy, kilted, rolling; default: kilted)')
         parser.add_argument('--format', choices=('text', 'json'), default='text',
                             help='format of the diagnostics (default: text)')
+        from nodl_schema.cli.arguments import add_launch_code_arguments
         from nodl_schema.cli.diagnostic_options import add_diagnostic_options
 
+        add_launch_code_arguments(parser)
         add_diagnostic_options(parser)
 
     def main(self, args: argparse.Namespace) -> int:
@@ -182,12 +184,13 @@ class PolicyVerb(Verb):
         if launches:
             if args.name or args.remap:
                 return _usage('--name and --remap place definitions; a launch file names its nodes')
+            from nodl_schema.cli.arguments import launch_limits
             from nodl_schema.policy.launched import launch_policy
 
             try:
                 return launch_policy(launches[0], values, client_library=args.client_library,
                                      distro=args.distro, enclaves=enclaves,
-                                     allow_missing=args.allow_missing)
+                                     allow_missing=args.allow_missing, limits=launch_limits(args))
             except OSError as exc:
                 return _usage(f'cannot read {launches[0]}: {exc.strerror or exc}')
             except ValueError as exc:
