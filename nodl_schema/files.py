@@ -27,7 +27,7 @@ if TYPE_CHECKING:
     from typing import Iterable, Iterator
 
 __all__ = ['NODL_SUFFIXES', 'STDIN', 'IGNORE_MARKERS', 'BUILD_OUTPUT_DIRS', 'Target',
-           'find_nodl_files', 'iter_nodl_files', 'special_file_kind', 'tidy_path']
+           'find_nodl_files', 'iter_nodl_files', 'special_file_kind', 'tidy_path', 'describe_os_error']
 
 #: What a directory search looks for.
 NODL_SUFFIXES = ('.nodl.yaml', '.nodl.yml', '.nodl.json')
@@ -124,7 +124,30 @@ def _no_such(path: str, exc: OSError) -> str:
         return 'a symbolic link to a file or directory that does not exist'
     if isinstance(exc, FileNotFoundError):
         return 'no such file or directory'
-    return exc.strerror or str(exc)
+    return describe_os_error(exc)
+
+
+#: An OSError without its system's words (raised by Python itself, not by a system call) ->
+#: what it means.
+_OS_ERROR_WORDS: dict[type[OSError], str] = {FileNotFoundError: 'no such file or directory',
+                   IsADirectoryError: 'is a directory, not a file',
+                   NotADirectoryError: 'a part of the path is not a directory',
+                   PermissionError: 'permission denied', FileExistsError: 'the file exists'}
+
+
+def describe_os_error(exc: OSError) -> str:
+    """What went wrong, in words a user reads (``no such file or directory``): the system's
+    message without the ``[Errno N]`` and the path that ``str(exc)`` adds."""
+    words = exc.strerror
+    if not words:
+        words = next((text for kind, text in _OS_ERROR_WORDS.items() if isinstance(exc, kind)),
+                     None)
+    if not words:
+        import errno
+
+        words = os.strerror(exc.errno) if isinstance(exc.errno, int) and exc.errno in \
+            errno.errorcode else type(exc).__name__
+    return words[:1].lower() + words[1:]
 
 
 def _scan(root: str, root_stat: os.stat_result) -> Iterator[Target]:

@@ -43,9 +43,9 @@ def test_the_builtin_checks_are_registered_extensions() -> None:
     ('orphan-action-client', 5, ['/planner'], '/dock', 'no node serves it'),
     ('orphan-publisher', 14, ['/camera'], '/camera/image', 'no node subscribes'),
     ('unused-remap', 8, ['/planner'], '/odm', "'odm:=odom' is never used"),  # the <remap>
-    ('unknown-parameter', 5, ['/planner'], 'sped', "did you mean 'speed'"),
-    ('parameter-type', 5, ['/planner'], 'speed', 'declared double but is set to 1 (int)'),
-    ('parameter-invalid', 14, ['/camera'], 'fps', 'outside [1.0, 120.0]'),
+    ('unknown-parameter', 7, ['/planner'], 'sped', "did you mean 'speed'"),  # the <param>
+    ('parameter-type', 6, ['/planner'], 'speed', 'declared double but is set to 1 (int)'),
+    ('parameter-invalid', 15, ['/camera'], 'fps', 'outside [1.0, 120.0]'),
     ('missing-parameter', 14, ['/camera'], 'device', 'has no default'),
     ('no-definition', 12, ['/ghost'], None, "registers no node definition for 'ghost'"),
     ('unnamed-node', 11, [], None, "called 'imu_filter'"),

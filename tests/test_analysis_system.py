@@ -39,7 +39,8 @@ def test_json_shape() -> None:
     assert set(report) == {'nodes', 'findings'}
     for node in report['nodes']:
         assert set(node) == {'name', 'package', 'executable', 'definition', 'source', 'remaps',
-                             'remaps_complete', 'parameters', 'parameters_complete', 'endpoints'}
+                             'remaps_complete', 'parameters', 'parameters_complete', 'run_time',
+                             'endpoints'}
         assert node['parameters_complete'] is True and node['remaps_complete'] is True
         assert set(node['source']) == {'file', 'line'}
     planner = next(n for n in report['nodes'] if n['executable'] == 'planner')

@@ -58,7 +58,7 @@ PLANTED = [
      '/rover/dock', ['/rover/mission']),
     ('no-definition', 'launch/rover.launch.xml', 39, 'exec="web_bridge"', None, ['/rover/web_bridge']),
     ('missing-parameter', 'launch/sensors.launch.yaml', 11, '- node:', 'port', ['/rover/imu']),
-    ('parameter-invalid', 'launch/sensors.launch.yaml', 25, 'plugin: rover_sensors::CameraDriver',
+    ('parameter-invalid', 'launch/sensors.launch.yaml', 30, '- {name: fps, value: 90.0}',
      'fps', ['/rover/camera']),
     ('orphan-publisher', 'launch/sensors.launch.yaml', 32, 'plugin: rover_sensors::ImageRectifier',
      '/rover/image_rect', ['/rover/rectifier']),

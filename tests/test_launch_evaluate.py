@@ -243,7 +243,7 @@ def test_a_configuration_known_only_at_run_time_keeps_the_nodes_that_use_it(tmp_
         (values,) = [p.values for p in node.parameters]
         assert all(isinstance(v, RuntimeValue) for v in values.values())
     assert [(d.code, d.severity.value, os.path.basename(d.file), d.line) for d in result.diagnostics] == [
-        ('NODL513', 'warning', 'main.launch.xml', 4), ('NODL513', 'warning', 'inner.launch.xml', 3),
+        ('NODL513', 'warning', 'main.launch.xml', 5), ('NODL513', 'warning', 'inner.launch.xml', 4),
         ('NODL513', 'warning', 'main.launch.xml', 10)]
     assert "launch configuration 'description'" in result.diagnostics[0].message
     assert result.diagnostics[2].message.endswith('this node is missing from the analysis')
@@ -274,7 +274,7 @@ def test_a_parameter_file_known_only_at_run_time_keeps_its_node(tmp_path: Path) 
     result = load_launch(main, {})
     assert [n.name for n in result.nodes] == ['a', 'b', 'c', 'box', 'd']
     assert [(d.code, d.severity.value, d.line) for d in result.diagnostics] == [
-        ('NODL513', 'warning', 2), ('NODL513', 'warning', 7), ('NODL513', 'warning', 12)]
+        ('NODL513', 'warning', 3), ('NODL513', 'warning', 7), ('NODL513', 'warning', 13)]
     first, scope, composable = (d.message for d in result.diagnostics)
     assert first.startswith("parameters entry: the value comes from running 'cat a.yaml' ($(command))")
     assert first.endswith('the node is analysed without the parameters this entry gives (the known ones '
@@ -284,12 +284,12 @@ def test_a_parameter_file_known_only_at_run_time_keeps_its_node(tmp_path: Path) 
     assert not any('missing from the analysis' in d.message for d in result.diagnostics)
     a, b, c, box, d = result.nodes
     assert [p.values for p in a.parameters] == [{'rate': 2.0}]
-    assert [(s.part, s.source.line) for s in a.run_time] == [('parameters', 2)]
+    assert [(s.part, s.source.line) for s in a.run_time] == [('parameters', 3)]  # its <param>
     assert [(s.part, s.source.line) for s in b.run_time] == [('parameters', 7)]
-    assert [(s.part, s.source.line) for s in d.run_time] == [('parameters', 12)]
+    assert [(s.part, s.source.line) for s in d.run_time] == [('parameters', 13)]
     assert c.run_time == () and box.run_time == () and c.parameters_complete
     assert not a.parameters_complete and a.remaps_complete
-    assert a.to_dict()['run_time'] == [{'part': 'parameters', 'file': str(main), 'line': 2, 'column': 3}]
+    assert a.to_dict()['run_time'] == [{'part': 'parameters', 'file': str(main), 'line': 3, 'column': 5}]
 
 
 def test_included_and_parameter_file_paths_are_tidy(tmp_path: Path) -> None:

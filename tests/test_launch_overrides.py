@@ -159,7 +159,7 @@ def test_an_override_says_where_it_was_written(tmp_path: Path) -> None:
     (node,) = load_launch(main, {}).nodes
     overrides = parameter_overrides(node)
     assert overrides['x'][1:] == (3, str(params), 6, 5, 'node', 'file', '/ns/n')
-    assert overrides['y'][1:] == (2, str(main), 2, 1, 'node', 'values', '/ns/n')
+    assert overrides['y'][1:] == (2, str(main), 4, 3, 'node', 'values', '/ns/n')  # its <param>
 
 
 def test_an_unnamed_node_needs_its_full_name(tmp_path: Path) -> None:
@@ -228,6 +228,9 @@ def test_a_composable_record_uses_launch_ros_rules(tmp_path: Path) -> None:
     ('1e5', False, 100000.0), ('.5', False, 0.5), ('-.inf', False, -math.inf), ('1_000', False, '1_000'),
     ('1e999', False, '1e999'), ('9223372036854775808', False, 9.223372036854776e18),
     ('12', True, '12'), ('abc', False, 'abc'), ('', False, ''),
+    # past int64 in any base: strtoll fails; 5,000 digits also passed Python's int() limit
+    ('1' * 5000, False, '1' * 5000), ('0' * 50 + '10', False, 8), ('0x' + '0' * 40 + '1f', False, 31),
+    ('-' + '7' * 30, False, -7.777777777777778e29), ('0x' + 'f' * 300, False, '0x' + 'f' * 300),
 ])
 def test_rcl_scalar_typing(text: str, quoted: bool, value: Any) -> None:
     got = rcl_scalar(text, quoted=quoted)
@@ -239,6 +242,26 @@ def test_rcl_yaml_value() -> None:
     assert rcl_yaml_value("['a', y]") == ['a', True]
     assert rcl_yaml_value('!!str 5') == '5'
     assert rcl_yaml_value('{a: 1}') == '{a: 1}'
+
+
+def test_a_long_text_is_typed_as_its_yaml_dump_is_read_without_dumping_it() -> None:
+    """A text past 1,024 characters that rcl reads as a string skips yaml.dump and the
+    re-read (pure Python: 20 s for 16 MiB); the result is what that round trip gives."""
+    import random
+    import time
+
+    from nodl_schema.launch.overrides import as_rcl_reads_dump, rcl_yaml_value
+
+    rng = random.Random(15)
+    alphabet = 'ab01 .:-#\'"\n\té\\[]{}xXeE+_'
+    texts = [''.join(rng.choice(alphabet) for _ in range(rng.randint(1025, 3000))) for _ in range(300)]
+    texts += ['1' * 1100, '0x' + 'f' * 1100, '1' * 1100 + 'e5', 'y' * 1100, ' ' * 1100 + '5', '0' * 1100 + '7']
+    for text in texts:
+        assert as_rcl_reads_dump(text) == rcl_yaml_value(yaml.dump(text)), text[:40]
+    description = '<robot name="r">' + '<link name="l"/>\n' * 300_000 + '</robot>'  # 5 MB
+    start = time.perf_counter()
+    assert as_rcl_reads_dump(description) is description
+    assert time.perf_counter() - start < 1.0  # was ~6 s
 
 
 def test_parameter_file_matching() -> None:

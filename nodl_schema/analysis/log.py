@@ -20,6 +20,7 @@ from typing import Any
 from nodl_schema.analysis.findings import Finding
 from nodl_schema.analysis.instances import AnalysedNode
 from nodl_schema.analysis.system import LAUNCH_KIND, Analysis
+from nodl_schema.launch.params import RuntimeValue
 
 __all__ = ['format_log']
 
@@ -86,6 +87,10 @@ def _node(node: AnalysedNode) -> list[str]:
         out.append(_line('run time', _RUN_TIME.get(part, part) + f'  ({where})'))
     given = node.parameters
     for name, setting in given.items():
+        if isinstance(setting.value, RuntimeValue):  # no value to show: say so, no stand-in
+            out.append(_line('parameter', f'{name}, known only at run time  '
+                                          f'({setting.origin}, {setting.location})'))
+            continue
         out.append(_line('parameter', f'{name} = {_value(setting.value)}  '
                                       f'({setting.origin}, {setting.location})'))
     if node.instance is not None:
@@ -142,4 +147,7 @@ def format_log(analysis: Analysis) -> str:
         out.append('')
     if not analysis.findings:
         out += ['no findings', '']
-    return '\n'.join(out)
+    from nodl_schema.text_safety import visible
+
+    # names, values and messages from launch files: no control or bidi character reaches the log
+    return visible('\n'.join(out))

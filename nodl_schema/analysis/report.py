@@ -9,6 +9,8 @@ The JSON shape (``--format json``)::
                 "remaps_complete": true,                  # false: more rules come at run time
                 "parameters": {"fps": 30.0, ...},         # the final values it receives
                 "parameters_complete": true,              # false: more values come at run time
+                "run_time": [{"part": "parameter", "parameter": "robot_description",
+                              "file": "...", "line": 7, "column": 5}],   # what only it knows
                 "endpoints": {"publishers": [["~/image", "/robot/camera/image"], ...], ...}}],
      "findings": [{"code": "NODL553", "kind": "qos-incompatible", "severity": "error",
                    "message": "...", "file": "...", "line": 12, "column": 5,
@@ -18,7 +20,10 @@ A composable node's ``executable`` is its plugin class.  ``parameters_complete``
 ``remaps_complete`` are false when the launch gives the node parameters or remapping
 rules only the running launch knows (a parameter file whose path is a run-time value,
 ``remappings=``/``arguments=`` computed by a module not installed here: a NODL513
-warning): ``parameters`` and ``remaps`` are then the known ones.
+warning): ``parameters`` and ``remaps`` are then the known ones.  A parameter whose value
+only the running launch knows is ``null`` in ``parameters`` (and ``parameters_complete`` is
+false).  ``run_time`` lists each such part, with where it is written: ``parameter`` (one
+value, named), ``parameters`` (a source of values), ``remaps`` or ``arguments``.
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ from typing import Any
 from nodl_schema.analysis.instances import AnalysedNode
 from nodl_schema.analysis.system import Analysis
 from nodl_schema.diagnostics import Severity
+from nodl_schema.launch.params import RuntimeValue
 
 __all__ = ['node_to_dict', 'analysis_to_dict', 'format_json', 'format_text', 'format_sarif',
            'format_junit', 'summary']
@@ -41,6 +47,19 @@ def node_to_dict(node: AnalysedNode) -> dict[str, Any]:
         for bound in node.instance.endpoints:
             endpoints.setdefault(bound.entity.section, []).append([bound.entity.name, bound.name])
     entry = node.entry
+    parameters: dict[str, Any] = {}
+    unknown: list[dict[str, Any]] = [
+        {'part': part, 'file': where.file, 'line': where.line, 'column': where.column}
+        for part, where in entry.run_time]
+    for name, setting in node.parameters.items():
+        if isinstance(setting.value, RuntimeValue):  # no value, and no text standing for one
+            parameters[name] = None
+            where = setting.location
+            unknown.append({'part': 'parameter', 'parameter': name, 'file': where.file,
+                            'line': where.line, 'column': where.column})
+        else:
+            parameters[name] = setting.value
+    complete = not entry.run_time or entry.parameters_complete
     return {
         'name': node.fqn,
         'package': entry.package,
@@ -49,8 +68,9 @@ def node_to_dict(node: AnalysedNode) -> dict[str, Any]:
         'source': {'file': entry.location.file, 'line': entry.location.line},
         'remaps': [[source, target] for source, target in entry.remaps],
         'remaps_complete': not entry.run_time or entry.remaps_complete,
-        'parameters': node.parameter_values(),
-        'parameters_complete': not entry.run_time or entry.parameters_complete,
+        'parameters': parameters,
+        'parameters_complete': complete and len(unknown) == len(entry.run_time),
+        'run_time': unknown,
         'endpoints': endpoints,
     }
 
@@ -81,7 +101,9 @@ def summary(analysis: Analysis) -> str:
 def format_text(analysis: Analysis, verbose: bool = False) -> str:
     """One ``FILE:LINE:COL: severity: message [CODE]`` line per finding (info with
     ``verbose``), then the summary line."""
-    lines = [str(f) for f in analysis.findings
+    from nodl_schema.text_safety import visible
+
+    lines = [visible(str(f), one_line=True) for f in analysis.findings
              if verbose or f.severity is not Severity.INFO]
     lines.append(summary(analysis))
     return '\n'.join(lines) + '\n'
@@ -97,7 +119,8 @@ def format_sarif(analysis: Analysis) -> str:
 def format_junit(analysis: Analysis) -> str:
     """JUnit XML: one test case per kind of finding (failed when it has errors), the
     findings as failure text and their warnings as the case's output."""
-    from xml.sax.saxutils import escape, quoteattr
+    # (control and bidi characters shown as escapes: nodl_schema.text_safety)
+    from nodl_schema.text_safety import xml_report_attribute as quoteattr, xml_report_text as escape
 
     from nodl_schema.analysis.findings import KINDS
     from nodl_schema.analysis.system import LAUNCH_KIND

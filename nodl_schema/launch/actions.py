@@ -12,9 +12,10 @@ import os
 from typing import Any
 
 from nodl_schema.launch.conditions import Condition
-from nodl_schema.launch.errors import LaunchProblem
+from nodl_schema.launch.errors import LaunchProblem, SubstitutionTooLarge, too_large_message
 from nodl_schema.launch.model import LaunchArgument, SourceLocation
-from nodl_schema.launch.substitutions import Deferred, normalize, perform, perform_or_defer
+from nodl_schema.launch.substitutions import (Deferred, Oversized, check_joined_size, normalize, perform,
+                                              perform_bounded)
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -67,13 +68,20 @@ class DeclareLaunchArgument(Action):
         value = context.configurations.get(self.name)
         argument = LaunchArgument(self.name, self.location, None, self.description,
                                   tuple(self.choices) if self.choices is not None else None)
-        if not isinstance(value, (str, Deferred)):
+        if not isinstance(value, (str, Deferred, Oversized)):
             if self.default_value is None:
                 context.declare(argument)
                 raise LaunchProblem('NODL506', f"required launch argument '{self.name}' was not "
                                                f'provided; pass {self.name}:=VALUE')
-            value = perform_or_defer(context, self.default_value)
+            value = perform_bounded(context, self.default_value, f"the default of launch argument "
+                                    f"'{self.name}'", self.location)
             context.configurations[self.name] = value
+            if isinstance(value, Oversized):
+                context.declare(argument)
+                raise value.problem.again()
+        if isinstance(value, Oversized):  # given by an include, already reported there
+            context.declare(argument)
+            return None
         if self.default_value is not None:
             try:
                 argument.default = perform(context, self.default_value)
@@ -97,7 +105,13 @@ class SetLaunchConfiguration(Action):
         self.name, self.value = normalize(name), normalize(value)
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        context.configurations[perform(context, self.name)] = perform_or_defer(context, self.value)
+        name = perform(context, self.name)
+        value = context.configurations[name] = perform_bounded(
+            context, self.value, f"the value of launch configuration '{name}'", self.location)
+        if isinstance(value, Oversized):
+            raise value.problem.again()
+        if isinstance(value, Deferred):
+            value.location = self.location  # where it is set: each use names the let
         return None
 
 
@@ -117,13 +131,20 @@ class _Push(Action):
         self.forwarding, self.keep = forwarding, keep
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        values = [(perform(context, k), perform_or_defer(context, v)) for k, v in self.keep]
+        values: list[tuple[str, Any]] = []
+        for k, v in self.keep:
+            name = perform(context, k)
+            values.append((name, perform_bounded(context, v, f"the value of launch configuration '{name}'",
+                                                 self.location)))
         context.push_configurations()
         context.push_environment()
         if not self.forwarding:
             context.reset_configurations({})
         for name, value in values:
             context.configurations[name] = value
+        for _, value in values:
+            if isinstance(value, Oversized):
+                raise value.problem.again()
         return None
 
 
@@ -173,7 +194,9 @@ class SetEnvironmentVariable(Action):
         self.name, self.value = normalize(name), normalize(value)
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        context.environment[perform(context, self.name)] = perform(context, self.value)
+        name = perform(context, self.name)
+        context.environment[name] = perform(context, self.value)
+        context.oversized_environment.pop(name, None)
         return None
 
 
@@ -184,7 +207,9 @@ class UnsetEnvironmentVariable(Action):
         self.name = normalize(name)
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
-        context.environment.pop(perform(context, self.name), None)
+        name = perform(context, self.name)
+        context.environment.pop(name, None)
+        context.oversized_environment.pop(name, None)
         return None
 
 
@@ -200,6 +225,13 @@ class AppendEnvironmentVariable(Action):
         name, value = perform(context, self.name), perform(context, self.value)
         old = context.environment.get(name)
         if old:
+            try:
+                check_joined_size([old, value], self.separator)  # appending to itself doubles it
+            except SubstitutionTooLarge:
+                problem = context.oversized_environment[name] = SubstitutionTooLarge(
+                    too_large_message(f"environment variable '{name}' after this append_env")
+                    + '; what uses it is not analysed', *self.location)
+                raise problem.again()
             value = f'{value}{self.separator}{old}' if self.prepend else f'{old}{self.separator}{value}'
         context.environment[name] = value
         return None

@@ -254,7 +254,9 @@ def _parameters(entity: Entity) -> list[Any]:
         if source is not None:
             if param.text('name') is not None:
                 raise LaunchProblem('NODL504', "<param> takes 'from' or 'name', not both", *param.location)
-            out.append(R.ParameterFileEntry(source, param.boolean('allow_substs') or False))
+            entry = R.ParameterFileEntry(source, param.boolean('allow_substs') or False)
+            entry.location = param.location  # its findings sit at the <param from=...>
+            out.append(entry)
         elif param.text('name') is not None:
             out.append(_named(param, []))
         else:
@@ -296,7 +298,9 @@ def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
             typed = get_typed_value(raw.split(separator) if separator else raw, data_type)
         else:
             typed = raw
-        return [(name, ParameterValue(parse_if_substitutions(typed), data_type))]
+        value = ParameterValue(parse_if_substitutions(typed), data_type)
+        value.location = param.location  # findings about the value sit at its <param>
+        return [(name, value)]
     except LaunchProblem as problem:
         raise LaunchProblem(problem.code, problem.message, param.location.file, *param.position('value'))
 

@@ -92,6 +92,12 @@ class ParameterSource:
     path: str | None = None
     values: dict[str, Any] = field(default_factory=dict)
     node_key: str = '/**'
+    #: Where a value of :attr:`values` is written when that is not :attr:`source` (each
+    #: ``param`` of an XML or YAML node entry), by name.
+    places: dict[str, SourceLocation] = field(default_factory=dict)
+    #: A file's text after launch's substitutions (``allow_substs``): what the node reads
+    #: instead of the file's own text (None: the file as it is).
+    text: str | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready mapping."""

@@ -149,9 +149,12 @@ def _rcl_number(text: str) -> Any:
     if match:
         sign, digits = match.groups()
         base = 16 if digits[:2] in ('0x', '0X') else 8 if digits.startswith('0') and digits != '0' else 10
-        value = int(digits, base) * (-1 if sign == '-' else 1)
-        if -_INT64 <= value < _INT64:
-            return value
+        # More than 24 significant digits is out of int64's range in any base (and int() of a
+        # long decimal text raises past Python's 4,300-digit limit).
+        if len(digits[2 if base == 16 else 0:].lstrip('0')) <= 24:
+            value = int(digits, base) * (-1 if sign == '-' else 1)
+            if -_INT64 <= value < _INT64:
+                return value
     if text in _SPECIAL:
         special = math.inf if 'inf' in text.lower() else math.nan
         return -special if text.startswith('-') else special
@@ -159,7 +162,7 @@ def _rcl_number(text: str) -> Any:
         body = text.strip()
         try:
             number = float.fromhex(body) if 'x' in body.lower() else float(body.split('(')[0])
-        except ValueError:
+        except (ValueError, OverflowError):  # fromhex: too large for a double (strtod: ERANGE)
             return None
         if math.isinf(number) and 'inf' not in body.lower():
             return None  # strtod: out of range (ERANGE), not a double
@@ -232,6 +235,10 @@ def _known_at_run_time(value: Any) -> bool:
 #: Values that are what rcl reads back, however launch_ros writes them (most parameters are
 #: numbers or booleans: no check for a run-time value, a string inside a list, and no import).
 _AS_READ = (bool, int, float)
+#: Texts longer than this (a robot_description of several MB) skip ``yaml.dump`` and the
+#: re-read (both pure Python: 20 s for 16 MiB) when rcl reads them as a string even unquoted:
+#: then they are a string however PyYAML writes them (it reads back exactly what it wrote).
+_LONG_TEXT = 1024
 
 
 def as_rcl_reads_dump(value: Any) -> Any:
@@ -239,6 +246,8 @@ def as_rcl_reads_dump(value: Any) -> Any:
     ``Parameter`` values that way): PyYAML leaves ``'y'`` or ``'1e5'`` unquoted, rcl reads a
     bool and a double."""
     if type(value) in _AS_READ or _known_at_run_time(value):
+        return value
+    if type(value) is str and len(value) > _LONG_TEXT and rcl_scalar(value) is value:
         return value
     if isinstance(value, str) or (isinstance(value, list) and any(isinstance(v, str) for v in value)):
         import yaml
@@ -261,13 +270,18 @@ def as_rcl_reads_text(value: Any) -> Any:
 
 # -- resolution ------------------------------------------------------------------------------
 
-def _file_entries(path: str, composable: bool) -> list[tuple[str, dict[str, Any],
-                                                             dict[str, tuple[int, int]], int, int]]:
-    from nodl_schema.launch.params import load_parameter_file
+def _file_entries(path: str, composable: bool, text: str | None = None
+                  ) -> list[tuple[str, dict[str, Any], dict[str, tuple[int, int]], int, int]]:
+    from nodl_schema.launch.params import load_parameter_file, parse_parameter_text
 
-    loaded = load_parameter_file(path)
-    return [(n.key, n.parameters if composable else n.rcl_parameters, n.positions, n.line, n.column)
-            for n in loaded.nodes]
+    # (text: the file substituted first, allow_substs)
+    loaded = load_parameter_file(path) if text is None else parse_parameter_text(path, text)
+    if composable:  # launch_ros reads the file with PyYAML (aliases and merge keys resolved)
+        return [(n.key, n.parameters, n.positions, n.line, n.column)
+                for n in loaded.composable_nodes]
+    if loaded.rcl_refuses:  # rcl refuses the whole file (an alias): the node gets nothing
+        return []
+    return [(n.key, n.rcl_parameters, n.positions, n.line, n.column) for n in loaded.nodes]
 
 
 def process_overrides(sources: Iterable[ParameterSource], fqn: str) -> dict[str, ParameterOverride]:
@@ -283,7 +297,7 @@ def process_overrides(sources: Iterable[ParameterSource], fqn: str) -> dict[str,
             path = source.path
             if not path:
                 continue
-            for key, values, positions, line, column in _file_entries(path, False):
+            for key, values, positions, line, column in _file_entries(path, False, source.text):
                 entry = table.setdefault(key, {})
                 for name, value in values.items():
                     at = positions.get(name, (line, column))
@@ -294,11 +308,13 @@ def process_overrides(sources: Iterable[ParameterSource], fqn: str) -> dict[str,
         entry = table.setdefault(key, {})
         read = as_rcl_reads_text if origin == 'global' else \
             as_rcl_reads_dump if origin == 'node' else None
+        places = source.places
         for name, value in source.values.items():
+            place = places.get(name, where) if places else where  # (most: the source's place)
             # (a bool, int or float is read back as it is: not passed to read)
             entry[name] = new(ParameterOverride, (
                 name, value if read is None or type(value) in _AS_READ else read(value),
-                where.file, where.line, where.column, origin, 'values', key))
+                place.file, place.line, place.column, origin, 'values', key))
     if len(table) == 1:  # (most nodes: their own parameters, under their own name)
         [(key, entry)] = table.items()
         return entry if _key_applies(key, fqn) else {}  # (made by this call: no copy needed)
@@ -320,14 +336,15 @@ def composable_overrides(sources: Iterable[ParameterSource], name: str | None,
         where = source.source
         if source.kind != 'file':
             for pname, value in source.values.items():
-                out[pname] = ParameterOverride(pname, value, where.file, where.line, where.column,
+                place = source.places.get(pname, where)
+                out[pname] = ParameterOverride(pname, value, place.file, place.line, place.column,
                                                source.origin, 'values', source.node_key)
             continue
         if not source.path:
             continue
         # launch_ros: one dict per normalized key (a later equal key replaces the earlier one).
         by_key: dict[str, tuple[str, dict[str, Any], dict[str, tuple[int, int]], int, int]] = {}
-        for entry in _file_entries(source.path, True):
+        for entry in _file_entries(source.path, True, source.text):
             by_key[_composable_key(entry[0])] = entry
         for key in match_composable_parameter_keys(list(by_key), name, namespace):
             raw, values, positions, line, column = by_key[key]

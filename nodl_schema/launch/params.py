@@ -21,7 +21,8 @@ from nodl_schema.launch.errors import LaunchProblem
 from nodl_schema.launch.overrides import match_composable_parameter_keys, match_parameter_file_nodes
 
 __all__ = ['ParameterValue', 'RuntimeValue', 'coerce_to_type', 'get_typed_value', 'evaluate_value',
-           'ParameterFileNode', 'ParameterFile', 'load_parameter_file',
+           'ParameterFileNode', 'ParameterFile', 'load_parameter_file', 'parse_parameter_text',
+           'read_parameter_text',
            'match_parameter_file_nodes', 'match_composable_parameter_keys', 'flatten_parameters',
            'SCALAR_TYPES']
 
@@ -175,15 +176,31 @@ class ParameterValue:
     frontend ``param``) are coerced as ``perform_typed_substitution`` does.
     """
 
+    #: Where the value is written, when a frontend knows (an XML or YAML ``param``): findings
+    #: about it sit there rather than at the node's entry.
+    location: Any = None
+
     def __init__(self, value: Any, value_type: Any = None, *, dict_rules: bool = False) -> None:
         self.value = value
         self.value_type = value_type
         self.dict_rules = dict_rules
 
 
-class RuntimeValue(str):
+class RuntimeValue:
     """A parameter value only the running launch knows (``$(command ...)``...): the node is
-    analysed with this parameter set, its value unchecked; the text says where it comes from."""
+    analysed with this parameter set, its value unchecked.
+
+    It is no value and has no text standing for one (no placeholder string can reach a
+    report): the JSON report writes ``null`` for it, the log says it is known at run time."""
+
+    __slots__ = ('name',)
+
+    def __init__(self, name: str = '') -> None:
+        #: The parameter it is the value of.
+        self.name = name
+
+    def __repr__(self) -> str:
+        return f'RuntimeValue({self.name!r})'
 
 
 def _is_subs(value: Any) -> bool:
@@ -304,12 +321,33 @@ class ParameterFileNode(NamedTuple):
 
 
 class ParameterFile:
-    """A parameter file: its node keys in file order, and the problems found reading it."""
+    """A parameter file: its node keys in file order, and the problems found reading it.
 
-    def __init__(self, path: str, nodes: list[ParameterFileNode], diagnostics: list[Diagnostic]) -> None:
+    rcl and launch_ros read YAML differently: rcl refuses every alias ("Will not support
+    aliasing"), ignores anchors and has no merge keys (``<<`` is a parameter name to it),
+    while launch_ros reads a composable node's file with PyYAML, which expands aliases and
+    merge keys.  ``nodes`` is the file as written (``rcl_parameters`` typed by rcl), what
+    rcl alone objects to is in ``rcl_diagnostics``, and ``composable_nodes`` is PyYAML's
+    reading.
+    """
+
+    def __init__(self, path: str, nodes: list[ParameterFileNode], diagnostics: list[Diagnostic],
+                 rcl_diagnostics: list[Diagnostic] | None = None,
+                 composable_nodes: list[ParameterFileNode] | None = None) -> None:
         self.path = path
         self.nodes = nodes
         self.diagnostics = diagnostics
+        #: What rcl alone refuses or ignores (aliases NODL710, anchors NODL711, merge keys
+        #: NODL712): a problem where the file is given to a node started as a process.
+        self.rcl_diagnostics: list[Diagnostic] = rcl_diagnostics or []
+        #: The node keys as launch_ros reads the file for a composable node (PyYAML).
+        self.composable_nodes = nodes if composable_nodes is None else composable_nodes
+
+    @property
+    def rcl_refuses(self) -> bool:
+        """True if rcl cannot parse the file (it holds an alias): a node started as a
+        process with it fails to start, and gets none of its values."""
+        return any(d.code == ALIAS_REFUSED for d in self.rcl_diagnostics)
 
     @property
     def keys(self) -> list[str]:
@@ -322,39 +360,59 @@ _CACHE: dict[tuple[str, float, int], ParameterFile] = {}
 
 def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
     """Read a ROS parameter file (``node: {ros__parameters: {...}}``), keeping positions."""
-    from yaml.nodes import MappingNode, ScalarNode
-
-    from nodl_schema.launch.overrides import rcl_node_value
+    from nodl_schema.files import describe_os_error
 
     name = os.fspath(path)
     try:
         stat = os.stat(name)
     except OSError as exc:
         return ParameterFile(name, [], [Diagnostic(Severity.ERROR, f'cannot read the parameter file: '
-                                                   f'{exc.strerror}', (), name, code='NODL517')])
+                                                   f'{describe_os_error(exc)}', (), name, code='NODL517')])
     key = (os.path.realpath(name), stat.st_mtime, stat.st_size)
     if key in _CACHE:
         return _CACHE[key]
-    from nodl_schema.frontends.source import SourceText, decode, read_limited
-    from nodl_schema.frontends.yaml_json import parse_document
-
-    try:
-        data = read_limited(name)
-    except OSError as exc:  # a directory, no permission: said like a missing file
-        return ParameterFile(name, [], [Diagnostic(Severity.ERROR, f'cannot read the parameter file: '
-                                                   f'{exc.strerror or exc}', (), name, code='NODL517')])
-    text, problem = decode(data, name)
+    text, problem = read_parameter_text(name)  # a directory, no permission: said in words
     if text is None:
         assert problem is not None
         result = ParameterFile(name, [], [problem])
         _CACHE[key] = result
         return result
+    result = parse_parameter_text(name, text)
+    if len(_CACHE) > 1024:
+        _CACHE.clear()
+    _CACHE[key] = result
+    return result
+
+
+def read_parameter_text(path: str) -> tuple[str | None, Diagnostic | None]:
+    """The text of the parameter file ``path`` (within the size limit, UTF-8), or None and
+    what is wrong (NODL517, the reason in words)."""
+    from nodl_schema.frontends.source import decode, read_limited
+
+    try:
+        data = read_limited(path)
+    except OSError as exc:
+        from nodl_schema.files import describe_os_error
+
+        return None, Diagnostic(Severity.ERROR, 'cannot read the parameter file: '
+                                f'{describe_os_error(exc)}', (), path, code='NODL517')
+    return decode(data, path)
+
+
+def parse_parameter_text(name: str, text: str) -> ParameterFile:
+    """A parameter file's ``text`` (read from ``name``, which findings name) read as
+    :func:`load_parameter_file` reads a file: for a file whose text launch substitutes first
+    (``allow_substs``)."""
+    from yaml.nodes import MappingNode, ScalarNode
+
+    from nodl_schema.frontends.source import SourceText
+    from nodl_schema.frontends.yaml_json import parse_document
+    from nodl_schema.launch.overrides import rcl_node_value
+
     doc = parse_document(SourceText(text, name))
     if doc.diagnostics:
-        result = ParameterFile(name, [], [d.replace(code=d.code if d.code != 'NODL011' else 'NODL517')
-                                          for d in doc.diagnostics])
-        _CACHE[key] = result
-        return result
+        return ParameterFile(name, [], [d.replace(code=d.code if d.code != 'NODL011' else 'NODL517')
+                                        for d in doc.diagnostics])
     root = doc._node_tree()  # composed once: safe, the data was built within the limits
     nodes: list[ParameterFileNode] = []
     problems: list[Diagnostic] = []
@@ -396,11 +454,78 @@ def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
 
     if isinstance(root, MappingNode):
         walk(root, [], doc.data)
-    result = ParameterFile(name, nodes, problems)
-    if len(_CACHE) > 1024:
-        _CACHE.clear()
-    _CACHE[key] = result
-    return result
+    if not doc.aliasing:  # (most files: rcl and PyYAML read them alike)
+        return ParameterFile(name, nodes, problems)
+    return ParameterFile(name, nodes, problems, _rcl_refusals(name, doc.aliasing),
+                         _as_pyyaml_reads(doc))
+
+
+# Diagnostic codes (see nodl_schema.codes): what rcl's parameter parser refuses or ignores.
+ALIAS_REFUSED = 'NODL710'
+ANCHOR_IGNORED = 'NODL711'
+NO_MERGE_KEYS = 'NODL712'
+
+
+def _rcl_refusals(name: str, aliasing: list[tuple[str, int, int]]) -> list[Diagnostic]:
+    """Every alias, anchor and merge key of a parameter file, as rcl treats it."""
+    out: list[Diagnostic] = []
+    for kind, line, column in aliasing:
+        if kind == 'alias':
+            out.append(Diagnostic(
+                Severity.ERROR, "YAML alias in a parameter file: rcl refuses aliasing ('Will not "
+                "support aliasing'), so a node started with this file fails to start; write the "
+                'value out where the alias is', (), name, line, column, code=ALIAS_REFUSED))
+        elif kind == 'anchor':
+            out.append(Diagnostic(
+                Severity.WARNING, 'YAML anchor in a parameter file: rcl refuses aliasing, so no '
+                'alias can use it (rcl ignores the anchor); remove it', (), name, line, column,
+                code=ANCHOR_IGNORED))
+        else:
+            out.append(Diagnostic(
+                Severity.ERROR, "merge key '<<' in a parameter file: rcl has no merge keys (it "
+                "reads '<<' as a parameter name) and refuses aliasing; write the parameters out "
+                'under the node', (), name, line, column, code=NO_MERGE_KEYS))
+    return out
+
+
+def _as_pyyaml_reads(doc: Any) -> list[ParameterFileNode]:
+    """The node keys of a parameter file as launch_ros reads it for a composable node:
+    ``yaml.safe_load`` (aliases and merge keys as the installed PyYAML resolves them: that is
+    what the running launch does), nested parameter names joined with ``.``."""
+    import yaml
+
+    try:
+        data = yaml.safe_load(doc.source.text)
+    except yaml.YAMLError:  # (read without error by the strict reader: not expected)
+        return []
+    nodes: list[ParameterFileNode] = []
+
+    def flatten(values: dict[Any, Any], parts: tuple[Any, ...], where: tuple[Any, ...],
+                params: dict[str, Any], positions: dict[str, tuple[int, int]]) -> None:
+        for key, value in values.items():
+            if isinstance(value, dict):
+                flatten(value, (*parts, key), where, params, positions)
+                continue
+            pname = '.'.join(str(part) for part in (*parts, key))
+            params[pname] = value
+            positions[pname] = doc.position((*where, *parts, key), 'key')
+
+    def walk(mapping: dict[Any, Any], path: tuple[Any, ...]) -> None:
+        for key, value in mapping.items():
+            if key == 'ros__parameters':
+                line, column = doc.position((*path, key), 'key')
+                params: dict[str, Any] = {}
+                positions: dict[str, tuple[int, int]] = {}
+                if isinstance(value, dict):
+                    flatten(value, (), (*path, key), params, positions)
+                nodes.append(ParameterFileNode('/'.join(str(part) for part in path), params,
+                                               positions, line, column, {}))
+            elif isinstance(value, dict):
+                walk(value, (*path, key))
+
+    if isinstance(data, dict):
+        walk(data, ())
+    return nodes
 
 
 def flatten_parameters(values: dict[str, Any], prefix: str = '') -> dict[str, Any]:

@@ -1,0 +1,65 @@
+"""The launch_ros actions (nodl_schema.launch.ros_actions): parameter files read with
+allow_substs, and findings about a node's parameters placed where they are written."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from nodl_schema.analysis import analyse_launch, report
+from nodl_schema.launch import load_launch
+
+FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
+PREFIX = [str(FIXTURES / 'prefix')]
+LAUNCH = FIXTURES / 'launch'
+SUBSTITUTED = FIXTURES / 'params' / 'substituted.yaml'
+
+
+@pytest.mark.parametrize('name', ['allow_substs.launch.xml', 'allow_substs.launch.py'])
+def test_allow_substs_substitutes_the_file_s_text(name: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """ParameterFile(..., allow_substs=True) and <param from=... allow_substs="true">: the node
+    reads the file's text after $(var) and $(env) are performed, as launch_ros gives it;
+    without allow_substs the text is read as written (and '$(var speed)' is no double)."""
+    monkeypatch.setenv('NODL_TEST_SUFFIX', 'one')
+    analysis = analyse_launch(LAUNCH / name, {'robot': 'bot'}, prefixes=PREFIX)
+    values = {n.fqn: n.parameter_values() for n in analysis.nodes}
+    assert values['/planner'] == {'speed': 0.75, 'robot_name': 'bot_one'}
+    assert not [f for f in analysis.findings if f.kind.startswith('parameter')
+                and '/planner' in f.nodes]
+    if name.endswith('.xml'):
+        assert values['/verbatim/planner'] == {'speed': '$(var speed)',
+                                               'robot_name': '$(var robot)_$(env NODL_TEST_SUFFIX unset)'}
+        (wrong,) = [f for f in analysis.findings if f.kind == 'parameter-type']
+        assert wrong.nodes == ('/verbatim/planner',) and wrong.diagnostic.file == str(SUBSTITUTED)
+
+
+def test_allow_substs_problems_are_at_the_param() -> None:
+    """A substitution of the file that fails is an error at the <param from=...>; one only
+    the running launch knows leaves the node analysed without the file (NODL513 there,
+    parameters_complete false, the part listed)."""
+    launch = LAUNCH / 'allow_substs_problems.launch.xml'
+    result = load_launch(launch, {})
+    found = [(d.code, d.line, d.column) for d in result.diagnostics]
+    assert found == [('NODL510', 4, 5), ('NODL513', 7, 5)]
+    assert "'no_such_argument' does not exist" in result.diagnostics[0].message
+    assert 'substituted_unknown.yaml' in result.diagnostics[0].message
+    analysis = analyse_launch(launch, prefixes=PREFIX)
+    (node,) = json.loads(report.format_json(analysis))['nodes']
+    assert node['name'] == '/run_time' and node['parameters'] == {}
+    assert node['parameters_complete'] is False
+    assert node['run_time'] == [{'part': 'parameters', 'file': str(launch), 'line': 7, 'column': 5}]
+
+
+def test_findings_about_a_param_sit_at_the_param() -> None:
+    """An XML <param>'s findings (a value of the wrong type, a value known only at run time,
+    a parameter file that is not a file) sit at the <param> line, not at the node's; the
+    run-time value names the let that sets it."""
+    launch = LAUNCH / 'param_places.launch.xml'
+    analysis = analyse_launch(launch, prefixes=PREFIX)
+    placed = {(f.code, f.diagnostic.line, f.diagnostic.column) for f in analysis.findings
+              if f.code in ('NODL561', 'NODL513', 'NODL517')}
+    assert placed == {('NODL561', 4, 5), ('NODL513', 5, 5), ('NODL517', 6, 5)}
+    (run_time,) = [f for f in analysis.findings if f.code == 'NODL513']
+    assert f'(set at {launch}:2:3)' in run_time.message
