@@ -99,10 +99,6 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL219': ('error', 'a name or description holds a control character (C0/C1 but tab and newline)'),
     'NODL220': ('error', 'a name or description holds a bidirectional control (Trojan Source: '
                 'U+202A-202E, U+2066-2069)'),
-    'NODL221': ('error', 'launch file: a node name, namespace or remapping rule holds a control character '
-                'or bidirectional control'),
-    'NODL222': ('warning', 'launch file: a parameter value holds a control character or bidirectional '
-                'control (the node gets it as written)'),
     'NODL230': ('warning', 'QoS history KEEP_ALL with a depth: the middleware ignores the depth'),
     # -- NODL3xx: composition ----------------------------------------------
     'NODL301': ('error', 'a mixin reference cannot be resolved'),

@@ -252,11 +252,11 @@ def dump_nodl(doc: Union[Document, dict[str, Any]], format: str = 'yaml', *,
     if format == 'json':
         import json
 
-        return json.dumps(data, indent=2, ensure_ascii=False) + '\n'
-    if format == 'yaml':
-        import yaml
+        from nodl_schema.text_safety import json_escapes
 
-        dumper = getattr(yaml, 'CSafeDumper', yaml.SafeDumper)
-        return yaml.dump(data, Dumper=dumper, sort_keys=False, default_flow_style=False,
-                         allow_unicode=True, width=100)
+        return json_escapes(json.dumps(data, indent=2, ensure_ascii=False)) + '\n'
+    if format == 'yaml':
+        from nodl_schema.text_safety import dump_yaml
+
+        return dump_yaml(data)
     raise ValueError(f"unsupported format {format!r}; expected 'yaml' or 'json'")

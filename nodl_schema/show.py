@@ -135,11 +135,9 @@ def _entity_blocks(iface: Interface) -> list[tuple[str, list[tuple[str | None, A
 
 
 def _yaml(data: Any) -> str:
-    import yaml
+    from nodl_schema.text_safety import dump_yaml
 
-    dumper = getattr(yaml, 'CSafeDumper', yaml.SafeDumper)
-    return yaml.dump(data, Dumper=dumper, sort_keys=False, default_flow_style=False,
-                     allow_unicode=True, width=100)
+    return dump_yaml(data)
 
 
 def render(iface: Interface, format: str = 'yaml', layers: bool = False,
@@ -164,12 +162,15 @@ def render(iface: Interface, format: str = 'yaml', layers: bool = False,
         out: dict[str, Any] = {'interface': iface.to_dict(), 'layers': origins}
         if client_library is not None:
             out['client_library'] = client_library._asdict()
-        return json.dumps(out, indent=2, ensure_ascii=False) + '\n'
+        from nodl_schema.text_safety import json_escapes
+
+        return json_escapes(json.dumps(out, indent=2, ensure_ascii=False)) + '\n'
     if format != 'yaml':
         raise ValueError(f"unsupported format {format!r}; expected 'yaml' or 'json'")
     # One line, whatever the reason says (it may name a package): a comment cannot break out.
-    stated = (f'# client library: {client_library}'.replace('\n', ' ').replace('\r', ' ') + '\n'
-              if client_library is not None else '')
+    from nodl_schema.text_safety import one_line
+
+    stated = f'# client library: {one_line(client_library)}\n' if client_library is not None else ''
     if not layers:
         return stated + dump_nodl(iface, 'yaml')
     head: dict[str, Any] = {'nodl_version': iface.nodl_version}
@@ -180,7 +181,7 @@ def render(iface: Interface, format: str = 'yaml', layers: bool = False,
         lines.append(f'{section}:')
         for origin, item in items:
             if origin is not None:
-                lines.append(f'  # layer: {origin}')
+                lines.append(f'  # layer: {one_line(origin)}')
             text = _yaml(item).rstrip('\n')
             lines.extend('  ' + line for line in text.splitlines())
     return '\n'.join(lines) + '\n'

@@ -31,9 +31,14 @@ from __future__ import annotations
 
 import re
 
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
+
 __all__ = ['UNSAFE', 'BIDI_CONTROLS', 'first_unsafe', 'is_bidi_control', 'describe_character',
            'escape_character', 'visible', 'xml_escape', 'python_escapes', 'line_column',
-           'offset_of', 'locate_unsafe']
+           'offset_of', 'locate_unsafe', 'json_escapes', 'dump_yaml', 'one_line',
+           'xml_report_text', 'xml_report_attribute']
 
 #: Bidirectional controls of the Trojan Source set (embeddings, overrides, isolates).
 BIDI_CONTROLS = frozenset('\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069')
@@ -124,9 +129,10 @@ def xml_escape(text: str, quote: bool = False) -> str:
 def python_escapes(text: str) -> str:
     """``text`` for the inside of a Python string literal or docstring that already escapes its
     backslashes and quotes: unsafe characters (and U+2028/U+2029, which some editors break lines
-    at) become Python escapes, so the literal keeps the value and its source shows them."""
+    at) become ``\\uXXXX`` escapes (the one escape pydocstyle allows in a docstring), so the
+    literal keeps the value and its source shows them."""
     return re.sub('[\x00-\x08\x0b-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]',
-                  lambda m: escape_character(m.group(0)), text)
+                  lambda m: f'\\u{ord(m.group(0)):04x}', text)
 
 
 def line_column(text: str, offset: int) -> tuple[int, int]:
@@ -192,3 +198,91 @@ def locate_unsafe(text: str, start: int, value: str) -> int:
             return index
         index += 2
     return -1
+
+
+# What a YAML or JSON writer must not leave raw: the unsafe characters, and the line separators a
+# YAML reader breaks lines at (NEL is among the C1 controls).
+_YAML_ESCAPED = re.compile('[\x00-\x08\x0b-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069\ufeff]')
+
+
+def json_escapes(text: str) -> str:
+    """JSON (or YAML double-quoted) text with what :data:`UNSAFE` holds and the line separators
+    written as ``\\uXXXX``: for the output of ``json.dumps(..., ensure_ascii=False)``, where
+    they can only be inside strings.  Both JSON and YAML read the escapes back as they were."""
+    return _YAML_ESCAPED.sub(lambda m: f'\\u{ord(m.group(0)):04x}', text)
+
+
+def _needs_escapes(data: Any) -> bool:
+    if isinstance(data, str):
+        return _YAML_ESCAPED.search(data) is not None
+    if isinstance(data, dict):
+        return any(_needs_escapes(k) or _needs_escapes(v) for k, v in data.items())
+    if isinstance(data, (list, tuple)):
+        return any(_needs_escapes(v) for v in data)
+    return False
+
+
+_dumper: Any = None
+
+
+def _escaping_dumper() -> Any:
+    """A safe YAML dumper that writes a string holding an unsafe character or a line separator
+    double-quoted with escapes (``\\e``, ``\\L``, ``\\u202E``): no reader sees it raw, and every
+    YAML reader reads the same string back (a raw U+2028, NEL or CR inside a quoted scalar is a
+    line break that folding turns into a space)."""
+    global _dumper
+    if _dumper is None:
+        import yaml
+
+        class EscapingDumper(yaml.SafeDumper):
+            def analyze_scalar(self, scalar: str) -> Any:
+                analysis = super().analyze_scalar(scalar)
+                if _YAML_ESCAPED.search(scalar):
+                    analysis.allow_flow_plain = analysis.allow_block_plain = False
+                    analysis.allow_single_quoted = analysis.allow_block = False
+                return analysis
+
+            def write_double_quoted(self, text: str, split: bool = True) -> None:
+                unicode = self.allow_unicode
+                if _YAML_ESCAPED.search(text):
+                    self.allow_unicode = False  # this scalar only: every non-ASCII escaped
+                try:
+                    super().write_double_quoted(text, split)
+                finally:
+                    self.allow_unicode = unicode
+
+        _dumper = EscapingDumper
+    return _dumper
+
+
+def dump_yaml(data: Any, width: int = 100) -> str:
+    """``data`` as block-style YAML in the toolkit's layout (keys in order, Unicode as is), with
+    every string that holds an unsafe character or a line separator double-quoted and escaped,
+    so the text shows them and reads back as the same strings."""
+    import yaml
+
+    dumper = _escaping_dumper() if _needs_escapes(data) else getattr(yaml, 'CSafeDumper', yaml.SafeDumper)
+    text: str = yaml.dump(data, Dumper=dumper, sort_keys=False, default_flow_style=False,
+                          allow_unicode=True, width=width)
+    return text
+
+
+def one_line(text: object) -> str:
+    """``text`` for one line of a comment or a label: runs of white space and line breaks (YAML's
+    NEL, U+2028 and U+2029 among them) become one space, other unsafe characters visible escapes.
+    Nothing in it can end the comment's line."""
+    return visible(' '.join(str(text).split()), one_line=True)
+
+
+def xml_report_text(text: str) -> str:
+    """``text`` for the character data of a report (JUnit): shown as :func:`visible` shows it,
+    then XML-escaped (nothing left that XML 1.0 forbids)."""
+    return xml_escape(visible(text))
+
+
+def xml_report_attribute(text: str) -> str:
+    """``text`` as a double-quoted attribute of a report (JUnit), quotes included, as
+    :func:`xml.sax.saxutils.quoteattr` writes one (tab and newline as references, which keeps
+    them through attribute normalisation), shown as :func:`visible` shows it."""
+    escaped = xml_escape(visible(text), quote=True).replace('\n', '&#10;').replace('\t', '&#9;')
+    return f'"{escaped}"'

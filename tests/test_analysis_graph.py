@@ -82,3 +82,11 @@ def test_a_wide_graph_scrolls_instead_of_shrinking_its_labels() -> None:
     least = float(re.search(r'min-width:([\d.]+)pt', svg).group(1))
     assert abs(least - 0.6 * natural) <= 1 and ' width=' not in svg
     assert 'min-height:100%' not in page and 'overflow-wrap:anywhere' in page
+
+
+def test_labels_and_page_text_show_control_and_bidi_characters() -> None:
+    from nodl_schema.analysis.graph.html import _h
+
+    assert dot_string('a\u202eb\x1b"c\nd') == '"a\\\\u202eb\\\\x1b\\"c\\nd"'
+    assert _h('<a\u2066>') == '&lt;a\\u2066&gt;'
+    assert json.loads(json_for_script({'name\u202e': ['\x1b']})) == {'name\\u202e': ['\\x1b']}

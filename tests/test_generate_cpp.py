@@ -276,3 +276,14 @@ def test_unusable_names_are_generation_errors(bad: dict[str, str]) -> None:
     options = {'class_name': 'Talker', 'node_name': 'talker', **bad}
     with pytest.raises(GenerationError):
         generate_cpp(node, GenerateOptions(**options))  # type: ignore[arg-type]
+
+
+def test_control_bidi_and_trigraphs_in_comments_are_shown_not_kept() -> None:
+    from nodl_schema.text_safety import first_unsafe
+
+    lines = comment_lines('swap \u202e here \x1b[2J and \x85 then ??/ and ??= end??')
+    assert lines == ['/// swap &#92;u202e here &#92;x1b[2J and',  # NEL ends a line, as in Python
+                     '///  then &#63;?/ and &#63;?= end&#63;?']
+    assert all(first_unsafe(line) == -1 and '??' not in line for line in lines)
+    # a literal keeps the bytes, as octal escapes, and no trigraph
+    assert string_literal('\u202e??/') == '"\\342\\200\\256\\?\\?/"'

@@ -125,3 +125,23 @@ def test_a_missing_callback_implementation_is_found(tmp_path: Path) -> None:
     user.write_text(text[:start] + text[end:], encoding='utf-8')
     errors = parse_errors(user, [tmp_path])
     assert any('abstract' in e for e in errors), errors
+
+
+
+def test_hostile_text_in_comments_and_literals_still_parses(tmp_path: Path) -> None:
+    """Text holding control and bidi characters, trigraphs, comment ends and backslashes (as a
+    running node's descriptors or an ignored check let through), written by the generator's
+    comment and literal writers, holds none of them raw and libclang parses it as intended."""
+    from nodl_schema.generate.cpp.text import comment_lines, string_literal
+    from nodl_schema.text_safety import first_unsafe
+
+    hostile = 'node \u202e */ ??/ \x1b[2J \x00 \x85 \u2066 end \\'
+    source = '\n'.join(comment_lines(hostile) + [f'const char * text = {string_literal(hostile)};',
+                                                  'int after = 1;']) + '\n'
+    assert first_unsafe(source) == -1 and '??' not in source.split('\n')[0]
+    path = tmp_path / 'hostile.cpp'
+    path.write_text(source, encoding='utf-8')
+    assert parse_errors(path, []) == []
+    unit = clang.Index.create().parse(str(path), args=['-x', 'c++', '-std=c++14', '-trigraphs'])
+    declared = [c.spelling for c in unit.cursor.get_children()]
+    assert declared == ['text', 'after'] and not list(unit.diagnostics)

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.generate.python_text import LINE_LENGTH, mark_long_lines, multiline_string_lines
+from nodl_schema.generate.python_text import (
+    LINE_LENGTH, comment, docstring, literal, mark_long_lines, multiline_string_lines)
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -54,3 +55,18 @@ def test_long_lines_are_marked_outside_strings_only() -> None:
     assert lines[0].endswith('  # noqa: E501')
     assert lines[2] == long  # inside a string: left as it is
     assert mark_long_lines('a = 1\n') == 'a = 1\n'
+
+
+HOSTILE = 'Gain \u202e txt.exe \x1b[2J\x00 end\u2028next \x85 "quoted" \\ done'
+
+
+def test_hostile_text_in_docstrings_and_comments_is_escaped_and_compiles() -> None:
+    from nodl_schema.text_safety import first_unsafe
+
+    source = docstring(HOSTILE, '    ') + comment(HOSTILE, '    ') + '    pass\n'
+    code = 'def f():\n' + source
+    assert first_unsafe(code) == -1 and '\u2028' not in code
+    namespace: dict[str, object] = {}
+    exec(compile(code, '<generated>', 'exec'), namespace)
+    assert namespace['f'].__doc__ == HOSTILE  # type: ignore[attr-defined]
+    assert literal(HOSTILE).isascii() and eval(literal(HOSTILE)) == HOSTILE

@@ -575,3 +575,14 @@ def test_documents_the_reference_rejects(path: Path) -> None:
 def test_the_reference_rejects_for_the_same_reason(name: str, code: str, where: str) -> None:
     [error] = check_source(REFERENCE_SUITE / 'invalid' / f'{name}.yaml').errors
     assert (error.code, error.path_text) == (code, where)
+
+
+@pytest.mark.parametrize('text', ['line\u2028separator', 'para\u2029graph', '\u2028', 'a \u2028 b\u2029',
+                                  'x' * 95 + ' \u2028 ' + 'y' * 30, 'nel\x85x', 'rlo\u202ex é'])
+def test_line_separators_and_unsafe_characters_survive_a_dump_and_load(text: str) -> None:
+    from nodl_schema.text_safety import first_unsafe
+
+    for format in ('yaml', 'json'):
+        dumped = dump_nodl({'type': 'string', 'description': text}, format, validate=False)
+        assert first_unsafe(dumped) == -1 and '\u2028' not in dumped and '\u2029' not in dumped
+        assert check_source(dumped, file=f'x.{format}').data['description'] == text

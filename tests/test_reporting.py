@@ -156,6 +156,19 @@ def test_junit_escapes_what_documents_hold() -> None:
     assert (suite.get('name'), suite.get('tests'), suite.get('failures'), suite.get('errors')) == \
         ('suite <x>', '3', '1', '1')
     failure = suite.find("testcase[@name='a&b.yaml']/failure")
-    assert failure is not None and 'bad <key> & "quote"\ufffd\ufffd[31m' in (failure.text or '')
+    assert failure is not None and 'bad <key> & "quote"\\x01\\x1b[31m' in (failure.text or '')
     assert suite.find("testcase[@name='ok.yaml']/failure") is None
     assert suite.find("testcase[@name='gone.yaml']/error").get('message') == 'cannot be read'  # type: ignore[union-attr]
+
+
+def test_junit_and_sarif_show_control_and_bidi_characters() -> None:
+    import xml.etree.ElementTree as ET
+
+    from nodl_schema.reporting.junit import _attribute, _text
+    from nodl_schema.reporting.sarif import format_sarif
+
+    hostile = 'evil \u202e \x1b[2J \x00 end'
+    element = ET.fromstring(f'<f m={_attribute(hostile)}>{_text(hostile)}</f>')
+    assert element.text == element.get('m') == 'evil \\u202e \\x1b[2J \\x00 end'
+    sarif = json.loads(format_sarif([Diagnostic(Severity.ERROR, hostile, (), 'x.yaml', 1, 1, code='NODL219')]))
+    assert sarif['runs'][0]['results'][0]['message']['text'] == 'evil \\u202e \\x1b[2J \\x00 end'

@@ -10,13 +10,17 @@ verb runs, so that:
   that the runner turns into a quiet exit (status 141, as a tool killed by
   ``SIGPIPE`` has);
 * on a terminal, severity words are coloured (unless ``NO_COLOR`` is set or
-  ``--color never`` is given).
+  ``--color never`` is given);
+* a control character (but tab and newline) or a bidi control in what a verb
+  writes is shown as an escape (``\\x1b``, ``\\u202e``), never obeyed.
 """
 
 from __future__ import annotations
 
 import os
 import sys
+
+from nodl_schema.text_safety import visible
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
@@ -88,6 +92,10 @@ class GuardedStream:
     def write(self, text: str) -> int:
         if self.before_write is not None:
             self.before_write()
+        # No control or bidi character a definition, a launch file or a running node gave
+        # reaches the terminal or a log as it is: it could move the cursor, recolour or
+        # reorder the text (nodl_schema.text_safety); the colours are added after this.
+        text = visible(text)
         if self.colour:
             text = colourize(text)
         try:

@@ -46,9 +46,10 @@ class DialectConversion:
     def text(self) -> str:
         """The NoDL v2 file: a comment saying where it came from, then the document."""
         from nodl_schema.loading import dump_nodl
+        from nodl_schema.text_safety import one_line
 
         assert self.data is not None
-        comment = ''.join(f'# {line}\n' for line in self.header.splitlines())
+        comment = ''.join(f'# {one_line(line)}\n' for line in self.header.splitlines())
         return comment + dump_nodl(self.data)
 
 

@@ -200,12 +200,10 @@ class Exported:
 
     def text(self, header: str = '') -> str:
         """The document as YAML (names and descriptions escaped by the YAML emitter)."""
-        import yaml
+        from nodl_schema.text_safety import dump_yaml, visible
 
-        dumper = getattr(yaml, 'CSafeDumper', yaml.SafeDumper)
-        body = yaml.dump(self.data, Dumper=dumper, sort_keys=False, default_flow_style=False,
-                         allow_unicode=True, width=100)
-        comment = ''.join(f'# {line}\n' for line in header.splitlines())
+        body = dump_yaml(self.data)
+        comment = ''.join(f'# {visible(line)}\n' for line in header.splitlines())
         return comment + body
 
 

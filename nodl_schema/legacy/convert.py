@@ -371,13 +371,14 @@ def convert_legacy(doc: LegacyDocument) -> list[Converted]:
 def render_converted(converted: Converted) -> str:
     """The YAML text of a converted node, with a header saying where it came from."""
     from nodl_schema.loading import dump_nodl
+    from nodl_schema.text_safety import one_line
 
     node = converted.node
-    identity = ', '.join(f"{key} '{value}'" for key, value in
+    identity = ', '.join(f"{key} '{one_line(value)}'" for key, value in
                          (('node', node.name), ('executable', node.executable)) if value)
     # The last line marks what the legacy format cannot say (see nodl_schema.overrides): no
     # 'has no description' warning, even with --strict, until someone writes the descriptions.
-    header = (f'# Converted from {converted.source} by `nodl convert`\n'
+    header = (f'# Converted from {one_line(converted.source)} by `nodl convert`\n'
               f'# (legacy NoDL XML: {identity}, line {node.line}).\n'
               '# nodl: ignore=NODL216 (legacy NoDL has no descriptions: write them, then remove '
               'this line)\n')

@@ -166,18 +166,19 @@ def describe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
 def render_description(description: Description, format: str = 'yaml') -> str:
     """The definition as a file: YAML with a header comment, or JSON."""
     from nodl_schema.loading import dump_nodl
+    from nodl_schema.text_safety import one_line
 
     if format == 'json':
         return dump_nodl(description.node, 'json')
-    header = [f'# Described from the running node {description.fqn} by `nodl describe`.',
-              # one line whatever the reason holds: a comment cannot break out
-              f'# Left out: what the base gives an {description.client_library.name} node '
-              f'({description.client_library.reason}).'.replace('\n', ' ').replace('\r', ' ')]
-    header += [f'# Warning: {warning}.'.replace('\n', ' ').replace('\r', ' ')
-               for warning in description.warnings]
+    # one line whatever a name or reason holds (a running node's text included): a comment
+    # cannot break out, nor hold a control or bidi character
+    header = [f'# Described from the running node {one_line(description.fqn)} by `nodl describe`.',
+              f'# Left out: what the base gives an {one_line(description.client_library.name)} node '
+              f'({one_line(description.client_library.reason)}).']
+    header += [f'# Warning: {one_line(warning)}.' for warning in description.warnings]
     if description.notes:
         header.append('# Not observable, so not stated here:')
-        header += [f'#   - {note}' for note in description.notes]
+        header += [f'#   - {one_line(note)}' for note in description.notes]
     # Marks what describe cannot know (see nodl_schema.overrides): no 'has no description'
     # warning, even with --strict, until someone writes the descriptions.
     header.append('# nodl: ignore=NODL216 (a running node has no descriptions: write them, '

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import json
 from typing import Any
-from xml.sax.saxutils import escape, quoteattr
 
 from nodl_schema.live.check import CheckResult
+from nodl_schema.text_safety import xml_report_attribute as quoteattr, xml_report_text as escape
 from nodl_schema.vocabulary import SECTION_KEYS
 
 __all__ = ['format_check_text', 'format_check_json', 'format_check_junit', 'format_check_sarif']

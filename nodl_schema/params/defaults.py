@@ -22,12 +22,17 @@ def yaml_scalar(value: Any, base: str) -> str:
         text = repr(float(value))
         return {'inf': '.inf', '-inf': '-.inf', 'nan': '.nan'}.get(text, text)
     if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)  # a double-quoted YAML string
+        from nodl_schema.text_safety import json_escapes
+
+        # a double-quoted YAML string; what a YAML reader would fold or show raw is escaped
+        return json_escapes(json.dumps(value, ensure_ascii=False))
     return repr(value)
 
 
 def _comment(text: str) -> str:
-    return ' '.join(text.split())
+    from nodl_schema.text_safety import visible
+
+    return visible(' '.join(text.split()), one_line=True)
 
 
 def defaults_yaml(node: ResolvedNode, fqn: str, *, include_base: bool = False) -> str:

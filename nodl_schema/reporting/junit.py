@@ -16,6 +16,7 @@ if TYPE_CHECKING:
     from typing import Iterable, NamedTuple, Sequence
 
 from nodl_schema.diagnostics import Diagnostic
+from nodl_schema.text_safety import visible
 
 __all__ = ['JUnitCase', 'format_junit']
 
@@ -42,13 +43,13 @@ else:
 def _text(text: str) -> str:
     from xml.sax.saxutils import escape
 
-    return escape(_NOT_XML.sub('\ufffd', text))
+    return escape(_NOT_XML.sub('\ufffd', visible(text)))
 
 
 def _attribute(text: str) -> str:
     from xml.sax.saxutils import quoteattr
 
-    return quoteattr(_NOT_XML.sub('\ufffd', text))
+    return quoteattr(_NOT_XML.sub('\ufffd', visible(text)))
 
 
 def format_junit(cases: Iterable[JUnitCase], suite: str) -> str:

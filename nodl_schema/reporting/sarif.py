@@ -18,6 +18,7 @@ if TYPE_CHECKING:
     from typing import Any, Iterable
 
 from nodl_schema.diagnostics import Diagnostic, Severity
+from nodl_schema.text_safety import visible
 
 __all__ = ['SARIF_SCHEMA', 'SARIF_VERSION', 'INFORMATION_URI', 'sarif_log', 'format_sarif']
 
@@ -63,7 +64,7 @@ def _location(file: str, line: int, column: int, path_text: str = '',
     if path_text:
         location['logicalLocations'] = [{'fullyQualifiedName': path_text}]
     if message:
-        location['message'] = {'text': message}
+        location['message'] = {'text': visible(message)}
     return location or None
 
 
@@ -88,7 +89,7 @@ def sarif_log(diagnostics: Iterable[Diagnostic], tool_name: str = 'nodl') -> dic
             })
     results: list[dict[str, Any]] = []
     for d in items:
-        result: dict[str, Any] = {'level': _LEVELS[d.severity], 'message': {'text': d.message}}
+        result: dict[str, Any] = {'level': _LEVELS[d.severity], 'message': {'text': visible(d.message)}}
         if d.code:
             result['ruleId'] = d.code
             result['ruleIndex'] = rule_index[d.code]

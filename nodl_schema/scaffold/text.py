@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import re
-from xml.sax.saxutils import escape as _xml_escape
+
+from nodl_schema.text_safety import visible, xml_escape
 
 __all__ = ['markdown', 'markdown_code', 'xml_text', 'xml_attribute', 'python_string', 'one_line']
 
@@ -16,13 +17,14 @@ def one_line(text: str | None) -> str:
 
 
 def markdown(text: str | None) -> str:
-    """``text`` as literal Markdown inline text (also safe in a table cell)."""
-    return _MARKDOWN_SPECIAL.sub(r'\\\1', one_line(text))
+    """``text`` as literal Markdown inline text (also safe in a table cell); control and bidi
+    characters are shown as escapes, never rendered."""
+    return _MARKDOWN_SPECIAL.sub(r'\\\1', visible(one_line(text)))
 
 
 def markdown_code(text: str) -> str:
     """``text`` as an inline code span (backticks and ``|`` cannot end it or the table cell)."""
-    body = one_line(text).replace('|', '\\|')
+    body = visible(one_line(text)).replace('|', '\\|')
     fence = '`'
     while fence in body:
         fence += '`'
@@ -31,13 +33,14 @@ def markdown_code(text: str) -> str:
 
 
 def xml_text(text: str | None) -> str:
-    """``text`` as XML character data on one line."""
-    return _xml_escape(one_line(text))
+    """``text`` as XML character data on one line (control and bidi characters as character
+    references, or visible escapes where XML 1.0 allows none: :mod:`nodl_schema.text_safety`)."""
+    return xml_escape(one_line(text))
 
 
 def xml_attribute(text: str) -> str:
     """``text`` for a double-quoted XML attribute."""
-    return _xml_escape(one_line(text), {'"': '&quot;'})
+    return xml_escape(one_line(text), quote=True)
 
 
 def python_string(text: str) -> str:

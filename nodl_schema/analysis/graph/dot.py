@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from nodl_schema.analysis.graph.model import Edge, Graph, Vertex
+from nodl_schema.text_safety import visible
 
 __all__ = ['format_dot', 'dot_string', 'SHAPES', 'COLOURS']
 
@@ -22,7 +23,8 @@ _EDGE_STYLES = {'publisher': '', 'subscription': '', 'service_server': 'style=da
 
 def dot_string(text: str) -> str:
     """``text`` as a quoted DOT string (backslashes, quotes and line breaks escaped)."""
-    escaped = text.replace('\\', '\\\\').replace('"', '\\"').replace('\r', ' ')
+    # control and bidi characters shown as escapes, never rendered (nodl_schema.text_safety)
+    escaped = visible(text).replace('\\', '\\\\').replace('"', '\\"')
     return '"' + escaped.replace('\n', '\\n') + '"'
 
 

@@ -13,13 +13,31 @@ import re
 
 from nodl_schema.analysis.graph.model import Graph
 from nodl_schema.analysis.system import Analysis
+from nodl_schema.text_safety import visible
 
 __all__ = ['format_html', 'json_for_script']
 
 
+def _shown(data: object) -> object:
+    # every string as the page shows it: control and bidi characters as visible escapes
+    if isinstance(data, str):
+        return visible(data)
+    if isinstance(data, dict):
+        return {_shown(k): _shown(v) for k, v in data.items()}
+    if isinstance(data, (list, tuple)):
+        return [_shown(v) for v in data]
+    return data
+
+
+def _h(text: str) -> str:
+    """``text`` as HTML text, control and bidi characters shown as escapes, never rendered."""
+    return html.escape(visible(text))
+
+
 def json_for_script(data: object) -> str:
-    """JSON that is safe inside a ``<script>`` element (no ``</script>``, no ``<!--``)."""
-    text = json.dumps(data, default=str, separators=(',', ':'))
+    """JSON that is safe inside a ``<script>`` element (no ``</script>``, no ``<!--``), its
+    strings as the page shows them (no control or bidi character to render)."""
+    text = json.dumps(_shown(data), default=str, separators=(',', ':'))
     return text.replace('<', '\\u003c').replace('>', '\\u003e').replace('&', '\\u0026') \
         .replace('\u2028', '\\u2028').replace('\u2029', '\\u2029')
 
@@ -143,17 +161,17 @@ def format_html(graph: Graph, svg: str, analysis: Analysis) -> str:
     items = []
     for finding in analysis.findings:
         target = ids_by_name.get(finding.nodes[0]) if finding.nodes else None
-        link = (f' <a data-id="{html.escape(target)}">{html.escape(finding.nodes[0])}</a>'
+        link = (f' <a data-id="{_h(target)}">{_h(finding.nodes[0])}</a>'
                 if target else '')
         d = finding.diagnostic
         where = f'{d.file}:{d.line}:{d.column}' if d.line else d.file
         items.append(f'<div class="finding {d.severity.value}"><div class="code">'
-                     f'{html.escape(d.severity.value.upper())} {html.escape(finding.kind)} '
-                     f'[{html.escape(d.code)}]{link}</div><div>{html.escape(d.message)}</div>'
-                     f'<div class="where">{html.escape(where)}</div></div>')
+                     f'{_h(d.severity.value.upper())} {_h(finding.kind)} '
+                     f'[{_h(d.code)}]{link}</div><div>{_h(d.message)}</div>'
+                     f'<div class="where">{_h(where)}</div></div>')
     pills = ''.join(f'<span class="pill {k}">{n} {k}{"s" if n != 1 and k != "info" else ""}</span>'
                     for k, n in counts.items())
-    title = html.escape(graph.title)
+    title = _h(graph.title)
     return f"""<!DOCTYPE html>
 <html lang="en">
 <head>
@@ -164,7 +182,7 @@ def format_html(graph: Graph, svg: str, analysis: Analysis) -> str:
 </head>
 <body>
 <header><h1>System analysis</h1><span class="file">{title}</span>
-<span class="hint">{html.escape(summary(analysis))}</span><div class="counts">{pills}</div></header>
+<span class="hint">{_h(summary(analysis))}</span><div class="counts">{pills}</div></header>
 <main>
 <div id="canvas">{_inline_svg(svg)}</div>
 <aside>

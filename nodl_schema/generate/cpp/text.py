@@ -23,6 +23,8 @@ import re
 from functools import lru_cache
 from typing import Any, Iterable
 
+from nodl_schema.text_safety import escape_character
+
 __all__ = ['string_literal', 'comment_lines', 'comment_text', 'cpp_value', 'CPP_TYPES',
            'cpp_type', 'interface_cpp', 'interface_header', 'rosidl_file_stem']
 
@@ -44,7 +46,10 @@ def string_literal(text: str) -> str:
     return '"' + ''.join(out) + '"'
 
 
-_CONTROL = re.compile('[\x00-\x08\x0b-\x1f\x7f]')
+# C0, DEL, C1 and the bidi controls (nodl_schema.text_safety), written as visible escapes
+_CONTROL = re.compile('[\x00-\x08\x0b-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]')
+# '??' starts a trigraph before C++17 ('??/' is a backslash, which could continue the comment)
+_TRIGRAPH = re.compile(r'\?(?=\?)')
 _COMMENT_ENTITIES = {'&': '&amp;', '<': '&lt;', '>': '&gt;', '\\': '&#92;', '@': '&#64;'}
 _ENTITY_CHARS = re.compile('[&<>\\\\@]')
 
@@ -53,8 +58,9 @@ def comment_text(text: str) -> list[str]:
     """The lines of ``text`` made safe inside a C++ line comment (see the module docstring)."""
     lines = []
     for line in str(text).splitlines() or ['']:
-        line = _CONTROL.sub(' ', line)
         line = _ENTITY_CHARS.sub(lambda m: _COMMENT_ENTITIES[m.group(0)], line)
+        line = _CONTROL.sub(lambda m: escape_character(m.group(0)).replace('\\', '&#92;'), line)
+        line = _TRIGRAPH.sub('&#63;', line)
         lines.append(line.rstrip())
     return lines
 
