@@ -16,7 +16,7 @@ import os
 from typing import Any
 
 from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.launch.errors import MAX_ENTITIES, LaunchProblem
+from nodl_schema.launch.errors import MAX_ENTITIES, LaunchProblem, SubstitutionTooLarge
 from nodl_schema.launch.model import LaunchArgument, LaunchResult, SourceLocation
 
 __all__ = ['LaunchContext']
@@ -48,6 +48,9 @@ class LaunchContext:
         self._anonymous: dict[str, str] = {}
         self._seen_diagnostics: set[tuple[str, int, int, str]] = set()
         self._namespace_errors: dict[str, str | None] = {}
+        #: Environment variables an ``append_env`` would have made longer than the substitution
+        #: limit -> the problem reported there (raised again where they are read).
+        self.oversized_environment: dict[str, SubstitutionTooLarge] = {}
 
     # -- what launch.LaunchContext offers to substitutions written in helper packages ------
     @property

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from nodl_schema.diagnostics import Diagnostic, Severity
 
-__all__ = ['LaunchProblem', 'Unevaluable', 'MAX_INCLUDE_DEPTH', 'MAX_ENTITIES', 'MAX_XML_DEPTH']
+__all__ = ['LaunchProblem', 'Unevaluable', 'SubstitutionTooLarge', 'MAX_INCLUDE_DEPTH', 'MAX_ENTITIES',
+           'MAX_XML_DEPTH', 'MAX_SUBSTITUTION_CHARS']
 
 #: Includes nest at most this deep (a chain longer than this is reported, not followed).
 MAX_INCLUDE_DEPTH = 40
@@ -19,6 +20,10 @@ MAX_INCLUDE_DEPTH = 40
 MAX_ENTITIES = 200_000
 #: XML and YAML launch files nest at most this deep (the NoDL frontends' limit).
 MAX_XML_DEPTH = 100
+#: A substitution's text (a ``let`` or ``arg`` value, ``$(var)``, a joined path...) is at
+#: most this long: 16 MiB, well above real values (a ``robot_description`` is a few MB) and
+#: far below what a doubling ``let`` chain reaches (20 lets: 12 GB in launch itself).
+MAX_SUBSTITUTION_CHARS = 16 * 1024 * 1024
 
 
 class LaunchProblem(Exception):
@@ -47,3 +52,24 @@ class Unevaluable(LaunchProblem):
 
     def __init__(self, message: str) -> None:
         super().__init__('NODL513', message, severity=Severity.WARNING)
+
+
+class SubstitutionTooLarge(LaunchProblem):
+    """A substitution's text would exceed :data:`MAX_SUBSTITUTION_CHARS` (NODL521); raised
+    before the oversized text is made."""
+
+    def __init__(self, message: str = '', file: str = '', line: int = 0, column: int = 0) -> None:
+        super().__init__('NODL521', message or too_large_message(), file, line, column)
+
+    def again(self) -> SubstitutionTooLarge:
+        """The same problem, to raise again where the value is used (a fresh exception)."""
+        return SubstitutionTooLarge(self.message, self.file, self.line, self.column)
+
+
+def too_large_message(what: str = 'a substitution', *, made: bool = False) -> str:
+    """The message of :class:`SubstitutionTooLarge` for ``what`` (``launch configuration 'x'``);
+    ``made``: the text exists already (written so in a Python launch file), it is not used."""
+    return (f'{what} {"is" if made else "would be"} longer than the substitution limit of 16 MiB '
+            f'({MAX_SUBSTITUTION_CHARS:,} characters); {"not used" if made else "stopped before making it"}. Real values '
+            '(a robot_description) are a few MB: look for a let or arg that repeats its own '
+            'value ($(var x)$(var x)) or a value joined with itself')
