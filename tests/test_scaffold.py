@@ -17,6 +17,7 @@ import pytest
 
 from conftest import FIXTURES
 from nodl_schema.scaffold import ScaffoldError, load_nodes, plan_package, write_package
+from nodl_schema.writing import WriteError, mark, marker_state
 
 GENERATE = FIXTURES / 'generate'
 GOLDEN = FIXTURES / 'scaffold' / 'cmake'
@@ -120,12 +121,24 @@ def test_write_refuses_an_existing_folder_and_update_keeps_user_files(tmp_path: 
     user = tmp_path / 'demo_nodes' / 'demo_nodes' / 'talker.py'
     base = tmp_path / 'demo_nodes' / 'demo_nodes' / 'talker_base.py'
     user.write_text('mine\n', encoding='utf-8')
-    base.write_text('stale\n', encoding='utf-8')
+    generated = base.read_text(encoding='utf-8')
+    assert marker_state(generated) == 'valid'  # generated files carry the marker
+    base.write_text(mark('stale\n', '#'), encoding='utf-8')  # as an older nodl generated it
     report = write_package(result, str(tmp_path), update=True)
     assert user.read_text(encoding='utf-8') == 'mine\n'
-    assert base.read_text(encoding='utf-8') != 'stale\n'
+    assert base.read_text(encoding='utf-8') == generated
     assert 'demo_nodes/demo_nodes/talker.py' in report.kept
     assert report.written == ['demo_nodes/demo_nodes/talker_base.py']
+    base.write_text(generated + '# my fix\n', encoding='utf-8')  # a generated file, edited
+    (tmp_path / 'demo_nodes' / 'package.xml').unlink()
+    with pytest.raises(WriteError) as refused:
+        write_package(result, str(tmp_path), update=True)
+    assert (refused.value.diagnostic.code, refused.value.diagnostic.file) == ('NODL032', str(base))
+    assert base.read_text(encoding='utf-8').endswith('# my fix\n')
+    assert not (tmp_path / 'demo_nodes' / 'package.xml').exists()  # refused before writing any
+    forced = write_package(result, str(tmp_path), update=True, force=True)
+    assert base.read_text(encoding='utf-8') == generated and user.read_text(encoding='utf-8') != 'mine\n'
+    assert 'demo_nodes/package.xml' in forced.written
     # regenerating again writes nothing: the output is byte-identical
     assert write_package(plan('ament_python'), str(tmp_path), update=True).written == []
 
