@@ -334,3 +334,17 @@ def test_included_and_parameter_file_paths_are_tidy(tmp_path: Path) -> None:
                                                  str(launch / 'sub.launch.yaml')]
     for node in (x, y, z):
         assert [p.path for p in node.parameters if p.kind == 'file'] == [params] * (1 + (node is z))
+
+
+def test_a_required_argument_of_the_file_run_says_name_value() -> None:
+    """The file the user ran needs an argument: given as NAME:=VALUE on the command line
+    (not "add <arg> to the include", which it has none of); an included file's missing
+    argument still says to add it to the include."""
+    folder = Path(__file__).parent / 'fixtures' / 'launch' / 'required_arguments'
+    (top,) = load_launch(folder / 'top.launch.xml', {}).diagnostics
+    assert (top.code, top.line) == ('NODL506', 3)
+    assert top.message.endswith('give it on the command line: robot:=VALUE')
+    assert 'include' not in top.message
+    assert [n.name for n in load_launch(folder / 'top.launch.xml', {'robot': 'r2'}).nodes] == ['r2']
+    (included,) = load_launch(folder / 'includes.launch.xml', {}).diagnostics
+    assert included.message.endswith('add <arg name="robot" value="..."/> to the include')

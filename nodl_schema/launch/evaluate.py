@@ -96,10 +96,11 @@ def _argument_names_without_context(context: LaunchContext, action: Any) -> list
 
 
 def _missing_required_argument(context: LaunchContext, description: LaunchDescription,
-                               given: list[str], path: str) -> LaunchProblem | None:
+                               given: list[str], path: str, top: bool = False) -> LaunchProblem | None:
     """launch's check before an include: every argument declared without a default and not
     under a condition, in the included file or in the files IT includes (as far as they load
-    without a context), must be given by this include or by the includes leading to it."""
+    without a context), must be given by this include or by the includes leading to it
+    (``top``: the file the user ran, whose arguments are given as ``NAME:=VALUE``)."""
     from nodl_schema.launch.actions import IncludeLaunchDescription
 
     declared: list[tuple[DeclareLaunchArgument, bool, tuple[Any, ...] | None]] = []
@@ -139,6 +140,11 @@ def _missing_required_argument(context: LaunchContext, description: LaunchDescri
             if chain:
                 through = ' (declared in a file it includes: ' + ' -> '.join(
                     str(i.location) for i in chain) + ')'
+            if top:  # the file the user ran: its arguments come from the command line
+                return LaunchProblem('NODL506', f"the launch file needs the argument '{argument.name}'"
+                                                f'{through}, which has no default and is not given; '
+                                                f'give it on the command line: {argument.name}:=VALUE',
+                                     where.file, where.line, where.column)
             return LaunchProblem('NODL506', f"included launch file '{path}' needs argument "
                                             f"'{argument.name}'{through}, which is not given (given: "
                                             f"{', '.join(given) or 'none'}); add "
@@ -188,7 +194,9 @@ def include(context: LaunchContext, action: Any) -> list[Action] | None:
         context.result.files.append(path)
     if description is None:
         return None
-    missing = _missing_required_argument(context, description, [name for name, _ in arguments], path)
+    top = not context.include_chain and not getattr(getattr(action, 'location', None), 'line', 1)
+    missing = _missing_required_argument(context, description, [name for name, _ in arguments], path,
+                                         top)
     if missing is not None:
         raise missing
     values = [(name, perform_bounded(context, value, f"launch argument '{name}' given to '{path}'", where))
