@@ -146,7 +146,6 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL519': ('error', 'launch node: an invalid node name, namespace or remapping rule'),
     'NODL520': ('warning', 'launch argument: given but declared by no launch file'),
     'NODL521': ('error', 'launch substitution: a value (let, arg default, $(var), joined path) would pass the 16 MiB limit'),
-    'NODL521': ('error', 'launch substitution: a value (let, arg default, $(var), joined path) would pass the 16 MiB limit'),
     'NODL525': ('error', 'Python launch file: not run because --no-exec is set (its nodes are missing)'),
     'NODL526': ('warning', 'launch substitution: $(eval) not evaluated because --no-exec is set (its value is unknown)'),
     'NODL527': ('error', "launch file's Python code: it ended or crashed the sandbox process (os._exit, a signal)"),

@@ -19,6 +19,13 @@ that cannot be read, an include cycle, nesting deeper than
 :data:`MAX_DEPTH`) is reported (NODL606) at the include and leaves nothing
 in its place.  Included elements keep the positions of their own file, which
 :class:`Origins` remembers, so findings name the file a grant is written in.
+
+Hostile policies stay bounded: at most :data:`MAX_INCLUDES` includes are expanded
+(NODL614 at the first one past it: an "include bomb" of files that include each other
+many times over), the included text totals at most :data:`MAX_INCLUDED_BYTES`
+(NODL615), and an ``href`` must lead to a file inside the including file's folder tree
+once ``..`` and symbolic links are resolved (NODL616: a policy does not read
+``../../etc/...``).  Each is said once, at the include, and expands to nothing.
 """
 
 from __future__ import annotations
@@ -31,12 +38,19 @@ from typing import NamedTuple
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.frontends.xml_reader import XmlElement
 
-__all__ = ['XINCLUDE_NAMESPACES', 'MAX_DEPTH', 'Origin', 'Origins', 'expand_includes']
+__all__ = ['XINCLUDE_NAMESPACES', 'MAX_DEPTH', 'MAX_INCLUDES', 'MAX_INCLUDED_BYTES', 'Origin', 'Origins',
+           'expand_includes']
 
 #: The namespaces of XInclude (the 2001 draft, which SROS 2's policies use, and 2003's).
 XINCLUDE_NAMESPACES = ('http://www.w3.org/2001/XInclude', 'http://www.w3.org/2003/XInclude')
 #: How deep includes may nest.
 MAX_DEPTH = 16
+#: How many includes one policy may expand in all (SROS 2's samples use a handful; a
+#: system of hundreds of profiles each including a few common files stays well below).
+MAX_INCLUDES = 1000
+#: How much included text one policy may expand in all (each include counts its whole file,
+#: every time it is included): the 10 MB one file may hold.
+MAX_INCLUDED_BYTES = 10 * 1024 * 1024
 
 _XPOINTER = re.compile(r'xpointer\((/[A-Za-z_][\w.-]*(?:/[A-Za-z_][\w.-]*)*)/\*\)')
 _LINE_BREAK = re.compile(r'\r\n|\r|\n')
@@ -67,9 +81,9 @@ class Origins(dict[int, Origin]):
             self.mark(child, origin)
 
 
-def _problem(origin: Origin, element: XmlElement, message: str) -> Diagnostic:
+def _problem(origin: Origin, element: XmlElement, message: str, code: str = 'NODL606') -> Diagnostic:
     return Diagnostic(Severity.ERROR, message, (), origin.file, element.line, element.column,
-                      code='NODL606')
+                      code=code)
 
 
 def _prefixes(element: XmlElement, inherited: dict[str, str]) -> dict[str, str]:
@@ -86,13 +100,18 @@ def _is_include(element: XmlElement, prefixes: dict[str, str]) -> bool:
 def expand_includes(root: XmlElement, origin: Origin, origins: Origins,
                     problems: list[Diagnostic]) -> None:
     """Replace every include under ``root`` by what it includes (in place)."""
-    _Expander(origins, problems).walk(root, origin, {}, (os.path.abspath(origin.file),))
+    _Expander(origins, problems).walk(root, origin, {}, (os.path.realpath(origin.file),))
 
 
 class _Expander:
     def __init__(self, origins: Origins, problems: list[Diagnostic]) -> None:
         self.origins = origins
         self.problems = problems
+        #: Includes expanded so far, and the characters of included text read for them.
+        self.count = 0
+        self.size = 0
+        #: The limit (NODL614, NODL615) that stopped the expansion, once reported.
+        self.stopped = False
 
     def walk(self, element: XmlElement, origin: Origin, inherited: dict[str, str],
              chain: tuple[str, ...]) -> None:
@@ -131,13 +150,30 @@ class _Expander:
             return []
         base = os.path.dirname(origin.file) if not origin.file.startswith('<') else os.getcwd()
         path = os.path.abspath(os.path.join(base, href.value))
-        if path in chain:
+        real, folder = os.path.realpath(path), os.path.realpath(base)
+        if os.path.commonpath([real, folder]) != folder:
+            self.problems.append(_problem(origin, include, f"<{include.tag}>: href '{href.value}' leads "
+                                          f'to {real}, outside the folder of the including file '
+                                          f'({folder}); an included file must be in that folder or '
+                                          'below it (after resolving .. and symbolic links)', 'NODL616'))
+            return []
+        if real in chain:
             self.problems.append(_problem(origin, include, f'<{include.tag}>: {href.value} includes '
                                           'itself (an include cycle)'))
             return []
         if len(chain) > MAX_DEPTH:
             self.problems.append(_problem(origin, include, f'<{include.tag}>: includes nest deeper '
                                           f'than {MAX_DEPTH}'))
+            return []
+        if self.stopped:
+            return []
+        self.count += 1
+        if self.count > MAX_INCLUDES:
+            self.stopped = True
+            self.problems.append(_problem(origin, include, f'<{include.tag}>: more than {MAX_INCLUDES:,} '
+                                          'includes in one policy (files including each other many '
+                                          'times over?); this and every later include are not '
+                                          'expanded', 'NODL614'))
             return []
         pointer = include.get('xpointer')
         steps: list[str] = []
@@ -153,7 +189,7 @@ class _Expander:
         if included is None:
             return []
         root, included_origin = included
-        self.walk(root, included_origin, {}, chain + (path,))
+        self.walk(root, included_origin, {}, chain + (real,))
         if not steps:
             selected = [root]
         else:
@@ -180,6 +216,14 @@ class _Expander:
         if read is None:
             assert problem is not None
             self.problems.append(problem)
+            return None
+        self.size += len(read.text)
+        if self.size > MAX_INCLUDED_BYTES:
+            self.stopped = True
+            self.problems.append(_problem(origin, include, f'<{include.tag}>: the included files total '
+                                          f'more than {MAX_INCLUDED_BYTES:,} characters (10 MB; each '
+                                          'include counts its whole file); this and every later '
+                                          'include are not expanded', 'NODL615'))
             return None
         tree = load_xml(read.text, read.file)
         self.problems.extend(tree.diagnostics)
