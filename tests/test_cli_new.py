@@ -45,8 +45,9 @@ class Workspace:
     def env(self) -> dict[str, str]:
         env = build_env()
         site = next(self.install.glob('lib/python3*/site-packages'))
+        # the toolkit of this working tree (its `nodl` checks the generated bases)
         env.update(AMENT_PREFIX_PATH=os.pathsep.join([str(self.install), str(VENV)]),
-                   PYTHONPATH=os.pathsep.join([str(site), env.get('PYTHONPATH', '')]))
+                   PYTHONPATH=os.pathsep.join([str(site), str(REPO), env.get('PYTHONPATH', '')]))
         return env
 
 
@@ -116,8 +117,21 @@ def test_a_missing_required_parameter_stops_the_node_with_its_name(workspace: Wo
     program = workspace.install / 'lib' / 'demo_nodes' / 'everything'
     result = subprocess.run([str(program)], env=workspace.env(), text=True, capture_output=True,
                             timeout=60)
-    assert result.returncode != 0
-    assert 'required_scale' in result.stdout + result.stderr
+    assert result.returncode == 1, result.stdout + result.stderr
+    # one line naming the parameter, its type and how to set it; no traceback
+    assert result.stderr.splitlines() == [
+        "everything: required parameter 'required_scale' (double) is not set: pass it with "
+        '--ros-args -p required_scale:=VALUE or a parameter file'], result.stderr
+    assert 'Traceback' not in result.stdout + result.stderr
+    # given, the node starts (and is stopped)
+    process = subprocess.Popen([str(program), '--ros-args', '-p', 'required_scale:=1.5'],
+                               env=workspace.env(), stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        with pytest.raises(subprocess.TimeoutExpired):
+            process.wait(timeout=3)
+    finally:
+        process.terminate()
+        process.communicate(timeout=10)
 
 
 def test_update_regenerates_the_base_and_keeps_user_code(tmp_path: Path) -> None:
@@ -165,9 +179,60 @@ def test_an_invalid_definition_is_reported_at_its_position(tmp_path: Path) -> No
     (['pkg', '--from', str(GENERATE / 'talker.nodl.yaml'), str(GENERATE / 'talker.nodl.yaml')],
      'both be the executable'),
     (['pkg', '--from', 'missing.nodl.yaml'], 'missing.nodl.yaml: no such file'),
+    (['class', '--from', str(GENERATE / 'talker.nodl.yaml')], "'class' is a Python and a C++ keyword"),
+    (['pkg', '--from', str(GENERATE / 'talker.nodl.yaml'), '--license', 'GPL-2.0'],
+     "--license 'GPL-2.0' is not a license"),
+    (['pkg', '--from', str(GENERATE / 'talker.nodl.yaml'), '--license', 'MIT'],
+     '--license needs --maintainer NAME EMAIL'),
+    (['pkg', '--from', str(GENERATE / 'talker.nodl.yaml'), '--maintainer', 'Me', 'me@host'],
+     'with a full domain'),
 ])
 def test_usage_errors_are_one_line(tmp_path: Path, args: list[str], message: str) -> None:
     result = nodl('new', *args, '--build-type', 'ament_python', '-o', str(tmp_path))
     assert result.returncode == 2
     assert message in result.stderr
     assert len(result.stderr.strip().splitlines()) == 1
+
+
+@pytest.fixture(scope='module')
+def tested(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, subprocess.CompletedProcess[str]]:
+    """A licensed package built and tested by colcon as a ROS CI does: ``colcon build``,
+    ``colcon test``, ``colcon test-result``.
+
+    ament_copyright is not installable here: its test is left out (``--ignore``); the headers it
+    checks are tested against its templates in tests/test_scaffold.py.  The package's staleness
+    test runs ``nodl`` from this working tree (PYTHONPATH), as CI's installed toolkit is.
+    """
+    root = tmp_path_factory.mktemp('colcon_test_ws')
+    created = nodl('new', 'linted_nodes', '--from', str(GENERATE / 'talker.nodl.yaml'),
+                   '--build-type', 'ament_python', '-o', str(root / 'src'), '--license', 'Apache-2.0',
+                   '--maintainer', 'Jane Doe', 'jane.doe@example.com')
+    assert created.returncode == 0, created.stderr
+    env = build_env()
+    env['PYTHONPATH'] = os.pathsep.join([str(REPO), env.get('PYTHONPATH', '')])
+    ignored = root / 'src' / 'linted_nodes' / 'test' / 'test_copyright.py'
+    for command in (['build'], ['test', '--pytest-args', f'--ignore={ignored}']):
+        run = subprocess.run([str(VENV / 'bin' / 'colcon'), *command], cwd=root, env=env, text=True,
+                             capture_output=True, timeout=300)
+        assert run.returncode == 0, run.stdout + run.stderr
+    result = subprocess.run([str(VENV / 'bin' / 'colcon'), 'test-result', '--all', '--verbose'],
+                            cwd=root, env=env, text=True, capture_output=True, timeout=60)
+    return root, result
+
+
+def test_colcon_test_runs_the_packages_tests_and_they_pass(
+        tested: tuple[Path, subprocess.CompletedProcess[str]]) -> None:
+    """Every test of the package runs under colcon test (it ran 0 before setup.cfg said where
+    they are): ament_flake8 and ament_pep257 with ament's configuration, the staleness test and
+    the conformance test; none fails, none is skipped."""
+    import xml.etree.ElementTree as ET
+
+    root, result = tested
+    assert result.returncode == 0, result.stdout + result.stderr
+    summary = result.stdout.strip().splitlines()[-1]
+    assert summary.startswith('Summary: 4 tests, 0 errors, 0 failures, 0 skipped'), result.stdout
+    [junit] = (root / 'build' / 'linted_nodes').glob('pytest.xml')
+    names = sorted(case.get('name', '') for case in ET.parse(junit).iter('testcase'))
+    assert names == ['test_flake8',
+                     'test_generated_base_is_up_to_date[talker-Talker-nodl/talker.nodl.yaml]',
+                     'test_node_conforms[talker-False-overrides0]', 'test_pep257'], names
