@@ -17,6 +17,9 @@ NODL5xx    system analysis: launch files, instances, connections
 NODL6xx    SROS 2 policies
 NODL7xx    parameter files and code generation
 NODL8xx    dialects and conversion: legacy XML, ``include``, generate_parameter_library
+NODL9xx    extraction from source code (``nodl extract``): gaps, unreadable
+           sources, comparison with a definition (901-929 Python and the
+           common frame, 930-959 C++)
 =========  ===============================================================
 
 Each entry: code -> (default severity, one-line explanation).  A test keeps
@@ -39,6 +42,7 @@ RANGES: dict[str, str] = {
     '6': 'SROS 2 policies',
     '7': 'Parameter files and code generation',
     '8': 'Dialects and conversion: legacy XML, include, generate_parameter_library',
+    '9': 'Extraction from source: gaps, unreadable sources, comparison with a definition',
 }
 
 #: code -> (default severity, one-line explanation).
@@ -235,6 +239,8 @@ CODES: dict[str, tuple[str, str]] = {
                 'a value that is neither a parameter nor a namespace)'),
     'NODL864': ('warning', 'generate_parameter_library export: a parameter has no generate_parameter_library '
                 "form (type 'none', a name that is not a C++ identifier path) and is left out"),
+    # -- NODL9xx: extraction from source (901-929: the frame and Python) ---
+    'NODL914': ('warning', 'an extracted entity is not valid NoDL (an invalid name, a default of the wrong type); left commented out'),
 }
 
 
