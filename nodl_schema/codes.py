@@ -157,6 +157,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL529': ('error', "launch file's Python code: it needed more memory than --launch-memory"),
     'NODL530': ('warning', 'assumed-duplicate-node: two launched nodes share a final name the analysis assumed '
                 '(launched without a name, none recorded); the programs may name themselves apart'),
+    'NODL531': ('error', 'nodl analyse: the file given is not a launch file (a node definition, a parameter '
+                'file, a package.xml, other text)'),
     # -- NODL55x-59x: system analysis (nodl analyse) ------------------------
     'NODL550': ('error', 'duplicate-node: two launched nodes end up with the same fully qualified name'),
     'NODL551': ('warning', 'multiple-publishers: more than one node publishes a topic (not on the allow list)'),
@@ -204,6 +206,9 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL706': ('error', 'parameter file check: the launch file cannot be read, or starts no node with a definition'),
     'NODL707': ('error', 'code generation: an option is not a valid name (--node-name, --class-name, --namespace, a package name, a keyword)'),
     'NODL708': ('error', 'code generation: a generated file would be written outside the output folder'),
+    'NODL710': ('error', "parameter file read by rcl: a YAML alias (rcl refuses aliasing: the node fails to start)"),
+    'NODL711': ('warning', 'parameter file read by rcl: a YAML anchor (rcl ignores it; no alias may use it)'),
+    'NODL712': ('error', "parameter file read by rcl: a merge key '<<' (rcl has none: it reads '<<' as a parameter name)"),
     # -- NODL8xx: dialects and conversion ----------------------------------
     'NODL801': ('error', 'legacy XML: an element, attribute or text the legacy format does not have'),
     'NODL802': ('error', 'legacy XML: a required attribute is missing or empty'),

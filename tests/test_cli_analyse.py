@@ -186,3 +186,16 @@ def test_help_says_what_runs() -> None:
     assert 'Reading a Python launch file runs its code, and $(eval ...) runs Python' in text
     assert '$(command ...) is never run' in text and '--no-exec' in text
     assert '(default: 30)' in text and '(default: 2048)' in text
+
+
+def test_a_file_that_is_not_a_launch_file_is_named_with_exit_2() -> None:
+    """A node definition (or any other file) given to analyse: what it is, exit 2, no
+    launch-syntax error about its first line."""
+    definition = FIXTURES / 'prefix' / 'share' / 'nav' / 'nodl' / 'planner.nodl.yaml'
+    done = run('analyse', str(definition))
+    assert done.returncode == 2, done.stderr
+    assert 'this is a NoDL node definition, not a launch file' in done.stderr
+    assert '[NODL531]' in done.stderr and 'NODL501' not in done.stderr + done.stdout
+    notes = REPO / 'tests' / 'fixtures' / 'launch' / 'not_launch' / 'notes.md'
+    done = run('analyse', str(notes))
+    assert done.returncode == 2 and 'neither an XML, a YAML nor a Python launch file' in done.stderr

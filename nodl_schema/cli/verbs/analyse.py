@@ -65,6 +65,14 @@ class AnalyseVerb(Verb):
             print(f'{args.launch_file}: error: cannot read the launch file: {why} [NODL020]',
                   file=sys.stderr)
             return EXIT_USAGE
+        from nodl_schema.launch.file_kind import not_a_launch_file
+
+        other = not_a_launch_file(args.launch_file)
+        if other is not None:
+            print(f'{args.launch_file}: error: this is {other}, not a launch file; nodl analyse '
+                  'reads a launch file (XML <launch>, YAML launch:, or Python with '
+                  'generate_launch_description()) [NODL531]', file=sys.stderr)
+            return EXIT_USAGE
         from nodl_schema.writing import output_is_input
 
         for option, output in (('-o', args.output), ('--log', args.log), ('--graph', args.graph)):
