@@ -140,6 +140,29 @@ def test_remappings_given_whole_as_a_run_time_value_keep_the_node() -> None:
     assert '  run time        more remapping rules, known only when the launch runs' in format_log(analysis)
 
 
+def test_yaml_rules_per_reader_rcl_refuses_aliases_launch_ros_reads_with_pyyaml() -> None:
+    # One file given to a node started as a process (rcl reads it: aliases refused, anchors
+    # ignored, no merge keys) and to a composable node (launch_ros reads it with PyYAML).
+    import yaml
+
+    params = FIXTURES / 'params' / 'aliased.params.yaml'
+    analysis = analyse_launch(LAUNCH / 'aliased_params.launch.xml', prefixes=PREFIX)
+    found = [f.diagnostic for f in analysis.findings if f.diagnostic.file == str(params)]
+    assert [(d.code, d.severity.value, d.line, d.column) for d in found] == [
+        ('NODL712', 'error', 7, 5), ('NODL711', 'warning', 7, 10),
+        ('NODL711', 'warning', 7, 29), ('NODL711', 'warning', 11, 17),
+        ('NODL710', 'error', 14, 17)]
+    # each once, related to the process it is given to (line 3), not the composable node's
+    assert all([r[1] for r in d.related] == [3] for d in found)
+    nodes = {n['name']: n for n in analysis_to_dict(analysis)['nodes']}
+    assert nodes['/robot/planner']['parameters'] == {}  # rcl refuses the file: defaults only
+    # the composable node gets what launch_ros's yaml.safe_load reads (the installed PyYAML's
+    # merge order: here PyYAML is the behaviour to match)
+    read = yaml.safe_load(params.read_text(encoding='utf-8'))['/robot/camera']['ros__parameters']
+    assert nodes['/robot/camera']['parameters'] == read
+    assert read['device'] == '/dev/video0' and read['fps'] in (30.0, 60.0)
+
+
 def test_a_parameter_file_rcl_cannot_parse_is_an_error_once_at_its_line() -> None:
     # A node given such a file fails to start: the file's problem is said once (however many
     # nodes are given it), where it is, related to where the launch file gives it, and before

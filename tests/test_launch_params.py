@@ -78,6 +78,33 @@ def test_parameter_files_keep_positions_and_both_typings(tmp_path: Path) -> None
     assert star.positions == {'a': (3, 5), 'b.c': (5, 7)} and named.line == 8
 
 
+def test_rcl_and_launch_ros_read_aliases_and_merge_keys_each_their_way(tmp_path: Path) -> None:
+    import yaml
+
+    path = tmp_path / 'p.yaml'
+    text = ('/**:\n  ros__parameters:\n    a: &a {long_name: 1, b: 1}\n'
+            '    <<: [*a, {long_name: 2, c: 2}]\n    d: *a\n')
+    path.write_text(text)
+    loaded = load_parameter_file(path)
+    assert loaded.diagnostics == []  # (YAML the strict reader reads)
+    # rcl: every alias refused (the file fails), the anchor ignored, '<<' no merge key
+    assert [(d.code, d.line, d.column) for d in loaded.rcl_diagnostics] == [
+        ('NODL711', 3, 8), ('NODL712', 4, 5), ('NODL710', 4, 10), ('NODL710', 5, 8)]
+    assert loaded.rcl_refuses
+    # launch_ros (a composable node): what yaml.safe_load gives, merge order included
+    (star,) = loaded.composable_nodes
+    expected = yaml.safe_load(text)['/**']['ros__parameters']
+    assert star.parameters == {'a.long_name': 1, 'a.b': 1, 'long_name': expected['long_name'],
+                               'b': 1, 'c': 2, 'd.long_name': 1, 'd.b': 1}
+    assert star.positions['c'] == (4, 29) and star.positions['a.b'] == (3, 26)
+    # a file without anchors is read alike by both: one reading, no rcl problem
+    plain = tmp_path / 'plain.yaml'
+    plain.write_text('/**:\n  ros__parameters:\n    a: 1\n')
+    loaded = load_parameter_file(plain)
+    assert loaded.rcl_diagnostics == [] and not loaded.rcl_refuses
+    assert loaded.composable_nodes is loaded.nodes
+
+
 def test_a_bad_parameter_file_is_coded(tmp_path: Path) -> None:
     path = tmp_path / 'bad.yaml'
     path.write_text('/**:\n  x: 1\n')

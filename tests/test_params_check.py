@@ -149,3 +149,75 @@ def test_no_exec_reads_no_python_launch_file(tmp_path: Path) -> None:
     params.write_text('/talker:\n  ros__parameters: {}\n')
     found = check_launch_parameters(str(launch), [str(params)], limits=LaunchLimits(execute=False))
     assert [(d.code, d.line) for d in found] == [('NODL525', 1)]
+
+
+# --- YAML rules of a file rcl reads: no aliases, anchors ignored, no merge keys ----------
+
+#: A real rcl: the parameters a node started with ``--params-file FILE`` gets, or why rcl
+#: refuses the file (rclpy's init parses the parameter files with rcl_yaml_param_parser).
+RCL_READS = '''
+import json, sys
+import rclpy
+from rclpy.node import Node
+context = rclpy.Context()
+try:
+    rclpy.init(args=['node', '--ros-args', '--params-file', sys.argv[1]], context=context)
+except Exception as exc:
+    print(json.dumps({'refused': str(exc)}))
+    raise SystemExit(0)
+node = Node('everything', context=context, allow_undeclared_parameters=True,
+            automatically_declare_parameters_from_overrides=True)
+values = {name: p.value for name, p in node.get_parameters_by_prefix('').items()}
+node.destroy_node()
+rclpy.shutdown(context=context)
+print(json.dumps({'parameters': values}))
+'''
+
+
+def rcl_reads(path: Path) -> dict[str, object]:
+    import json
+
+    run = subprocess.run([sys.executable, '-c', RCL_READS, str(path)], capture_output=True,
+                         text=True, timeout=60, cwd=REPO)
+    assert run.returncode == 0, run.stderr
+    return json.loads(run.stdout.splitlines()[-1])  # type: ignore[no-any-return]
+
+
+def test_an_alias_is_an_error_at_its_place_as_rcl_refuses_the_file() -> None:
+    path = FIXTURES / 'params' / 'aliases.params.yaml'
+    assert 'Will not support aliasing at line 7' in str(rcl_reads(path)['refused'])
+    found = check_parameter_files([str(path)], _node(), '/everything')
+    assert [(d.code, d.severity.value, d.line, d.column) for d in found if d.file == str(path)] == [
+        ('NODL711', 'warning', 6, 21), ('NODL710', 'error', 7, 11)]
+    assert "rcl refuses aliasing ('Will not support aliasing')" in found[1].message
+    # rcl reads no value of the file: count 99 is not checked, required_scale is not given
+    assert [d.code for d in found if d.file != str(path)] == ['NODL704']
+
+
+def test_an_anchor_alone_is_a_warning_as_rcl_ignores_it() -> None:
+    path = FIXTURES / 'params' / 'anchor_only.params.yaml'
+    assert rcl_reads(path)['parameters'] == {
+        'gain': 0.25, 'required_scale': 2.0, 'use_sim_time': False,
+        'start_type_description_service': True}
+    found = check_parameter_files([str(path)], _node(), '/everything')
+    assert _codes(found) == [('NODL711', 5, 11)] and found[0].severity.value == 'warning'
+
+
+def test_a_merge_key_is_an_error_as_rcl_reads_it_as_a_name() -> None:
+    path = FIXTURES / 'params' / 'merge_key.params.yaml'
+    assert rcl_reads(path)['parameters'] == {
+        '<<.count': 7, 'required_scale': 2.0, 'use_sim_time': False,
+        'start_type_description_service': True}
+    found = check_parameter_files([str(path)], _node(), '/everything')
+    assert _codes(found) == [('NODL712', 6, 5), ('NODL701', 6, 10)]
+    assert "rcl has no merge keys (it reads '<<' as a parameter name)" in found[0].message
+
+
+def test_cli_an_alias_fails_the_check(tmp_path: Path) -> None:
+    path = FIXTURES / 'params' / 'aliases.params.yaml'
+    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(path),
+                            '--definition', EVERYTHING], capture_output=True, text=True,
+                           timeout=60, cwd=REPO)
+    assert check.returncode == 1, check.stdout + check.stderr
+    assert f'{path}:7:11: error: YAML alias in a parameter file: rcl refuses aliasing' in check.stdout
+    assert '[NODL710]' in check.stdout and 'Traceback' not in check.stderr

@@ -96,7 +96,8 @@ def analyse_entries(entries: Iterable[LaunchEntry | Any], *, client_library: str
     from nodl_schema.index import ament
 
     entries = list(entries)
-    findings: list[Finding] = list(launch_findings) + _parameter_file_findings(entries)
+    findings: list[Finding] = (list(launch_findings) + _parameter_file_findings(entries)
+                               + _rcl_refusal_findings(entries))
     # The index is listed once (not looked up file by file per node), and the collector
     # does not rescan, every 700 allocations, what the analysis keeps until its end.
     with ament.snapshot(), batch_collection():
@@ -128,6 +129,32 @@ def _parameter_file_findings(records: Iterable[Any]) -> list[Finding]:
             given = (where.file, where.line, where.column, 'the parameter file is given here')
             loaded = load_parameter_file(path) if text is None else parse_parameter_text(path, text)
             for diagnostic in loaded.diagnostics:
+                out.append(_launch_finding(diagnostic.replace(
+                    related=(*diagnostic.related, given))))
+    return out
+
+
+def _rcl_refusal_findings(records: Iterable[Any]) -> list[Finding]:
+    """What rcl alone refuses or ignores in a parameter file given to a node started as a
+    process (aliases, anchors, merge keys: ``ParameterFile.rcl_diagnostics``), once per
+    file, related to where it is first given to such a node.  launch_ros reads a composable
+    node's file with PyYAML, which expands aliases and merge keys: nothing to say there."""
+    from nodl_schema.launch.params import load_parameter_file
+
+    out: list[Finding] = []
+    seen: set[str] = set()
+    for record in records:
+        if getattr(record, 'kind', None) == 'composable':
+            continue
+        for source in getattr(record, 'parameters', None) or ():
+            path = getattr(source, 'path', None)
+            if getattr(source, 'kind', None) != 'file' or not path or path in seen:
+                continue
+            seen.add(path)
+            where = source.source
+            given = (where.file, where.line, where.column,
+                     'the parameter file is given here to a node rcl starts')
+            for diagnostic in load_parameter_file(path).rcl_diagnostics:
                 out.append(_launch_finding(diagnostic.replace(
                     related=(*diagnostic.related, given))))
     return out

@@ -8,7 +8,11 @@ node would check it: its type exactly (an integer is not a double), every
 built-in validator; parameters the definition does not declare are reported
 with a suggestion, and required parameters that no file sets are reported at
 their declaration.  An empty list for a statically typed parameter is reported
-too: rcl reads it as no value, so the node's parameter ends up unset.
+too: rcl reads it as no value, so the node's parameter ends up unset.  rcl
+refuses every YAML alias ("Will not support aliasing"): each is an error at its
+line (NODL710) and no value of that file is checked, as the node gets none; an
+anchor is a warning (NODL711: rcl ignores it), a merge key ``<<`` an error
+(NODL712: rcl reads it as a parameter name).
 """
 
 from __future__ import annotations
@@ -58,11 +62,14 @@ def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) ->
     for path in files:
         loaded = load_parameter_file(path)
         out.extend(loaded.diagnostics)
+        out.extend(loaded.rcl_diagnostics)  # (a node started as a process reads it with rcl)
         keys = match_parameter_file_nodes(loaded.keys, fqn)
         for entry in loaded.nodes:
             if entry.key not in keys:
                 continue
             matched_any = True
+            if loaded.rcl_refuses:  # rcl reads no value of the file: said at its aliases
+                continue
             wildcard = is_wildcard_key(entry.key)
             for name, value in entry.rcl_parameters.items():
                 line, column = entry.positions.get(name, (entry.line, entry.column))
