@@ -221,8 +221,8 @@ class _Expander:
         if self.size > MAX_INCLUDED_BYTES:
             self.stopped = True
             self.problems.append(_problem(origin, include, f'<{include.tag}>: the included files total '
-                                          f'more than {MAX_INCLUDED_BYTES:,} characters (10 MB; each '
-                                          'include counts its whole file); this and every later '
+                                          f'more than {MAX_INCLUDED_BYTES:,} characters (each include '
+                                          'counts its whole file); this and every later '
                                           'include are not expanded', 'NODL615'))
             return None
         tree = load_xml(read.text, read.file)
