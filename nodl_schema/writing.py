@@ -200,8 +200,9 @@ def _place_problem(path: str) -> Diagnostic | None:
     return None
 
 
-def write_problem(path: str, exc: OSError, existed: bool) -> Diagnostic:
-    """The NODL030 diagnostic of a write of ``path`` that failed with ``exc``."""
+def write_problem(path: str, exc: OSError, existed: bool | None) -> Diagnostic:
+    """The NODL030 diagnostic of a write of ``path`` that failed with ``exc`` (``existed``: whether
+    a previous file was kept; None for a device or FIFO, which keeps nothing)."""
     import errno
 
     reason = exc.strerror or type(exc).__name__
@@ -217,8 +218,9 @@ def write_problem(path: str, exc: OSError, existed: bool) -> Diagnostic:
         reason = 'permission denied'
     elif exc.errno == errno.EROFS:
         reason = 'the file system is read-only'
-    kept = 'the previous file is unchanged' if existed else 'nothing was written'
-    return Diagnostic(Severity.ERROR, f'cannot write the file: {reason}; {kept}', file=path,
+    kept = '' if existed is None else '; the previous file is unchanged' if existed else \
+        '; nothing was written'
+    return Diagnostic(Severity.ERROR, f'cannot write the file: {reason}{kept}', file=path,
                       code='NODL030')
 
 
@@ -288,7 +290,7 @@ def _write_in_place(path: str, raw: bytes) -> None:
         with open(path, 'wb') as stream:
             stream.write(raw)
     except OSError as exc:
-        raise WriteError(write_problem(path, exc, True)) from None
+        raise WriteError(write_problem(path, exc, None)) from None
 
 
 def _sync_folder(folder: str) -> None:

@@ -13,6 +13,7 @@ import pytest
 
 from conftest import REPO, NodeProcess
 from nodl_schema import load_node, validate_node
+from nodl_schema.writing import marker_state, unmark
 
 
 def nodl(*args: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
@@ -41,6 +42,8 @@ def test_describe_node_to_a_file(nodes, tmp_path: Path) -> None:
     assert result.returncode == 0, result.stderr
     assert result.stdout == f'/cli_d/full -> {out}\n'
     text = out.read_text(encoding='utf-8')
+    assert marker_state(text) == 'valid'
+    text = unmark(text)
     assert text.startswith('# Described from the running node /cli_d/full by `nodl describe`.\n')
     # every note is a warning on stderr and a line of the header comment
     warnings = [l for l in result.stderr.splitlines() if l.startswith('nodl describe: warning: ')]
@@ -55,6 +58,12 @@ def test_describe_node_to_a_file(nodes, tmp_path: Path) -> None:
     check = nodl('validate', '--strict', str(out))
     assert check.returncode == 0, check.stdout
     assert check.stdout.endswith('1 file, 0 errors, 0 warnings\n'), check.stdout
+    # the user's edits are never described over without --force
+    edited = out.read_text(encoding='utf-8') + '# reviewed by me\n'
+    out.write_text(edited, encoding='utf-8')
+    again = nodl('describe', '/cli_d/full', '-o', str(out), '--timeout', '15')
+    assert again.returncode == 2 and again.stderr.splitlines()[-1].endswith('[NODL032]'), again.stderr
+    assert out.read_text(encoding='utf-8') == edited
 
 
 def test_describe_to_stdout_as_json_without_parameters(nodes) -> None:
