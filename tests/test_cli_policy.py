@@ -109,3 +109,26 @@ def test_a_python_launch_file_runs_in_the_sandbox_and_no_exec_refuses_it() -> No
     result = nodl(launch, '--no-exec')
     assert result.returncode == 2 and 'is not run: --no-exec is set' in result.stderr
     assert '[NODL525]' in result.stderr
+
+
+def test_name_options_may_come_between_the_targets():
+    """--name interleaved with the targets (talker --name /a listener --name /b): every target
+    is read, the i-th --name places the i-th definition (argparse refused the second target)."""
+    result = nodl(f'{POLICY}/talker.nodl.yaml', '--name', '/robot/a', f'{POLICY}/listener.nodl.yaml',
+                  '--name', '/robot/b')
+    assert result.returncode == 0, result.stderr
+    assert '<profile ns="/robot" node="a">' in result.stdout
+    assert '<profile ns="/robot" node="b">' in result.stdout
+
+
+def test_a_duplicate_name_says_no_policy_is_written_unless_ignored():
+    """NODL611 says what happens: no policy, unless it is ignored (then one profile)."""
+    result = nodl(f'{POLICY}/talker.nodl.yaml', '--name', '/x', f'{POLICY}/listener.nodl.yaml',
+                  '--name', '/x')
+    assert result.returncode == 1 and result.stdout == ''
+    assert 'so no policy is written' in result.stderr and '--ignore NODL611' in result.stderr
+    assert 'merged into one profile' not in result.stderr
+    ignored = nodl(f'{POLICY}/talker.nodl.yaml', '--name', '/x', f'{POLICY}/listener.nodl.yaml',
+                   '--name', '/x', '--ignore', 'NODL611')
+    assert ignored.returncode == 0, ignored.stderr
+    assert ignored.stdout.count('<profile ns="/" node="x">') == 1

@@ -77,7 +77,8 @@ def _policy_for_instances(instances: list[NodeInstance], missing: Sequence[Missi
             where = instance.location or Location('<system>', 0, 0)
             diagnostics.append(Diagnostic(
                 Severity.ERROR, f'two nodes are named {instance.fqn}: DDS security cannot tell them '
-                'apart, so each needs a unique name; their grants are merged into one profile',
+                'apart, so no policy is written; give each a unique name (or --ignore NODL611 to '
+                'write one profile with the grants of both)',
                 (), where.file, where.line, where.column, code='NODL611'))
         seen.setdefault(instance.fqn, instance)
         profile, found = profile_for_instance(instance, distro=distro)

@@ -83,6 +83,7 @@ class PolicyVerb(Verb):
 
         add_launch_code_arguments(parser)
         add_diagnostic_options(parser)
+        _intermixed(parser)
 
     def main(self, args: argparse.Namespace) -> int:
         import os
@@ -217,6 +218,25 @@ class PolicyVerb(Verb):
                                       notes=['Least-privilege SROS 2 policy written by nodl policy '
                                              'from node definitions.'])
         return result._replace(diagnostics=problems + result.diagnostics)
+
+
+def _intermixed(parser: argparse.ArgumentParser) -> None:
+    """Let options and targets come in any order (``a.yaml --name /x b.yaml``): the
+    targets are collected wherever they are written (argparse's intermixed parsing, for
+    this verb's parser only; the i-th ``--name`` still places the i-th definition)."""
+    plain = parser.parse_known_args
+    inner = [False]
+
+    def parse_known_args(args: Any = None, namespace: Any = None) -> Any:
+        if inner[0]:  # (the intermixed parse calls back here for its two passes)
+            return plain(args, namespace)
+        inner[0] = True
+        try:
+            return parser.parse_known_intermixed_args(args, namespace)
+        finally:
+            inner[0] = False
+
+    parser.parse_known_args = parse_known_args  # type: ignore[method-assign]
 
 
 def _seconds(text: str) -> float:
