@@ -285,3 +285,18 @@ def test_replacing_a_users_file_needs_force_in_every_verb(tmp_path: Path) -> Non
         assert nodl(*verb, '-o', str(output), '--force').returncode == 0
         assert marker_state(output.read_text()) == 'valid'
         assert nodl(*verb, '-o', str(output)).returncode == 0  # nodl's own now: replaced freely
+
+
+def test_analyse_and_check_never_write_over_what_they_read(tmp_path: Path) -> None:
+    launch = tmp_path / 'rover.launch.xml'
+    launch.write_bytes((REPO / 'examples' / 'system' / 'launch' / 'rover.launch.xml').read_bytes())
+    (tmp_path / 'log').symlink_to(launch)
+    for option in ('-o', '--log'):
+        run = nodl('analyse', str(launch), option, str(tmp_path / 'log'))
+        assert run.returncode == 2 and run.stderr.splitlines()[-1].endswith('[NODL033]'), run.stderr
+    definition = tmp_path / 'talker.nodl.yaml'
+    definition.write_bytes((FIXTURES / 'generate' / 'talker.nodl.yaml').read_bytes())
+    run = nodl('check', '/talker', str(definition), '--junit', str(definition), '--timeout', '30')
+    assert run.returncode == 2 and run.stderr.splitlines()[-1].startswith(f'{definition}: error: --junit names')
+    assert launch.read_bytes() == (REPO / 'examples' / 'system' / 'launch' / 'rover.launch.xml').read_bytes()
+    assert definition.read_bytes() == (FIXTURES / 'generate' / 'talker.nodl.yaml').read_bytes()
