@@ -321,3 +321,14 @@ def test_a_duplicate_on_an_assumed_name_is_a_warning_that_says_so() -> None:
     errors = [(f.diagnostic.line, f.nodes, f.severity.value) for f in _of(analysis, 'duplicate-node')]
     assert errors == [(10, ('/lidar',), 'error'), (13, ('/driver',), 'error')]
     assert not analysis.errors or all(f.kind != 'assumed-duplicate-node' for f in analysis.errors)
+
+
+def test_a_fixed_size_array_with_too_many_elements_says_how_many_fit() -> None:
+    """As nodl params check says it: 'holds 3 elements; at most 2 fit', not 'declared double
+    array but is set to ... (double array)'."""
+    fixed = Path(__file__).parent / 'fixtures' / 'params' / 'fixed_size'
+    analysis = analyse_launch(fixed / 'arm.launch.xml', prefixes=[str(fixed / 'prefix')])
+    (finding,) = _of(analysis, 'parameter-type')
+    assert 'holds 3 elements; at most 2 fit double_array_fixed_2' in finding.message
+    assert 'declared double array' not in finding.message
+    assert (finding.diagnostic.file, finding.diagnostic.line) == (str(fixed / 'gains.yaml'), 3)

@@ -221,3 +221,56 @@ def test_cli_an_alias_fails_the_check(tmp_path: Path) -> None:
     assert check.returncode == 1, check.stdout + check.stderr
     assert f'{path}:7:11: error: YAML alias in a parameter file: rcl refuses aliasing' in check.stdout
     assert '[NODL710]' in check.stdout and 'Traceback' not in check.stderr
+
+
+FIXED = FIXTURES / 'params' / 'fixed_size'
+ARM = str(FIXED / 'prefix' / 'share' / 'robot' / 'nodl' / 'arm.nodl.yaml')
+
+
+def _check_cli(*args: str) -> subprocess.CompletedProcess[str]:
+    done = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', *args],
+                          capture_output=True, text=True, timeout=60, cwd=REPO)
+    assert 'Traceback' not in done.stderr and '[Errno' not in done.stdout + done.stderr
+    return done
+
+
+def test_cli_a_missing_file_is_a_usage_error_said_once() -> None:
+    for path, why in ((FIXED / 'no_such.yaml', 'no such file'), (FIXED, 'is a directory')):
+        done = _check_cli(str(path), '--definition', ARM, '--name', '/arm')
+        assert done.returncode == 2, done.stderr
+        assert f'{path}: error: cannot read the parameter file: {why}' in done.stderr
+        assert 'NODL705' not in done.stdout + done.stderr  # no "no key applies" on top
+
+
+def test_cli_an_empty_or_scalar_file_is_said_about_parameter_files() -> None:
+    for name, what in (('empty.yaml', 'the parameter file is empty'),
+                       ('scalar.yaml', 'the parameter file is a number, not a mapping')):
+        done = _check_cli(str(FIXED / name), '--definition', ARM, '--name', '/arm')
+        assert done.returncode == 1
+        (line,) = done.stdout.splitlines()  # the one problem, no NODL705 on top of it
+        assert f'{what}; a parameter file is a mapping NODE: {{ros__parameters: {{NAME: VALUE}}}}' in line
+        assert 'NoDL document' not in line and '[NODL517]' in line
+
+
+def test_cli_success_says_so_in_one_line() -> None:
+    done = _check_cli(str(FIXED / 'good.yaml'), '--definition', ARM, '--name', '/arm')
+    assert done.returncode == 0, done.stdout
+    assert done.stdout == 'nodl params check: 1 parameter file checked: no errors\n'
+
+
+def test_a_fixed_size_array_with_too_many_elements_says_how_many_fit() -> None:
+    (problem,) = check_parameter_files([str(FIXED / 'gains.yaml')], _node(ARM), '/arm')
+    assert 'holds 3 elements; at most 2 fit double_array_fixed_2' in problem.message
+
+
+def test_cli_unsafe_text_fails_the_check() -> None:
+    """nodl params check: control and bidi characters in a parameter file are errors at the
+    character (exit 1), shown as escapes on the terminal."""
+    hostile = FIXTURES / 'launch' / 'text_safety' / 'hostile.params.yaml'
+    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(hostile),
+                            '--definition', EVERYTHING, '--name', '/listener'],
+                           capture_output=True, text=True, timeout=60, cwd=REPO)
+    assert check.returncode == 1, check.stderr
+    assert f"{hostile}:4:8: error: the parameter name 'la\\u202ebel' holds U+202E" in check.stdout
+    assert f'{hostile}:5:14: error: ' in check.stdout and '[NODL221]' in check.stdout
+    assert '\u202e' not in check.stdout and '\x1b' not in check.stdout

@@ -22,7 +22,7 @@ from nodl_schema.launch.overrides import match_composable_parameter_keys, match_
 
 __all__ = ['ParameterValue', 'RuntimeValue', 'coerce_to_type', 'get_typed_value', 'evaluate_value',
            'ParameterFileNode', 'ParameterFile', 'load_parameter_file', 'parse_parameter_text',
-           'read_parameter_text',
+           'read_parameter_text', 'unsafe_parameter_text',
            'match_parameter_file_nodes', 'match_composable_parameter_keys', 'flatten_parameters',
            'SCALAR_TYPES']
 
@@ -358,6 +358,21 @@ class ParameterFile:
 _CACHE: dict[tuple[str, float, int], ParameterFile] = {}
 
 
+#: What a parameter file is, said where one is empty or not a mapping.
+_PARAMETER_FILE_SHAPE = 'a parameter file is a mapping NODE: {ros__parameters: {NAME: VALUE}}'
+
+
+def _as_parameter_file_problem(diagnostic: Diagnostic) -> Diagnostic:
+    """A reading problem of a parameter file said about parameter files: the YAML reader's
+    "document is empty / not a mapping" (NODL011) speaks of NoDL documents."""
+    if diagnostic.code != 'NODL011':
+        return diagnostic
+    empty = 'empty' in diagnostic.message
+    what = 'the parameter file is empty' if empty else \
+        'the parameter file is ' + diagnostic.message.removeprefix('document is ').split(';')[0]
+    return diagnostic.replace(code='NODL517', message=f'{what}; {_PARAMETER_FILE_SHAPE}')
+
+
 def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
     """Read a ROS parameter file (``node: {ros__parameters: {...}}``), keeping positions."""
     from nodl_schema.files import describe_os_error
@@ -411,8 +426,7 @@ def parse_parameter_text(name: str, text: str) -> ParameterFile:
 
     doc = parse_document(SourceText(text, name))
     if doc.diagnostics:
-        return ParameterFile(name, [], [d.replace(code=d.code if d.code != 'NODL011' else 'NODL517')
-                                        for d in doc.diagnostics])
+        return ParameterFile(name, [], [_as_parameter_file_problem(d) for d in doc.diagnostics])
     root = doc._node_tree()  # composed once: safe, the data was built within the limits
     nodes: list[ParameterFileNode] = []
     problems: list[Diagnostic] = []
@@ -454,10 +468,73 @@ def parse_parameter_text(name: str, text: str) -> ParameterFile:
 
     if isinstance(root, MappingNode):
         walk(root, [], doc.data)
+        problems.extend(unsafe_parameter_text(name, text, root))
     if not doc.aliasing:  # (most files: rcl and PyYAML read them alike)
         return ParameterFile(name, nodes, problems)
     return ParameterFile(name, nodes, problems, _rcl_refusals(name, doc.aliasing),
                          _as_pyyaml_reads(doc))
+
+
+def unsafe_parameter_text(name: str, text: str, root: Any) -> list[Diagnostic]:
+    """Every node key, parameter name and string value of a parameter file (``text``, its
+    node tree ``root``) that holds a control character (NODL221) or a Trojan Source bidi
+    control (NODL222), as an error at that character (raw, or the escape of a double-quoted
+    scalar): rcl gives such a value to the node as it is (see
+    :mod:`nodl_schema.launch.text_checks`)."""
+    from nodl_schema.text_safety import UNSAFE
+
+    if '\\' not in text and UNSAFE.search(text) is None:
+        return []  # (almost every file: nothing raw, no escape that could make one)
+    from yaml.nodes import MappingNode, ScalarNode, SequenceNode
+
+    from nodl_schema.launch.text_checks import unsafe_diagnostic
+    from nodl_schema.launch.model import SourceLocation
+    from nodl_schema.text_safety import line_column, locate_unsafe, offset_of, visible
+
+    out: list[Diagnostic] = []
+
+    def check(node: Any, what: str) -> None:
+        value = node.value
+        if not isinstance(value, str) or UNSAFE.search(value) is None:
+            return
+        line, column = node.start_mark.line + 1, node.start_mark.column + 1
+        at = locate_unsafe(text, offset_of(text, line, column), value)
+        if at >= 0:
+            line, column = line_column(text, at)
+        found = unsafe_diagnostic(value, what, SourceLocation(name, line, column))
+        assert found is not None
+        out.append(found.replace(file=name, line=line, column=column))
+
+    def shown(value: str) -> str:
+        return f"'{visible(value, one_line=True)}'"
+
+    def parameters(mapping: Any, prefix: str) -> None:
+        for key_node, value_node in mapping.value:
+            pname = f'{prefix}{key_node.value}'
+            check(key_node, f'the parameter name {shown(pname)}')
+            if isinstance(value_node, MappingNode):
+                parameters(value_node, pname + '.')
+            elif isinstance(value_node, ScalarNode):
+                check(value_node, f'the value of parameter {shown(pname)}')
+            elif isinstance(value_node, SequenceNode):
+                for item in value_node.value:
+                    if isinstance(item, ScalarNode):
+                        check(item, f'the value of parameter {shown(pname)}')
+
+    def nodes(mapping: Any) -> None:
+        for key_node, value_node in mapping.value:
+            if not isinstance(key_node, ScalarNode):
+                continue
+            if key_node.value == 'ros__parameters':
+                if isinstance(value_node, MappingNode):
+                    parameters(value_node, '')
+                continue
+            check(key_node, f'the node key {shown(str(key_node.value))}')
+            if isinstance(value_node, MappingNode):
+                nodes(value_node)
+
+    nodes(root)
+    return out
 
 
 # Diagnostic codes (see nodl_schema.codes): what rcl's parameter parser refuses or ignores.

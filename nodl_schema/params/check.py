@@ -59,8 +59,10 @@ def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) ->
     out: list[Diagnostic] = []
     given: set[str] = set()
     matched_any = False
+    readable = False
     for path in files:
         loaded = load_parameter_file(path)
+        readable = readable or not loaded.diagnostics
         out.extend(loaded.diagnostics)
         out.extend(loaded.rcl_diagnostics)  # (a node started as a process reads it with rcl)
         keys = match_parameter_file_nodes(loaded.keys, fqn)
@@ -103,7 +105,7 @@ def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) ->
                     Severity.ERROR, f"parameter {name!r} of {fqn}: {value!r} is invalid: "
                     + '; '.join(problems), (), path, line, column, code=code,
                     related=_declared_here(name, entity)))
-    if not matched_any and files:
+    if not matched_any and readable:  # (a file that cannot be read is said once, above)
         out.append(Diagnostic(Severity.WARNING, f'no node key of the parameter file(s) applies to {fqn} '
                               '(keys match the fully qualified name; /** matches every node)',
                               (), files[0], 1, 1, code='NODL705'))

@@ -96,6 +96,13 @@ def value_type_words(value: Any) -> str:
     return scalar(value)
 
 
+def _too_long(value: Any, spec: TypeSpec) -> bool:
+    """True when ``value`` is refused only for holding more elements than the fixed-size
+    array type ``spec`` allows (its first ``spec.size`` elements would fit)."""
+    return (spec.size is not None and spec.is_array and isinstance(value, list)
+            and len(value) > spec.size and launch_value_fits(value[:spec.size], spec))
+
+
 def _show(value: Any) -> str:
     text = repr(value)
     return text if len(text) <= 60 else text[:57] + '...'
@@ -182,6 +189,14 @@ class ParameterCheck(CheckExtension):
                         'an empty list, which rcl passes as no value: the parameter ends up unset '
                         '(its default is lost) and the node fails when it reads it', where, [fqn],
                         parameter=name, related=_declared_here(entity))
+                    continue
+                if verdict == 'refused' and _too_long(setting.value, spec):
+                    # the elements fit, their number does not (as nodl params check says it)
+                    yield make_finding(
+                        'parameter-type', f"{fqn}: parameter '{name}' = {_show(setting.value)} "
+                        f'holds {len(setting.value)} elements; at most {spec.size} fit '
+                        f'{spec.name}; the node would refuse it', where, [fqn], parameter=name,
+                        related=_declared_here(entity))
                     continue
                 if verdict == 'refused':
                     yield make_finding(

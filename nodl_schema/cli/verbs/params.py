@@ -117,6 +117,14 @@ class ParamsVerb(Verb):
         from nodl_schema.reporting import format_text
 
         files = args.args[1:]
+        import os
+
+        for path in files:  # a file that is not there is a usage error, said once
+            if not os.path.isfile(path):
+                why = 'is a directory, not a file' if os.path.isdir(path) else 'no such file'
+                print(f'{path}: error: cannot read the parameter file: {why} [NODL020]',
+                      file=sys.stderr)
+                return EXIT_USAGE
         if (args.definition is None) == (args.launch is None):
             print('nodl params check: error: give exactly one of --definition and --launch',
                   file=sys.stderr)
@@ -148,4 +156,11 @@ class ParamsVerb(Verb):
         if diagnostics:
             sys.stdout.write(format_text(diagnostics))
         errors = sum(1 for d in diagnostics if d.severity is Severity.ERROR)
+        if not errors:  # success says so, in one line
+            from nodl_schema.reporting import plural
+
+            warnings = sum(1 for d in diagnostics if d.severity is Severity.WARNING)
+            checked = plural(len(files), 'parameter file') if files else 'the parameter files'
+            print(f'nodl params check: {checked} checked: no errors'
+                  + (f', {plural(warnings, "warning")}' if warnings else ''))
         return EXIT_FAILURE if errors else EXIT_OK
