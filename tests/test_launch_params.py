@@ -114,3 +114,19 @@ def test_a_bad_parameter_file_is_coded(tmp_path: Path) -> None:
     # a path that exists but cannot be read is a diagnostic too, not an escaping OSError
     (folder,) = load_parameter_file(tmp_path).diagnostics
     assert folder.code == 'NODL517' and 'is a directory' in folder.message
+
+
+def test_unsafe_text_in_a_parameter_file_is_an_error_at_the_character(tmp_path: Path) -> None:
+    """A parameter name or string value holding a control character (NODL221) or a Trojan
+    Source bidi control (NODL222) is an error at the character (a raw one, or the escape of a
+    double-quoted scalar); RLM in right-to-left text is no finding; the values are kept."""
+    hostile = Path(__file__).parent / 'fixtures' / 'launch' / 'text_safety' / 'hostile.params.yaml'
+    loaded = load_parameter_file(hostile)
+    assert [(d.code, d.line, d.column, d.severity.value) for d in loaded.diagnostics] == [
+        ('NODL222', 4, 8, 'error'), ('NODL221', 5, 14, 'error'), ('NODL222', 6, 24, 'error')]
+    assert "the parameter name 'la\\u202ebel'" in loaded.diagnostics[0].message
+    (node,) = loaded.nodes
+    assert node.parameters['prompt'] == '\x1b[2J' and node.parameters['rtl'] == 'שלום\u200f'
+    key = tmp_path / 'key.yaml'
+    key.write_text('"/a\\u2066b":\n  ros__parameters:\n    x: 1\n', encoding='utf-8')
+    assert [(d.code, d.line, d.column) for d in load_parameter_file(key).diagnostics] == [('NODL222', 1, 4)]

@@ -340,6 +340,7 @@ def _placed(node: _Placed, entity: Entity) -> _Placed:
     """``node`` (a node action or composable node) told where its ``remap`` entries and its
     ``args``/``ros_args`` are written: findings about a rule point there."""
     node.remap_sources = [r.location for r in entity.nested.get('remap', [])]
+    node.place_of = entity.position  # where name= and namespace= are (asked only for a finding)
     if isinstance(node, R.Node) and ('args' in entity.values or 'ros_args' in entity.values):
         node.word_sources = {name: SourceLocation(entity.location.file, *entity.position(name))
                              for name in entity.values if name in ('args', 'ros_args')}

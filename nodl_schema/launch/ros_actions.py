@@ -18,7 +18,7 @@ in the record's ``run_time``: the node is analysed with what is known.
 from __future__ import annotations
 
 import os
-from typing import Any
+from typing import Any, Callable
 
 from nodl_schema.launch.actions import Action
 from nodl_schema.launch.conditions import Condition
@@ -26,6 +26,7 @@ from nodl_schema.launch.errors import LaunchProblem, Unevaluable
 from nodl_schema.launch.model import LaunchedNode, LaunchRemap, ParameterSource, RunTimeSource, SourceLocation
 from nodl_schema.launch.params import ParameterValue, RuntimeValue, evaluate_value, normalize_python_dict
 from nodl_schema.launch.substitutions import normalize, perform
+from nodl_schema.launch.text_checks import check_node_text, refuse_unsafe
 from nodl_schema.naming import join_name, namespace_error, node_name_error, normalize_namespace
 
 TYPE_CHECKING = False
@@ -45,6 +46,7 @@ class PushRosNamespace(Action):
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
         pushed = perform(context, self.namespace)
+        refuse_unsafe(pushed, 'the pushed namespace', self.location)
         previous = context.configurations.get('ros_namespace')
         namespace = make_namespace_absolute(prefix_namespace(previous, pushed))
         problem = namespace_error(namespace or '/')
@@ -436,6 +438,8 @@ class Node(Action):
         #: Where each of ``remappings`` is written (set by the frontends; the entry's
         #: location when unknown), and where ``args``/``ros_args`` are (``-r`` rules).
         self.remap_sources: list[SourceLocation] = []
+        #: Where an attribute of the entry is written, by name (a frontend's; None: a call).
+        self.place_of: Callable[[str], tuple[int, int]] | None = None
         self.word_sources: dict[str, SourceLocation | list[SourceLocation]] = {}
         #: ``remappings``/``arguments``/``ros_arguments`` given whole as a value only the
         #: running launch knows (None: none, the usual case).
@@ -445,10 +449,12 @@ class Node(Action):
         name = None
         if self.name is not None:
             name = perform(context, self.name)
+            refuse_unsafe(name, 'the node name', lambda: _attribute_place(self, 'name'))
             problem = node_name_error(name)
             if problem:
                 raise LaunchProblem('NODL519', f"invalid node name '{name}': {problem}")
         given = None if self.namespace is None else perform(context, self.namespace)
+        refuse_unsafe(given, 'the namespace', lambda: _attribute_place(self, 'namespace'))
         namespace = make_namespace_absolute(prefix_namespace(context.configurations.get('ros_namespace'),
                                                              given))
         if namespace is not None:
@@ -472,12 +478,22 @@ class Node(Action):
         record.remaps += _own_remaps(context, self.remappings, self.remap_sources, self.location)
         if self.run_time_lists:
             _run_time_lists(context, self.run_time_lists, ('remappings',), record)
+        check_node_text(context, record)
         context.result.nodes.append(record)
         return self.after(context)
 
     def after(self, context: LaunchContext) -> list[Action] | None:
         """What follows the node (a container's composable nodes)."""
         return None
+
+
+def _attribute_place(node: Any, keyword: str) -> SourceLocation:
+    """Where the ``keyword`` attribute (``name``, ``namespace``) of a node entry is written:
+    the attribute of an XML or YAML entry, the argument of a Python call, else the entry."""
+    place_of = getattr(node, 'place_of', None)
+    if place_of is not None:
+        return SourceLocation(node.location.file, *place_of(keyword))
+    return _item_place(node.location, keyword, -1)
 
 
 def _own_remaps(context: LaunchContext, remappings: list[tuple[Any, Any]], sources: list[SourceLocation],
@@ -502,6 +518,7 @@ class ComposableNode:
         self.condition = condition
         self.location = SourceLocation('', 0, 0)
         self.remap_sources: list[SourceLocation] = []
+        self.place_of: Callable[[str], tuple[int, int]] | None = None
         #: ``remappings`` given whole as a value only the running launch knows (as Node's).
         self.run_time_lists = nodl_run_time
 
@@ -532,7 +549,9 @@ def _load(context: LaunchContext, description: ComposableNode, container: str) -
     if description.condition is not None and not description.condition.evaluate(context):
         return
     name = None if description.name is None else perform(context, description.name)
+    refuse_unsafe(name, 'the node name', lambda: _attribute_place(description, 'name'))
     given = None if description.namespace is None else perform(context, description.namespace)
+    refuse_unsafe(given, 'the namespace', lambda: _attribute_place(description, 'namespace'))
     namespace = make_namespace_absolute(prefix_namespace(context.configurations.get('ros_namespace'), given))
     record = LaunchedNode('composable', perform(context, description.package), None, name,
                           namespace or '/', description.location, plugin=perform(context, description.plugin),
@@ -546,6 +565,7 @@ def _load(context: LaunchContext, description: ComposableNode, container: str) -
     record.parameters += _global_parameters(context, description.location, record)
     record.parameters += _own_parameters(context, description.parameters, description.location, '/**',
                                          record)
+    check_node_text(context, record)
     context.result.nodes.append(record)
 
 

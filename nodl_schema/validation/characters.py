@@ -18,7 +18,7 @@ if TYPE_CHECKING:
 from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
 from nodl_schema.text_safety import describe_character, first_unsafe, is_bidi_control
 
-__all__ = ['CONTROL_CHARACTER', 'BIDI_CONTROL', 'TEXT_FIELDS', 'unsafe_text', 'check_text',
+__all__ = ['CONTROL_CHARACTER', 'BIDI_CONTROL', 'TEXT_FIELDS', 'unsafe_problem', 'unsafe_text', 'check_text',
            'check_text_fields']
 
 #: The code of a control character in a name or description.
@@ -29,25 +29,34 @@ BIDI_CONTROL = 'NODL220'
 TEXT_FIELDS = ('description', 'additional_constraints')
 
 
-def unsafe_text(value: str, what: str, path: DocPath, anchor: str = 'value') -> Diagnostic | None:
-    """The error for ``value`` (``what`` says what it is: 'description', 'parameter name') if it
-    holds an unsafe character, else None.  The anchor ``value-char`` (or ``key-char``) asks the
-    document to place it at that character, not at the start of the value."""
+def unsafe_problem(value: str, what: str) -> tuple[bool, str] | None:
+    """``(is_bidi, message)`` for the first unsafe character of ``value`` (``what`` says what
+    it is: 'description', 'node name'), or None when it holds none: the wording every check of
+    unsafe text shares (definitions here, launch files in :mod:`nodl_schema.launch.text_checks`)."""
     index = first_unsafe(value)
     if index < 0:
         return None
     char = value[index]
     if is_bidi_control(char):
-        message = (f'{what} holds {describe_character(char)} (character {index + 1}), a bidirectional '
-                   'control that makes text read differently from what it is (Trojan Source); '
-                   'remove it (U+200E/U+200F marks are allowed for right-to-left text)')
-        code = BIDI_CONTROL
-    else:
-        message = (f'{what} holds {describe_character(char)} (character {index + 1}), a control '
+        return True, (f'{what} holds {describe_character(char)} (character {index + 1}), a '
+                      'bidirectional control that makes text read differently from what it is '
+                      '(Trojan Source); remove it (U+200E/U+200F marks are allowed for '
+                      'right-to-left text)')
+    return False, (f'{what} holds {describe_character(char)} (character {index + 1}), a control '
                    'character that terminals and generated files would obey or break on; remove '
                    'it (tab and newline are allowed)')
-        code = CONTROL_CHARACTER
-    return Diagnostic(Severity.ERROR, message, path, anchor=f'{anchor}-char', code=code)
+
+
+def unsafe_text(value: str, what: str, path: DocPath, anchor: str = 'value') -> Diagnostic | None:
+    """The error for ``value`` (``what`` says what it is: 'description', 'parameter name') if it
+    holds an unsafe character, else None.  The anchor ``value-char`` (or ``key-char``) asks the
+    document to place it at that character, not at the start of the value."""
+    found = unsafe_problem(value, what)
+    if found is None:
+        return None
+    bidi, message = found
+    return Diagnostic(Severity.ERROR, message, path, anchor=f'{anchor}-char',
+                      code=BIDI_CONTROL if bidi else CONTROL_CHARACTER)
 
 
 def check_text(value: Any, what: str, path: DocPath, out: list[Diagnostic],
