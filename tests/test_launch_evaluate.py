@@ -348,3 +348,24 @@ def test_a_required_argument_of_the_file_run_says_name_value() -> None:
     assert [n.name for n in load_launch(folder / 'top.launch.xml', {'robot': 'r2'}).nodes] == ['r2']
     (included,) = load_launch(folder / 'includes.launch.xml', {}).diagnostics
     assert included.message.endswith('add <arg name="robot" value="..."/> to the include')
+
+
+def _time_load(tmp_path: Path, count: int) -> float:
+    import time
+
+    path = tmp_path / f'nodes{count}.launch.xml'
+    path.write_text('<launch>\n' + ''.join(f'<node pkg="p{i % 100}" exec="e" name="n{i}" namespace="/g{i // 1000}"/>\n'
+                                            for i in range(count)) + '</launch>\n')
+    start = time.perf_counter()
+    result = load_launch(path)
+    elapsed = time.perf_counter() - start
+    assert len(result.nodes) == count and not result.diagnostics
+    return elapsed
+
+
+def test_a_launch_of_many_nodes_is_read_in_linear_time(tmp_path: Path) -> None:
+    """10 times the nodes take about 10 times as long (a quadratic step: 100 times); best of
+    two each, a generous bound.  100,000 nodes through nodl analyse: bench/bench_hostile.py."""
+    small = min(_time_load(tmp_path, 2_000) for _ in range(2))
+    large = min(_time_load(tmp_path, 20_000) for _ in range(2))
+    assert large < 30 * small, (small, large)

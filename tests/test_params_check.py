@@ -274,3 +274,24 @@ def test_cli_unsafe_text_fails_the_check() -> None:
     assert f"{hostile}:4:8: error: the parameter name 'la\\u202ebel' holds U+202E" in check.stdout
     assert f'{hostile}:5:14: error: ' in check.stdout and '[NODL221]' in check.stdout
     assert '\u202e' not in check.stdout and '\x1b' not in check.stdout
+
+
+def _time_check(tmp_path: Path, count: int) -> float:
+    import time
+
+    path = tmp_path / f'gains{count}.yaml'
+    path.write_text('/gains:\n  ros__parameters:\n    gains: [' + ', '.join(f'{i}.5' for i in range(count))
+                    + ']\n    name: x\n')
+    node = _node(str(FIXTURES / 'params' / 'gains.nodl.yaml'))
+    start = time.perf_counter()
+    assert check_parameter_files([str(path)], node, '/gains') == []
+    return time.perf_counter() - start
+
+
+def test_a_long_list_is_checked_in_linear_time(tmp_path: Path) -> None:
+    """10 times the elements take about 10 times as long (a quadratic step would take 100
+    times): best of two each, a generous bound.  A 1,000,000-element list (9.9 MB, under the
+    10 MB file limit) is measured by bench/bench_hostile.py."""
+    small = min(_time_check(tmp_path, 5_000) for _ in range(2))
+    large = min(_time_check(tmp_path, 50_000) for _ in range(2))
+    assert large < 30 * small, (small, large)
