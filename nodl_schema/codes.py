@@ -163,6 +163,8 @@ CODES: dict[str, tuple[str, str]] = {
                 '(launched without a name, none recorded); the programs may name themselves apart'),
     'NODL531': ('error', 'nodl analyse: the file given is not a launch file (a node definition, a parameter '
                 'file, a package.xml, other text)'),
+    'NODL532': ('error', 'nodl deps: a mixin of the node definition leads outside its package (an installed '
+                'copy cannot reach it)'),
     # -- NODL55x-59x: system analysis (nodl analyse) ------------------------
     'NODL550': ('error', 'duplicate-node: two launched nodes end up with the same fully qualified name'),
     'NODL551': ('warning', 'multiple-publishers: more than one node publishes a topic (not on the allow list)'),

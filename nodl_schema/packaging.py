@@ -43,8 +43,8 @@ from typing import Mapping, Sequence
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, resource_name
 
-__all__ = ['nodl_data_files', 'relative_mixins', 'NodlBuildError', 'NODE_RESOURCE',
-           'INTERFACE_RESOURCE']
+__all__ = ['nodl_data_files', 'relative_mixins', 'package_dependencies', 'NodlBuildError',
+           'NODE_RESOURCE', 'INTERFACE_RESOURCE']
 
 _KEY = re.compile(r'[A-Za-z0-9_][A-Za-z0-9_.-]*')
 _INDEX = 'share/ament_index/resource_index'
@@ -219,6 +219,52 @@ def relative_mixins(node_file: str | os.PathLike[str]) -> list[str]:
     found: list[str] = []
     _relative_mixins(os.fspath(node_file), '', found, set())
     return found
+
+
+def package_dependencies(node_file: str | os.PathLike[str]) -> tuple[list[str], list[Diagnostic]]:
+    """``nodl deps``: the files of its own package a node definition needs
+    (:func:`relative_mixins`), and what is wrong (coded diagnostics, errors):
+
+    * the file is not a valid node definition (its errors, as ``nodl validate`` gives them):
+      then no path is listed, since none can be trusted;
+    * a mixin leads outside the package (above the folder holding the nearest
+      ``package.xml``, or the node file's folder without one): NODL532, and it is not listed
+      (an installed copy of the node file cannot reach it).
+
+    I/O errors such as a missing file propagate as :class:`OSError`.
+    """
+    from pathlib import Path
+
+    from nodl_schema.loading import check_source
+    from nodl_schema.validation import Kind
+
+    name = os.fspath(node_file)
+    report = check_source(Path(name), kind=Kind.NODE)
+    errors = report.errors
+    if errors:
+        return [], errors
+    folder = os.path.dirname(os.path.abspath(name))
+    root = folder
+    while not os.path.isfile(os.path.join(root, 'package.xml')):
+        parent = os.path.dirname(root)
+        if parent == root:
+            root = folder  # no package.xml above it: the node file's folder is all there is
+            break
+        root = parent
+    inside = os.path.join(os.path.realpath(root), '')
+    listed: list[str] = []
+    problems: list[Diagnostic] = []
+    for path in relative_mixins(name):
+        target = os.path.realpath(os.path.join(folder, path))
+        if (target + os.sep).startswith(inside):
+            listed.append(path)
+            continue
+        problems.append(Diagnostic(
+            Severity.ERROR, f"the mixin '{path}' leads outside the package ({root}): an "
+            'installed copy of the node file cannot reach it; move it into the package, or '
+            'register it in the package it belongs to and refer to it as nodl://PACKAGE/...',
+            (), name, code='NODL532'))
+    return listed, problems
 
 
 def _relative_mixins(file: str, prefix: str, found: list[str], visited: set[str]) -> None:

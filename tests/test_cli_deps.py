@@ -37,9 +37,24 @@ def test_a_missing_file_is_a_usage_error(tmp_path: Path) -> None:
     assert result.stderr == f'nodl deps: {tmp_path / "nope.nodl.yaml"}: no such file\n'
 
 
-def test_an_invalid_file_has_no_dependencies(tmp_path: Path) -> None:
-    # what is wrong with it is `nodl validate`'s to say (at build time, with positions)
-    bad = tmp_path / 'bad.nodl.yaml'
-    bad.write_text('nodl_version: 2\nmixins: [a.yaml\n')
+def test_an_invalid_file_is_an_error_not_silence() -> None:
+    """A file that is no valid node definition: its errors, exit 1, nothing listed (a build
+    that installs what deps lists would otherwise go on without a word)."""
+    bad = FIXTURES / 'deps' / 'invalid.nodl.yaml'
     result = nodl('deps', str(bad))
-    assert (result.returncode, result.stdout) == (0, '')
+    assert (result.returncode, result.stdout) == (1, '')
+    assert f'{bad}:' in result.stderr and 'error' in result.stderr
+    other = FIXTURES / 'launch' / 'not_launch' / 'settings.yaml'
+    result = nodl('deps', str(other))
+    assert (result.returncode, result.stdout) == (1, '')
+    assert 'expected a node definition' in result.stderr
+
+
+def test_a_mixin_outside_the_package_is_never_listed() -> None:
+    """../../shared/x escapes the package (the folder of package.xml): an error (NODL532),
+    the path not listed; the mixin inside is."""
+    node = FIXTURES / 'deps' / 'escaping_pkg' / 'nodl' / 'node.nodl.yaml'
+    result = nodl('deps', str(node))
+    assert (result.returncode, result.stdout) == (1, 'limits.yaml\n')
+    assert "the mixin '../../shared/heartbeat.nodl.yaml' leads outside the package" in result.stderr
+    assert '[NODL532]' in result.stderr

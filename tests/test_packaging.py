@@ -336,3 +336,14 @@ def test_a_removed_interface_does_not_linger_in_the_staging_index(
     # the next build no longer registers chatter: the node's reference must fail
     with pytest.raises(SystemExit):
         nodl_data_files('py_talker', nodes={'talker': 'nodl/talker.nodl.yaml'})
+
+
+def test_package_dependencies_never_lists_a_path_outside_the_package() -> None:
+    from nodl_schema.packaging import package_dependencies
+
+    deps = Path(__file__).parent / 'fixtures' / 'deps'
+    paths, problems = package_dependencies(deps / 'escaping_pkg' / 'nodl' / 'node.nodl.yaml')
+    assert paths == ['limits.yaml']
+    assert [(d.code, d.severity.value) for d in problems] == [('NODL532', 'error')]
+    paths, problems = package_dependencies(deps / 'invalid.nodl.yaml')
+    assert paths == [] and problems and all(d.severity.value == 'error' for d in problems)
