@@ -107,6 +107,10 @@ CODES: dict[str, tuple[str, str]] = {
                 'name or value holds a control character (C0/C1 but tab and newline)'),
     'NODL222': ('error', 'launch or parameter file: a node name, namespace, remapping rule, parameter '
                 'name or value holds a bidirectional control (Trojan Source: U+202A-202E, U+2066-2069)'),
+    'NODL223': ('error', 'policy: a name to be written (enclave, profile, grant) holds a control character '
+                '(C1, DEL, CR): no policy is written'),
+    'NODL224': ('error', 'policy: a name to be written (enclave, profile, grant) holds a bidirectional '
+                'control (Trojan Source): no policy is written'),
     'NODL230': ('warning', 'QoS history KEEP_ALL with a depth: the middleware ignores the depth'),
     # -- NODL3xx: composition ----------------------------------------------
     'NODL301': ('error', 'a mixin reference cannot be resolved'),

@@ -5,6 +5,7 @@ import pytest
 from nodl_schema.policy.model import Policy, Profile, Source
 from nodl_schema.policy.schema_check import check_policy_text
 from nodl_schema.policy.writer import PolicyNotWritable, write_policy, xml_comment
+from nodl_schema.text_safety import one_line
 
 
 def _policy(*grants, namespace='/robot', node='driver'):
@@ -79,9 +80,11 @@ def _one_node(namespace='/', node='n', path='/n', notes=(), what='declared'):
     return policy
 
 
-# (no white space among them: a comment turns that into a space)
-@pytest.mark.parametrize('bad', ['\x01', '\x08', '\ufffe', '\ud800'])
-@pytest.mark.parametrize('where', ['note', 'node', 'path', 'source'])
+# (no white space among them: a comment turns that into a space; a control character in a
+# comment is written as a visible escape: test_comments_show_control_and_bidi_characters)
+@pytest.mark.parametrize('bad, where', [
+    *[(bad, where) for bad in ('\x01', '\x08', '\ufffe', '\ud800') for where in ('node', 'path')],
+    *[(bad, where) for bad in ('\ufffe', '\ud800') for where in ('note', 'source')]])
 def test_what_the_writer_refuses_is_what_reading_the_document_back_finds(bad, where):
     """Text is checked in one scan of the written document, not by reading it back: the finding
     (code, line, column) is the one reading the document back gives."""
@@ -91,7 +94,9 @@ def test_what_the_writer_refuses_is_what_reading_the_document_back_finds(bad, wh
                          path=f'/p{text}' if where == 'path' else '/n',
                          what=f'declared {text}' if where == 'source' else 'declared')
 
-    document = write_policy(policy('Q9Z')).replace('Q9Z', bad)
+    # (the writer's comments show a control character as an escape, a name holds it as it is)
+    document = '\n'.join(line.replace('Q9Z', one_line(bad) if '<!--' in line else bad)
+                          for line in write_policy(policy('Q9Z')).split('\n'))
     # (reading back also reports the elements a broken document leaves unfinished)
     expected = [(d.code, d.line, d.column) for d in check_policy_text(document)
                 if d.code in ('NODL002', 'NODL012')]
@@ -116,3 +121,36 @@ def test_a_large_policy_is_written_and_reads_back_clean():
     text = write_policy(policy)
     assert check_policy_text(text) == []
     assert text.count('<profile ns=') == 300
+
+
+@pytest.mark.parametrize('bad', ['\x01', '\x1b', '\x9b', '\u202e', '\u2066'])
+def test_comments_show_control_and_bidi_characters(bad):
+    """Text of a comment (a note, a launch file's name, a source) holding a control or bidi
+    character is written as a visible escape: the policy is written, and carries none raw."""
+    escape = f'\\x{ord(bad):02x}' if ord(bad) < 0x100 else f'\\u{ord(bad):04x}'
+    policy = _one_node(notes=[f'a {bad} note'], what=f'declared in dir{bad}x')
+    policy.enclaves[0].profiles[0].launch = f'launch{bad}.xml:1:2'
+    text = write_policy(policy)
+    assert bad not in text and text.count(escape) == 3
+    assert check_policy_text(text) == []
+
+
+@pytest.mark.parametrize('bad, code', [('\u202e', 'NODL224'), ('\u2069', 'NODL224'),
+                                       ('\x85', 'NODL223'), ('\x9b', 'NODL223'), ('\x7f', 'NODL223')])
+@pytest.mark.parametrize('where', ['node', 'namespace', 'path'])
+def test_a_name_holding_a_control_or_bidi_character_is_refused(bad, code, where):
+    """A profile's node or namespace, or an enclave path, holding a bidi control or a control
+    character XML could carry (C1, DEL) is refused at the character: the written policy never
+    holds one raw (a granted name is refused earlier, NODL602)."""
+    policy = _one_node(namespace=f'/a{bad}' if where == 'namespace' else '/',
+                       node=f'n{bad}' if where == 'node' else 'n',
+                       path=f'/p{bad}' if where == 'path' else '/n')
+    with pytest.raises(PolicyNotWritable) as raised:
+        write_policy(policy)
+    (found,) = raised.value.diagnostics
+    assert found.code == code and found.line > 1 and found.column > 1
+    assert bad not in found.message and 'no policy is written' in found.message
+    clean = write_policy(_one_node(namespace='/a' if where == 'namespace' else '/'))
+    assert found.line == [i for i, line in enumerate(clean.splitlines(), 1)
+                          if (' ns="/a"' if where == 'namespace' else '<profile ' if where == 'node'
+                              else '<enclave ') in line][0]

@@ -14,6 +14,12 @@ an element left empty (no enclave, an enclave without profiles: NODL606)
 and text XML cannot hold (a character XML 1.0 forbids: NODL012, a lone
 surrogate: NODL002), found by one scan of the finished text; every name is
 checked to resolve, as SROS 2 resolves it, to the final name it grants.
+Comments are for people: a control or bidi character in them (a file name,
+a note) is written as a visible escape (``\\x1b``, ``\\u202e``).  A name (an
+enclave path, a profile's ``ns`` or ``node``, a granted name) is what SROS 2
+grants: one holding a control character (C1, DEL, CR) or a Trojan Source bidi
+control is refused, as text XML cannot hold is (NODL223, NODL224 at it): the
+document never carries one raw.
 Reading the document back (:func:`~nodl_schema.policy.schema_check.check_policy_text`)
 finds nothing more; the tests hold the two to agreeing.
 """
@@ -53,8 +59,11 @@ def xml_attribute(text: str) -> str:
 
 
 def xml_comment(text: str) -> str:
-    """``<!-- text -->`` with what a comment cannot hold (``--``, a final ``-``, line breaks) defused."""
-    text = ' '.join(text.split())
+    """``<!-- text -->`` with what a comment cannot hold (``--``, a final ``-``, line breaks) defused,
+    control and bidi characters written as visible escapes."""
+    from nodl_schema.text_safety import one_line
+
+    text = one_line(text)
     while '--' in text:
         text = text.replace('--', '- -')
     if text.endswith('-'):
@@ -149,10 +158,11 @@ def _write_policy(policy: Policy) -> str:
 
 
 def _text_problems(text: str) -> list[Diagnostic]:
-    """The first character of ``text`` that XML 1.0 does not allow, as a diagnostic (one scan)."""
+    """The first character of ``text`` that XML 1.0 does not allow, as a diagnostic (one scan);
+    else the first control or bidi character (only names can hold one: comments escape them)."""
     found = _NOT_XML.search(text)
     if found is None:
-        return []
+        return _unsafe_name(text)
     at = found.start()
     line = text.count('\n', 0, at) + 1
     column = at - (text.rfind('\n', 0, at) + 1) + 1
@@ -164,3 +174,29 @@ def _text_problems(text: str) -> list[Diagnostic]:
     return [Diagnostic(Severity.ERROR, f'malformed XML: the document would contain the character '
                        f'U+{char:04X}, which XML does not allow', (), _GENERATED, line, column,
                        code='NODL012')]
+
+
+def _unsafe_name(text: str) -> list[Diagnostic]:
+    """The first control character (NODL223) or Trojan Source bidi control (NODL224) of the
+    written ``text``, as an error at it: SROS 2 would grant the name as it is, and a reviewer
+    would not see it (or see it reordered)."""
+    from nodl_schema.text_safety import UNSAFE, describe_character, is_bidi_control, visible
+
+    found = UNSAFE.search(text)
+    if found is None:
+        return []
+    at = found.start()
+    line = text.count('\n', 0, at) + 1
+    start = text.rfind('\n', 0, at) + 1
+    end = text.find('\n', at)
+    char = text[at]
+    shown = visible(text[start:end if end >= 0 else len(text)].strip(), one_line=True)
+    if is_bidi_control(char):
+        what = ('a bidirectional control (Trojan Source: the policy would read differently from '
+                'what it grants)')
+        code = 'NODL224'
+    else:
+        what, code = 'a control character', 'NODL223'
+    return [Diagnostic(Severity.ERROR, f'a name in the policy holds {describe_character(char)}, '
+                       f'{what} ({shown}); no policy is written: fix the name where it comes from '
+                       '(the launch file, the node)', (), _GENERATED, line, at - start + 1, code=code)]
