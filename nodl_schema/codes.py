@@ -255,7 +255,28 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL864': ('warning', 'generate_parameter_library export: a parameter has no generate_parameter_library '
                 "form (type 'none', a name that is not a C++ identifier path) and is left out"),
     # -- NODL9xx: extraction from source (901-929: the frame and Python) ---
+    'NODL901': ('warning', 'extraction gap: a topic, service or action name is computed at run time (the entity is left commented out)'),
+    'NODL902': ('warning', 'extraction gap: an interface type is not a constant the extractor can resolve'),
+    'NODL903': ('warning', 'extraction gap: a QoS profile is computed at run time, or none is given'),
+    'NODL904': ('warning', 'extraction gap: a parameter name is computed at run time'),
+    'NODL905': ('warning', "extraction gap: a parameter's type, default value or descriptor is computed at run time"),
+    'NODL906': ('error', 'a source file cannot be parsed (a syntax error, nesting too deep); nothing is extracted from it'),
+    'NODL907': ('error', 'a source file cannot be read: not permitted, not UTF-8, or larger than the 10 MB limit'),
+    'NODL908': ('warning', 'generated code is not read (extract from what generates it)'),
+    'NODL909': ('warning', "extraction gap: an entity whose name depends on a plug-in (image_transport's transports)"),
+    'NODL910': ('warning', 'extraction gap: an entity made through a call whose arguments are not written out (*args, **kwargs)'),
+    'NODL911': ('info', 'a node no entry point runs (its draft is named after it), or a build file that cannot be read'),
+    'NODL912': ('error', 'no node found in the paths given to nodl extract'),
+    'NODL913': ('error', 'nodl extract -o FILE or --diff: not exactly one node found (give -o DIR, or one node\'s sources)'),
     'NODL914': ('warning', 'an extracted entity is not valid NoDL (an invalid name, a default of the wrong type); left commented out'),
+    'NODL915': ('warning', 'a generate_parameter_library file a node reads cannot be found or read: its parameters are a gap'),
+    'NODL920': ('error', 'extract --diff: created by the source but not in the definition'),
+    'NODL921': ('error', 'extract --diff: in the definition but not created by the source'),
+    'NODL922': ('error', 'extract --diff: the source and the definition give different types'),
+    'NODL923': ('error', 'extract --diff: the source and the definition give different QoS'),
+    'NODL924': ('error', "extract --diff: a parameter's default value, read_only or bounds differ"),
+    'NODL925': ('error', 'extract --diff: the source and the definition give different bases (node, lifecycle_node)'),
+    'NODL926': ('info', 'extract --diff: not compared, the source leaves it open (a gap)'),
 }
 
 

@@ -141,6 +141,9 @@ class ExtractedNode:
     notes: list[Diagnostic] = field(default_factory=list)
     #: Every source file read for this node (its module, its helpers' modules).
     sources: list[str] = field(default_factory=list)
+    #: ``class``: a node class (instances made elsewhere); ``call``: a node object made by a call
+    #: (``Node('talker')`` in a function or at module level).
+    made_by: str = 'class'
 
     def section(self, key: str) -> list[Entity]:
         """The entities of one section, in source order."""

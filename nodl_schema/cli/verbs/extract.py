@@ -1,0 +1,167 @@
+"""``nodl extract``."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from nodl_schema.diagnostics import Diagnostic
+    from nodl_schema.extract.model import Extraction
+
+#: Codes that mean the input cannot be read or used as asked (exit status 2).
+_USAGE_CODES = frozenset({'NODL020', 'NODL912', 'NODL913', 'NODL030', 'NODL031', 'NODL032', 'NODL033',
+                          'NODL034'})
+
+
+def _is_file_output(path: str) -> bool:
+    return not os.path.isdir(path) and not path.endswith(os.sep) and path.endswith(('.yaml', '.yml'))
+
+
+class ExtractVerb(Verb):
+    """Draft node definitions from rclpy source code (read, never run), or compare the source with a definition."""
+
+    failure = ('the sources have errors (a file that cannot be parsed), or with --diff the source and the '
+               'definition differ (with --strict: also a gap or another warning)')
+
+    def add_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument('paths', nargs='+', metavar='PATH',
+                            help='a package (its setup.py/setup.cfg entry points name the executables), '
+                                 'a folder of packages or sources, or source files')
+        parser.add_argument('-o', '--output', metavar='DIR|FILE',
+                            help='write the drafts: DIR/<package>/<executable>.nodl.yaml (the overlay '
+                                 'layout), or FILE (.yaml) when exactly one node is found; without it, '
+                                 'the drafts are printed')
+        parser.add_argument('--diff', metavar='DEFINITION',
+                            help='compare the one node found with this node definition: each difference '
+                                 'is a diagnostic (NODL920-926)')
+        parser.add_argument('--force', action='store_true',
+                            help='replace files nodl did not write, or drafts edited since')
+        parser.add_argument('--format', choices=('text', 'json', 'sarif', 'junit'), default='text',
+                            help='how to print diagnostics (default: text)')
+        parser.add_argument('--strict', action='store_true', help='treat warnings (gaps) as errors')
+        from nodl_schema.cli.diagnostic_options import add_diagnostic_options
+
+        add_diagnostic_options(parser)
+
+    def main(self, args: argparse.Namespace) -> int:
+        from nodl_schema.cli.diagnostic_options import DiagnosticPolicy, PolicyError
+        from nodl_schema.diagnostics import Diagnostic, Severity, has_errors
+        from nodl_schema.extract.targets import extract_paths
+
+        try:
+            policy = DiagnosticPolicy(args, 'nodl extract')
+        except PolicyError as exc:
+            print(exc, file=sys.stderr)
+            return EXIT_USAGE
+        extraction = extract_paths(args.paths)
+        diagnostics = list(extraction.all_diagnostics)
+        written: list[str] = []
+        usage = any(d.code in _USAGE_CODES for d in diagnostics)
+        if not usage and (args.diff or (args.output and _is_file_output(args.output))) \
+                and len(extraction.nodes) != 1:
+            option = '--diff' if args.diff else '-o FILE'
+            names = ', '.join(n.output_name for n in extraction.nodes)
+            diagnostics.append(Diagnostic(Severity.ERROR, f'{option} needs exactly one node; found '
+                                          f'{len(extraction.nodes)} ({names}): give -o DIR, or the one '
+                                          'file or package of the node', file=args.paths[0], code='NODL913'))
+            usage = True
+        if not usage and args.output:
+            written, problem = self._write(args, extraction)
+            if problem is not None:
+                diagnostics.append(problem)
+                usage = True
+        if not usage and args.diff:
+            from nodl_schema.diagnostics import ValidationError
+            from nodl_schema.extract.diff import diff_node
+
+            try:
+                diagnostics += diff_node(extraction.nodes[0], args.diff)
+            except ValidationError as exc:
+                diagnostics += exc.diagnostics
+                usage = True
+            except OSError as exc:
+                from nodl_schema.files import describe_os_error
+
+                diagnostics.append(Diagnostic(Severity.ERROR, f'cannot read the definition: '
+                                              f'{describe_os_error(exc)}', file=args.diff, code='NODL020'))
+                usage = True
+        try:
+            diagnostics = policy.apply(None, diagnostics)
+        except PolicyError as exc:
+            print(exc, file=sys.stderr)
+            return EXIT_USAGE
+        self._report(args, extraction, diagnostics, written, usage)
+        if usage:
+            return EXIT_USAGE
+        return EXIT_FAILURE if has_errors(diagnostics, args.strict) else EXIT_OK
+
+    def _write(self, args: argparse.Namespace, extraction: Extraction) -> tuple[list[str], Diagnostic | None]:
+        from nodl_schema.extract.targets import output_paths
+        from nodl_schema.extract.writer import draft_text
+        from nodl_schema.writing import WriteError, output_is_input, write_marked
+
+        single = _is_file_output(args.output)
+        paths = output_paths(extraction)
+        written: list[str] = []
+        for node in extraction.nodes:
+            target = args.output if single else os.path.join(args.output, paths[id(node)])
+            problem = output_is_input(target, extraction.files + ([args.diff] if args.diff else []))
+            if problem is not None:
+                return written, problem
+            text = draft_text(node, relative_to=os.path.dirname(os.path.abspath(target)))
+            try:
+                write_marked(target, text, force=args.force, make_parents=True)
+            except WriteError as exc:
+                return written, exc.diagnostic
+            written.append(target)
+        return written, None
+
+    def _report(self, args: argparse.Namespace, extraction: Extraction, diagnostics: list[Diagnostic],
+                written: list[str], usage: bool) -> None:
+        from nodl_schema.reporting import Tally, format_json, format_text, plural, summary_line, without_info
+
+        tally = Tally()
+        tally.files = len(extraction.files)
+        tally.add(diagnostics)
+        summary = f'{plural(len(extraction.nodes), "node")} found, {plural(len(written), "draft")} written; ' + \
+            summary_line(tally)
+        if args.format == 'text':
+            if not args.output and not args.diff and not usage:
+                from nodl_schema.extract.targets import output_paths
+                from nodl_schema.extract.writer import draft_text
+
+                paths = output_paths(extraction)
+                for index, node in enumerate(extraction.nodes):
+                    if len(extraction.nodes) > 1:
+                        sys.stdout.write(f'{"" if index == 0 else chr(10)}# ==> {paths[id(node)]} <==\n')
+                    sys.stdout.write(draft_text(node, relative_to=os.getcwd()))
+                sys.stdout.flush()
+                stream = sys.stderr
+            else:
+                stream = sys.stdout
+            stream.write(format_text(without_info(diagnostics)))
+            for path in written:
+                stream.write(f'wrote {path}\n')
+            stream.write(summary + '\n')
+            return
+        if args.format == 'sarif':
+            from nodl_schema.reporting.sarif import format_sarif
+
+            sys.stdout.write(format_sarif(diagnostics))
+        elif args.format == 'junit':
+            from nodl_schema.reporting.junit import JUnitCase, format_junit
+
+            by_file: dict[str, list[Diagnostic]] = {}
+            for d in without_info(diagnostics):
+                by_file.setdefault(d.file, []).append(d)
+            cases = [JUnitCase(f, ds, any(d.severity.value == 'error' or args.strict for d in ds))
+                     for f, ds in sorted(by_file.items())]
+            sys.stdout.write(format_junit(cases, 'nodl extract'))
+        else:
+            sys.stdout.write(format_json(diagnostics))
+        print(summary, file=sys.stderr)
