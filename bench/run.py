@@ -14,11 +14,12 @@ import bench_analyse  # noqa: E402
 import bench_cli_start  # noqa: E402
 import bench_describe  # noqa: E402
 import bench_generate  # noqa: E402
+import bench_hostile  # noqa: E402
 import bench_load  # noqa: E402
 import bench_policy  # noqa: E402
 
 BENCHMARKS = [bench_load, bench_cli_start, bench_describe, bench_analyse, bench_generate,
-              bench_policy]
+              bench_policy, bench_hostile]
 
 
 def main() -> int:
