@@ -423,3 +423,74 @@ def test_python_packages_pass_ament_flake8_and_ament_pep257(license: str | None,
     flake8 = _lint('ament_flake8', package)
     assert flake8.returncode == 1 and 'A002' in flake8.stdout, flake8.stdout
     assert _lint('ament_pep257', package).returncode == 1
+
+
+def _hostile_nodes(build_type: str) -> list:  # type: ignore[type-arg]
+    """tests/fixtures/scaffold/hostile_text.nodl.yaml resolved with its validation bypassed (its
+    NODL219/NODL220 errors dropped), as a running node's descriptors give such text."""
+    from nodl_schema.loading import Report, check_source
+    from nodl_schema.scaffold import BUILD_TYPES, NodeSource
+    from nodl_schema.system.resolved import resolve_report
+    from nodl_schema.validation.kinds import Kind
+
+    path = str(FIXTURES / 'scaffold' / 'hostile_text.nodl.yaml')
+    report = check_source(Path(path), kind=Kind.NODE, file=path)
+    assert {d.code for d in report.diagnostics} == {'NODL219', 'NODL220'}
+    node, _ = resolve_report(Report(path, Kind.NODE, report.data, []),
+                             client_library=BUILD_TYPES[build_type])
+    assert node is not None
+    return [NodeSource('hostile', path, node, [])]
+
+
+@pytest.mark.parametrize('build_type', ['ament_python', 'ament_cmake'])
+def test_hostile_descriptions_reach_no_written_file_raw(build_type: str) -> None:
+    """Descriptions holding control and bidi characters, line separators and what ends a
+    comment or string (*/, -->, ''', ${...}, ]=]) in every file nodl new writes: none holds
+    one raw; each still parses (Python, XML, YAML); comments stay on one line; setup.py's
+    description (the package metadata) shows them as visible escapes."""
+    import ast
+    import re
+    import xml.etree.ElementTree as ET
+
+    import yaml
+
+    from nodl_schema.text_safety import UNSAFE
+
+    files = {f.path: f.text for f in plan_package('hostile_pkg', _hostile_nodes(build_type),
+                                                    build_type).files}
+    for path, text in files.items():
+        if path.startswith('nodl/'):
+            continue  # the definition, copied as written (its escapes are YAML's)
+        assert UNSAFE.search(text) is None and not re.search('[\u2028\u2029]', text), path
+        if path.endswith('.py'):
+            ast.parse(text, path)
+        elif path.endswith('.xml'):
+            ET.fromstring(text.encode('utf-8'))
+        elif path.endswith('.yaml'):
+            yaml.safe_load(text)
+    params = files['config/hostile.params.yaml']
+    assert "# Gain \\u2066 \\x1b]0;title\\x07 ''' \"\"\" # not: a key" in params
+    assert yaml.safe_load(params) == {'/hostile': {'ros__parameters': {'gain': 1.0}}}
+    launch = ET.fromstring(files['launch/hostile_pkg.launch.xml'].encode('utf-8'))
+    assert [n.get('name') for n in launch.iter('node')] == ['hostile']
+    assert 'Reads \\x1b[2J a laser &#x202E; txt.exe */ --&gt; ${CMAKE_X} ") ]=]' in files['package.xml']
+    if build_type == 'ament_python':
+        (setup,) = [n for n in ast.walk(ast.parse(files['setup.py'])) if isinstance(n, ast.keyword)
+                    and n.arg == 'description']
+        assert ast.literal_eval(setup.value) == \
+            'Reads \\x1b[2J a laser \\u202e txt.exe */ --> ${CMAKE_X} ") ]=] \\ end'
+        assert files['setup.cfg'].count('\n') < 10
+    else:
+        cmake = files['CMakeLists.txt']
+        assert 'a laser' not in cmake and '"nodl/hostile_text.nodl.yaml"' in cmake
+
+
+def test_cmake_strings_escape_what_cmake_reads() -> None:
+    """CMake quoted arguments: backslash, quote, $ (a variable) and line breaks escaped; a control
+    or bidi character CMake has no escape for is refused (no name nodl new writes holds one)."""
+    from nodl_schema.scaffold.cmake_package import _cmake_string
+
+    assert _cmake_string('a"b${X}c\\d\te\nf') == '"a\\"b\\${X}c\\\\d\\te\\nf"'
+    for bad in ('x\u202e', 'x\x1b', 'x\x85'):
+        with pytest.raises(ValueError, match='cannot be written in CMakeLists.txt'):
+            _cmake_string(bad)

@@ -21,7 +21,18 @@ def cpp_options(package: str, node: NodeSource, component: bool = False) -> Gene
 
 
 def _cmake_string(text: str) -> str:
-    return '"' + text.replace('\\', '\\\\').replace('"', '\\"').replace('$', '\\$') + '"'
+    """``text`` as a CMake quoted argument: backslash, quote and ``$`` (a variable reference)
+    escaped, tab and line breaks as CMake's escapes; ValueError for another control or a bidi
+    character (CMake has no escape for them, and no name the scaffold writes may hold one)."""
+    from nodl_schema.text_safety import UNSAFE, describe_character
+
+    quoted = text.replace('\\', '\\\\').replace('"', '\\"').replace('$', '\\$')
+    quoted = quoted.replace('\t', '\\t').replace('\n', '\\n').replace('\r', '\\r')
+    found = UNSAFE.search(quoted)
+    if found is not None:
+        raise ValueError(f'{text!r} cannot be written in CMakeLists.txt: it holds '
+                         f'{describe_character(found.group(0))}')
+    return '"' + quoted + '"'
 
 
 def _cmakelists(package: str, nodes: list[NodeSource], component: bool, licensed: bool) -> str:

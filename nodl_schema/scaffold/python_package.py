@@ -196,9 +196,13 @@ setup(
 
 
 def _description(nodes: list[NodeSource]) -> str:
+    """The package's one-line description (setup.py's ``description``, the package metadata's
+    Summary): control and bidi characters as visible escapes, so the installed metadata holds
+    none of them (pip, PyPI and terminals show the summary as it is)."""
     from nodl_schema.scaffold.text import one_line
+    from nodl_schema.text_safety import visible
 
-    text = ' '.join(one_line(n.node.node.main.description) for n in nodes
+    text = ' '.join(visible(one_line(n.node.node.main.description), one_line=True) for n in nodes
                     if n.node.node.main.description)
     return text or f'The nodes {", ".join(n.executable for n in nodes)}.'
 
