@@ -3,7 +3,8 @@
 Three sources say what to do with a code, from the weakest to the strongest:
 
 1. a file's own first comment lines: ``# nodl: ignore=NODL216`` silences
-   warnings and infos of those codes in that file (never an error; this is
+   warnings and infos of those codes in that file (never an error, which then says
+   the directive does not silence it: a file cannot hide its own errors; this is
    what ``nodl describe`` and ``nodl convert`` write, as they cannot know
    descriptions);
 2. the nearest ``nodl.toml`` or ``pyproject.toml`` ``[tool.nodl]`` table
@@ -122,10 +123,23 @@ def directive_codes(text: str) -> frozenset[str]:
 
 
 def apply_directives(text: str, diagnostics: list[Diagnostic]) -> list[Diagnostic]:
-    """Drop the warnings and infos a document's directive silences (errors always stay)."""
+    """Drop the warnings and infos a document's directive silences.
+
+    Errors always stay: a file cannot hide its own errors (a definition holding a Trojan
+    Source character, NODL220, cannot silence it from inside), only ``--ignore`` and the
+    configuration can.  An error whose code the directive names says so in its message.
+    """
     if not diagnostics:
         return diagnostics
     codes = directive_codes(text)
     if not codes:
         return diagnostics
-    return [d for d in diagnostics if d.severity is Severity.ERROR or d.code not in codes]
+    out: list[Diagnostic] = []
+    for d in diagnostics:
+        if d.code not in codes:
+            out.append(d)
+        elif d.severity is Severity.ERROR:
+            out.append(d.replace(message=f"{d.message} (the file's '{DIRECTIVE}{d.code}' does not "
+                                 'silence it: a file cannot hide its own errors; --ignore '
+                                 f'{d.code} or a nodl.toml can)'))
+    return out

@@ -32,7 +32,26 @@ def test_directives_only_in_leading_comments_and_never_for_errors() -> None:
     assert directive_codes('# nodl: ignore=NODL216, nodl205 (why)\nx: 1\n') == {'NODL216', 'NODL205'}
     assert directive_codes('x: 1\n# nodl: ignore=NODL216\n') == frozenset()
     text = '# nodl: ignore=NODL216,NODL101\n'
-    assert apply_directives(text, [WARN, ERR]) == [ERR]
+    (kept,) = apply_directives(text, [WARN, ERR])
+    assert (kept.code, kept.severity, kept.line) == (ERR.code, ERR.severity, ERR.line)
+    assert kept.message.startswith(ERR.message)
+    assert "'# nodl: ignore=NODL101' does not silence it" in kept.message
+    assert apply_directives('# nodl: ignore=NODL216\n', [ERR]) == [ERR]  # not named: as it is
+
+
+def test_a_directive_cannot_hide_a_trojan_source_error(tmp_path: Path) -> None:
+    """'# nodl: ignore=NODL219,NODL220' in a hostile definition silences neither (errors: a file
+    cannot hide its own), and says so; --ignore does, as the README says."""
+    from nodl_schema.loading import check_source
+
+    hostile = Path(__file__).parent / 'fixtures' / 'text_safety' / 'hostile.nodl.yaml'
+    path = tmp_path / 'hostile.nodl.yaml'
+    path.write_text('# nodl: ignore=NODL219,NODL220\n' + hostile.read_text(encoding='utf-8'),
+                    encoding='utf-8')
+    found = check_source(path).diagnostics
+    assert {d.code for d in found} == {'NODL219', 'NODL220'}
+    assert all('does not silence it' in d.message for d in found)
+    assert apply_overrides(found, Overrides(ignore=['NODL219', 'NODL220'])) == []
 
 
 def test_found_upward_nodl_toml_first_and_pyproject_without_table_passed_over(tmp_path: Path) -> None:

@@ -145,3 +145,37 @@ def test_hostile_text_in_comments_and_literals_still_parses(tmp_path: Path) -> N
     unit = clang.Index.create().parse(str(path), args=['-x', 'c++', '-std=c++14', '-trigraphs'])
     declared = [c.spelling for c in unit.cursor.get_children()]
     assert declared == ['text', 'after'] and not list(unit.diagnostics)
+
+
+def test_a_whole_node_with_hostile_descriptions_parses(tmp_path: Path) -> None:
+    """A node whose descriptions hold control and bidi characters, line separators, comment
+    ends, trigraphs and backslashes (its validation errors NODL219/NODL220 bypassed, as a
+    running node's descriptors would give them): the generated header, source and user stub
+    hold none of them raw, and libclang parses them with no diagnostic."""
+    from nodl_schema.loading import Report, check_source
+    from nodl_schema.system.resolved import resolve_report
+    from nodl_schema.text_safety import UNSAFE
+    from nodl_schema.validation.kinds import Kind
+
+    definition = FIXTURES / 'scaffold' / 'hostile_text.nodl.yaml'
+    path = tmp_path / 'hostile.nodl.yaml'
+    path.write_text(definition.read_text(encoding='utf-8').replace(
+        '"Required \\u202D label"', '"Required \\u202D label ??/ ??= */ /* \\\\"'), encoding='utf-8')
+    report = check_source(path, kind=Kind.NODE, file=str(path))
+    assert {d.code for d in report.diagnostics} == {'NODL219', 'NODL220'}
+    node, _ = resolve_report(Report(str(path), Kind.NODE, report.data, []), client_library='rclcpp')
+    assert node is not None
+    options = GenerateOptions('Hostile', 'hostile')
+    out = tmp_path / 'out'
+    write_files(generate_cpp(node, options), str(out))
+    plan = plan_cpp(node, options)
+    user = out / 'hostile.cpp'
+    user.write_text(render_user_source(plan, options.class_name), encoding='utf-8')
+    written = sorted(out.iterdir())
+    assert len(written) >= 3
+    for generated in written:
+        text = generated.read_text(encoding='utf-8')
+        assert UNSAFE.search(text) is None and '\u2028' not in text, generated.name
+    assert 'Required' in (out / f'{plan.stem}.hpp').read_text(encoding='utf-8')
+    assert parse_errors(out / f'{plan.stem}.cpp', [out]) == []
+    assert parse_errors(user, [out]) == []
