@@ -277,6 +277,24 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL924': ('error', "extract --diff: a parameter's default value, read_only or bounds differ"),
     'NODL925': ('error', 'extract --diff: the source and the definition give different bases (node, lifecycle_node)'),
     'NODL926': ('info', 'extract --diff: not compared, the source leaves it open (a gap)'),
+    # -- NODL930-959: extraction from C++ (rclcpp) sources and CMakeLists.txt ---
+    'NODL930': ('error', "C++ extraction needs the tree-sitter C++ parser (pip install 'nodl-toolkit[extract]')"),
+    'NODL931': ('error', 'a C++ source or CMakeLists.txt cannot be read (not permitted, binary data, no such file)'),
+    'NODL932': ('warning', 'a C++ source larger than the 2 MiB limit is not read'),
+    'NODL933': ('info', 'generated C++ code is not read (extract from what generates it)'),
+    'NODL934': ('warning', 'the C++ parser cannot read part of a source (a macro it cannot expand, a syntax error); what it creates may be missing'),
+    'NODL935': ('warning', 'a C++ macro creates entities; what it creates where it is used is not extracted'),
+    'NODL936': ('warning', 'C++ extraction gap: an interface type is a template parameter (a class template node)'),
+    'NODL937': ('warning', 'C++ extraction gap: a topic, service, action or parameter name is computed at run time'),
+    'NODL938': ('warning', 'C++ extraction gap: an interface or parameter type is not one the extractor can resolve (a type adapter, no default)'),
+    'NODL939': ('warning', 'C++ extraction gap: a QoS profile is computed at run time, or none is given'),
+    'NODL940': ('warning', "C++ extraction gap: a parameter's default value or descriptor is computed at run time"),
+    'NODL941': ('warning', "C++ extraction gap: a name is the value of a declared parameter (set when the node starts)"),
+    'NODL942': ('warning', "C++ extraction gap: image_transport's topics depend on the transport plug-ins installed"),
+    'NODL943': ('info', "a C++ node's name is computed at run time"),
+    'NODL944': ('info', 'a C++ node class no executable builds (a component only), or an entity call not tied to a node'),
+    'NODL945': ('warning', 'CMakeLists.txt cannot be read from a command on (unbalanced parentheses, an unterminated string)'),
+    'NODL946': ('warning', 'CMakeLists.txt: a target, source or component depends on what the reader cannot know (a variable, a while loop)'),
 }
 
 
