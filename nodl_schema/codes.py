@@ -112,6 +112,26 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL224': ('error', 'policy: a name to be written (enclave, profile, grant) holds a bidirectional '
                 'control (Trojan Source): no policy is written'),
     'NODL230': ('warning', 'QoS history KEEP_ALL with a depth: the middleware ignores the depth'),
+    'NODL240': ('error', 'definitions folder: a file or folder in the wrong place (the layout is '
+                'DIR/<package>/<executable>.nodl.yaml, DIR/<package>/interfaces/<name>.nodl.yaml, '
+                'DIR/<package>/nodes.yaml)'),
+    'NODL242': ('error', "definitions folder: nodes.yaml names a plugin class of another package than "
+                "its folder's"),
+    'NODL243': ('error', 'definitions folder: a package folder whose name is not a package name'),
+    'NODL244': ('error', 'definitions folder: nodes.yaml is not a table {<executable>: {plugin, node_name}}'),
+    'NODL245': ('warning', 'definitions folder: nodes.yaml records a node the folder has no definition of'),
+    'NODL246': ('error', 'definitions folder: it, or a file in it, cannot be read (missing, not a folder)'),
+    'NODL247': ('error', 'definitions folder: two files define the same node or interface'),
+    'NODL250': ('error', 'types: the package of an interface type is not installed (not in the ament index)'),
+    'NODL251': ('error', 'types: the package defines no such message, service or action type'),
+    'NODL252': ('error', 'types: the type exists, but as another kind (a message used as a service type)'),
+    'NODL253': ('warning', 'types: a short type name (pkg/Type) that resolves to an installed type'),
+    'NODL254': ('error', 'types: the package is installed but defines no interface types'),
+    'NODL255': ('error', "types: an interface package is not a dependency in the node's package.xml"),
+    'NODL256': ('warning', "types: an interface package is only a build dependency in package.xml (not a run-time one)"),
+    'NODL257': ('warning', 'types, at build time: an interface package is declared in package.xml but not installed'),
+    'NODL258': ('error', 'types: an interface file (.msg, .srv, .action, .idl) cannot be read or parsed'),
+    'NODL259': ('error', "types: the package's package.xml cannot be read, so dependencies are not checked"),
     # -- NODL3xx: composition ----------------------------------------------
     'NODL301': ('error', 'a mixin reference cannot be resolved'),
     'NODL302': ('error', 'a mixin is not a valid interface definition'),
@@ -135,6 +155,16 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL406': ('error', 'drift: the observed read_only flag differs from the declared one'),
     'NODL407': ('warning', "a parameter's current value breaks its declared validators"),
     'NODL408': ('info', 'cannot be verified: the middleware does not report it'),
+    'NODL409': ('error', 'describe --launch: a node the launch file starts was not seen in the graph'),
+    'NODL410': ('warning', 'describe --launch: instances of one executable disagree (left out of the merged definition)'),
+    'NODL411': ('warning', 'describe --launch: instances differ by their parameters, which a definition cannot express (left out)'),
+    'NODL412': ('warning', 'describe --launch: a final name no name the node could declare resolves to (written as observed)'),
+    'NODL413': ('warning', 'describe --launch: a lifecycle node observed before configure lacks the endpoints it creates there'),
+    'NODL414': ('warning', 'describe --launch: several nodes in the graph share a final name (observed together)'),
+    'NODL415': ('warning', 'describe --launch: remapping rules only the running launch knows (names not undone)'),
+    'NODL416': ('warning', 'describe --launch: a launched node that cannot be found or filed (final name or executable unknown)'),
+    'NODL420': ('error', "version skew: a running endpoint's type hash differs from the installed definition's"),
+    'NODL421': ('info', "version skew: an endpoint's type hash cannot be compared (not reported, or the type is not installed)"),
     # -- NODL5xx: system analysis (launch files: 501-539) -------------------
     'NODL501': ('error', 'launch file: an unknown tag (action) or a misplaced one'),
     'NODL502': ('error', 'launch file: an unknown attribute'),
@@ -188,6 +218,7 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL565': ('warning', 'a node launched without a name takes the name of its executable (its registration records none)'),
     'NODL566': ('error', 'a launched node cannot be analysed: its definition does not compose, or its name, namespace or remapping is invalid'),
     'NODL567': ('warning', 'an analysis check plug-in is broken and was skipped'),
+    'NODL570': ('error', 'type-definition-mismatch: endpoints of a topic use one type name with different installed definitions'),
     # -- NODL6xx: SROS 2 policies (nodl policy) -----------------------------
     'NODL601': ('error', 'policy: a node has no definition, so its profile cannot be written (--allow-missing: a warning and an empty profile)'),
     'NODL602': ('error', 'policy: a final name cannot be granted in a policy (invalid, or DDS would read it as a pattern)'),

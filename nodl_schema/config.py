@@ -10,7 +10,10 @@ without one is passed over).  Keys:
 ``error``
     a list of codes whose diagnostics are errors whatever their severity;
 ``analyse``
-    a table of settings of ``nodl analyse`` (:mod:`nodl_schema.analysis.settings`).
+    a table of settings of ``nodl analyse`` (:mod:`nodl_schema.analysis.settings`);
+``definitions``
+    a list of definitions folders (overlays, :mod:`nodl_schema.targets.overlay`), relative
+    to the configuration file's folder (:func:`definitions_of`).
 
 Unknown keys, values that are not lists of strings and unknown codes are a
 :class:`ConfigError` (a ``ValueError``) whose message names the file.
@@ -28,13 +31,14 @@ if TYPE_CHECKING:
 from nodl_schema.overrides import Overrides
 
 __all__ = ['ConfigError', 'CONFIG_FILES', 'KEYS', 'find_config_file', 'load_config',
-           'overrides_for', 'ConfigCache']
+           'overrides_for', 'ConfigCache', 'definitions_of']
 
 #: The file names looked for in each directory, in order of precedence.
 CONFIG_FILES = ('nodl.toml', 'pyproject.toml')
 #: The keys of a configuration and what each holds.
 KEYS = {'ignore': 'a list of codes to silence', 'error': 'a list of codes to report as errors',
-        'analyse': 'a table of settings of nodl analyse (see nodl_schema.analysis.settings)'}
+        'analyse': 'a table of settings of nodl analyse (see nodl_schema.analysis.settings)',
+        'definitions': 'a list of definitions folders, relative to this file'}
 
 
 class ConfigError(ValueError):
@@ -118,6 +122,9 @@ def load_config(path: str) -> Overrides:
 
             settings_from_table(value, where)
             continue
+        if key == 'definitions':  # folders, not codes: read by definitions_of
+            _folder_list(value, where)
+            continue
         if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
             raise ConfigError(f"{where}: error: '{key}' must be {KEYS[key]} "
                               '(for example ["NODL216"])')
@@ -132,6 +139,25 @@ def load_config(path: str) -> Overrides:
         raise ConfigError(f"{where}: error: {sorted(both)[0]} is both ignored and an error; "
                           'keep it in one list')
     return Overrides(values['ignore'], values['error'])
+
+
+def _folder_list(value: Any, where: str) -> list[str]:
+    if not isinstance(value, list) or not all(isinstance(v, str) and v.strip() for v in value):
+        raise ConfigError(f"{where}: error: 'definitions' must be {KEYS['definitions']} "
+                          '(for example ["nodl_definitions"])')
+    return list(value)
+
+
+def definitions_of(path: str) -> list[str]:
+    """The definitions folders the configuration file ``path`` lists, each relative to the
+    file's folder made a path from there, in order (ConfigError if the list is not valid)."""
+    table = _table(path) or {}
+    where = path + (' [tool.nodl]' if os.path.basename(path) == 'pyproject.toml' else '')
+    if 'definitions' not in table:
+        return []
+    base = os.path.dirname(path)
+    return [os.path.normpath(os.path.join(base, os.path.expanduser(folder)))
+            for folder in _folder_list(table['definitions'], where)]
 
 
 class ConfigCache:

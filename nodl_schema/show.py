@@ -24,19 +24,24 @@ __all__ = ['Shown', 'show_file', 'show_registered', 'show_reference', 'render']
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl_schema.system.resolved import ResolvedNode
+    from nodl_schema.targets.overlay import Definitions
+    from nodl_schema.targets.resolve import Provenance
 
 
 class Shown:
     """What ``show`` found: the interface (None on errors) and the diagnostics."""
 
     def __init__(self, interface: Interface | None, diagnostics: list[Diagnostic],
-                 source: str, resolved: ResolvedNode | None = None) -> None:
+                 source: str, resolved: ResolvedNode | None = None,
+                 provenance: Provenance | None = None) -> None:
         self.interface = interface
         self.diagnostics = diagnostics
         #: The file the definition was read from.
         self.source = source
         #: The resolved node (None for an interface definition, or on errors).
         self.resolved = resolved
+        #: Where the definition came from (index, a definitions folder, a file).
+        self.provenance = provenance
 
     @property
     def ok(self) -> bool:
@@ -89,37 +94,36 @@ def show_file(path: str, client_library: str | None = None) -> Shown:
 
 
 def show_registered(package: str, executable: str, client_library: str | None = None,
-                    prefixes: list[str] | None = None) -> Shown:
-    """The resolved interface of the node definition registered for ``package``'s ``executable``
-    (the client library defaults to the one of the package's build type), looked up with its
-    mixins in ``prefixes`` (default: ``AMENT_PREFIX_PATH``)."""
-    from nodl_schema.system.resolved import resolve_registered
+                    prefixes: list[str] | None = None,
+                    definitions: Definitions | None = None) -> Shown:
+    """The resolved interface of the node definition of ``package``'s ``executable`` (the
+    client library defaults to the one of the package's build type), looked up with its
+    mixins in the definitions folders ``definitions`` (and those in force), then in
+    ``prefixes`` (default: ``AMENT_PREFIX_PATH``); :attr:`Shown.provenance` says which."""
+    from nodl_schema.targets.resolve import resolve_target
 
-    resolved, diagnostics, source = resolve_registered(package, executable,
-                                                       client_library=client_library,
-                                                       prefixes=prefixes)
-    return _from_resolved(resolved, diagnostics, source)
+    found = resolve_target([package, executable], client_library=client_library,
+                           prefixes=prefixes, definitions=definitions)
+    shown = _from_resolved(found.node, found.diagnostics, found.source)
+    shown.provenance = found.provenance
+    return shown
 
 
-def show_reference(reference: str, prefixes: list[str] | None = None) -> Shown:
-    """The registered interface definition ``nodl://<package>/<name>``, as ``show`` prints it
-    (looked up in ``prefixes``, default: ``AMENT_PREFIX_PATH``)."""
-    from nodl_schema.composition.ament_resolver import AmentIndexResolver
-    from nodl_schema.composition.resolvers import ResolutionError, ResolveContext
+def show_reference(reference: str, prefixes: list[str] | None = None,
+                   definitions: Definitions | None = None) -> Shown:
+    """The interface definition ``nodl://<package>/<name>``, as ``show`` prints it (looked up
+    in the definitions folders ``definitions`` and those in force, then in ``prefixes``,
+    default: ``AMENT_PREFIX_PATH``)."""
+    from nodl_schema.targets.resolve import resolve_reference
 
-    try:
-        resolved = AmentIndexResolver().resolve(
-            reference, ResolveContext(None, None, tuple(prefixes) if prefixes is not None else None))
-    except ResolutionError as exc:
-        searched = f' (searched: {", ".join(exc.searched)})' if exc.searched else ''
-        return Shown(None, [Diagnostic(Severity.ERROR, f"cannot resolve '{reference}': "
-                                       f'{exc.message}{searched}', (), reference, code='NODL306')],
-                     reference)
-    report = check_source(resolved.text, kind=Kind.INTERFACE, file=resolved.file)
+    text, file, problems = resolve_reference(reference, prefixes=prefixes, definitions=definitions)
+    if text is None:
+        return Shown(None, problems, reference)
+    report = check_source(text, kind=Kind.INTERFACE, file=file)
     if report.has_errors():
-        return Shown(None, report.diagnostics, resolved.file)
+        return Shown(None, report.diagnostics, file)
     return Shown(_stamp_all(report.model(), reference),  # type: ignore[arg-type]
-                 report.diagnostics, resolved.file)
+                 report.diagnostics, file)
 
 
 def _entity_blocks(iface: Interface) -> list[tuple[str, list[tuple[str | None, Any]]]]:

@@ -8,7 +8,8 @@ otherwise the key that is the class name in snake case
 (``rover_sensors::CameraDriver`` -> ``rover_sensors`` ``camera_driver``).
 
 Each definition is found and resolved once per analysis, however many nodes
-launch it.
+launch it.  Definitions folders in force (:mod:`nodl_schema.targets.overlay`)
+are looked in before the index; :attr:`Match.origin` says which served.
 """
 
 from __future__ import annotations
@@ -44,6 +45,9 @@ class Match:
     how: str = 'executable'
     #: Why resolving failed (errors of the definition), if it did.
     problems: list[Diagnostic] = field(default_factory=list)
+    #: Where the definition was found: ``index``, ``overlay DIR`` (a definitions folder)
+    #: or ``file`` (given by path).
+    origin: str = 'index'
 
 
 class DefinitionMatcher:
@@ -79,4 +83,5 @@ class DefinitionMatcher:
         resolved, diagnostics, source = resolve_registered(
             package, key, client_library=self.client_library, prefixes=self.prefixes)
         problems = [d for d in diagnostics if d.severity.value == 'error']
-        return Match(package, key, source or registration.file, resolved, node_name, how, problems)
+        return Match(package, key, source or registration.file, resolved, node_name, how, problems,
+                     registration.origin)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass, field
-from typing import Any, Iterable, Mapping
+from typing import Any, Iterable, Mapping, Sequence
 
 from nodl_schema.analysis.context import AnalysisContext, AnalysisSettings
 from nodl_schema.analysis.entries import LaunchEntry, entries_from_launch
@@ -21,11 +21,17 @@ from nodl_schema.diagnostics import Diagnostic, Severity
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl_schema.launch.sandbox import LaunchLimits
+    from nodl_schema.targets.overlay import Definitions
+    from nodl_schema.targets.placement import Definition
 
-__all__ = ['Analysis', 'analyse_entries', 'analyse_launch', 'LAUNCH_KIND']
+__all__ = ['Analysis', 'analyse_entries', 'analyse_launch', 'analyse_definitions', 'LAUNCH_KIND',
+           'DEFINITIONS_KIND']
 
 #: The kind of findings that come from reading the launch files themselves.
 LAUNCH_KIND = 'launch-file'
+#: The kind of findings about the definitions given (folders' layouts, definitions that do
+#: not resolve in ``nodl analyse DEFINITION...``).
+DEFINITIONS_KIND = 'definitions'
 
 
 @dataclass
@@ -70,7 +76,8 @@ class Analysis:
 
 def _sort_key(finding: Finding) -> tuple[Any, ...]:
     d = finding.diagnostic
-    return (0 if finding.kind == LAUNCH_KIND else 1, d.file, d.line, d.column, d.code)
+    return (0 if finding.kind in (LAUNCH_KIND, DEFINITIONS_KIND) else 1, d.file, d.line, d.column,
+            d.code)
 
 
 def analyse_entries(entries: Iterable[LaunchEntry | Any], *, client_library: str | None = None,
@@ -78,14 +85,30 @@ def analyse_entries(entries: Iterable[LaunchEntry | Any], *, client_library: str
                     settings: AnalysisSettings | None = None,
                     checks: Mapping[str, object] | None = None,
                     launch_findings: Iterable[Finding] = (),
-                    launch_file: str | None = None) -> Analysis:
+                    launch_file: str | None = None,
+                    definitions: Definitions | None = None) -> Analysis:
     """Match, instantiate and check launched nodes.
 
     ``entries``: :class:`LaunchEntry` objects or the launch reader's records.
     ``client_library`` forces the base's client library (default: each
     package's build type; ValueError for an unknown one).  ``checks``: the
     checks to run (default: every registered ``nodl.checks`` extension).
+    ``definitions``: definitions folders looked in before the index (what is wrong with
+    their layout is a finding each).
     """
+    return _analyse(entries, None, client_library=client_library, prefixes=prefixes,
+                    settings=settings, checks=checks, launch_findings=launch_findings,
+                    launch_file=launch_file, definitions=definitions)
+
+
+def _analyse(entries: Iterable[LaunchEntry | Any], matches: list[Any] | None, *,
+             client_library: str | None, prefixes: list[str] | None,
+             settings: AnalysisSettings | None, checks: Mapping[str, object] | None,
+             launch_findings: Iterable[Finding], launch_file: str | None,
+             definitions: Definitions | None) -> Analysis:
+    """:func:`analyse_entries`; ``matches``: each entry's match, given (else looked up)."""
+    from nodl_schema.targets import overlay
+
     if client_library is not None:
         from nodl_schema.composition.bases import check_client_library
 
@@ -98,12 +121,15 @@ def analyse_entries(entries: Iterable[LaunchEntry | Any], *, client_library: str
     entries = list(entries)
     findings: list[Finding] = (list(launch_findings) + _parameter_file_findings(entries)
                                + _rcl_refusal_findings(entries))
+    findings += [Finding(d, DEFINITIONS_KIND) for d in definitions.diagnostics] \
+        if definitions else []
     # The index is listed once (not looked up file by file per node), and the collector
     # does not rescan, every 700 allocations, what the analysis keeps until its end.
-    with ament.snapshot(), batch_collection():
+    with ament.snapshot(), batch_collection(), overlay.using(definitions):
         matcher = DefinitionMatcher(client_library, prefixes)
-        nodes = [build_node(entry, matcher.match(entry), findings)
-                 for entry in entries_from_launch(entries)]
+        launched = entries_from_launch(entries)
+        nodes = [build_node(entry, matches[index] if matches is not None else matcher.match(entry),
+                            findings) for index, entry in enumerate(launched)]
         context = AnalysisContext(nodes, settings or AnalysisSettings(), matcher.prefixes)
         findings.extend(run_checks(context, dict(checks) if checks is not None else None))
     findings.sort(key=_sort_key)
@@ -168,7 +194,8 @@ def analyse_launch(launch_file: str | os.PathLike[str], arguments: Mapping[str, 
                    *, client_library: str | None = None, prefixes: list[str] | None = None,
                    settings: AnalysisSettings | None = None,
                    checks: Mapping[str, object] | None = None,
-                   limits: LaunchLimits | None = None) -> Analysis:
+                   limits: LaunchLimits | None = None,
+                   definitions: Definitions | None = None) -> Analysis:
     """Analyse the system a launch file (XML, YAML or Python) starts, with launch
     ``arguments`` (``name -> value``, as ``name:=value`` on the command line).
 
@@ -177,7 +204,9 @@ def analyse_launch(launch_file: str | os.PathLike[str], arguments: Mapping[str, 
     default: it runs in a forked child, 30 s, 2048 MiB).
 
     ``prefixes``: the ament prefixes every look-up searches (``$(find-pkg-share)``, the
-    nodes' definitions and their ``nodl://`` mixins); default: ``AMENT_PREFIX_PATH``."""
+    nodes' definitions and their ``nodl://`` mixins); default: ``AMENT_PREFIX_PATH``.
+    ``definitions``: definitions folders (overlays) the nodes' definitions and ``nodl://``
+    mixins are looked up in first (:func:`nodl_schema.targets.resolve.gather_definitions`)."""
     from nodl_schema.analysis.gc_tuning import batch_collection
     from nodl_schema.launch import load_launch
 
@@ -188,8 +217,55 @@ def analyse_launch(launch_file: str | os.PathLike[str], arguments: Mapping[str, 
     analysis = analyse_entries(records, client_library=client_library, prefixes=prefixes,
                                settings=settings, checks=checks,
                                launch_findings=[_launch_finding(d) for d in diagnostics],
-                               launch_file=path)
+                               launch_file=path, definitions=definitions)
     analysis.unreadable = unreadable
+    return analysis
+
+
+def analyse_definitions(targets: Sequence[Definition], names: Sequence[str] = (), *,
+                        remaps: Sequence[str] = (), client_library: str | None = None,
+                        prefixes: list[str] | None = None,
+                        settings: AnalysisSettings | None = None,
+                        checks: Mapping[str, object] | None = None,
+                        definitions: Definitions | None = None) -> Analysis:
+    """Analyse an explicit set of node definitions, without a launch file: each ``FILE`` or
+    ``PACKAGE EXECUTABLE`` (:class:`~nodl_schema.targets.placement.Definition`) placed as
+    ``nodl policy`` places them (the i-th of ``names``, ``/NS/NODE``, names the i-th; by
+    default the file's stem or the executable, at ``/``; ``remaps``: rules every node is
+    given, ``node:from:=to`` for one node only), then checked as a launched system is.
+
+    A definition that does not resolve is a finding (and no node).  ValueError for more
+    names than definitions or a malformed name; OSError for a file that cannot be read.
+    """
+    from nodl_schema.analysis.matching import Match
+    from nodl_schema.naming import parse_remap_rules
+    from nodl_schema.system.entities import Location
+    from nodl_schema.targets.placement import place_definitions
+
+    parse_remap_rules(list(remaps))  # ValueError for a rule rcl would refuse
+    placed, problems = place_definitions(targets, names, remaps=remaps,
+                                         client_library=client_library, prefixes=prefixes,
+                                         folders=definitions)
+    entries: list[LaunchEntry] = []
+    matches: list[Any] = []
+    for item in placed:
+        definition, instance = item.definition, item.instance
+        where = Location(item.file, 1, 1)
+        package = definition.package or ''
+        key = definition.executable or os.path.basename(item.file)
+        pairs = [tuple(rule.rsplit(':=', 1)) for rule in remaps]
+        entries.append(LaunchEntry(package, key, where, name=instance.created_name,
+                                   namespace=instance.created_namespace,
+                                   remaps=[(a, b) for a, b in pairs],
+                                   remap_locations=[where] * len(pairs)))
+        origin = f'overlay {item.provenance.folder}' if item.provenance.source == 'overlay' \
+            else item.provenance.source
+        matches.append(Match(package, key, item.file, instance.resolved, instance.created_name,
+                             'definition', [], origin))
+    analysis = _analyse(entries, matches, client_library=client_library, prefixes=prefixes,
+                        settings=settings, checks=checks,
+                        launch_findings=[Finding(d, DEFINITIONS_KIND) for d in problems],
+                        launch_file=None, definitions=definitions)
     return analysis
 
 

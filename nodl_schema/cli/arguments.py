@@ -8,10 +8,12 @@ import os
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl_schema.launch.sandbox import LaunchLimits
+    from nodl_schema.targets.overlay import Definitions
 
 __all__ = ['seconds', 'node_name', 'definition_problem', 'add_client_library_argument',
            'positive_seconds', 'mebibytes', 'add_launch_code_arguments', 'launch_limits',
-           'LAUNCH_CODE_HELP']
+           'LAUNCH_CODE_HELP', 'add_definitions_argument', 'load_definitions',
+           'definitions_failed']
 
 
 def seconds(text: str) -> float:
@@ -119,3 +121,52 @@ def launch_limits(args: argparse.Namespace) -> 'LaunchLimits':
 
     return LaunchLimits(execute=not args.no_exec, timeout=args.launch_timeout,
                         memory_mib=args.launch_memory)
+
+
+def add_definitions_argument(parser: argparse.ArgumentParser) -> None:
+    """``--definitions DIR`` (repeatable): definitions folders (overlays) looked in before the
+    ament index, after which come ``NODL_PATH`` and ``nodl.toml``'s ``definitions``."""
+    parser.add_argument('--definitions', action='append', default=[], metavar='DIR',
+                        help='a definitions folder (DIR/<package>/<executable>.nodl.yaml, '
+                             'DIR/<package>/interfaces/<name>.nodl.yaml, DIR/<package>/nodes.yaml) '
+                             'looked in before NODL_PATH, nodl.toml\'s definitions and the ament '
+                             'index; repeat it for more (the first that has a definition wins)')
+
+
+def load_definitions(args: argparse.Namespace, prog: str, start: str | None = None,
+                     report: bool = True) -> Definitions | int:
+    """The definitions folders of a run (:func:`nodl_schema.targets.resolve.gather_definitions`:
+    ``--definitions``, ``NODL_PATH``, the configuration that applies to the folder ``start``,
+    default the current one).  A ``--definitions`` folder that does not exist, or a
+    configuration that cannot be used, is printed and gives exit status 2 (returned instead).
+    With ``report``, what is wrong with the folders' layouts is printed on standard error
+    (:func:`definitions_failed` says whether that is an error)."""
+    import sys
+
+    from nodl_schema.cli.verb import EXIT_USAGE
+    from nodl_schema.config import ConfigError
+    from nodl_schema.targets.resolve import gather_definitions
+
+    given: list[str] = getattr(args, 'definitions', None) or []
+    for folder in given:
+        if not os.path.isdir(folder):
+            why = 'not a folder' if os.path.exists(folder) else 'no such folder'
+            print(f'{prog}: error: --definitions {folder}: {why} [NODL246]', file=sys.stderr)
+            return EXIT_USAGE
+    try:
+        definitions = gather_definitions(given, start=start)
+    except ConfigError as exc:
+        print(exc, file=sys.stderr)
+        return EXIT_USAGE
+    if report and definitions.diagnostics:
+        from nodl_schema.reporting import format_text
+
+        sys.stderr.write(format_text(definitions.diagnostics))
+    return definitions
+
+
+def definitions_failed(definitions: Definitions) -> bool:
+    """True when a definitions folder's layout has errors (the verb then exits 1 at least)."""
+    from nodl_schema.diagnostics import Severity
+
+    return any(d.severity is Severity.ERROR for d in definitions.diagnostics)

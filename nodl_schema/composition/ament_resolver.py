@@ -11,6 +11,9 @@ What the reference implementation's current ``ament_nodl_register`` installs
 (resource type ``nodl``, same ``<package>__<name>`` key, the document itself
 as content) is found too, after ``nodl_interfaces``: the reference resolves
 ``nodl://<package>/<name>`` there.
+
+Definitions folders in force (:mod:`nodl_schema.targets.overlay`) come first:
+``DIR/<package>/interfaces/<name>.nodl.yaml``.
 """
 
 from __future__ import annotations
@@ -61,6 +64,15 @@ class AmentIndexResolver(ResolverExtension):
         if parsed is None:
             raise ResolutionError(f'{reference!r} is not of the form nodl://<package>/<name>')
         package, name = parsed
+        from nodl_schema.targets import overlay
+
+        definitions = overlay.active()
+        served = definitions.find_interface(package, name) if definitions else None
+        if served is not None:
+            data = read_regular(served[0])
+            if data is None:
+                raise ResolutionError(f'{served[0]} cannot be read', [served[0]])
+            return Resolved(data, served[0])
         # The caller's prefixes (an analysis with prefixes=...), else AMENT_PREFIX_PATH's.
         given = context.prefixes
         prefixes = list(given) if given is not None else ament.prefix_paths()

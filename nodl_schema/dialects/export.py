@@ -76,10 +76,12 @@ def parameters_of_file(path: str, with_mixins: bool = False) -> ExportSource:
 
 
 def parameters_of_registered(package: str, executable: str, with_mixins: bool = False) -> ExportSource:
-    """The exported parameters of the node definition registered for ``package``'s ``executable``."""
-    from nodl_schema.index.registry import compose_registered
+    """The exported parameters of the node definition of ``package``'s ``executable`` (looked
+    up in the definitions folders in force, then the ament index)."""
+    from nodl_schema.targets.resolve import resolve_target
 
-    composed, diagnostics, source = compose_registered(package, executable)
-    if composed is None:
-        return ExportSource(None, diagnostics, executable, source)
-    return ExportSource(_from_composed(composed, with_mixins), diagnostics, executable, source)
+    found = resolve_target([package, executable])
+    if found.node is None:
+        return ExportSource(None, found.diagnostics, executable, found.source)
+    return ExportSource(_from_composed(found.node.composed, with_mixins), found.diagnostics,
+                        executable, found.source)

@@ -11,6 +11,9 @@ write a second index entry next to ``nodl_nodes/<package>__<KEY>``:
   ``name`` (NoDL keeps identity out of the definition, so the registration holds it).
 
 Unknown attribute names are ignored (newer toolkits may record more).
+
+Definitions folders in force (:mod:`nodl_schema.targets.overlay`) come first: their
+packages' ``nodes.yaml`` record the same attributes.
 """
 
 from __future__ import annotations
@@ -69,6 +72,13 @@ def format_node_info(plugin: str | None = None, node_name: str | None = None) ->
 
 def read_node_info(package: str, key: str, prefixes: list[str] | None = None) -> NodeInfo:
     """What ``package``'s registration ``key`` records (empty attributes if nothing)."""
+    from nodl_schema.targets import overlay
+
+    definitions = overlay.active()
+    if definitions:
+        recorded = definitions.node_info(package, key)
+        if recorded is not None:
+            return NodeInfo(package, key, *recorded)
     resource = ament.get_resource(NODE_INFO_RESOURCE, resource_name(package, key), prefixes)
     if resource is None:
         return NodeInfo(package, key)
@@ -77,6 +87,13 @@ def read_node_info(package: str, key: str, prefixes: list[str] | None = None) ->
 
 def find_plugin(package: str, plugin: str, prefixes: list[str] | None = None) -> NodeInfo | None:
     """The registration of ``package`` that records ``plugin`` as its class, or None."""
+    from nodl_schema.targets import overlay
+
+    definitions = overlay.active()
+    if definitions:
+        key = definitions.find_plugin(package, plugin)
+        if key is not None:
+            return NodeInfo(package, key, *(definitions.node_info(package, key) or (None, None)))
     start = resource_name(package, '')
     for name, prefix in ament.get_resources(NODE_INFO_RESOURCE, prefixes).items():
         if not name.startswith(start):

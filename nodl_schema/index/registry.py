@@ -11,6 +11,10 @@
   that name is registered;
 * legacy packages: the ``nodl_desc/<package>`` marker (spec 001) and a
   ``package.xml`` that exports ``<interface path="..."/>`` (spec 000).
+
+Definitions folders (overlays, :mod:`nodl_schema.targets.overlay`) in force come
+first: a package's executable defined there is found there, whatever the index
+holds, and its :attr:`Registration.origin` says which folder served it.
 """
 
 from __future__ import annotations
@@ -29,6 +33,7 @@ from nodl_schema.vocabulary import REFERENCE_RESOURCE
 from nodl_schema.composition.resolvers import ResolutionError, Resolved
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.index import ament
+from nodl_schema.targets import overlay
 from nodl_schema.validation.kinds import Kind
 from nodl_schema.vocabulary import RESOURCE_SEPARATOR
 
@@ -51,6 +56,8 @@ class Registration(NamedTuple):
     #: The file the definition is read from (for index entries holding the
     #: document itself, the index entry).
     file: str
+    #: Where it was found: ``index``, or ``overlay DIR`` (a definitions folder).
+    origin: str = 'index'
 
 
 def _v2(resource_type: str, prefixes: list[str], package: str | None) -> list[Registration]:
@@ -77,6 +84,22 @@ def list_registrations(package: str | None = None, prefixes: list[str] | None = 
     """
     prefixes = prefixes if prefixes is not None else ament.prefix_paths()
     found: list[Registration] = []
+    definitions = overlay.active()
+    served: set[tuple[str, str, str]] = set()
+    if definitions:
+        for entry, folder in definitions.entries(package):
+            if kind in (None, entry.kind):
+                found.append(Registration(entry.package, entry.name, entry.kind, entry.file,
+                                          folder.label))
+                served.add((entry.package, entry.name, entry.kind))
+    found += [r for r in _index_registrations(package, prefixes, kind)
+              if (r.package, r.name, 'interface' if r.kind == 'interface' else 'node') not in served]
+    return sorted(found)
+
+
+def _index_registrations(package: str | None, prefixes: list[str], kind: str | None
+                         ) -> list[Registration]:
+    found: list[Registration] = []
     if kind in (None, 'node'):
         found += _v2(NODE_RESOURCE, prefixes, package)
         # The reference's registrations: a node's own registration wins over one of the same name.
@@ -91,13 +114,18 @@ def list_registrations(package: str | None = None, prefixes: list[str] | None = 
         v2_nodes = {(r.package, r.name) for r in found if r.kind == 'node'}
         found += [r for r in legacy_registrations(package, prefixes)
                   if (r.package, r.name) not in v2_nodes]
-    return sorted(found)
+    return found
 
 
 def find_node(package: str, executable: str,
               prefixes: list[str] | None = None) -> Registration | None:
     """The node definition registered for ``package``'s ``executable`` (v2 first, then legacy);
     looked up once within an :func:`nodl_schema.index.ament.snapshot`."""
+    definitions = overlay.active()
+    if definitions:
+        served = definitions.find_node(package, executable)
+        if served is not None:
+            return Registration(package, executable, 'node', served[0], served[1].label)
     prefixes = prefixes if prefixes is not None else ament.prefix_paths()
     return ament.remembered(('find_node', package, executable, tuple(prefixes)),
                             lambda: _find_node(package, executable, prefixes))
@@ -154,16 +182,20 @@ def _read_registration(registration: Registration, prefixes: list[str] | None
 def describe_missing(package: str, executable: str, prefixes: list[str] | None = None) -> str:
     """Why ``find_node`` found nothing, for an error message."""
     prefixes = prefixes if prefixes is not None else ament.prefix_paths()
+    definitions = overlay.active()
+    folders = ('; the definitions folders (' + ', '.join(f.root for f in definitions.folders)
+               + f') have none of {package} {executable} either') if definitions else ''
     if not prefixes:
-        return 'AMENT_PREFIX_PATH is empty; source the workspace (install/setup.bash) first'
+        return ('AMENT_PREFIX_PATH is empty; source the workspace (install/setup.bash) first'
+                + folders)
     registered = list_registrations(package, prefixes)
     names = sorted(r.name for r in registered if 'node' in r.kind)
     if not registered and ament.package_share_directory(package, prefixes) is None:
-        return f"package '{package}' is not in the ament index"
+        return f"package '{package}' is not in the ament index{folders}"
     if names:
         return (f"package '{package}' registers no node definition for '{executable}' "
-                f"(it has: {', '.join(names)})")
-    return f"package '{package}' registers no node definitions"
+                f"(it has: {', '.join(names)}){folders}")
+    return f"package '{package}' registers no node definitions{folders}"
 
 
 def compose_registered(package: str, executable: str, prefixes: list[str] | None = None,  # type: ignore[no-untyped-def]
@@ -181,6 +213,21 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
     if registration is None:
         return None, [Diagnostic(Severity.ERROR, describe_missing(package, executable, prefixes),
                                  (), where, code='NODL306')], where
+    if registration.origin != 'index':  # a definitions folder's file
+        from pathlib import Path
+
+        try:
+            report = loading.check_source(Path(registration.file), kind=Kind.NODE,
+                                          file=registration.file)
+        except OSError as exc:
+            from nodl_schema.files import describe_os_error
+
+            return None, [Diagnostic(Severity.ERROR, f'cannot read the definition: '
+                                     f'{describe_os_error(exc)}', (), registration.file,
+                                     code='NODL246')], registration.file
+        composed, diagnostics = composition.compose_report(report, client_library=client_library,
+                                                           prefixes=prefixes)
+        return composed, diagnostics, registration.file
     if registration.kind == 'legacy node':
         from nodl_schema.index.legacy import compose_legacy
 

@@ -204,17 +204,14 @@ def load_definition(definition: str | os.PathLike[str] | tuple[str, str],
     diagnostic if it cannot be found, read or composed (OSError for an
     unreadable file, ValueError for an unknown client library).
     """
-    from nodl_schema.system.resolved import resolve_node, resolve_registered
+    from nodl_schema.targets.resolve import resolve_target
 
-    if isinstance(definition, tuple):
-        resolved, diagnostics, _ = resolve_registered(*definition, client_library=client_library)
-        if resolved is None:
-            raise ValidationError(diagnostics)
-        return resolved
-    from pathlib import Path
-
-    path = os.fspath(definition)
-    return resolve_node(Path(path), file=path, client_library=client_library)
+    # (package, executable) is looked up in the definitions folders in force, then the index
+    found = resolve_target(list(definition) if isinstance(definition, tuple)
+                           else os.fspath(definition), client_library=client_library)
+    if found.node is None:
+        raise ValidationError(found.diagnostics)
+    return found.node
 
 
 def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *,

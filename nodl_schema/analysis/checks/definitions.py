@@ -33,5 +33,6 @@ class NoDefinitionCheck(CheckExtension):
                 if node.entry.plugin else ''
             yield make_finding(
                 'no-definition', f'{node.fqn} ({node.executable_label}) has no definition{how}: '
-                f'{reasons[key]}; its endpoints are unknown and it is not checked',
+                f'{reasons[key]}; its endpoints are unknown and it is not checked (write one '
+                f'as DIR/{node.match.package}/{node.match.key}.nodl.yaml and give --definitions DIR)',
                 node.location, [node.fqn])

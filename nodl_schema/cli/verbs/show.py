@@ -9,7 +9,7 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Any
 
-from nodl_schema.cli.verb import EXIT_OK, EXIT_USAGE, Verb, failure_status
+from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb, failure_status
 
 
 def _complete_definition(**kwargs: Any) -> list[str]:
@@ -30,23 +30,36 @@ class ShowVerb(Verb):
                             help='output format (default: yaml)')
         parser.add_argument('--layers', action='store_true',
                             help="show the layer each entity comes from (base, mixin or main)")
-        from nodl_schema.cli.arguments import add_client_library_argument
+        from nodl_schema.cli.arguments import add_client_library_argument, add_definitions_argument
 
         add_client_library_argument(parser)
+        add_definitions_argument(parser)
 
     failure = 'the definition is invalid, or cannot be composed'
 
     def main(self, args: argparse.Namespace) -> int:
-        import os
-
         from nodl_schema.cli.arguments import definition_problem
-        from nodl_schema.reporting import format_text, without_info
-        from nodl_schema.show import render, show_file, show_registered
 
         problem = definition_problem(args.target)
         if problem is not None:
             print(f'nodl show: error: {problem}', file=sys.stderr)
             return EXIT_USAGE
+        from nodl_schema.cli.arguments import definitions_failed, load_definitions
+        from nodl_schema.targets.overlay import using
+
+        definitions = load_definitions(args, 'nodl show')
+        if isinstance(definitions, int):
+            return definitions
+        with using(definitions):
+            status = self._show(args)
+        return max(status, EXIT_FAILURE) if definitions_failed(definitions) else status
+
+    def _show(self, args: argparse.Namespace) -> int:
+        import os
+
+        from nodl_schema.reporting import format_text, without_info
+        from nodl_schema.show import render, show_file, show_registered
+
         if len(args.target) == 1 and args.target[0].startswith('nodl://'):
             from nodl_schema.show import show_reference
 
@@ -68,6 +81,12 @@ class ShowVerb(Verb):
         sys.stderr.write(format_text(problems))
         if shown.interface is None:  # not registered: 2, as for a missing file; invalid: 1
             return failure_status(problems)
+        provenance = shown.provenance
+        if provenance is not None and provenance.source == 'overlay':  # which file served it
+            from nodl_schema.text_safety import visible
+
+            print(visible(f'nodl show: note: {shown.source} ({provenance})', one_line=True),
+                  file=sys.stderr)
         library = shown.client_library
         if library is not None and args.format == 'json' and not args.layers:
             # plain JSON is the interface alone; say which base it has where it cannot break it
