@@ -251,6 +251,8 @@ class _Reader:
         self.functions: list[tuple[Any, str, str | None]] = []  # (definition, file, class name)
         self.instantiations: dict[str, list[tuple[str, Any]]] = {}  # class -> [(file, args node)]
         self.registered: dict[str, Location] = {}
+        self.methods: dict[str, list[tuple[Any, str]]] = {}
+        self.member_values: dict[tuple[str, str], Any] = {}
         self.file = ''
 
     # -- locations and diagnostics
@@ -528,6 +530,8 @@ class _Reader:
         """``std::make_shared<C>(...)``, ``std::make_unique<C>(...)``, ``C node(...)``: where each
         node class is created (its executable's main, its constructor's arguments)."""
         for path, tree in self.trees:
+            if b'make_shared<' not in tree.root_node.text and b'make_unique<' not in tree.root_node.text:
+                continue
             for call in _walk(tree.root_node, 'call_expression'):
                 function = call.child_by_field_name('function')
                 if function is None:
@@ -824,7 +828,11 @@ class _Scan:
         return out
 
     def r_member(self, klass: _Class, name: str, where: Any) -> Any:
-        return _member_value(self.r, klass, name, where)
+        key = (klass.name, name)
+        if key not in self.r.member_values:
+            self.r.member_values[key] = _member_value(self.r, klass, name, where)
+        value = self.r.member_values[key]
+        return _Unknown(value.why, self.r.loc(where)) if isinstance(value, _Unknown) else value
 
     def value(self, node: Any) -> Any:
         """A compile-time value, or :class:`_Unknown`."""
@@ -1560,7 +1568,14 @@ def _member_value(reader: _Reader, klass: _Class, name: str, where: Any) -> Any:
 
 
 def _class_methods(reader: _Reader, klass: _Class) -> list[tuple[Any, str]]:
-    return [(d, f) for d, f, owner in reader.functions if reader.owner_class(owner) == klass.name]
+    cache = reader.methods
+    if not cache and reader.functions:
+        for d, f, owner in reader.functions:
+            name = reader.owner_class(owner)
+            if name is not None:
+                cache.setdefault(name, []).append((d, f))
+        cache.setdefault('', [])
+    return cache.get(klass.name, [])
 
 
 def _member_assignments(reader: _Reader, klass: _Class, name: str) -> list[tuple[Any, str, Any]]:
