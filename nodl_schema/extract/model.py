@@ -144,6 +144,8 @@ class ExtractedNode:
     #: ``class``: a node class (instances made elsewhere); ``call``: a node object made by a call
     #: (``Node('talker')`` in a function or at module level).
     made_by: str = 'class'
+    #: For a node made by a call: the top-level function it is made in (``''``: module level).
+    made_in: str | None = None
 
     def section(self, key: str) -> list[Entity]:
         """The entities of one section, in source order."""
@@ -176,6 +178,9 @@ class Extraction:
     diagnostics: list[Diagnostic] = field(default_factory=list)
     #: Every source file read.
     files: list[str] = field(default_factory=list)
+    #: file -> top-level function -> the names it calls (``Talker`` in ``node = Talker()``): which
+    #: node classes an entry point's function starts.
+    starts: dict[str, dict[str, list[str]]] = field(default_factory=dict)
 
     @property
     def all_diagnostics(self) -> list[Diagnostic]:
@@ -190,3 +195,4 @@ class Extraction:
         self.nodes += other.nodes
         self.diagnostics += other.diagnostics
         self.files += [f for f in other.files if f not in self.files]
+        self.starts.update(other.starts)

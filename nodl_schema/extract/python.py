@@ -124,7 +124,7 @@ class _Module:
         self.imports: dict[str, str] = {}
         self.functions: dict[str, ast.FunctionDef | ast.AsyncFunctionDef] = {}
         self.classes: dict[str, ast.ClassDef] = {}
-        for stmt in ast.walk(tree):
+        for stmt in _import_statements(tree):
             if isinstance(stmt, ast.Import):
                 for alias in stmt.names:
                     if alias.asname:
@@ -144,9 +144,41 @@ class _Module:
             elif isinstance(stmt, ast.ClassDef):
                 self.classes[stmt.name] = stmt
         self.assigned = _assigned_names(tree.body)
+        self._assigned: dict[int, dict[str, list[ast.expr]]] = {}
+        self._members: dict[int, dict[str, list[tuple[ast.expr, ast.FunctionDef | ast.AsyncFunctionDef]]]] = {}
 
     def location(self, node: ast.AST) -> Location:
         return Location(self.path, getattr(node, 'lineno', 0), getattr(node, 'col_offset', -1) + 1)
+
+    def assigned_in(self, function: ast.FunctionDef | ast.AsyncFunctionDef) -> dict[str, list[ast.expr]]:
+        """The names a function assigns (computed once per function)."""
+        found = self._assigned.get(id(function))
+        if found is None:
+            found = self._assigned[id(function)] = _assigned_names(function.body)
+        return found
+
+    def members(self, cls: ast.ClassDef) -> dict[str, list[tuple[ast.expr, ast.FunctionDef | ast.AsyncFunctionDef]]]:
+        """``self.<attr>`` assignments in the methods of ``cls`` (computed once per class)."""
+        found = self._members.get(id(cls))
+        if found is not None:
+            return found
+        found = {}
+        for method in cls.body:
+            if not isinstance(method, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                continue
+            for node in ast.walk(method):
+                targets: list[ast.expr] = []
+                value: ast.expr | None = None
+                if isinstance(node, ast.Assign):
+                    targets, value = node.targets, node.value
+                elif isinstance(node, (ast.AnnAssign, ast.AugAssign)):
+                    targets, value = [node.target], node.value
+                for target in targets:
+                    if isinstance(target, ast.Attribute) and isinstance(target.value, ast.Name) \
+                            and target.value.id == 'self':
+                        found.setdefault(target.attr, []).append((value if value is not None else target, method))
+        self._members[id(cls)] = found
+        return found
 
 
 class _Scope:
@@ -160,7 +192,7 @@ class _Scope:
         self.function = function
         self.arguments = arguments or {}
         self.depth = depth
-        self.local = _assigned_names(function.body) if function is not None else module.assigned
+        self.local = module.assigned_in(function) if function is not None else module.assigned
         self.params = {a.arg for a in _all_args(function.args)} if function is not None else set()
 
 
@@ -323,22 +355,7 @@ class _Resolver:
                 use: ast.expr, instance: bool = True) -> Any:
         """A class attribute, or an instance attribute set once (from a constant) in the class."""
         class_values = _assigned_names(cls.body).get(attr, [])
-        instance_values: list[tuple[ast.expr, ast.FunctionDef | ast.AsyncFunctionDef]] = []
-        if instance:
-            for method in cls.body:
-                if not isinstance(method, (ast.FunctionDef, ast.AsyncFunctionDef)):
-                    continue
-                for node in ast.walk(method):
-                    targets: list[ast.expr] = []
-                    value: ast.expr | None = None
-                    if isinstance(node, ast.Assign):
-                        targets, value = node.targets, node.value
-                    elif isinstance(node, (ast.AnnAssign, ast.AugAssign)):
-                        targets, value = [node.target], node.value
-                    for target in targets:
-                        if (isinstance(target, ast.Attribute) and target.attr == attr
-                                and isinstance(target.value, ast.Name) and target.value.id == 'self'):
-                            instance_values.append((value if value is not None else target, method))
+        instance_values = scope.module.members(cls).get(attr, []) if instance else []
         if len(class_values) + len(instance_values) > 1:
             return Unknown(f"'{attr}' is assigned more than once", use)
         if class_values:
@@ -384,8 +401,8 @@ class _Resolver:
         if isinstance(callee, _Symbol):
             return _CallValue(callee.dotted, expr, scope)
         if isinstance(callee, Unknown) and callee.node is func:
-            return Unknown('it is computed at run time', expr)
-        return callee if isinstance(callee, Unknown) else Unknown('it is computed at run time', expr)
+            return Unknown(f"'{_shown(expr)}' is computed at run time", expr)
+        return callee if isinstance(callee, Unknown) else Unknown(f"'{_shown(expr)}' is computed at run time", expr)
 
     def _helper(self, function: ast.FunctionDef | ast.AsyncFunctionDef, call: ast.Call,
                 scope: _Scope, seen: frozenset[int]) -> Any:
@@ -687,16 +704,21 @@ class PythonExtractor:
             nodes.append(node)
         made: dict[int, ExtractedNode] = {}
         scopes: list[_Scope] = [_Scope(module)]
-        for stmt in ast.walk(tree):
+        for stmt in tree.body:  # functions of the module and methods of its classes
             if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
-                scopes.append(_Scope(module, self._enclosing_class(module, stmt), stmt))
+                scopes.append(_Scope(module, None, stmt))
+            elif isinstance(stmt, ast.ClassDef):
+                scopes += [_Scope(module, stmt, m) for m in stmt.body
+                           if isinstance(m, (ast.FunctionDef, ast.AsyncFunctionDef))]
         for scope in scopes:
             for var, call, base in self._created_nodes(scope):
                 if id(call) in made:
                     continue
                 label = var or 'node'
+                top = scope.function if scope.function is not None and scope.function in tree.body else None
                 node = ExtractedNode(label, module.location(call), 'python', base=base, sources=[path],
-                                     made_by='call')
+                                     made_by='call', made_in=top.name if top is not None else
+                                     ('' if scope.function is None else None))
                 name_arg = _arguments(call, ('node_name',))
                 if name_arg and 'node_name' in name_arg:
                     value = self.resolver.value(name_arg['node_name'], scope)
@@ -708,12 +730,6 @@ class PythonExtractor:
                 self._walk_created(builder, scope, var, call)
                 nodes.append(node)
         return nodes
-
-    def _enclosing_class(self, module: _Module, function: ast.AST) -> ast.ClassDef | None:
-        for cls in module.classes.values():
-            if function in cls.body:
-                return cls
-        return None
 
     def _node_classes(self, module: _Module) -> dict[str, str]:
         """Classes of the module that are nodes -> their base (``node``, ``lifecycle_node``)."""
@@ -781,6 +797,12 @@ class PythonExtractor:
                 value = stmt.value
             if not isinstance(value, ast.Call):
                 continue
+            root = value.func
+            while isinstance(root, ast.Attribute):
+                root = root.value
+            if not isinstance(root, ast.Name) or root.id not in scope.module.imports \
+                    or root.id in scope.local or root.id in scope.params:
+                continue  # only imported callables make nodes
             callee = self.resolver.value(value.func, scope)
             dotted = callee.dotted if isinstance(callee, _Symbol) else None
             base = _NODE_CLASSES.get(dotted or '') or _NODE_FACTORIES.get(dotted or '')
@@ -1176,15 +1198,8 @@ class PythonExtractor:
                 "package's setup.py (generate_parameter_module), so its parameters are unknown",
                 location, 'NODL915')]))
             return True
-        from nodl_schema.diagnostics import ValidationError
-        from nodl_schema.loading import load_interface
-
-        try:
-            from pathlib import Path
-
-            interface = load_interface(Path(yaml_path))
-        except (ValidationError, OSError) as exc:
-            why = str(exc).splitlines()[0] if str(exc) else 'it cannot be read'
+        interface, why = _read_genparam(yaml_path)
+        if interface is None:
             builder.add(Entity(PARAMETERS, None, None, location, helper=dotted, gaps=[Gap(
                 'entity', f'the generate_parameter_library file {yaml_path} cannot be read: {why}',
                 location, 'NODL915')]))
@@ -1195,6 +1210,43 @@ class PythonExtractor:
                                read_only=param.read_only, validation=param.validation,
                                description=param.description or None, helper=f'{dotted} ({yaml_path})'))
         return True
+
+
+def _import_statements(tree: ast.Module) -> Iterator[ast.stmt]:
+    """The statements of the module, its functions and its classes' methods (where imports are)."""
+    for stmt in _statements(tree.body):
+        yield stmt
+        if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            yield from _statements(stmt.body)
+        elif isinstance(stmt, ast.ClassDef):
+            for method in stmt.body:
+                if isinstance(method, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                    yield from _statements(method.body)
+
+
+def _read_genparam(path: str) -> tuple[Any, str]:
+    """The interface a generate_parameter_library file declares (the toolkit's dialect reader), or
+    None and why not."""
+    from pathlib import Path
+
+    from nodl_schema.diagnostics import ValidationError
+    from nodl_schema.dialects.genparamlib import read_genparamlib
+    from nodl_schema.frontends.source import read_source as read_text
+    from nodl_schema.frontends.yaml_json import parse_document
+    from nodl_schema.loading import model_from_data
+
+    text, problem = read_text(Path(path))
+    if text is None:
+        return None, problem.message if problem is not None else 'it cannot be read'
+    parsed = parse_document(text)
+    errors = [d for d in parsed.diagnostics if d.severity is Severity.ERROR]
+    if errors or not isinstance(parsed.data, dict):
+        return None, errors[0].message if errors else 'it is not a mapping'
+    reading = read_genparamlib(parsed.data)
+    try:
+        return model_from_data(reading.data), ''
+    except ValidationError as exc:
+        return None, exc.errors[0].message if exc.errors else 'it is not valid'
 
 
 def _statements(body: list[ast.stmt]) -> Iterator[ast.stmt]:
@@ -1229,6 +1281,23 @@ def _calls(stmt: ast.stmt) -> Iterator[ast.Call]:
 
 
 # -- files ------------------------------------------------------------------------------------
+
+def _starts(tree: ast.Module) -> dict[str, list[str]]:
+    """Each top-level function -> the names it calls (what an entry point's function starts)."""
+    out: dict[str, list[str]] = {}
+    for stmt in tree.body:
+        if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            names: list[str] = []
+            for node in ast.walk(stmt):
+                if isinstance(node, ast.Call):
+                    func = node.func
+                    name = func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) \
+                        else None
+                    if name and name not in names:
+                        names.append(name)
+            out[stmt.name] = names
+    return out
+
 
 def _generated(text: str) -> int:
     """The 1-based line of a "generated, do not edit" mark among the first lines, else 0."""
@@ -1288,6 +1357,7 @@ def extract_source(text: str, path: str, *, package: str | None = None,
             Severity.ERROR, f'the file cannot be parsed: {why}; nothing is extracted from it', file=path,
             line=1, column=1, code='NODL906'))
         return extraction
+    extraction.starts[path] = _starts(tree)
     try:
         extraction.nodes = PythonExtractor(genparam).module(path, tree, package)
     except RecursionError:

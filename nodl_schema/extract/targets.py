@@ -274,10 +274,17 @@ def _assign_executables(package: Package, extraction: Extraction) -> list[Extrac
     for node in extraction.nodes:
         node.package = package.name
         by_file.setdefault(os.path.realpath(node.location.file), []).append(node)
-    classes = {n.name: n for n in extraction.nodes if n.made_by == 'class'}
+    starts = {os.path.realpath(f): calls for f, calls in extraction.starts.items()}
     used: set[int] = set()
     for executable, (path, function) in sorted(package.executables.items()):
-        started = _started_by(path, function, by_file.get(os.path.realpath(path), []), classes)
+        real = os.path.realpath(path)
+        called = starts.get(real, {}).get(function, [])
+        here = by_file.get(real, [])
+        started = [n for n in here if n.made_by == 'call' and n.made_in in (function, '')]
+        for name in called:  # node classes of the same module first, then of the package
+            same = [n for n in here if n.made_by == 'class' and n.name == name]
+            other = same or [n for n in extraction.nodes if n.made_by == 'class' and n.name == name][:1]
+            started += [n for n in other if n not in started]
         for node in started:
             copy_ = node if id(node) not in used else copy.deepcopy(node)
             used.add(id(node))
@@ -293,39 +300,6 @@ def _assign_executables(package: Package, extraction: Extraction) -> list[Extrac
                                      column=node.location.column, code='NODL911'))
         out.append(node)
     return out
-
-
-def _started_by(path: str, function: str, in_file: list[ExtractedNode],
-                classes: dict[str, ExtractedNode]) -> list[ExtractedNode]:
-    """The nodes an entry point's function starts: classes it instantiates (of any module of the
-    package) and nodes made in it or at module level."""
-    from nodl_schema.extract.python import read_source
-
-    text, _ = read_source(path)
-    try:
-        tree = ast.parse(text or '')
-    except (SyntaxError, ValueError, RecursionError):
-        return []
-    target = next((s for s in tree.body if isinstance(s, (ast.FunctionDef, ast.AsyncFunctionDef))
-                   and s.name == function), None)
-    started: list[ExtractedNode] = []
-    if target is not None:
-        for call in ast.walk(target):
-            if isinstance(call, ast.Call):
-                name = call.func.id if isinstance(call.func, ast.Name) else \
-                    call.func.attr if isinstance(call.func, ast.Attribute) else None
-                node = classes.get(name or '')
-                if node is not None and node not in started:
-                    started.append(node)
-    for node in in_file:  # nodes made by calls in this module (in main or at module level)
-        if node.made_by != 'call' or node in started:
-            continue
-        inside = target is not None and target.lineno <= node.location.line <= (target.end_lineno or 0)
-        module_level = not any(isinstance(s, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
-                               and s.lineno <= node.location.line <= (s.end_lineno or 0) for s in tree.body)
-        if inside or module_level:
-            started.append(node)
-    return started
 
 
 def extract_paths(paths: Iterable[str]) -> Extraction:

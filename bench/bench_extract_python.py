@@ -1,0 +1,133 @@
+"""``nodl extract`` on rclpy sources: speed against ``ast`` and accuracy on real nodes.
+
+Speed target (issue 17, section 3): extracting a 100-file package takes at most 2x the time of
+parsing the same files with ``ast.parse`` (the parser the extractor uses), measured in the same
+run.  The package: the real nodes of tests/fixtures/extract/python/real and the test nodes,
+copied to 100 modules with a setup.py whose entry points name them.  Best of several rounds,
+interleaved.
+
+Accuracy: each real node's extraction against its hand-checked ``*.expected.yaml``, per entity
+kind: precision (extracted entities that are right), recall (entities extracted), and coverage
+(entities extracted or reported as a located gap).  Target: precision 100%, coverage 100%.
+"""
+
+from __future__ import annotations
+
+import ast
+import os
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from nodl_schema.extract.python import extract_file  # noqa: E402
+from nodl_schema.extract.targets import extract_paths  # noqa: E402
+
+REAL = ROOT / 'tests' / 'fixtures' / 'extract' / 'python' / 'real'
+TARGET = 2.0
+KINDS = ('parameters', 'publishers', 'subscriptions', 'service_servers', 'service_clients',
+         'action_servers', 'action_clients')
+
+
+def make_package(folder: str, count: int = 100) -> list[str]:
+    """A Python package of ``count`` node modules (real sources, copied); returns their paths."""
+    sources = sorted(REAL.glob('*.py')) + [ROOT / 'examples' / 'nodes' / 'laser_driver_node.py']
+    pkg = os.path.join(folder, 'bench_pkg')
+    os.makedirs(os.path.join(pkg, 'bench_pkg'))
+    Path(pkg, 'bench_pkg', '__init__.py').write_text('', encoding='utf-8')
+    files, scripts = [], []
+    for i in range(count):
+        path = os.path.join(pkg, 'bench_pkg', f'node_{i}.py')
+        shutil.copyfile(sources[i % len(sources)], path)
+        files.append(path)
+        scripts.append(f"'node_{i} = bench_pkg.node_{i}:main'")
+    Path(pkg, 'setup.py').write_text(
+        "from setuptools import setup\n\nsetup(name='bench_pkg', entry_points={'console_scripts': [\n    "
+        + ',\n    '.join(scripts) + ']})\n', encoding='utf-8')
+    return files
+
+
+def speed(rounds: int = 5) -> dict[str, float]:
+    """Seconds to parse the package's files, to extract the package, and the ratio."""
+    with tempfile.TemporaryDirectory() as folder:
+        files = make_package(folder)
+        package = os.path.join(folder, 'bench_pkg')
+        parse_best = extract_best = float('inf')
+        nodes = 0
+        for _ in range(rounds):
+            start = time.perf_counter()
+            for path in files:
+                with open(path, encoding='utf-8') as handle:
+                    ast.parse(handle.read(), filename=path)
+            parse_best = min(parse_best, time.perf_counter() - start)
+            start = time.perf_counter()
+            nodes = len(extract_paths([package]).nodes)
+            extract_best = min(extract_best, time.perf_counter() - start)
+    return {'files': len(files), 'nodes': nodes, 'parse_s': parse_best, 'extract_s': extract_best,
+            'ratio': extract_best / parse_best}
+
+
+def accuracy() -> dict[str, dict[str, int]]:
+    """Per kind: ``truth`` (entities in the expected files), ``extracted`` (complete entities),
+    ``right`` (extracted and expected, same name, type, QoS and default), ``gaps`` (reported as
+    a located gap and expected as one)."""
+    import yaml
+
+    counts = {kind: {'truth': 0, 'extracted': 0, 'right': 0, 'gaps': 0} for kind in KINDS}
+    for source in sorted(REAL.glob('*.py')):
+        expected = yaml.safe_load((REAL / f'{source.stem}.expected.yaml').read_text(encoding='utf-8'))['nodes']
+        found = {n.name: n for n in extract_file(str(source)).nodes}
+        for node_name, node in expected.items():
+            truth = node['entities']
+            got = found.get(node_name)
+            entities = got.entities if got is not None else []
+            for entry in truth:
+                counts[entry['section']]['truth'] += 1
+            for entity in entities:
+                kind = counts[entity.section]
+                match = [e for e in truth if e['section'] == entity.section and e['line'] == entity.location.line
+                         and e['type'] == entity.type]
+                if entity.complete:
+                    kind['extracted'] += 1
+                    if match and not match[0].get('gap') and match[0]['name'] == entity.name and \
+                            match[0].get('qos') == (entity.qos.to_dict() if entity.qos else None):
+                        kind['right'] += 1
+                elif match and match[0].get('gap'):
+                    kind['gaps'] += 1
+    return counts
+
+
+def main() -> bool:
+    r = speed()
+    print(f'extract (rclpy) vs ast.parse, a package of {r["files"]} files ({r["nodes"]} nodes)')
+    print(f'  ast.parse:  {r["parse_s"] * 1000:8.1f} ms')
+    print(f'  extract:    {r["extract_s"] * 1000:8.1f} ms')
+    ok = r['ratio'] <= TARGET
+    print(f'  ratio:      {r["ratio"]:.2f}x  (target <= {TARGET}x)  {"OK" if ok else "ABOVE TARGET"}')
+    counts = accuracy()
+    print(f'accuracy on {len(list(REAL.glob("*.py")))} real rclpy nodes (tests/fixtures/extract/python/real)')
+    print(f'  {"kind":16} {"truth":>5} {"precision":>9} {"recall":>7} {"coverage":>8}')
+    total = {'truth': 0, 'extracted': 0, 'right': 0, 'gaps': 0}
+    for kind, c in counts.items():
+        for key in total:
+            total[key] += c[key]
+    for kind, c in [*counts.items(), ('all', total)]:
+        if not c['truth']:
+            continue
+        precision = c['right'] / c['extracted'] if c['extracted'] else 1.0
+        recall = c['right'] / c['truth']
+        coverage = (c['right'] + c['gaps']) / c['truth']
+        print(f'  {kind:16} {c["truth"]:5} {precision:9.0%} {recall:7.0%} {coverage:8.0%}')
+    precision = total['right'] / total['extracted'] if total['extracted'] else 1.0
+    coverage = (total['right'] + total['gaps']) / total['truth']
+    accurate = precision == 1.0 and coverage == 1.0
+    print(f'  target: precision 100%, coverage 100%  {"OK" if accurate else "MISSED"}')
+    return ok and accurate
+
+
+if __name__ == '__main__':
+    raise SystemExit(0 if main() else 1)
