@@ -29,8 +29,9 @@ REPO = Path(__file__).resolve().parent.parent
 DOC = 'type: string\ndescription: "café €"\n'
 BOM = '\ufeff'
 UTF8_BOM = b'\xef\xbb\xbf'
-TOO_LARGE = ('document is larger than the limit of 10,485,760 bytes (10 MB); '
-             'split it into smaller definitions')
+TOO_LARGE = ('file is larger than the limit of 10,485,760 bytes (10 MB) that nodl reads; '
+             'split it (a definition into mixins, a launch file into includes, a parameter '
+             'file into several files)')
 
 
 def read_ok(source, file=None) -> SourceText:  # type: ignore[no-untyped-def]

@@ -44,8 +44,11 @@ def _problem(file: str, message: str, line: int = 0, column: int = 0,
 
 
 def _too_large() -> str:
-    return (f'document is larger than the limit of {MAX_BYTES:,} bytes (10 MB); '
-            'split it into smaller definitions')
+    # Every kind of file is read here (definitions, launch, parameter and policy files):
+    # the advice fits them all.
+    return (f'file is larger than the limit of {MAX_BYTES:,} bytes (10 MB) that nodl reads; '
+            'split it (a definition into mixins, a launch file into includes, a parameter '
+            'file into several files)')
 
 
 def _text_too_large(text: str) -> bool:
