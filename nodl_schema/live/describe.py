@@ -19,8 +19,8 @@ from nodl_schema.composition.client_library import ClientLibraryChoice
 from nodl_schema.live.observe import ObservedNode, ObservedParameter, observe_node
 from nodl_schema.model import (
     ENDPOINT_SECTIONS, Base, Interface, Node, ParameterDefinition, QoSProfile)
-from nodl_schema.naming import expand, relativize
-from nodl_schema.vocabulary import QOS_KEYS, TOPIC_SECTIONS
+from nodl_schema.naming import NodeNames, declared_names, expand, relativize
+from nodl_schema.vocabulary import QOS_KEYS, SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['Description', 'deduce_base', 'deduce_client_library', 'describe_observed',
            'describe_node', 'render_description']
@@ -49,6 +49,11 @@ class Description:
         #: What makes the observation itself doubtful (several nodes share the name).
         self.warnings = list(warnings or [])
         self.client_library = client_library or ClientLibraryChoice('rclpy', 'the default')
+        #: Every name the node could declare for each endpoint written, by ``(section,
+        #: written name)``, the written one first (see :func:`describe_observed`'s ``names``).
+        self.forms: dict[tuple[str, str], list[str]] = {}
+        #: The final names no name the node could declare resolves to (kept as observed).
+        self.unmapped: list[tuple[str, str]] = []
 
     @property
     def definition(self) -> dict[str, Any]:
@@ -93,12 +98,20 @@ def _parameter(param: ObservedParameter) -> ParameterDefinition:
         validation={'bounds<>': list(param.range)} if param.range is not None else None)
 
 
-def describe_observed(observed: ObservedNode, client_library: str | None = None) -> Description:
+def describe_observed(observed: ObservedNode, client_library: str | None = None, *,
+                      names: NodeNames | None = None) -> Description:
     """Turn an observation into a node definition (a typed, valid :class:`Node`).
 
     The entities of the base of ``client_library`` are left out of ``main``;
     by default the library is deduced from the node (:func:`deduce_client_library`).
     ValueError for an unknown client library.
+
+    ``names``: the node's final name, namespace and remapping rules, when known (from a
+    launch file): each final name is then turned back into the name the node declares
+    (:func:`~nodl_schema.naming.declared_names`: the remaps undone, ``~/x`` under the
+    node, relative under its namespace, the root's included); a final name no declared
+    name resolves to is kept as observed, with a note.  Without it, names are only made
+    relative (:func:`~nodl_schema.naming.relativize`).
     """
     library = deduce_client_library(observed, client_library)
     base = deduce_base(observed)
@@ -115,14 +128,26 @@ def describe_observed(observed: ObservedNode, client_library: str | None = None)
             main.parameters = params
 
     unobserved: set[str] = set()
+    forms: dict[tuple[str, str], list[str]] = {}
+    unmapped: list[tuple[str, str]] = []
     for section in ENDPOINT_SECTIONS:
-        from_base = {(expand(e.name, name, namespace), e.type) for e in base_iface.endpoints(section)}
+        service = section in SERVICE_SECTIONS
+        from_base = {(_final(e.name, name, namespace, names, service), e.type)
+                     for e in base_iface.endpoints(section)}
         make = ENDPOINT_SECTIONS[section]
         entries = []
         for endpoint in getattr(observed, section):
             if (endpoint.name, endpoint.type) in from_base:
                 continue
-            short = relativize(endpoint.name, name, namespace)
+            if names is None:
+                short = relativize(endpoint.name, name, namespace)
+            else:
+                candidates = declared_names(endpoint.name, names, service=service)
+                if not candidates:
+                    unmapped.append((section, endpoint.name))
+                    candidates = [endpoint.name]
+                short = candidates[0]
+                forms[(section, short)] = candidates
             if section not in TOPIC_SECTIONS:
                 entries.append(make(short, endpoint.type))
                 continue
@@ -147,9 +172,28 @@ def describe_observed(observed: ObservedNode, client_library: str | None = None)
         notes.append('the QoS of some topic endpoints could not be read')
     if main.service_servers or main.service_clients:
         notes.append('service QoS cannot be observed (no graph API reports it): left out')
+    for section, final in unmapped:
+        notes.append(f'{final} ({section}): no name the node could declare becomes it under '
+                     'its remapping rules (a name from a parameter, or a rule only the running '
+                     'launch knows?): written as observed')
     definition = Node(main, 2, Base(base))
-    return Description(observed.fully_qualified_name, definition, notes, library,
-                       list(observed.warnings))
+    description = Description(observed.fully_qualified_name, definition, notes, library,
+                              list(observed.warnings))
+    description.forms = forms
+    description.unmapped = unmapped
+    return description
+
+
+def _final(declared: str, name: str, namespace: str, names: NodeNames | None,
+           service: bool) -> str:
+    """The final name of a base entity ``declared`` by the node (its rules applied when
+    ``names`` is known)."""
+    if names is not None:
+        try:
+            return names.resolve(declared, service=service)
+        except ValueError:
+            pass
+    return expand(declared, name, namespace)
 
 
 def describe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,

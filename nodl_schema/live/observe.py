@@ -18,7 +18,8 @@ from nodl_schema.live.session import (LiveError, NodeNotFound, did_you_mean, is_
 from nodl_schema.vocabulary import SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
-           'wait_for_node', 'list_nodes', 'count_nodes', 'ACTION_INFIX', 'DISCOVERY_WINDOW']
+           'wait_for_node', 'list_nodes', 'count_nodes', 'ACTION_INFIX', 'DISCOVERY_WINDOW',
+           'settle_nodes', 'observe_settled', 'read_parameters', 'read_lifecycle_states']
 
 ACTION_INFIX = '/_action/'
 #: How long a session must have been discovering before the graph is taken as complete.
@@ -75,6 +76,9 @@ class ObservedNode:
     warnings: list[str] = field(default_factory=list)
     #: How many nodes in the graph have this name (more than one: what is observed is all of them).
     instances: int = 1
+    #: The lifecycle state it was observed in (``unconfigured``, ``inactive``...), for a
+    #: lifecycle node whose state was asked (:func:`read_lifecycle_states`); else None.
+    lifecycle_state: str | None = None
 
     @property
     def fully_qualified_name(self) -> str:
@@ -240,6 +244,24 @@ def _value(value: Any) -> Any:
     return None
 
 
+def _parameter_table(names: list[str], values: Any, descriptors: Any
+                     ) -> dict[str, ObservedParameter]:
+    """The parameters of one node from its get_parameters and describe_parameters answers."""
+    found: dict[str, ObservedParameter] = {}
+    for name, value, descriptor in zip(names, values.values, descriptors.descriptors):
+        rng: tuple[float, float] | None = None
+        if descriptor.integer_range:
+            r = descriptor.integer_range[0]
+            rng = (int(r.from_value), int(r.to_value))
+        elif descriptor.floating_point_range:
+            r = descriptor.floating_point_range[0]
+            rng = (float(r.from_value), float(r.to_value))
+        found[name] = ObservedParameter(
+            name, _PARAMETER_TYPES.get(value.type, 'none'), _value(value),
+            descriptor.description, bool(descriptor.read_only), rng)
+    return found
+
+
 def _parameters(node: Any, fqn: str, timeout: float) -> dict[str, ObservedParameter] | None:
     from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
 
@@ -256,19 +278,7 @@ def _parameters(node: Any, fqn: str, timeout: float) -> dict[str, ObservedParame
         descriptors = _call(node, describe_client, DescribeParameters.Request(names=names), deadline)
         if values is None or descriptors is None:
             return None
-        found: dict[str, ObservedParameter] = {}
-        for name, value, descriptor in zip(names, values.values, descriptors.descriptors):
-            rng: tuple[float, float] | None = None
-            if descriptor.integer_range:
-                r = descriptor.integer_range[0]
-                rng = (int(r.from_value), int(r.to_value))
-            elif descriptor.floating_point_range:
-                r = descriptor.floating_point_range[0]
-                rng = (float(r.from_value), float(r.to_value))
-            found[name] = ObservedParameter(
-                name, _PARAMETER_TYPES.get(value.type, 'none'), _value(value),
-                descriptor.description, bool(descriptor.read_only), rng)
-        return found
+        return _parameter_table(names, values, descriptors)
     finally:
         for client in (list_client, get_client, describe_client):
             node.destroy_client(client)
@@ -302,6 +312,77 @@ def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float
     wait_for_node(node, fqn, timeout)
     remaining = max(0.5, timeout - (time.monotonic() - start))
     raw = _settle(node, name, namespace, fqn, remaining, quiet)
+    observed = observe_settled(node, fqn, raw)
+    if parameters:
+        remaining = max(1.0, timeout - (time.monotonic() - start))
+        observed.parameters = _parameters(node, fqn, remaining)
+        if observed.parameters is None:
+            observed.notes.append(_NO_PARAMETERS)
+    # Namesakes are counted only once discovery has had its time (the first node of a name
+    # seen says nothing about a second one whose participant is not discovered yet).
+    discovering_since = getattr(node, 'nodl_started', start)
+    _spin_until(node, min(discovering_since + DISCOVERY_WINDOW, start + timeout))
+    counts = count_nodes(node)
+    if fqn not in counts:
+        raise LiveError(f"node '{fqn}' disappeared while it was being observed")
+    observed.instances = counts[fqn]
+    if observed.instances > 1:
+        observed.warnings.append(f'{observed.instances} nodes in the graph are named {fqn}: what '
+                                 'was observed is all of them together (give each node a unique '
+                                 'name)')
+    return observed
+
+
+_NO_PARAMETERS = ('parameters could not be read (the node serves no parameter services, or they '
+                  'did not answer in time)')
+
+#: The raw endpoints of one node, by section (what the graph calls return).
+RawEndpoints = dict[str, list[tuple[str, list[str]]]]
+
+
+def settle_nodes(node: Any, expected: dict[str, int], timeout: float, quiet: float = 0.15
+                 ) -> tuple[dict[str, RawEndpoints], dict[str, int]]:
+    """Wait for several nodes at once: until each fully qualified name of ``expected`` is in
+    the graph (at least as many times as given) and the endpoints of all of them have not
+    changed for ``quiet`` seconds (``LOPSIDED_QUIET`` while one shows only writers or only
+    readers), or until ``timeout`` seconds have passed.
+
+    Returns the endpoints of every expected node seen (by name; one that never appeared
+    has none) and how many nodes of each name the graph held at the end (the toolkit's
+    own left out).  Waiting for them together costs one ``quiet`` period, not one each.
+    """
+    start = time.monotonic()
+    deadline = start + timeout
+    last: Any = None
+    stable_since = start
+    while True:
+        counts = count_nodes(node)
+        raw: dict[str, RawEndpoints] = {}
+        for fqn in expected:
+            if counts.get(fqn, 0) < 1:
+                continue
+            namespace, name = split_node_name(fqn)
+            try:
+                raw[fqn] = _endpoints(node, name, namespace)
+            except Exception:  # it vanished between two calls: seen again on the next round
+                continue
+        signature = (tuple(sorted(counts.items())),
+                     tuple((fqn, _signature(r)) for fqn, r in sorted(raw.items())))
+        now = time.monotonic()
+        if signature != last:
+            last, stable_since = signature, now
+        complete = all(counts.get(fqn, 0) >= n for fqn, n in expected.items()) and all(
+            any(r.values()) for r in raw.values())
+        needed = max(quiet, LOPSIDED_QUIET) if any(_lopsided(r) for r in raw.values()) else quiet
+        if (complete and now - stable_since >= needed) or now >= deadline:
+            return raw, counts
+        node.nodl_executor.spin_once(timeout_sec=0.01)
+
+
+def observe_settled(node: Any, fqn: str, raw: RawEndpoints) -> ObservedNode:
+    """The :class:`ObservedNode` of ``fqn`` from endpoints already settled (``raw``, from
+    :func:`settle_nodes`): each topic endpoint's QoS read, actions folded; no parameters."""
+    namespace, name = split_node_name(fqn)
     observed = ObservedNode(name, namespace)
     for section, entries in raw.items():
         topic = section in TOPIC_SECTIONS
@@ -317,25 +398,65 @@ def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float
             endpoints.append(endpoint)
         setattr(observed, section, endpoints)
     _fold_actions(observed, node, name, namespace)
-    if parameters:
-        remaining = max(1.0, timeout - (time.monotonic() - start))
-        observed.parameters = _parameters(node, fqn, remaining)
-        if observed.parameters is None:
-            observed.notes.append('parameters could not be read (the node serves no '
-                                  'parameter services, or they did not answer in time)')
-    # Namesakes are counted only once discovery has had its time (the first node of a name
-    # seen says nothing about a second one whose participant is not discovered yet).
-    discovering_since = getattr(node, 'nodl_started', start)
-    _spin_until(node, min(discovering_since + DISCOVERY_WINDOW, start + timeout))
-    counts = count_nodes(node)
-    if fqn not in counts:
-        raise LiveError(f"node '{fqn}' disappeared while it was being observed")
-    observed.instances = counts[fqn]
-    if observed.instances > 1:
-        observed.warnings.append(f'{observed.instances} nodes in the graph are named {fqn}: what '
-                                 'was observed is all of them together (give each node a unique '
-                                 'name)')
     return observed
+
+
+def _call_many(node: Any, calls: list[tuple[Any, str, Any]], deadline: float) -> list[Any]:
+    """Call several services at once (``(type, service name, request)`` each): every
+    request is sent as soon as its server is discovered, and all are awaited together
+    until ``deadline``.  The responses in order; None for a call without an answer."""
+    clients = [node.create_client(kind, service) for kind, service, _ in calls]
+    futures: list[Any] = [None] * len(calls)
+    try:
+        while time.monotonic() < deadline:
+            for i, client in enumerate(clients):
+                if futures[i] is None and client.service_is_ready():
+                    futures[i] = client.call_async(calls[i][2])
+            if all(f is not None and f.done() for f in futures):
+                break
+            node.nodl_executor.spin_once(timeout_sec=0.01)
+        return [f.result() if f is not None and f.done() else None for f in futures]
+    finally:
+        for client in clients:
+            node.destroy_client(client)
+
+
+def read_parameters(node: Any, fqns: list[str], timeout: float
+                    ) -> dict[str, dict[str, ObservedParameter] | None]:
+    """The parameters of several nodes, read at once (names, values and descriptors, as
+    :func:`observe_node` reads one node's); None for a node that serves no parameter
+    services or did not answer within ``timeout`` seconds."""
+    from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
+
+    deadline = time.monotonic() + timeout
+    listed = _call_many(node, [(ListParameters, f'{fqn}/list_parameters', ListParameters.Request())
+                               for fqn in fqns], deadline)
+    names = {fqn: sorted(r.result.names) for fqn, r in zip(fqns, listed) if r is not None}
+    asked = [fqn for fqn in fqns if fqn in names]
+    calls: list[tuple[Any, str, Any]] = []
+    for fqn in asked:
+        calls.append((GetParameters, f'{fqn}/get_parameters', GetParameters.Request(names=names[fqn])))
+        calls.append((DescribeParameters, f'{fqn}/describe_parameters',
+                      DescribeParameters.Request(names=names[fqn])))
+    answers = _call_many(node, calls, max(deadline, time.monotonic() + 1.0)) if calls else []
+    out: dict[str, dict[str, ObservedParameter] | None] = {fqn: None for fqn in fqns}
+    for i, fqn in enumerate(asked):
+        values, descriptors = answers[2 * i], answers[2 * i + 1]
+        if values is not None and descriptors is not None:
+            out[fqn] = _parameter_table(names[fqn], values, descriptors)
+    return out
+
+
+def read_lifecycle_states(node: Any, fqns: list[str], timeout: float) -> dict[str, str | None]:
+    """The lifecycle state (``unconfigured``, ``inactive``, ``active``, ``finalized``) each
+    lifecycle node of ``fqns`` reports through its ``~/get_state`` service, read at once;
+    None for one that did not answer within ``timeout`` seconds."""
+    from lifecycle_msgs.srv import GetState  # type: ignore[import-untyped]
+
+    answers = _call_many(node, [(GetState, f'{fqn}/get_state', GetState.Request()) for fqn in fqns],
+                         time.monotonic() + timeout)
+    return {fqn: (str(a.current_state.label) or None) if a is not None else None
+            for fqn, a in zip(fqns, answers)}
 
 
 def _spin_until(node: Any, deadline: float) -> None:

@@ -14,6 +14,8 @@ with real rclpy nodes.
 * :func:`node_name_after_remaps`, :func:`node_fqn` -- the node's own final
   name.  The ``__node`` rule is looked up with the node's name as created;
   the ``__ns`` rule with the name after ``__node``.
+* :func:`declared_names` -- the inverse: the names a node could declare that become a
+  given final name (``nodl describe --all --launch`` undoes remaps with it).
 * :func:`resolve_name` -- expansion, then the first matching rule (a
   node-scoped rule applies only to the node of that final name; the match
   side is expanded against the final name and namespace), then the check
@@ -32,7 +34,8 @@ from __future__ import annotations
 
 from nodl_schema.naming.remap_rules import (RULE_KINDS, InvalidRemapRuleError, RemapArgs, RemapRule,
                                             parse_remap_rule, parse_remap_rules)
-from nodl_schema.naming.resolution import (NodeNames, expand, expand_name, fully_qualified,
+from nodl_schema.naming.resolution import (NodeNames, declared_names, expand, expand_name,
+                                           fully_qualified,
                                            join_name, node_fqn, node_name_after_remaps,
                                            node_namespace_after_remaps, relativize, resolve_name,
                                            split_name)
@@ -44,5 +47,5 @@ __all__ = [
     'NodeNames', 'topic_name_error', 'full_name_error', 'namespace_error', 'node_name_error',
     'normalize_namespace', 'expand_name', 'parse_remap_rule', 'parse_remap_rules',
     'node_name_after_remaps', 'node_namespace_after_remaps', 'node_fqn', 'resolve_name',
-    'join_name', 'split_name', 'expand', 'relativize', 'fully_qualified',
+    'join_name', 'split_name', 'expand', 'relativize', 'fully_qualified', 'declared_names',
 ]

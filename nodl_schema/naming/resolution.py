@@ -14,7 +14,7 @@ from nodl_schema.vocabulary import NAME_SUBSTITUTIONS
 
 __all__ = ['expand_name', 'node_name_after_remaps', 'node_namespace_after_remaps', 'NodeNames',
            'node_fqn', 'resolve_name', 'join_name', 'split_name', 'expand', 'relativize',
-           'fully_qualified']
+           'fully_qualified', 'declared_names']
 
 
 # -- expansion (rcl_expand_topic_name) ---------------------------------------------------------
@@ -300,6 +300,51 @@ def resolve_name(name: str, node_name: str, namespace: str, remap_args: RemapArg
     must be a valid fully qualified name (else :class:`InvalidNameError`).
     """
     return NodeNames.create(node_name, namespace, remap_args).resolve(name, service=service)
+
+
+def declared_names(final: str, names: NodeNames, *, service: bool = False) -> list[str]:
+    """Every name the node ``names`` could declare that resolves to the final name ``final``
+    (a topic, or with ``service=True`` a service): the inverse of :meth:`NodeNames.resolve`.
+
+    Candidates are the match side of each of the node's rules whose replacement expands to
+    ``final``, then ``final`` itself; each is offered as ``~/x`` (under the node), relative
+    (under its namespace, the root included) and absolute, in that order, and kept only if
+    the node really resolves it to ``final`` (a rule may take it elsewhere).  Empty when no
+    name the node could declare becomes ``final`` (then it came from elsewhere: a
+    parameter, a remapping only the running launch knows...).
+    """
+    namespace, own, under = names._prefixes()
+    expanded: list[str] = []
+    if names.rules:
+        wanted = 'service' if service else 'topic'
+        for rule in names.rules:
+            if rule.kind not in ('name', wanted) or not rule.applies_to(names.name) or not rule.match:
+                continue
+            try:
+                if _expand(rule.replacement, names.name, namespace) == final:
+                    expanded.append(_expand(rule.match, names.name, namespace))
+            except ValueError:
+                continue
+    expanded.append(final)
+    out: list[str] = []
+    for full in expanded:
+        forms = []
+        if full == own:
+            forms.append('~')
+        elif full.startswith(own + '/'):
+            forms.append('~' + full[len(own):])
+        if full.startswith(under) and len(full) > len(under):
+            forms.append(full[len(under):])
+        forms.append(full)
+        for form in forms:
+            if form in out:
+                continue
+            try:
+                if names.resolve(form, service=service) == final:
+                    out.append(form)
+            except ValueError:
+                continue
+    return out
 
 
 # -- joining and splitting fully qualified names -----------------------------------------------

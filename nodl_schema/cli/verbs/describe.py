@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from nodl_schema.cli.arguments import node_name, seconds
-from nodl_schema.cli.verb import EXIT_OK, EXIT_USAGE, Verb
+from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
 
 class DescribeVerb(Verb):
@@ -21,6 +21,11 @@ class DescribeVerb(Verb):
                             help='file to write (with --all: a directory); default: standard output')
         parser.add_argument('--all', action='store_true',
                             help='describe every node in the graph, one file each in -o DIR')
+        parser.add_argument('--launch', nargs='+', metavar=('LAUNCH', 'NAME:=VALUE'),
+                            help='with --all: describe the running system LAUNCH (with its launch '
+                                 'arguments) started into the definitions folder -o DIR: '
+                                 'DIR/<package>/<executable>.nodl.yaml, instances merged, remaps '
+                                 'undone, composable nodes recorded in DIR/<package>/nodes.yaml')
         parser.add_argument('--timeout', type=seconds, default=5.0, metavar='S',
                             help='seconds to wait for the node to appear and settle (default: 5)')
         parser.add_argument('--no-parameters', action='store_true',
@@ -34,6 +39,9 @@ class DescribeVerb(Verb):
 
         add_client_library_argument(parser, 'deduced from the node: rclcpp if it subscribes to '
                                             '/parameter_events, else rclpy')
+        from nodl_schema.cli.arguments import add_launch_code_arguments
+
+        add_launch_code_arguments(parser)
 
     def main(self, args: argparse.Namespace) -> int:
         import os
@@ -42,6 +50,10 @@ class DescribeVerb(Verb):
         from nodl_schema.live.describe import describe_node, render_description
         from nodl_schema.live.session import LiveError
 
+        if args.launch and not args.all:
+            print('nodl describe: error: --launch describes a whole system: give --all -o DIR '
+                  'with it', file=sys.stderr)
+            return EXIT_USAGE
         if args.all == bool(args.node):
             print('nodl describe: error: give a NODE, or --all with -o DIR', file=sys.stderr)
             return EXIT_USAGE
@@ -52,6 +64,12 @@ class DescribeVerb(Verb):
             print(f'nodl describe: error: cannot write into {args.output}: not a directory '
                   '(--all writes one file per node into -o DIR)', file=sys.stderr)
             return EXIT_USAGE
+        if args.no_exec and not args.launch:
+            print('nodl describe: error: --no-exec is about the launch file: it needs --launch',
+                  file=sys.stderr)
+            return EXIT_USAGE
+        if args.launch:
+            return self._describe_launch(args)
         try:
             if args.all:
                 from nodl_schema.live.describe_all import describe_all
@@ -61,8 +79,10 @@ class DescribeVerb(Verb):
                                            parameters=not args.no_parameters, format=args.format,
                                            client_library=args.client_library, force=args.force)
                 except OSError as exc:
+                    from nodl_schema.files import describe_os_error
+
                     raise OutputError(f'cannot write {exc.filename or args.output}: '
-                                      f'{exc.strerror or exc}') from None
+                                      f'{describe_os_error(exc)}') from None
                 if not written:
                     print(f'nodl describe: error: no node found in the graph within '
                           f'{args.timeout:g} s (ROS_DOMAIN_ID={os.environ.get("ROS_DOMAIN_ID", "0")}; '
@@ -94,3 +114,52 @@ class DescribeVerb(Verb):
         write_marked(args.output, text, force=args.force, make_parents=True)
         print(f'{description.fqn} -> {args.output}')
         return EXIT_OK
+
+    def _describe_launch(self, args: argparse.Namespace) -> int:
+        """``--all --launch LAUNCH [NAME:=VALUE...] -o DIR``."""
+        import os
+
+        from nodl_schema.cli.arguments import launch_limits
+        from nodl_schema.cli.output import OutputError
+        from nodl_schema.live.session import LiveError
+
+        prog = 'nodl describe'
+        launch_file, *items = args.launch
+        arguments: dict[str, str] = {}
+        for item in items:
+            name, sep, value = item.partition(':=')
+            if not sep or not name:
+                print(f"{prog}: error: launch argument '{item}' is not NAME:=VALUE", file=sys.stderr)
+                return EXIT_USAGE
+            arguments[name] = value
+        if not os.path.isfile(launch_file):
+            why = 'is a directory' if os.path.isdir(launch_file) else 'no such file'
+            print(f'{launch_file}: error: cannot read the launch file: {why} [NODL020]',
+                  file=sys.stderr)
+            return EXIT_USAGE
+        from nodl_schema.live.describe_launch import describe_launch
+
+        try:
+            result = describe_launch(launch_file, arguments, args.output, timeout=args.timeout,
+                                     parameters=not args.no_parameters, format=args.format,
+                                     client_library=args.client_library, force=args.force,
+                                     limits=launch_limits(args))
+        except LiveError as exc:
+            print(f'{prog}: error: {exc}', file=sys.stderr)
+            return EXIT_USAGE
+        except OSError as exc:
+            from nodl_schema.files import describe_os_error
+
+            raise OutputError(f'cannot write {exc.filename or args.output}: '
+                              f'{describe_os_error(exc)}') from None
+        for overlay in result.files:
+            print(f'{overlay.path} <- ' + ', '.join(i.fqn for i in overlay.instances))
+        for path in result.nodes_files:
+            print(f'{path} (what registrations would record)')
+        for fqn, why in result.left_out:
+            print(f'  left out: {fqn}: {why}', file=sys.stderr)
+        for diagnostic in result.diagnostics:
+            print(diagnostic, file=sys.stderr)
+        if result.unreadable:
+            return EXIT_USAGE
+        return EXIT_FAILURE if result.errors else EXIT_OK
