@@ -386,7 +386,8 @@ class _Evaluator:
 
     def register_node(self, command: Command, first: list[str]) -> None:
         library = first[0]
-        keys = {'PLUGIN': None, 'EXECUTABLE': None, 'EXECUTOR': None, 'RESOURCE_INDEX': None}
+        keys: dict[str, str | None] = {'PLUGIN': None, 'EXECUTABLE': None, 'EXECUTOR': None,
+                                       'RESOURCE_INDEX': None}
         current = None
         for item in first[1:]:
             if item in keys:
@@ -445,8 +446,8 @@ class _Evaluator:
         inner['ARGN'] = [';'.join(values[len(function.params):])]
         inner['ARGV'] = [';'.join(values)]
         inner['ARGC'] = [str(len(values))]
-        for index, value in enumerate(values):
-            inner[f'ARGV{index}'] = [value]
+        for index, item in enumerate(values):
+            inner[f'ARGV{index}'] = [item]
         self.run(function.body, inner, depth + 1)
         if function.macro:
             for key, value in inner.items():

@@ -1054,15 +1054,15 @@ class _Scan:
                 return qos
             return _Unknown(_RUNTIME, self.r.loc(items[0] if items else where))
         if method in ('reliability', 'durability', 'history', 'liveliness') and items:
-            word = _policy(_squash(_text(items[0])))
-            if word is None:
+            policy = _policy(_squash(_text(items[0])))
+            if policy is None:
                 return _Unknown(_RUNTIME, self.r.loc(items[0]))
             if method == 'history':
-                if word == 'KEEP_ALL':
+                if policy == 'KEEP_ALL':
                     qos.depth = None
-                qos.history = word
+                qos.history = policy
             else:
-                setattr(qos, method, word)
+                setattr(qos, method, policy)
             return qos
         if method in ('deadline', 'lifespan', 'liveliness_lease_duration') and items:
             ns = self.duration(items[0])
