@@ -59,17 +59,30 @@ def check_paths(paths: Iterable[str], kind: Kind | None = None,
 
 
 def iter_check_paths(paths: Iterable[str], kind: Kind | None = None,
-                     resolve: bool = False, *, client_library: str | None = None
-                     ) -> Iterator[FileResult]:
+                     resolve: bool = False, *, client_library: str | None = None,
+                     types: bool = False, package_dir: str | None = None,
+                     build: bool = False) -> Iterator[FileResult]:
     """Check the files named by ``paths`` one at a time, yielding each result as soon as it is known.
 
-    ``resolve`` and ``client_library`` as for :func:`check_paths`.
+    ``resolve`` and ``client_library`` as for :func:`check_paths`.  With ``types``
+    (implied by ``package_dir``), every endpoint type is also checked against the
+    installed interfaces (one index snapshot for the whole run; see
+    :func:`nodl_schema.interface_types.check.check_types`): ``package_dir`` is the
+    package the files belong to (its own types resolve from its source, and its
+    ``package.xml`` must declare each interface package); a registered definition is
+    checked against its installed package's manifest.  ``build``: checked while the
+    package builds (a declared but uninstalled dependency is a warning).
 
     Besides one result per file (a report, or the problem that kept it from
     being read), it yields notes (``result.note``): a file a directory scan
     skipped, or a named pipe about to be read that has no writer yet (the
     read waits for one).
     """
+    index = None
+    if types or package_dir is not None:
+        from nodl_schema.interface_types import interface_index
+
+        index = interface_index([package_dir] if package_dir is not None else [])
     for target in iter_nodl_files(paths):
         if target.skipped is not None:
             yield FileResult(target.path, note=f'skipped: {target.skipped}')
@@ -100,7 +113,24 @@ def iter_check_paths(paths: Iterable[str], kind: Kind | None = None,
             from nodl_schema.composition.bases import DEFAULT_CLIENT_LIBRARY
 
             diagnostics = compose_report(report, client_library=client_library or DEFAULT_CLIENT_LIBRARY)[1]
+        if index is not None and report.kind in (Kind.NODE, Kind.INTERFACE):
+            diagnostics = _with_types(report, diagnostics, index, package_dir, build)
         yield FileResult(report.file, report, diagnostics=diagnostics)
+
+
+def _with_types(report: Report, diagnostics: list[Diagnostic], index: object,
+                package_dir: str | None, build: bool) -> list[Diagnostic]:
+    """``diagnostics`` and those of the type check; a short name the check resolved
+    (NODL253, which names the full form) replaces the generic NODL205."""
+    from nodl_schema.interface_types.check import check_types, manifest_for
+    from nodl_schema.interface_types.resolve import InterfaceIndex
+
+    assert isinstance(index, InterfaceIndex)
+    manifest = manifest_for(report.file, package_dir) if report.file != '<stdin>' or package_dir else None
+    found = check_types(report, index, manifest, build=build)
+    resolved = {d.path for d in found if d.code == 'NODL253'}
+    kept = [d for d in diagnostics if not (d.code == 'NODL205' and d.path in resolved)]
+    return sorted(kept + found, key=lambda d: (d.file != report.file, d.line, d.column))
 
 
 def _read_pipe_if_written(path: str) -> bytes | None:

@@ -201,3 +201,45 @@ def test_junit_has_one_test_case_per_file() -> None:
     assert failure.text.splitlines()[0].startswith('examples/mistakes/typos.yaml:4:7: error: ')
     warned = ElementTree.fromstring(lenient.stdout).find(f"testcase[@name='{warning_only}']")
     assert warned is not None and '[NODL216]' in (warned.findtext('system-out') or '')
+
+
+# --- --types and --package: endpoint types against the installed interfaces ---------------
+
+TYPES = FIXTURES / 'interface_types'
+
+
+def _typed(*args: str) -> subprocess.CompletedProcess[str]:
+    env = dict(os.environ, AMENT_PREFIX_PATH=sys.prefix)
+    return subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', *args], cwd=REPO,
+                          text=True, capture_output=True, timeout=60, env=env)
+
+
+def test_types_reports_wrong_types_at_the_type_value() -> None:
+    plain = _typed(rel(TYPES / 'wrong_types.nodl.yaml'))
+    assert plain.returncode == 0, plain.stdout  # without --types, names are only well-formed
+    result = _typed('--types', rel(TYPES / 'wrong_types.nodl.yaml'))
+    assert result.returncode == 1
+    file = rel(TYPES / 'wrong_types.nodl.yaml')
+    assert (f"{file}:4:11: error: 'sensor_msgs/msg/LaserScn': package 'sensor_msgs' defines no "
+            "message 'LaserScn'; did you mean 'sensor_msgs/msg/LaserScan'?") in result.stdout
+    assert f'{file}:8:11: warning:' in result.stdout and '[NODL253]' in result.stdout
+    assert '[NODL205]' not in result.stdout  # the resolved short name replaces the generic warning
+    assert result.stdout.rstrip().endswith('1 file, 4 errors, 1 warning')
+
+
+def test_package_checks_dependencies_and_own_types() -> None:
+    result = _typed('--package', rel(TYPES / 'types_pkg'),
+                    rel(TYPES / 'types_pkg' / 'nodl' / 'device.nodl.yaml'))
+    assert result.returncode == 1
+    assert [c for c in ('NODL255', 'NODL256', 'NODL258', 'NODL250') if f'[{c}]' in result.stdout] == [
+        'NODL255', 'NODL256', 'NODL258', 'NODL250']
+    assert 'Traceback' not in result.stderr
+    at_build = _typed('--types-at-build', '--package', rel(TYPES / 'types_pkg'),
+                      rel(TYPES / 'types_pkg' / 'nodl' / 'device.nodl.yaml'))
+    assert '[NODL257]' in at_build.stdout and '[NODL250]' not in at_build.stdout
+
+
+def test_package_without_manifest_is_a_usage_error(tmp_path: Path) -> None:
+    result = _typed('--package', str(tmp_path), rel(TYPES / 'wrong_types.nodl.yaml'))
+    assert result.returncode == 2
+    assert 'no package.xml there' in result.stderr

@@ -35,6 +35,19 @@ class ValidateVerb(Verb):
                             help="also compose node definitions: every mixin reference must "
                                  "resolve (nodl:// through the ament index, paths relative to "
                                  "the file) to a valid interface definition")
+        parser.add_argument('--types', action='store_true',
+                            help='also check every endpoint type against the installed '
+                                 'interfaces (AMENT_PREFIX_PATH): the package, the type and '
+                                 'its kind must exist; a registered definition\'s interface '
+                                 'packages must be run-time dependencies in its package.xml')
+        parser.add_argument('--package', metavar='DIR', dest='package_dir',
+                            help='the files belong to the package in DIR (implies --types): '
+                                 'its own msg/, srv/ and action/ types resolve from its source, '
+                                 'and its package.xml must declare each interface package')
+        parser.add_argument('--types-at-build', action='store_true',
+                            help='with --types: checked while the package builds (ament_nodl), '
+                                 'where an interface package declared in package.xml but not '
+                                 'installed is a warning, not an error')
         from nodl_schema.cli.arguments import add_client_library_argument
 
         add_client_library_argument(parser, 'rclpy; with --resolve, the base of this client '
@@ -77,8 +90,16 @@ class ValidateVerb(Verb):
                 stream.before_write = progress.clear
         if '-' in args.paths and sys.stdin.isatty():
             print('nodl validate: note: reading standard input (end it with Ctrl-D)', file=sys.stderr)
+        if args.package_dir is not None:
+            import os
+
+            if not os.path.isfile(os.path.join(args.package_dir, 'package.xml')):
+                print(f'nodl validate: --package {args.package_dir}: no package.xml there '
+                      '(give the folder of a ROS package)', file=sys.stderr)
+                return EXIT_USAGE
         results = iter_check_paths(args.paths, Kind(args.kind) if args.kind else None, args.resolve,
-                                   client_library=args.client_library)
+                                   client_library=args.client_library, types=args.types,
+                                   package_dir=args.package_dir, build=args.types_at_build)
         for result in results:
             if result.note is not None:
                 print(f'{result.path}: note: {result.note}', file=sys.stderr)
