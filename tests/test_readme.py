@@ -120,3 +120,15 @@ def test_python_api_examples_run_and_give_the_results_they_show(tmp_path) -> Non
         os.chdir(cwd)
     assert not problems, '\n'.join(problems)
     assert checked >= 20
+
+
+def test_quoted_extract_example_is_what_the_tool_prints() -> None:
+    block = re.search(r'```text\n\$ nodl extract (\S+)\n(.*?)```', README, re.S)
+    assert block, 'README lost its `nodl extract` example'
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'extract', block.group(1)], cwd=REPO,
+                            text=True, capture_output=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    printed = result.stdout.splitlines()
+    for line in block.group(2).splitlines():
+        if line and line != '...':
+            assert line in printed, line

@@ -141,9 +141,8 @@ class ExtractVerb(Verb):
                         sys.stdout.write(f'{"" if index == 0 else chr(10)}# ==> {paths[id(node)]} <==\n')
                     sys.stdout.write(draft_text(node, relative_to=os.getcwd()))
                 sys.stdout.flush()
-                stream = sys.stderr
-            else:
-                stream = sys.stdout
+            # the drafts own standard output when they are printed; the diagnostics then go to stderr
+            stream = sys.stdout if args.output or args.diff else sys.stderr
             stream.write(format_text(without_info(diagnostics)))
             for path in written:
                 stream.write(f'wrote {path}\n')
@@ -152,7 +151,7 @@ class ExtractVerb(Verb):
         if args.format == 'sarif':
             from nodl_schema.reporting.sarif import format_sarif
 
-            sys.stdout.write(format_sarif(diagnostics))
+            sys.stdout.write(format_sarif(without_info(diagnostics)))
         elif args.format == 'junit':
             from nodl_schema.reporting.junit import JUnitCase, format_junit
 
