@@ -236,3 +236,51 @@ def test_usage_errors(args: list[str], message: str) -> None:
     result = nodl('describe', *args)
     assert result.returncode == 2
     assert message in result.stderr
+
+
+# -- the round trip: the overlay analysed against the same running system ------------------
+
+
+def _live_endpoints(fqns: list[str]) -> dict[str, set[tuple[str, str]]]:
+    """What the live graph shows of each node: ``(section, final name)`` of its own endpoints."""
+    from nodl_schema.live.observe import observe_settled, settle_nodes
+    from nodl_schema.live.session import ros_session
+
+    with ros_session() as session:
+        raw, _ = settle_nodes(session, {fqn: 1 for fqn in fqns}, 15)
+        out = {}
+        for fqn in fqns:
+            observed = observe_settled(session, fqn, raw[fqn])
+            out[fqn] = {(section, e.name) for section in
+                        ('publishers', 'subscriptions', 'service_servers', 'service_clients',
+                         'action_servers', 'action_clients') for e in getattr(observed, section)}
+    return out
+
+
+def test_round_trip_the_overlay_serves_the_analysis_of_the_same_system(described) -> None:
+    from nodl_schema.targets.overlay import read_folders, using
+
+    out, _ = described
+    result = nodl('analyse', str(SYSTEM), 'rate:=5', '--definitions', str(out), '--format', 'json')
+    report = json.loads(result.stdout)
+    findings = [(f['code'], f['message']) for f in report['findings']
+                if f['severity'] in ('error', 'warning')]
+    # no node lacks a definition; the only findings are the system's real problems
+    assert not [f for f in findings if f[0] == 'NODL564'], findings
+    topics = sorted((code, message.split()[1]) for code, message in findings)
+    assert topics == [('NODL551', '/diagnostics'), ('NODL551', '/shared/chatter'),
+                      ('NODL552', '/diagnostics'), ('NODL555', 'subscription')], findings
+    assert '/cmd_vel' in findings[-1][1]
+
+    # every final endpoint name the analysis computes is one the live graph shows
+    with using(read_folders([(str(out), '--definitions')])):
+        analysis = analyse_launch(SYSTEM, {'rate': '5'}, checks={})
+    computed = {}
+    for node in analysis.nodes:
+        assert node.instance is not None, node
+        computed[node.fqn] = {e.name for e in node.instance.endpoints}
+    live = _live_endpoints(sorted(computed))
+    for fqn, finals in computed.items():
+        assert finals == {name for _, name in live[fqn]}, fqn
+    assert '/shared/chatter' in computed['/left/talker']
+    assert '/sensors/front/image' in computed['/sensors/front_camera']
