@@ -376,3 +376,37 @@ def test_no_module_outside_naming_joins_ros_names_by_hand() -> None:
                 found.append(f'{relative}:{number}: {code}')
     assert not found, 'use nodl_schema.naming (join_name, expand_name, resolve_name, node_fqn):\n' \
         + '\n'.join(found)
+
+
+# -- declared_names: the inverse of resolution (describe --all --launch) -------------------
+
+
+@pytest.mark.parametrize('final, node, namespace, rules, service, expected', [
+    # a remap undone: the match side as the node declares it, then what else resolves there
+    ('/shared/chat', 'talker', '/robot', ['chatter:=/shared/chat'], False,
+     ['chatter', '/robot/chatter', '/shared/chat']),
+    # the node renamed by __node: ~ stands for its final name
+    ('/robot/talk1/x', 'talker', '/robot', ['__node:=talk1'], False,
+     ['~/x', 'talk1/x', '/robot/talk1/x']),
+    # a name a rule takes elsewhere cannot be declared to reach it
+    ('/robot/chatter', 'talker', '/robot', ['chatter:=/shared/chat'], False, []),
+    # outside the namespace: absolute only
+    ('/other', 'talker', '/robot', [], False, ['/other']),
+    # at the root every name is under the namespace: relative first
+    ('/scan', 'a', '/', [], False, ['scan', '/scan']),
+    # a rosservice:// rule applies to services only
+    ('/srv2', 'n', '/', ['rosservice://srv:=srv2'], True, ['srv', '/srv', 'srv2', '/srv2']),
+    ('/srv2', 'n', '/', ['rosservice://srv:=srv2'], False, ['srv2', '/srv2']),
+    # a rule for another node does not apply
+    ('/b', 'n', '/', ['other:a:=b'], False, ['b', '/b']),
+])
+def test_declared_names_resolve_back_to_the_final_name(final: str, node: str, namespace: str,
+                                                       rules: list[str], service: bool,
+                                                       expected: list[str]) -> None:
+    from nodl_schema.naming import NodeNames, declared_names
+
+    names = NodeNames.create(node, namespace, rules)
+    found = declared_names(final, names, service=service)
+    assert found == expected
+    for name in found:
+        assert names.resolve(name, service=service) == final
