@@ -403,9 +403,11 @@ def render_source(node: CppNode) -> str:
               '    });',
               '}', '',
               f'std::string {c}::validate_parameters(const Params & params) const', '{']
-    if not plan.parameters:
+    checks = cparams.validate_lines(plan, 'params', '  ')
+    if not any('params' in line for line in checks):
+        # parameters without validators: nothing reads it (-Wunused-parameter)
         lines.append('  (void)params;')
-    lines += cparams.validate_lines(plan, 'params', '  ')
+    lines += checks
     lines += ['}', '',
               f'rcl_interfaces::msg::SetParametersResult {c}::on_set_parameters(',
               '  const std::vector<rclcpp::Parameter> & parameters)', '{',
