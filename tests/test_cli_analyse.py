@@ -189,13 +189,101 @@ def test_help_says_what_runs() -> None:
 
 
 def test_a_file_that_is_not_a_launch_file_is_named_with_exit_2() -> None:
-    """A node definition (or any other file) given to analyse: what it is, exit 2, no
-    launch-syntax error about its first line."""
+    """A file that is neither a launch file nor a node definition given to analyse: what it
+    is, exit 2, no launch-syntax error about its first line.  (A node definition is analysed
+    as a system of one node: see test_explicit_definitions_are_analysed_without_a_launch_file.)"""
     definition = FIXTURES / 'prefix' / 'share' / 'nav' / 'nodl' / 'planner.nodl.yaml'
     done = run('analyse', str(definition))
-    assert done.returncode == 2, done.stderr
-    assert 'this is a NoDL node definition, not a launch file' in done.stderr
-    assert '[NODL531]' in done.stderr and 'NODL501' not in done.stderr + done.stdout
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines()[-2:] == ['1 node: 1 from files', '1 node, 0 errors, 4 warnings, 1 info']
+    assert 'NODL501' not in done.stderr + done.stdout
+    interface = REPO / 'tests' / 'fixtures' / 'overlays' / 'defs' / 'upstream_drv' / 'interfaces'
+    done = run('analyse', str(interface / 'status.nodl.yaml'))
+    assert done.returncode == 2 and '[NODL531]' in done.stderr
+    assert 'this is a NoDL interface definition, not a launch file' in done.stderr
     notes = REPO / 'tests' / 'fixtures' / 'launch' / 'not_launch' / 'notes.md'
     done = run('analyse', str(notes))
     assert done.returncode == 2 and 'neither an XML, a YAML nor a Python launch file' in done.stderr
+
+
+OVERLAYS = REPO / 'tests' / 'fixtures' / 'overlays'
+
+
+def test_definitions_folders_serve_nodes_with_their_source_in_json_and_a_coverage_line() -> None:
+    launch = str(OVERLAYS / 'launch' / 'system.launch.xml')
+    done = run('analyse', launch, '--definitions', str(OVERLAYS / 'defs'), '--format', 'json')
+    assert done.returncode == 0, done.stderr
+    nodes = {n['name']: (n['definition_source'], n['definition_folder'], n['definition_provenance'])
+             for n in json.loads(done.stdout)['nodes']}
+    folder = str(OVERLAYS / 'defs')
+    assert nodes == {'/planner': ('index', None, None), '/controller': ('overlay', folder, 'extracted'),
+                     '/drv': ('overlay', folder, None), '/thing': (None, None, None)}
+    assert '4 nodes: 1 registered, 2 overlay, 1 without definition' in done.stderr
+    text = run('analyse', launch, '--definitions', str(OVERLAYS / 'defs'), '-v').stdout.splitlines()
+    assert text[-2:] == ['4 nodes: 1 registered, 2 overlay, 1 without definition',
+                         '4 nodes, 0 errors, 6 warnings, 1 info']
+    assert f'/drv: {folder}/upstream_drv/driver.nodl.yaml (overlay {folder})' in text
+    # without the folder: the index alone (nav controller from the index, upstream_drv unknown)
+    alone = run('analyse', launch).stdout.splitlines()
+    assert alone[-2] == '4 nodes: 2 registered, 0 overlay, 2 without definition'
+
+
+def test_a_project_configuration_and_nodl_path_give_folders(tmp_path: Path) -> None:
+    done = run('analyse', str(OVERLAYS / 'project' / 'launch' / 'system.launch.xml'))
+    assert done.stdout.splitlines()[-2] == '4 nodes: 1 registered, 2 overlay, 1 without definition'
+    env = dict(os.environ, AMENT_PREFIX_PATH=str(FIXTURES / 'prefix'),
+               NODL_PATH=str(OVERLAYS / 'defs'))
+    via_env = subprocess.run([sys.executable, '-m', 'nodl_schema', 'analyse',
+                              str(OVERLAYS / 'launch' / 'system.launch.xml')], cwd=REPO, env=env,
+                             capture_output=True, text=True, timeout=120)
+    assert via_env.stdout.splitlines()[-2] == \
+        '4 nodes: 1 registered, 2 overlay, 1 without definition'
+
+
+def test_a_bad_definitions_folder_is_located_findings_and_exit_1() -> None:
+    done = run('analyse', str(OVERLAYS / 'launch' / 'system.launch.xml'),
+               '--definitions', str(OVERLAYS / 'bad'))
+    assert done.returncode == 1
+    assert re.search(r'bad/my_pkg/nodes\.yaml:2:11: error: .*other_pkg.*\[NODL242\]', done.stdout)
+    assert done.stdout.count('[NODL240]') == 4 and 'Traceback' not in done.stderr
+    missing = run('analyse', str(OVERLAYS / 'launch' / 'system.launch.xml'),
+                  '--definitions', 'no_such_dir')
+    assert missing.returncode == 2 and 'no such folder [NODL246]' in missing.stderr
+
+
+def test_explicit_definitions_are_analysed_without_a_launch_file() -> None:
+    driver = str(OVERLAYS / 'defs' / 'upstream_drv' / 'driver.nodl.yaml')
+    # (its nodl://upstream_drv/status mixin is served by the definitions folder alone)
+    failed = run('analyse', driver, 'nav', 'planner', '--format', 'json')
+    assert failed.returncode == 1 and '1 node: 1 registered' in failed.stderr
+    assert 'NODL301' in {f['code'] for f in json.loads(failed.stdout)['findings']}
+    defs = ('--definitions', str(OVERLAYS / 'defs'))
+    done = run('analyse', driver, 'nav', 'planner', '--name', '/robot/drv', '--format', 'json', *defs)
+    assert done.returncode == 0, done.stderr
+    data = json.loads(done.stdout)
+    assert [(n['name'], n['definition_source']) for n in data['nodes']] == [
+        ('/robot/drv', 'file'), ('/planner', 'index')]
+    # the driver's /scan reaches the planner only through a remapping rule
+    codes = {(f['code'], f.get('endpoint')) for f in data['findings']}
+    assert ('NODL555', '/scan') in codes
+    remapped = run('analyse', driver, 'nav', 'planner', '--remap', 'drv:scan:=/scan',
+                   '--name', '/robot/drv', '--format', 'json', *defs)
+    assert ('NODL555', '/scan') not in {(f['code'], f.get('endpoint'))
+                                        for f in json.loads(remapped.stdout)['findings']}
+    assert '2 nodes: 1 registered, 0 overlay, 1 from files, 0 without definition' in done.stderr
+    # an invalid definition: its errors, exit 1; a package without it: NODL306, exit 1
+    ghost = run('analyse', 'nav', 'ghost')
+    assert ghost.returncode == 1 and '[NODL306]' in ghost.stdout
+
+
+def test_a_file_neither_launch_file_nor_definition_stays_exit_2(tmp_path: Path) -> None:
+    params = tmp_path / 'params.yaml'
+    params.write_text('node:\n  ros__parameters: {a: 1}\n')
+    driver = str(OVERLAYS / 'defs' / 'upstream_drv' / 'driver.nodl.yaml')
+    for args in ((str(params),), (driver, str(params)), (driver, str(tmp_path / 'none.nodl.yaml'))):
+        done = run('analyse', *args)
+        assert done.returncode == 2 and 'Traceback' not in done.stderr, done.stderr
+    assert '[NODL531]' in run('analyse', driver, str(params)).stderr
+    mixed = run('analyse', driver, str(OVERLAYS / 'launch' / 'system.launch.xml'))
+    assert mixed.returncode == 2 and 'not both' in mixed.stderr
+    assert run('analyse', str(OVERLAYS / 'launch' / 'system.launch.xml'), '--name', 'x').returncode == 2

@@ -122,3 +122,30 @@ def test_lists_what_the_references_ament_nodl_register_installed() -> None:
                                    for name in ('lidar', 'listener', 'sensor_common', 'talker')]
     everything = json.loads(nodl('--format', 'json', prefixes=reference).stdout)
     assert ('custom_pkg', 'custom_exe') in {(r['package'], r['name']) for r in everything}
+
+
+OVERLAYS = FIXTURES / 'overlays'
+
+
+def test_definitions_folders_come_first_with_their_origin() -> None:
+    defs = str(OVERLAYS / 'defs')
+    prefix = str(FIXTURES / 'analysis' / 'prefix')
+    result = nodl('--definitions', defs, prefixes=prefix)
+    assert result.returncode == 0, result.stderr
+    origins = {(line.split()[0], line.split()[2]): line.split()[3] for line in result.stdout.splitlines()}
+    assert origins[('nav', 'controller')] == 'overlay(extracted)'   # shadows the index's
+    assert origins[('nav', 'planner')] == 'index'
+    assert origins[('upstream_drv', 'fusion')] == 'overlay(described)'
+    assert origins[('upstream_drv', 'status')] == 'overlay'
+    data = json.loads(nodl('nav', '--definitions', defs, '--format', 'json', prefixes=prefix).stdout)
+    assert [(d['name'], d['origin'], d['folder'], d['provenance']) for d in data] == [
+        ('controller', 'overlay', defs, 'extracted'), ('planner', 'index', None, None)]
+
+
+def test_a_bad_folder_is_reported_and_exit_1() -> None:
+    result = nodl('--definitions', str(OVERLAYS / 'bad'), prefixes=None)
+    assert result.returncode == 1
+    assert '[NODL243]' in result.stderr and '[NODL242]' in result.stderr
+    assert rows(result.stdout) == [('my_pkg', 'node', 'node',
+                                    str(OVERLAYS / 'bad' / 'my_pkg' / 'node.nodl.yaml'))]
+    assert nodl('--definitions', 'nowhere').returncode == 2

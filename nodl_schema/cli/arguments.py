@@ -7,13 +7,15 @@ import os
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from typing import Callable
+
     from nodl_schema.launch.sandbox import LaunchLimits
     from nodl_schema.targets.overlay import Definitions
 
 __all__ = ['seconds', 'node_name', 'definition_problem', 'add_client_library_argument',
            'positive_seconds', 'mebibytes', 'add_launch_code_arguments', 'launch_limits',
            'LAUNCH_CODE_HELP', 'add_definitions_argument', 'load_definitions',
-           'definitions_failed']
+           'definitions_failed', 'run_with_definitions']
 
 
 def seconds(text: str) -> float:
@@ -170,3 +172,19 @@ def definitions_failed(definitions: Definitions) -> bool:
     from nodl_schema.diagnostics import Severity
 
     return any(d.severity is Severity.ERROR for d in definitions.diagnostics)
+
+
+def run_with_definitions(args: argparse.Namespace, prog: str, run: Callable[[], int],
+                         start: str | None = None) -> int:
+    """``run()`` with the definitions folders of :func:`load_definitions` in force (every
+    look-up of a registered definition consults them first): its exit status, made 1 at
+    least when a folder's layout has errors."""
+    from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK
+    from nodl_schema.targets.overlay import using
+
+    definitions = load_definitions(args, prog, start)
+    if isinstance(definitions, int):
+        return definitions
+    with using(definitions):
+        status = run()
+    return EXIT_FAILURE if status == EXIT_OK and definitions_failed(definitions) else status

@@ -39,6 +39,9 @@ class PolicyResult(NamedTuple):
 
     policy: Policy
     diagnostics: list[Diagnostic]
+    #: Where each node's definition came from (``index``, ``overlay``, ``file``, ``none``),
+    #: for the coverage line (:func:`nodl_schema.targets.resolve.coverage_line`).
+    sources: tuple[str, ...] = ()
 
     @property
     def ok(self) -> bool:

@@ -19,6 +19,7 @@ from nodl_schema.policy.generate import MissingNode, PolicyResult, policy_for_in
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl_schema.launch.sandbox import LaunchLimits
+    from nodl_schema.targets.overlay import Definitions
 
 __all__ = ['launch_policy']
 
@@ -26,12 +27,14 @@ __all__ = ['launch_policy']
 def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | None = None, *,
                   client_library: str | None = None, distro: str = DEFAULT_DISTRO,
                   enclaves: str | EnclaveMapping = 'node', allow_missing: bool = False,
-                  prefixes: list[str] | None = None, limits: LaunchLimits | None = None) -> PolicyResult:
+                  prefixes: list[str] | None = None, limits: LaunchLimits | None = None,
+                  definitions: Definitions | None = None) -> PolicyResult:
     """The policy of the system ``path`` launches with ``arguments`` (``limits``: how the
     launch's Python code runs, if at all; see :class:`~nodl_schema.launch.sandbox.LaunchLimits`).
 
-    OSError if the launch file cannot be read at all; ValueError if it cannot
-    be parsed (its diagnostics in the message).
+    ``definitions``: definitions folders looked in before the index (what is wrong with
+    their layout is among the diagnostics).  OSError if the launch file cannot be read at
+    all; ValueError if it cannot be parsed (its diagnostics in the message).
     """
     from nodl_schema.analysis import analyse_launch
     from nodl_schema.policy.grants import display_path
@@ -41,7 +44,7 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
         raise OSError(2, 'No such file or directory' if not os.path.isdir(path) else 'is a directory',
                       path)
     analysis = analyse_launch(path, dict(arguments or {}), client_library=client_library,
-                              prefixes=prefixes, checks={}, limits=limits)
+                              prefixes=prefixes, checks={}, limits=limits, definitions=definitions)
     launch_problems = [f.diagnostic for f in analysis.findings]
     if analysis.unreadable:
         raise ValueError('; '.join(str(d) for d in launch_problems) or f'{path} cannot be read')
@@ -63,4 +66,6 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
         containers=containers,
         notes=[f'Least-privilege SROS 2 policy written by nodl policy for the system '
                f'{display_path(os.path.abspath(path))} launches.'])
-    return result._replace(diagnostics=launch_problems + result.diagnostics)
+    sources = tuple(node.match.origin.split(' ', 1)[0] if node.match.file is not None else 'none'
+                    for node in analysis.nodes)
+    return result._replace(diagnostics=launch_problems + result.diagnostics, sources=sources)

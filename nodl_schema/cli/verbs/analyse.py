@@ -5,11 +5,16 @@ from __future__ import annotations
 import argparse
 import sys
 
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from typing import Any
+
 from nodl_schema.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
 
 class AnalyseVerb(Verb):
-    """Analyse the system a launch file starts: every node's final names, then the checks."""
+    """Analyse the system a launch file starts, or a set of node definitions: every node's final
+    names, then the checks."""
 
     failure = 'the analysis found errors'
 
@@ -17,11 +22,24 @@ class AnalyseVerb(Verb):
         from nodl_schema.cli.arguments import add_client_library_argument, add_launch_code_arguments
         from nodl_schema.cli.diagnostic_options import add_diagnostic_options
 
-        parser.add_argument('launch_file', metavar='LAUNCH_FILE',
+        parser.add_argument('launch_file', metavar='LAUNCH_FILE | DEFINITION',
                             help='a launch file: XML (.launch.xml), YAML (.launch.yaml) or Python '
-                                 '(.launch.py)')
-        parser.add_argument('launch_arguments', nargs='*', metavar='NAME:=VALUE',
-                            help='launch arguments, as for ros2 launch')
+                                 '(.launch.py); or node definitions (FILE or PACKAGE EXECUTABLE, '
+                                 'as many as wanted), analysed as one system without a launch file')
+        parser.add_argument('launch_arguments', nargs='*', metavar='NAME:=VALUE | DEFINITION',
+                            help='launch arguments, as for ros2 launch (or more definitions)')
+        from nodl_schema.cli.arguments import add_definitions_argument, node_name
+
+        add_definitions_argument(parser)
+        placing = parser.add_argument_group(
+            'placing definitions', 'Definitions analysed without a launch file are placed as nodl '
+            "policy places them: by default each at /, named after the file's stem or the "
+            'executable.')
+        placing.add_argument('--name', action='append', default=[], type=node_name,
+                             metavar='/NS/NODE',
+                             help='the name of the next definition, in order (repeatable)')
+        placing.add_argument('--remap', action='append', default=[], metavar='FROM:=TO',
+                             help='a remapping rule given to every node (NODE:FROM:=TO: to one)')
         add_client_library_argument(parser)
         add_launch_code_arguments(parser)
         parser.add_argument('--format', choices=('text', 'json', 'sarif', 'junit'), default='text',
@@ -46,6 +64,13 @@ class AnalyseVerb(Verb):
         from nodl_schema.config import ConfigError
 
         prog = 'nodl analyse'
+        definitions_mode = self._definitions_mode(args.launch_file)
+        if definitions_mode:
+            return self._definitions(args, prog)
+        if args.name or args.remap:
+            print(f'{prog}: error: --name and --remap place definitions; a launch file names its '
+                  'nodes', file=sys.stderr)
+            return EXIT_USAGE
         arguments: dict[str, str] = {}
         for item in args.launch_arguments:
             name, sep, value = item.partition(':=')
@@ -88,14 +113,123 @@ class AnalyseVerb(Verb):
         except (PolicyError, ConfigError) as exc:
             print(exc, file=sys.stderr)
             return EXIT_USAGE
+        from nodl_schema.cli.arguments import load_definitions
+
+        # the layout's problems are findings of the analysis (not printed apart)
+        definitions = load_definitions(args, prog, os.path.dirname(os.path.abspath(args.launch_file)),
+                                       report=False)
+        if isinstance(definitions, int):
+            return definitions
 
         from nodl_schema.analysis import analyse_launch
-        from nodl_schema.analysis import report
 
         from nodl_schema.cli.arguments import launch_limits
 
         analysis = analyse_launch(args.launch_file, arguments, client_library=args.client_library,
-                                  settings=settings, limits=launch_limits(args))
+                                  settings=settings, limits=launch_limits(args),
+                                  definitions=definitions)
+        return self._report(args, prog, analysis, policy, graph_format)
+
+    @staticmethod
+    def _definitions_mode(first: str) -> bool:
+        """True when the first target is a node definition or a package (not a launch file)."""
+        import os
+
+        from nodl_schema.targets.placement import is_launch_file
+
+        if is_launch_file(first):
+            return False
+        if not any(c in first for c in './\\') and not os.path.exists(first):
+            return True  # PACKAGE EXECUTABLE
+        if not os.path.isfile(first):
+            return False  # the launch file's reader says why
+        from nodl_schema.launch.file_kind import not_a_launch_file
+
+        return not_a_launch_file(first) == 'a NoDL node definition'
+
+    def _definitions(self, args: argparse.Namespace, prog: str) -> int:
+        """``nodl analyse DEFINITION...``: the definitions placed and analysed as one system."""
+        import os
+
+        from nodl_schema.cli.diagnostic_options import DiagnosticPolicy, PolicyError
+        from nodl_schema.config import ConfigError
+        from nodl_schema.targets.placement import split_targets
+
+        tokens = [args.launch_file, *args.launch_arguments]
+        try:
+            targets, launches = split_targets(tokens)
+        except ValueError as exc:
+            print(f'{prog}: error: {exc}', file=sys.stderr)
+            return EXIT_USAGE
+        if launches:
+            print(f'{prog}: error: give a launch file, or node definitions, not both', file=sys.stderr)
+            return EXIT_USAGE
+        from nodl_schema.launch.file_kind import not_a_launch_file
+
+        files = [t.file for t in targets if t.file is not None]
+        for file in files:
+            if not os.path.isfile(file):
+                why = 'is a directory' if os.path.isdir(file) else 'no such file'
+                print(f'{file}: error: cannot read the definition: {why} [NODL020]', file=sys.stderr)
+                return EXIT_USAGE
+            other = not_a_launch_file(file)
+            if other is not None and other != 'a NoDL node definition':
+                print(f'{file}: error: this is not a node definition ({other}); nodl analyse '
+                      'reads a launch file, or node definitions (FILE or PACKAGE EXECUTABLE) '
+                      '[NODL531]', file=sys.stderr)
+                return EXIT_USAGE
+        graph_format = None
+        if args.graph:
+            graph_format = os.path.splitext(args.graph)[1].lower().lstrip('.')
+            if graph_format not in ('dot', 'svg', 'html'):
+                print(f"{prog}: error: --graph {args.graph}: the name must end in .dot, .svg or "
+                      '.html (it picks the format)', file=sys.stderr)
+                return EXIT_USAGE
+        from nodl_schema.writing import output_is_input
+
+        for option, output in (('-o', args.output), ('--log', args.log), ('--graph', args.graph)):
+            clash = output_is_input(output, files, option) if output else None
+            if clash is not None:
+                print(clash, file=sys.stderr)
+                return EXIT_USAGE
+        start = os.path.dirname(os.path.abspath(files[0])) if files else os.getcwd()
+        try:
+            policy = DiagnosticPolicy(args, prog)
+            from nodl_schema.analysis.settings import load_settings
+
+            settings = load_settings(os.path.join(start, 'definitions'))
+        except (PolicyError, ConfigError) as exc:
+            print(exc, file=sys.stderr)
+            return EXIT_USAGE
+        from nodl_schema.cli.arguments import load_definitions
+
+        definitions = load_definitions(args, prog, start, report=False)
+        if isinstance(definitions, int):
+            return definitions
+        from nodl_schema.analysis.system import analyse_definitions
+
+        try:
+            analysis = analyse_definitions(targets, args.name, remaps=args.remap,
+                                           client_library=args.client_library, settings=settings,
+                                           definitions=definitions)
+        except ValueError as exc:
+            print(f'{prog}: error: {exc}', file=sys.stderr)
+            return EXIT_USAGE
+        except OSError as exc:
+            from nodl_schema.files import describe_os_error
+
+            print(f'{prog}: error: {describe_os_error(exc)}', file=sys.stderr)
+            return EXIT_USAGE
+        return self._report(args, prog, analysis, policy, graph_format)
+
+    @staticmethod
+    def _report(args: argparse.Namespace, prog: str, analysis: Any, policy: Any,
+                graph_format: str | None) -> int:
+        """Print or write the report (and the log and graph): the exit status."""
+        from nodl_schema.cli.diagnostic_options import PolicyError
+        from nodl_schema.cli.output import write_file
+        from nodl_schema.analysis import report
+
         try:
             analysis.apply_overrides(policy.apply)
         except PolicyError as exc:
@@ -124,10 +258,12 @@ class AnalyseVerb(Verb):
         if args.output:
             write_file(args.output, text)
             if args.format != 'text':
+                print(report.coverage(analysis), file=sys.stderr)
                 print(report.summary(analysis), file=sys.stderr)
         else:
             sys.stdout.write(text)
             if args.format != 'text':
+                print(report.coverage(analysis), file=sys.stderr)
                 print(report.summary(analysis), file=sys.stderr)
         if analysis.unreadable:
             return EXIT_USAGE

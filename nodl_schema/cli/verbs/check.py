@@ -40,6 +40,9 @@ class CheckVerb(Verb):
         from nodl_schema.cli.arguments import add_client_library_argument
 
         add_client_library_argument(parser)
+        from nodl_schema.cli.arguments import add_definitions_argument
+
+        add_definitions_argument(parser)
         parser.add_argument('--format', choices=('text', 'json', 'junit', 'sarif'), default='text',
                             help='output format (default: text; junit: JUnit XML; sarif: SARIF '
                                  '2.1.0 for code scanning, each difference at its declaration)')
@@ -51,6 +54,12 @@ class CheckVerb(Verb):
         add_diagnostic_options(parser)
 
     def main(self, args: argparse.Namespace) -> int:
+        from nodl_schema.cli.arguments import run_with_definitions
+
+        # registered definitions (and nodl:// mixins) are looked up in the definitions folders first
+        return run_with_definitions(args, 'nodl check', lambda: self._main(args))
+
+    def _main(self, args: argparse.Namespace) -> int:
         from nodl_schema.cli.arguments import definition_problem
         from nodl_schema.cli.diagnostic_options import DiagnosticPolicy, PolicyError
         from nodl_schema.diagnostics import ValidationError
@@ -87,8 +96,10 @@ class CheckVerb(Verb):
             sys.stderr.write(format_text(exc.diagnostics))
             return EXIT_USAGE
         except OSError as exc:
+            from nodl_schema.files import describe_os_error
+
             print(f'nodl check: error: cannot read the definition {exc.filename or ""}: '
-                  f'{exc.strerror or exc}', file=sys.stderr)
+                  f'{describe_os_error(exc)}', file=sys.stderr)
             return EXIT_USAGE
         except (LiveError, ValueError) as exc:
             print(f'nodl check: error: {exc}', file=sys.stderr)

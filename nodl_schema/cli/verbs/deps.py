@@ -15,6 +15,9 @@ class DepsVerb(Verb):
 
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
         parser.add_argument('file', metavar='FILE', help='a node definition')
+        from nodl_schema.cli.arguments import add_definitions_argument
+
+        add_definitions_argument(parser)
         parser.epilog = ('One path per line, relative to the folder of FILE, as written in '
                          '`mixins` (normalised). Build systems install them next to the node '
                          'file, as ament_nodl_register_node does; references to other packages '
@@ -23,6 +26,12 @@ class DepsVerb(Verb):
                          'is an error (exit 1).')
 
     def main(self, args: argparse.Namespace) -> int:
+        from nodl_schema.cli.arguments import run_with_definitions
+
+        # registered definitions (and nodl:// mixins) are looked up in the definitions folders first
+        return run_with_definitions(args, 'nodl deps', lambda: self._main(args))
+
+    def _main(self, args: argparse.Namespace) -> int:
         import os
 
         from nodl_schema.packaging import package_dependencies

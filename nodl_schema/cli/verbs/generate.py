@@ -33,11 +33,20 @@ class GenerateVerb(Verb):
                             help='write nothing; fail if a generated file is missing or differs')
         parser.add_argument('--force', action='store_true',
                             help='replace files nodl did not write, or generated files edited since')
+        from nodl_schema.cli.arguments import add_definitions_argument
+
+        add_definitions_argument(parser)
         parser.epilog = ('The generator implements what the node itself provides (main); the base '
                          "comes from the language's client library, mixins from other code. "
                          'Regenerating is idempotent: unchanged files are not rewritten.')
 
     def main(self, args: argparse.Namespace) -> int:
+        from nodl_schema.cli.arguments import run_with_definitions
+
+        # registered definitions (and nodl:// mixins) are looked up in the definitions folders first
+        return run_with_definitions(args, 'nodl generate', lambda: self._main(args))
+
+    def _main(self, args: argparse.Namespace) -> int:
         import os
 
         from nodl_schema.generate import (

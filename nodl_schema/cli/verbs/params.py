@@ -29,6 +29,9 @@ class ParamsVerb(Verb):
                                  'edited since')
         parser.add_argument('--definition', nargs='+', metavar='DEFINITION',
                             help='check: the node definition (FILE or PACKAGE EXECUTABLE)')
+        from nodl_schema.cli.arguments import add_definitions_argument
+
+        add_definitions_argument(parser)
         parser.add_argument('--launch', metavar='LAUNCH_FILE',
                             help='check: the launch file whose nodes the files are for (the files the '
                                  'launch file itself gives are checked too)')
@@ -42,6 +45,12 @@ class ParamsVerb(Verb):
                          'the type exactly, every validator; required parameters must be set.')
 
     def main(self, args: argparse.Namespace) -> int:
+        from nodl_schema.cli.arguments import run_with_definitions
+
+        # registered definitions (and nodl:// mixins) are looked up in the definitions folders first
+        return run_with_definitions(args, 'nodl params', lambda: self._main(args))
+
+    def _main(self, args: argparse.Namespace) -> int:
         if args.args[0] == 'check':
             return self._check(args)
         return self._defaults(args)
@@ -57,7 +66,11 @@ class ParamsVerb(Verb):
         try:
             node, diagnostics, _ = resolve_target(target)
         except (OSError, ValueError) as exc:
-            print(f'nodl params: error: {exc}', file=sys.stderr)
+            from nodl_schema.files import describe_os_error
+
+            why = f'{exc.filename or target[0]}: {describe_os_error(exc)}' \
+                if isinstance(exc, OSError) else str(exc)
+            print(f'nodl params: error: {why}', file=sys.stderr)
             return None, EXIT_USAGE
         shown = without_info(diagnostics)
         if shown:

@@ -70,9 +70,10 @@ class PolicyVerb(Verb):
         parser.add_argument('--allow-missing', action='store_true',
                             help='write the policy even if a node has no definition (an empty '
                                  'profile with a comment marks the gap)')
-        from nodl_schema.cli.arguments import add_client_library_argument
+        from nodl_schema.cli.arguments import add_client_library_argument, add_definitions_argument
 
         add_client_library_argument(parser)
+        add_definitions_argument(parser)
         parser.add_argument('--distro', default=None, metavar='DISTRO',
                             help='the ROS 2 distribution whose client libraries create the base '
                                  'entities (humble, iron, jazzy, kilted, rolling; default: kilted)')
@@ -125,7 +126,7 @@ class PolicyVerb(Verb):
             try:
                 mapping, problems = load_enclave_mapping(args.enclave_map)
             except OSError as exc:
-                return _usage(f'cannot read {args.enclave_map}: {exc.strerror or exc}')
+                return _usage(f'cannot read {args.enclave_map}: {_os_words(exc)}')
             if mapping is None:
                 _report(problems, args, options)
                 return EXIT_USAGE
@@ -134,6 +135,10 @@ class PolicyVerb(Verb):
         if isinstance(result, int):
             return result
         diagnostics = _report(result.diagnostics, args, options)
+        if any(source != 'file' for source in result.sources):  # some node was looked up
+            from nodl_schema.targets.resolve import coverage_line
+
+            print(coverage_line(result.sources), file=sys.stderr)
         from nodl_schema.diagnostics import Severity
 
         failed = any(d.severity is Severity.ERROR for d in diagnostics)
@@ -174,12 +179,23 @@ class PolicyVerb(Verb):
             for line in live.unobserved:
                 print(f'nodl policy: not observed: {line}', file=sys.stderr)
             return live.result
-        from nodl_schema.policy.targets import instances_from_definitions, split_targets
+        from nodl_schema.targets.placement import place_definitions, split_targets
 
         try:
             definitions, launches = split_targets(targets)
         except ValueError as exc:
             return _usage(str(exc))
+        import os
+
+        from nodl_schema.cli.arguments import load_definitions
+
+        first = next((d.file for d in definitions if d.file is not None), None) or \
+            (launches[0] if launches else None)
+        folders = load_definitions(args, 'nodl policy', os.path.dirname(os.path.abspath(first))
+                                   if first else None, report=False)
+        if isinstance(folders, int):
+            return folders
+        layout = folders.diagnostics
         if launches and (definitions or len(launches) > 1):
             return _usage('give one launch file, or node definitions, not both')
         if launches:
@@ -189,35 +205,38 @@ class PolicyVerb(Verb):
             from nodl_schema.policy.launched import launch_policy
 
             try:
-                return launch_policy(launches[0], values, client_library=args.client_library,
-                                     distro=args.distro, enclaves=enclaves,
-                                     allow_missing=args.allow_missing, limits=launch_limits(args))
+                launched = launch_policy(launches[0], values, client_library=args.client_library,
+                                         distro=args.distro, enclaves=enclaves,
+                                         allow_missing=args.allow_missing,
+                                         limits=launch_limits(args), definitions=folders)
+                return launched._replace(diagnostics=layout + launched.diagnostics)
             except OSError as exc:
-                return _usage(f'cannot read {launches[0]}: {exc.strerror or exc}')
+                return _usage(f'cannot read {launches[0]}: {_os_words(exc)}')
             except ValueError as exc:
                 return _usage(str(exc))
-        import os
-
         for definition in definitions:
             if definition.file is not None and not os.path.isfile(definition.file):
                 what = 'is a directory' if os.path.isdir(definition.file) else 'no such file'
                 return _usage(f'{definition.file}: {what}')
         parameters = {name: _typed(value) for name, value in values.items()}
         try:
-            instances, problems = instances_from_definitions(
+            placed, problems = place_definitions(
                 definitions, args.name, remaps=args.remap, parameters=parameters,
-                client_library=args.client_library)
+                client_library=args.client_library, folders=folders)
         except ValueError as exc:
             return _usage(str(exc))
         except OSError as exc:
-            return _usage(f'cannot read {exc.filename or ""}: {exc.strerror or exc}')
+            return _usage(f'cannot read {exc.filename or ""}: {_os_words(exc)}')
         from nodl_schema.policy.generate import policy_for_instances
 
-        result = policy_for_instances(instances, distro=args.distro, enclaves=enclaves,
+        result = policy_for_instances([p.instance for p in placed], distro=args.distro,
+                                      enclaves=enclaves,
                                       allow_missing=args.allow_missing,
                                       notes=['Least-privilege SROS 2 policy written by nodl policy '
                                              'from node definitions.'])
-        return result._replace(diagnostics=problems + result.diagnostics)
+        return result._replace(diagnostics=layout + problems + result.diagnostics,
+                               sources=tuple(p.provenance.source for p in placed)
+                               + ('none',) * (len(definitions) - len(placed)))
 
 
 def _intermixed(parser: argparse.ArgumentParser) -> None:
@@ -255,6 +274,12 @@ def _typed(value: str) -> Any:
         return value
 
 
+def _os_words(exc: OSError) -> str:
+    from nodl_schema.files import describe_os_error
+
+    return describe_os_error(exc)
+
+
 def _usage(message: str) -> int:
     print(f'nodl policy: error: {message}', file=sys.stderr)
     return EXIT_USAGE
@@ -283,7 +308,7 @@ def _check(args: argparse.Namespace, expected: Any, options: Any, failed: bool) 
     try:
         found = check_policy_file(args.check, expected)
     except OSError as exc:
-        return _usage(f'cannot read {args.check}: {exc.strerror or exc}')
+        return _usage(f'cannot read {args.check}: {_os_words(exc)}')
     shown = _report(found, args, options, sys.stdout)
     missing = sum(d.code in ('NODL604', 'NODL607') for d in shown)
     extra = sum(d.code in ('NODL605', 'NODL608') for d in shown)

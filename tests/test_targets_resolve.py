@@ -1,0 +1,86 @@
+"""The one target resolution (nodl_schema.targets.resolve): precedence, provenance, coverage."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+from conftest import FIXTURES
+
+from nodl_schema.config import ConfigError
+from nodl_schema.targets.resolve import (
+    Provenance, coverage_line, gather_definitions, made_by, resolve_reference, resolve_target)
+
+OVERLAYS = FIXTURES / 'overlays'
+DEFS = str(OVERLAYS / 'defs')
+SECOND = str(OVERLAYS / 'second')
+PREFIXES = [str(FIXTURES / 'analysis' / 'prefix')]
+
+
+def test_precedence_definitions_then_nodl_path_then_config(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    (tmp_path / 'nodl.toml').write_text('definitions = ["defs"]\n')
+    (tmp_path / 'defs').mkdir()
+    found = gather_definitions([SECOND], environ={'NODL_PATH': os.pathsep.join([DEFS, ''])},
+                               start=str(tmp_path))
+    assert [(f.root, f.given_by) for f in found.folders] == [
+        (SECOND, '--definitions'), (DEFS, 'NODL_PATH'),
+        (str(tmp_path / 'defs'), str(tmp_path / 'nodl.toml'))]
+    (tmp_path / 'nodl.toml').write_text('definitions = "defs"\n')
+    with pytest.raises(ConfigError, match="'definitions' must be a list"):
+        gather_definitions([], environ={}, start=str(tmp_path))
+
+
+def test_pyproject_table_is_read_relative_to_its_file(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    (tmp_path / 'pyproject.toml').write_text('[tool.nodl]\ndefinitions = ["../x"]\n')
+    (tmp_path / 'sub').mkdir()
+    found = gather_definitions([], environ={}, start=str(tmp_path / 'sub'))
+    assert [f.root for f in found.folders] == [os.path.normpath(str(tmp_path / '..' / 'x'))]
+
+
+def test_resolution_says_where_each_definition_came_from() -> None:
+    definitions = gather_definitions([DEFS, SECOND], environ={}, use_config=False)
+    driver = resolve_target(['upstream_drv', 'driver'], prefixes=PREFIXES, definitions=definitions)
+    assert driver.node is not None and driver.provenance == Provenance('overlay', DEFS, None)
+    # its nodl:// mixin came from the folder's interfaces/
+    assert {e.name for e in driver.node.endpoints} >= {'status', 'scan'}
+    controller = resolve_target(['nav', 'controller'], prefixes=PREFIXES, definitions=definitions)
+    assert str(controller.provenance) == f'overlay {DEFS}, extracted'
+    planner = resolve_target(['nav', 'planner'], prefixes=PREFIXES, definitions=definitions)
+    assert planner.provenance == Provenance('index') and planner.node is not None
+    file = resolve_target(f'{DEFS}/upstream_drv/fusion.nodl.yaml', prefixes=PREFIXES)
+    assert file.provenance == Provenance('file', None, 'described')
+    missing = resolve_target(['upstream_drv', 'nope'], prefixes=PREFIXES, definitions=definitions)
+    assert missing.node is None and missing.provenance.source == 'none'
+    assert [d.code for d in missing.diagnostics] == ['NODL306']
+    assert DEFS in missing.diagnostics[0].message
+    # without the folders the index alone answers
+    assert resolve_target(['nav', 'controller'], prefixes=PREFIXES).provenance == Provenance('index')
+    with pytest.raises(OSError, match='no such file'):
+        resolve_target('no/such.nodl.yaml')
+
+
+def test_references_resolve_from_the_folders_first() -> None:
+    definitions = gather_definitions([DEFS], environ={}, use_config=False)
+    text, file, problems = resolve_reference('nodl://upstream_drv/status', prefixes=PREFIXES,
+                                             definitions=definitions)
+    assert problems == [] and file.endswith('interfaces/status.nodl.yaml') and text
+    text, _, problems = resolve_reference('nodl://upstream_drv/status', prefixes=PREFIXES)
+    assert text is None and [d.code for d in problems] == ['NODL306']
+
+
+def test_provenance_header(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    marked = tmp_path / 'a.nodl.yaml'
+    marked.write_text('# nodl: generated; sha256=00\n# Extracted from talker.py by nodl extract\n')
+    assert made_by(str(marked)) == 'extracted'
+    marked.write_text('nodl_version: 2\n# Extracted from talker.py by nodl extract\n')
+    assert made_by(str(marked)) is None  # a comment below the document is not its header
+    assert made_by(str(tmp_path / 'missing')) is None
+
+
+def test_coverage_line() -> None:
+    sources = ['index'] * 9 + ['overlay'] * 6 + ['none']
+    assert coverage_line(sources) == '16 nodes: 9 registered, 6 overlay, 1 without definition'
+    assert coverage_line(['file', 'file']) == '2 nodes: 2 from files'
+    assert coverage_line(['file', 'index']) == \
+        '2 nodes: 1 registered, 0 overlay, 1 from files, 0 without definition'
+    assert coverage_line([]) == '0 nodes'
