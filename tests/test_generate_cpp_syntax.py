@@ -27,8 +27,10 @@ from nodl_schema.system import resolve_node
 
 GENERATE = FIXTURES / 'generate'
 STUBS = GENERATE / 'cpp_stubs'
-#: The example definitions: a plain node, a lifecycle node, every entity kind and parameter type.
-DEFINITIONS = [GENERATE / f'{name}.nodl.yaml' for name in ('talker', 'managed_camera', 'everything')]
+#: The example definitions: a plain node, a lifecycle node, every entity kind and parameter
+#: type, and parameters without validators (nothing may be left unused under -Wextra).
+DEFINITIONS = [GENERATE / f'{name}.nodl.yaml'
+               for name in ('talker', 'managed_camera', 'everything', 'unvalidated')]
 
 
 def compiler_include_dir() -> str:
