@@ -105,7 +105,9 @@ def iter_check_paths(paths: Iterable[str], kind: Kind | None = None,
             else:
                 report = check_source(_FilePath(target.path), kind=kind, file=target.path)
         except OSError as exc:
-            yield FileResult(target.path, problem=exc.strerror or str(exc))
+            from nodl_schema.files import describe_os_error
+
+            yield FileResult(target.path, problem=describe_os_error(exc))
             continue
         diagnostics = report.diagnostics
         if resolve and report.kind is Kind.NODE and not report.has_errors():

@@ -136,18 +136,21 @@ _OS_ERROR_WORDS: dict[type[OSError], str] = {FileNotFoundError: 'no such file or
 
 
 def describe_os_error(exc: OSError) -> str:
-    """What went wrong, in words a user reads (``no such file or directory``): the system's
+    """What went wrong, in words a user reads (``No such file or directory``): the system's
     message without the ``[Errno N]`` and the path that ``str(exc)`` adds."""
-    words = exc.strerror
-    if not words:
-        words = next((text for kind, text in _OS_ERROR_WORDS.items() if isinstance(exc, kind)),
-                     None)
-    if not words:
-        import errno
+    if exc.strerror:
+        return exc.strerror
+    if exc.errno is None and exc.args and all(isinstance(a, str) for a in exc.args):
+        return str(exc)  # a message of the toolkit's own (no errno: no "[Errno N]" in it)
+    words = next((text for kind, text in _OS_ERROR_WORDS.items() if isinstance(exc, kind)), None)
+    if words:
+        return words
+    import errno
 
-        words = os.strerror(exc.errno) if isinstance(exc.errno, int) and exc.errno in \
-            errno.errorcode else type(exc).__name__
-    return words[:1].lower() + words[1:]
+    if isinstance(exc.errno, int) and exc.errno in errno.errorcode:
+        return os.strerror(exc.errno)
+    return 'an input/output error'
+
 
 
 def _scan(root: str, root_stat: os.stat_result) -> Iterator[Target]:
@@ -160,7 +163,7 @@ def _scan(root: str, root_stat: os.stat_result) -> Iterator[Target]:
             with os.scandir(directory) as it:
                 entries = sorted(it, key=lambda e: e.name)
         except OSError as exc:
-            yield Target(directory, f'cannot read this directory: {exc.strerror or exc}')
+            yield Target(directory, f'cannot read this directory: {describe_os_error(exc)}')
             continue
         names = {e.name for e in entries}
         if not is_root and any(marker in names for marker in IGNORE_MARKERS):
@@ -179,7 +182,7 @@ def _scan(root: str, root_stat: os.stat_result) -> Iterator[Target]:
                 try:
                     st = entry.stat()
                 except OSError as exc:
-                    files.append(Target(entry.path, f'cannot read this directory: {exc.strerror or exc}'))
+                    files.append(Target(entry.path, f'cannot read this directory: {describe_os_error(exc)}'))
                     continue
                 key = (st.st_dev, st.st_ino)
                 if key in visited:  # a link back to an ancestor, or a second way in

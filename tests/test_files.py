@@ -127,3 +127,52 @@ def test_tidy_path_keeps_a_dot_dot_that_a_symbolic_link_makes_lead_elsewhere(tmp
     assert tidy_path(through_link) == through_link
     (tmp_path / 'x.yaml').write_text('{}')                # a different file of the same name
     assert tidy_path(through_link) == through_link
+
+
+def test_an_os_error_is_said_in_words_without_errno() -> None:
+    import errno
+
+    from nodl_schema.files import describe_os_error
+
+    assert describe_os_error(FileNotFoundError(errno.ENOENT, 'No such file or directory', 'x')) \
+        == 'No such file or directory'  # the system's words, without '[Errno 2]' and the path
+    assert describe_os_error(IsADirectoryError()) == 'is a directory, not a file'  # no strerror
+    assert describe_os_error(OSError(errno.ENOSPC, 'No space left on device')) == 'No space left on device'
+    assert describe_os_error(OSError(errno.EIO, None)) == 'Input/output error'  # words from the errno
+    assert describe_os_error(OSError('the file is locked')) == 'the file is locked'  # no errno
+
+
+UNREADABLE = FIXTURES / 'files' / 'unreadable'
+
+
+def test_no_raw_errno_text_reaches_the_user() -> None:
+    """Real failure paths of the verbs (a missing file, a directory where a file is wanted,
+    an include and a parameter file that cannot be read, a mixin that is a directory, an
+    output into a folder that does not exist) never print '[Errno N]'."""
+    import subprocess
+    import sys
+
+    from conftest import REPO
+
+    missing = str(UNREADABLE / 'no_such.nodl.yaml')
+    folder = str(UNREADABLE / 'a_directory.yaml')
+    node = str(FIXTURES / 'analysis' / 'prefix' / 'share' / 'nav' / 'nodl' / 'planner.nodl.yaml')
+    runs = [
+        ['validate', missing], ['validate', folder], ['show', missing], ['show', folder],
+        ['show', str(UNREADABLE / 'mixin_dir.nodl.yaml')], ['deps', missing], ['deps', folder],
+        ['export', missing], ['params', missing], ['params', folder],
+        ['params', 'check', missing, '--definition', node], ['params', 'check', folder, '--definition', node],
+        ['analyse', missing], ['analyse', folder], ['analyse', str(UNREADABLE / 'bad_refs.launch.xml')],
+        ['analyse', str(UNREADABLE / 'bad_refs.launch.xml'), '--format', 'json'],
+        # an output under a file (a folder cannot be made there)
+        ['policy', missing], ['policy', node, '-o', str(UNREADABLE / 'bad_refs.launch.xml' / 'p.xml')],
+        ['convert', missing, '-o', str(UNREADABLE / 'bad_refs.launch.xml' / 'out')],
+        ['generate', node, '--language', 'python', '-o',
+         str(UNREADABLE / 'bad_refs.launch.xml' / 'n.py')],
+    ]
+    for args in runs:
+        done = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+                              capture_output=True, timeout=60)
+        said = done.stdout + done.stderr
+        assert done.returncode != 0, (args, said)
+        assert '[Errno' not in said and 'Traceback' not in said, (args, said)

@@ -113,7 +113,7 @@ def test_a_bad_parameter_file_is_coded(tmp_path: Path) -> None:
     assert load_parameter_file(tmp_path / 'missing.yaml').diagnostics[0].code == 'NODL517'
     # a path that exists but cannot be read is a diagnostic too, not an escaping OSError
     (folder,) = load_parameter_file(tmp_path).diagnostics
-    assert folder.code == 'NODL517' and 'is a directory' in folder.message
+    assert folder.code == 'NODL517' and 'Is a directory' in folder.message
 
 
 def test_unsafe_text_in_a_parameter_file_is_an_error_at_the_character(tmp_path: Path) -> None:

@@ -87,7 +87,9 @@ class GuardedStream:
         self.before_write: Any = None
 
     def _failed(self, exc: OSError) -> OutputError:
-        return OutputError(f'cannot write {self._name}: {exc.strerror or exc}')
+        from nodl_schema.files import describe_os_error
+
+        return OutputError(f'cannot write {self._name}: {describe_os_error(exc)}')
 
     def write(self, text: str) -> int:
         if self.before_write is not None:

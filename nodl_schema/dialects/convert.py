@@ -178,7 +178,9 @@ def convert_dialect_file(path: str, out_dir: str, dialect: str | None = None, *,
     try:
         conversion = convert_dialect(path, dialect, out_dir)
     except OSError as exc:
-        return FileConversion(path, problem=(exc.strerror or str(exc)).lower()), dialect
+        from nodl_schema.files import describe_os_error
+
+        return FileConversion(path, problem=describe_os_error(exc).lower()), dialect
     if conversion.data is None or conversion.file_name is None:
         return FileConversion(path, [], conversion.diagnostics), conversion.dialect
     target = os.path.join(out_dir, conversion.file_name)

@@ -415,7 +415,9 @@ class FileConversion:
 
 
 def _reason(exc: OSError) -> str:
-    text = exc.strerror or str(exc)
+    from nodl_schema.files import describe_os_error
+
+    text = describe_os_error(exc)
     return text[:1].lower() + text[1:]
 
 

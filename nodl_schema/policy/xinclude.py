@@ -210,8 +210,10 @@ class _Expander:
         try:
             read, problem = read_source(Path(path), shown)
         except OSError as exc:
+            from nodl_schema.files import describe_os_error
+
             self.problems.append(_problem(origin, include, f'<{include.tag}>: cannot read {href}: '
-                                          f'{exc.strerror or exc}'))
+                                          f'{describe_os_error(exc)}'))
             return None
         if read is None:
             assert problem is not None

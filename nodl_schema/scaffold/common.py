@@ -110,7 +110,9 @@ def _definitions(nodes: list[NodeSource]) -> list[PlannedFile]:
                 with open(source, encoding='utf-8', newline='') as f:
                     files[target] = (source, f.read())
             except OSError as exc:
-                raise ScaffoldError(f'{source}: {exc.strerror or exc}') from None
+                from nodl_schema.files import describe_os_error
+
+                raise ScaffoldError(f'{source}: {describe_os_error(exc)}') from None
     return [PlannedFile(target, text, generated=True) for target, (_, text) in files.items()]
 
 

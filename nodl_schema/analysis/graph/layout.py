@@ -38,7 +38,9 @@ def layout_svg(dot: str) -> str:
     except subprocess.TimeoutExpired:
         raise GraphError(f'{LAYOUT_PROGRAM} took longer than {TIMEOUT:.0f} s') from None
     except OSError as exc:
-        raise GraphError(f'cannot run {program}: {exc.strerror or exc}') from None
+        from nodl_schema.files import describe_os_error
+
+        raise GraphError(f'cannot run {program}: {describe_os_error(exc)}') from None
     if done.returncode != 0:
         message = done.stderr.decode('utf-8', 'replace').strip().splitlines()
         raise GraphError(f'{LAYOUT_PROGRAM} failed ({done.returncode}): '

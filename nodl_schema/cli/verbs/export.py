@@ -52,7 +52,9 @@ class ExportVerb(Verb):
             try:
                 source = parameters_of_file(path, args.with_mixins)
             except OSError as exc:
-                print(f'nodl export: error: {path}: {exc.strerror or exc}', file=sys.stderr)
+                from nodl_schema.files import describe_os_error
+
+                print(f'nodl export: error: {path}: {describe_os_error(exc)}', file=sys.stderr)
                 return EXIT_USAGE
         elif len(args.definition) == 2:
             package, executable = args.definition
