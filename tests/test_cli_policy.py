@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -132,3 +133,25 @@ def test_a_duplicate_name_says_no_policy_is_written_unless_ignored():
                    '--name', '/x', '--ignore', 'NODL611')
     assert ignored.returncode == 0, ignored.stderr
     assert ignored.stdout.count('<profile ns="/" node="x">') == 1
+
+
+def test_definitions_folders_serve_nodes_and_the_coverage_line_says_so() -> None:
+    overlays = REPO / 'tests' / 'fixtures' / 'overlays'
+    env = dict(os.environ, AMENT_PREFIX_PATH=str(REPO / 'tests' / 'fixtures' / 'analysis' / 'prefix'))
+    env.pop('NODL_PATH', None)
+
+    def policy(*args: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', *args], cwd=REPO,
+                              env=env, text=True, capture_output=True, timeout=60)
+
+    done = policy('upstream_drv', 'driver', 'nav', 'controller',
+                  '--definitions', str(overlays / 'defs'))
+    assert done.returncode == 0, done.stderr
+    assert '<topic>status</topic>' in done.stdout  # from the folder's nodl:// mixin
+    assert done.stderr == '2 nodes: 0 registered, 2 overlay, 0 without definition\n'
+    launched = policy(str(overlays / 'launch' / 'system.launch.xml'),
+                      '--definitions', str(overlays / 'defs'))
+    assert launched.returncode == 1 and '[NODL601]' in launched.stderr
+    assert '4 nodes: 1 registered, 2 overlay, 1 without definition' in launched.stderr
+    bad = policy('nav', 'planner', '--definitions', str(overlays / 'bad'))
+    assert bad.returncode == 1 and '[NODL242]' in bad.stderr and 'no policy written' in bad.stderr

@@ -202,3 +202,17 @@ def test_show_a_node_the_references_ament_nodl_register_installed() -> None:
     assert set(shown.parameters) == {'greeting'}
     included = load_interface(nodl('nodl://ref_robot/sensor_common', prefixes=reference).stdout)
     assert set(included.parameters) == {'frame_id'}
+
+
+def test_definitions_folders_serve_nodes_and_references() -> None:
+    overlays = FIXTURES / 'overlays'
+    defs = str(overlays / 'defs')
+    shown = nodl('upstream_drv', 'driver', '--definitions', defs, prefixes=None)
+    assert shown.returncode == 0, shown.stderr
+    assert 'name: status' in shown.stdout  # the nodl:// mixin from the folder's interfaces/
+    assert f'note: {defs}/upstream_drv/driver.nodl.yaml (overlay {defs})' in shown.stderr
+    assert 'description: The driver' in nodl('nodl://upstream_drv/status', '--definitions', defs,
+                                            prefixes=None).stdout
+    assert nodl('upstream_drv', 'driver', prefixes=None).returncode == 2  # not without it
+    bad = nodl('my_pkg', 'node', '--definitions', str(overlays / 'bad'), prefixes=None)
+    assert bad.returncode == 1 and '[NODL240]' in bad.stderr and 'nodl_version: 2' in bad.stdout

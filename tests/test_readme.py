@@ -132,3 +132,16 @@ def test_quoted_extract_example_is_what_the_tool_prints() -> None:
     for line in block.group(2).splitlines():
         if line and line != '...':
             assert line in printed, line
+
+
+def test_quoted_overlay_analysis_matches_the_tool() -> None:
+    block = re.search(r'```text\n\$ (nodl analyse \S+ --definitions \S+ -v)\n(.*?)```', README, re.S)
+    assert block, 'README lost its definitions folder example'
+    arguments = block.group(1).split()[1:]
+    env = {**os.environ, 'PYTHONPATH': str(REPO), 'AMENT_PREFIX_PATH': 'tests/fixtures/analysis/prefix'}
+    env.pop('NODL_PATH', None)
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', *arguments], cwd=REPO, env=env,
+                            text=True, capture_output=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    quoted = [line for line in block.group(2).splitlines() if line and line != '...']
+    assert result.stdout.splitlines()[-len(quoted):] == quoted
