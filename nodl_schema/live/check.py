@@ -217,8 +217,11 @@ def load_definition(definition: str | os.PathLike[str] | tuple[str, str],
 def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *,
                timeout: float = 5.0, remaps: Iterable[str] = (),
                parameters: bool = True, client_library: str | None = None,
-               overrides: Overrides | None = None) -> CheckResult:
+               overrides: Overrides | None = None, types: bool = True) -> CheckResult:
     """Check the running node ``fqn`` against ``definition`` (a file or ``(package, executable)``).
+
+    ``types``: each topic endpoint's type hash is also compared with the installed
+    definition's (version skew, NODL420; see :mod:`nodl_schema.live.type_skew`).
 
     ``overrides`` (codes to ignore or to report as errors) are applied to the
     result before conformance is decided (see :meth:`CheckResult.with_overrides`;
@@ -261,7 +264,18 @@ def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *
             observed = observe_node(fqn, timeout=max(1.0, timeout - (time.monotonic() - start)),
                                     parameters=parameters, session=session)
             differences = compare(composed, observed, names)
+        if types:
+            differences += _type_skew(session, composed, observed, names)
     result = CheckResult(observed.fully_qualified_name, composed.file, differences, composed,
                          observed, names)
     return result.with_overrides(overrides) if overrides else result
 
+
+def _type_skew(session: object, composed: ResolvedNode, observed: ObservedNode,
+               names: NodeNames) -> list[Difference]:
+    """The version-skew differences of the observed topic endpoints (one index per run)."""
+    from nodl_schema.interface_types import interface_index
+    from nodl_schema.live.type_skew import declared_locations, type_skew
+
+    return type_skew(session, observed, interface_index(),
+                     declared_locations(composed, observed, names))

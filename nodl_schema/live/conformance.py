@@ -36,13 +36,15 @@ __all__ = ['Difference', 'DRIFT_KINDS', 'KIND_CODES', 'compare', 'parse_remaps',
            'Remaps', 'final_name']
 
 #: Kinds that make a node non-conforming.
-DRIFT_KINDS = ('missing', 'extra', 'type', 'qos', 'parameter_type', 'read_only')
+DRIFT_KINDS = ('missing', 'extra', 'type', 'qos', 'parameter_type', 'read_only', 'version_skew')
 
 #: The diagnostic code of each kind of difference (see :mod:`nodl_schema.codes`).
 KIND_CODES = {
     'missing': 'NODL401', 'extra': 'NODL402', 'type': 'NODL403', 'qos': 'NODL404',
     'parameter_type': 'NODL405', 'read_only': 'NODL406', 'value': 'NODL407',
     'unverifiable': 'NODL408',
+    # nodl_schema.live.type_skew: the endpoint's type hash against the installed definition's
+    'version_skew': 'NODL420', 'skew_unverifiable': 'NODL421',
 }
 
 
