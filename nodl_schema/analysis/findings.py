@@ -40,6 +40,7 @@ KINDS: dict[str, str] = {
     'not-analysable': 'NODL566',
     'broken-check': 'NODL567',
     'assumed-duplicate-node': 'NODL530',
+    'type-definition-mismatch': 'NODL570',
 }
 #: code -> kind.
 KIND_OF_CODE: dict[str, str] = {code: kind for kind, code in KINDS.items()}
