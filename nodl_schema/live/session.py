@@ -10,7 +10,8 @@ from contextlib import contextmanager
 
 __all__ = ['LiveError', 'NodeNotFound', 'DuplicateNode', 'require_rclpy', 'ros_session',
            'split_node_name', 'node_name_problem', 'did_you_mean', 'OBSERVER_PREFIX',
-           'HIDDEN_NODE_PREFIX', 'is_hidden_node', 'is_toolkit_node', 'without_toolkit_nodes']
+           'HIDDEN_NODE_PREFIX', 'is_hidden_node', 'is_toolkit_node', 'without_toolkit_nodes',
+           'MONITOR_NODE_NAME']
 
 #: A node whose name starts with this is hidden, as ROS hides nodes (``ros2 node list``
 #: leaves them out without ``--all``): tools and daemons.
@@ -19,6 +20,10 @@ HIDDEN_NODE_PREFIX = '_'
 #: unique per process and per session, so that two sessions (in one process or in two)
 #: are never namesakes of each other.
 OBSERVER_PREFIX = '_nodl_observer_'
+#: The name of ``nodl monitor``'s node: hidden, and left out by every live verb as the
+#: observers are (any node whose name starts with it).
+MONITOR_NODE_NAME = '_nodl_monitor'
+_TOOLKIT_PREFIXES = (OBSERVER_PREFIX, MONITOR_NODE_NAME)
 _SESSIONS = itertools.count(1)
 
 
@@ -28,8 +33,9 @@ def is_hidden_node(fqn: str) -> bool:
 
 
 def is_toolkit_node(fqn: str) -> bool:
-    """Whether ``/namespace/name`` is one of the toolkit's own observer nodes (any process's)."""
-    return fqn.rpartition('/')[2].startswith(OBSERVER_PREFIX)
+    """Whether ``/namespace/name`` is one of the toolkit's own observer nodes (any process's),
+    or a ``nodl monitor`` node."""
+    return fqn.rpartition('/')[2].startswith(_TOOLKIT_PREFIXES)
 
 
 def without_toolkit_nodes(infos: Iterable[Any]) -> list[Any]:
@@ -39,7 +45,7 @@ def without_toolkit_nodes(infos: Iterable[Any]) -> list[Any]:
     ``~/get_type_description``, as every rclpy node does; they are not the user's.
     """
     return [i for i in infos
-            if not i.node_name.startswith(OBSERVER_PREFIX)]
+            if not i.node_name.startswith(_TOOLKIT_PREFIXES)]
 
 
 class LiveError(Exception):
