@@ -9,8 +9,46 @@ from __future__ import annotations
 import os
 
 os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
-# A domain per test run (0-101 are valid with localhost discovery).
-os.environ.setdefault('ROS_DOMAIN_ID', str(10 + os.getpid() % 90))
+
+#: How many domains a run takes: one per parallel worker (``make test`` runs one per core).
+DOMAINS_PER_RUN = 8
+
+
+def _domain_in_use(domain: int) -> bool:
+    """Whether a DDS participant on this machine is in ``domain``.
+
+    The first participant of a domain binds the domain's first unicast discovery port
+    (RTPS well-known ports: 7400 + 250 * domain + 10); if this process cannot bind it,
+    someone (another test run, a demo, a user's system) is there.
+    """
+    import socket
+
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
+        try:
+            probe.bind(('127.0.0.1', 7400 + 250 * domain + 10))
+        except OSError:
+            return True
+    return False
+
+
+def _free_domain_base(start: int, count: int = DOMAINS_PER_RUN) -> int:
+    """The first domain from ``start`` on (1-101, wrapping) such that ``count`` domains
+    from it are all free, or ``start`` when none is (the run then shares, as before)."""
+    span = 101 - count + 1
+    for step in range(span):
+        base = 1 + (start - 1 + step) % span
+        if not any(_domain_in_use(base + i) for i in range(count)):
+            return base
+    return start
+
+
+# A run's domains are chosen once, by the process that starts the workers, and inherited
+# by them: free ones, so that two runs at once (two clones, a demo, a user's ROS system
+# in ROS_DOMAIN_ID) never see each other's nodes. NODL_TEST_ROS_DOMAIN_BASE set by hand
+# picks them instead.
+if 'NODL_TEST_ROS_DOMAIN_BASE' not in os.environ:
+    os.environ['NODL_TEST_ROS_DOMAIN_BASE'] = str(_free_domain_base(1 + os.getpid() % 94))
+os.environ['ROS_DOMAIN_ID'] = os.environ['NODL_TEST_ROS_DOMAIN_BASE']
 
 
 def _worker_domain(base: str, worker: str | None) -> str:
@@ -25,11 +63,10 @@ def _worker_domain(base: str, worker: str | None) -> str:
     return str((int(base) + int(worker[2:])) % 102)  # 0-101: valid with localhost discovery
 
 
-# The base is remembered, so that the worker's domain is computed once from it, however
-# often this runs (and whatever a child process inherits).
-os.environ['ROS_DOMAIN_ID'] = _worker_domain(
-    os.environ.setdefault('NODL_TEST_ROS_DOMAIN_BASE', os.environ['ROS_DOMAIN_ID']),
-    os.environ.get('PYTEST_XDIST_WORKER'))
+# The worker's domain is computed from the run's base, however often this runs (and
+# whatever a child process inherits).
+os.environ['ROS_DOMAIN_ID'] = _worker_domain(os.environ['NODL_TEST_ROS_DOMAIN_BASE'],
+                                             os.environ.get('PYTEST_XDIST_WORKER'))
 
 from pathlib import Path  # noqa: E402
 

@@ -32,6 +32,25 @@ def test_without_xdist_the_domain_is_the_base() -> None:
     assert conftest._worker_domain('57', '') == '57'
 
 
+def test_a_domain_with_a_participant_is_in_use_and_skipped() -> None:
+    """A real node in a domain makes the probe say so, and the choice of a run's domains
+    steps over it; once the node is gone, the domain is free again."""
+    base = conftest._free_domain_base(40, count=2)
+    assert not conftest._domain_in_use(base)
+    env = dict(os.environ, ROS_DOMAIN_ID=str(base))
+    node = subprocess.Popen(
+        [sys.executable, '-c', 'import rclpy, sys; rclpy.init(); n = rclpy.create_node("probe_me"); '
+                               'print("ready", flush=True); sys.stdin.read()'],
+        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
+    try:
+        assert node.stdout is not None and node.stdout.readline().strip() == 'ready'
+        assert conftest._domain_in_use(base)
+        assert conftest._free_domain_base(base, count=2) not in (base - 1, base)
+    finally:
+        node.communicate('', timeout=20)
+    assert not conftest._domain_in_use(base)
+
+
 def test_this_process_uses_its_workers_domain() -> None:
     """In this very run: the domain rclpy sees is the base plus this worker's index."""
     base = int(os.environ['NODL_TEST_ROS_DOMAIN_BASE'])
