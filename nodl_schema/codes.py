@@ -164,7 +164,7 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL415': ('warning', 'describe --launch: remapping rules only the running launch knows (names not undone)'),
     'NODL416': ('warning', 'describe --launch: a launched node that cannot be found or filed (final name or executable unknown)'),
     'NODL420': ('error', "version skew: a running endpoint's type hash differs from the installed definition's"),
-    'NODL421': ('info', "version skew: an endpoint's type hash cannot be compared (not reported, or the type is not installed)"),
+    'NODL421': ('info', "version skew: an endpoint's type hash cannot be compared (not reported, or the installed file cannot be read)"),
     # -- NODL5xx: system analysis (launch files: 501-539) -------------------
     'NODL501': ('error', 'launch file: an unknown tag (action) or a misplaced one'),
     'NODL502': ('error', 'launch file: an unknown attribute'),
