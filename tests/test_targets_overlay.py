@@ -88,3 +88,14 @@ def test_the_index_lookups_consult_the_folders_in_force(tmp_path) -> None:  # ty
                   for r in registry.list_registrations('nav', prefixes)}
         assert listed == {('nav', 'controller', 'node', 'overlay'), ('nav', 'planner', 'node', 'index')}
     assert active() is None
+
+
+def test_nodes_file_keys_sorted_after_it_name_definitions(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    # 'talker' sorts after 'nodes.yaml': the keys are checked once every definition is read
+    package = tmp_path / 'pkg'
+    package.mkdir()
+    (package / 'talker.nodl.yaml').write_text('nodl_version: 2\n')
+    (package / 'nodes.yaml').write_text('talker: {plugin: pkg::Talker, node_name: talker}\n')
+    folder = read_folder(str(tmp_path))
+    assert folder.diagnostics == []
+    assert folder.info[('pkg', 'talker')] == ('pkg::Talker', 'talker')

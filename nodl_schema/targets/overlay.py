@@ -165,6 +165,7 @@ def _read_package(found: DefinitionFolder, package: str, folder: str) -> None:
         found._error(folder, f'cannot read the package folder: {describe_os_error(exc)}', 'NODL246')
         return
     stems: dict[str, str] = {}
+    nodes_file = None
     for entry in entries:
         path = os.path.join(folder, entry.name)
         if _LEFT_ALONE.fullmatch(entry.name) and not entry.is_dir():
@@ -176,8 +177,8 @@ def _read_package(found: DefinitionFolder, package: str, folder: str) -> None:
                 _misplaced(found, path, f"a folder '{entry.name}' in the package folder (only "
                            f"'{INTERFACES_FOLDER}/' may be there)")
             continue
-        if entry.name == NODES_FILE:
-            _read_nodes_file(found, package, path)
+        if entry.name == NODES_FILE:  # read after the definitions, which its keys must name
+            nodes_file = path
             continue
         stem = _stem(entry.name)
         if stem is None or not _NAME.fullmatch(stem):
@@ -189,6 +190,8 @@ def _read_package(found: DefinitionFolder, package: str, folder: str) -> None:
             continue
         stems[stem] = path
         found.nodes[package, stem] = path
+    if nodes_file is not None:
+        _read_nodes_file(found, package, nodes_file)
 
 
 def _read_interfaces(found: DefinitionFolder, package: str, folder: str) -> None:
