@@ -284,6 +284,7 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
                                                launch_file)
         result.diagnostics.extend(diagnostics)
         result.files.append(overlay)
+    result.files.sort(key=lambda f: (f.package, f.key))
     _write(result, directory, format, force, arguments or {})
     result.diagnostics.sort(key=lambda d: (d.file, d.line, d.column, d.code))
     return result
