@@ -326,6 +326,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL944': ('info', 'a C++ node class no executable builds (a component only), or an entity call not tied to a node'),
     'NODL945': ('warning', 'CMakeLists.txt cannot be read from a command on (unbalanced parentheses, an unterminated string)'),
     'NODL946': ('warning', 'CMakeLists.txt: a target, source or component depends on what the reader cannot know (a variable, a while loop)'),
+    # -- NODL960-969: nodl extract across languages and modules, and the overlay it writes ---
+    'NODL961': ('info', "nodl extract -o DIR: a component's plugin class is not in its package's namespace, so nodes.yaml cannot record it"),
 }
 
 

@@ -77,3 +77,92 @@ def test_bad_paths_and_sources_never_a_traceback(tmp_path: Path) -> None:
     (tmp_path / 'util.py').write_text('x = 1\n', encoding='utf-8')
     nothing = _run(str(tmp_path))
     assert nothing.returncode == 2 and 'NODL912' in nothing.stderr
+
+
+# -- C++ and mixed packages, laid out from the real fixtures ---------------------------------------
+
+EXTRACT = REPO / 'tests' / 'fixtures' / 'extract'
+
+
+def _cpp_packages(root: Path) -> Path:
+    """demo_nodes_cpp and composition with their real CMakeLists.txt and real sources."""
+    import shutil
+
+    layout = {
+        'demo_nodes_cpp': {'src/topics/talker.cpp': 'demo_talker/talker.cpp',
+                           'src/topics/listener_best_effort.cpp': 'demo_listener_best_effort/listener_best_effort.cpp',
+                           'src/services/add_two_ints_server.cpp': 'demo_add_two_ints_server/add_two_ints_server.cpp'},
+        'composition': {'src/talker_component.cpp': 'composition_talker/talker_component.cpp',
+                        'include/composition/talker_component.hpp': 'composition_talker/talker_component.hpp'},
+    }
+    for package, files in layout.items():
+        (root / package).mkdir(parents=True)
+        shutil.copy(EXTRACT / 'cmake' / package / 'CMakeLists.txt', root / package / 'CMakeLists.txt')
+        (root / package / 'package.xml').write_text(f'<package format="3"><name>{package}</name></package>\n')
+        for target, source in files.items():
+            (root / package / target).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy(EXTRACT / 'cpp' / source, root / package / target)
+    return root
+
+
+def test_cpp_packages_end_to_end_in_the_overlay_layout(tmp_path: Path) -> None:
+    from nodl_schema.targets.overlay import read_folder
+
+    sources = _cpp_packages(tmp_path / 'src')
+    result = _run(str(sources), '-o', str(tmp_path / 'out'))
+    assert result.returncode == 0, result.stdout + result.stderr
+    out = tmp_path / 'out'
+    assert sorted(str(p.relative_to(out)) for p in out.rglob('*') if p.is_file()) == [
+        'composition/nodes.yaml', 'composition/talker.nodl.yaml', 'demo_nodes_cpp/add_two_ints_server.nodl.yaml',
+        'demo_nodes_cpp/listener_best_effort.nodl.yaml', 'demo_nodes_cpp/nodes.yaml',
+        'demo_nodes_cpp/talker.nodl.yaml']
+    assert '4 nodes found, 4 drafts written; ' in result.stdout
+    folder = read_folder(str(out))  # the overlay reads back clean, with what registrations record
+    assert folder.diagnostics == []
+    assert folder.info == {
+        ('composition', 'talker'): ('composition::Talker', 'talker'),   # a component only: its snake-case key
+        ('demo_nodes_cpp', 'add_two_ints_server'): ('demo_nodes_cpp::ServerNode', 'add_two_ints_server'),
+        ('demo_nodes_cpp', 'listener_best_effort'): ('demo_nodes_cpp::ListenerBestEffort', 'listener'),
+        ('demo_nodes_cpp', 'talker'): ('demo_nodes_cpp::Talker', 'talker')}
+    talker = (out / 'demo_nodes_cpp' / 'talker.nodl.yaml').read_text(encoding='utf-8')
+    assert '(demo_nodes_cpp talker, cpp)' in talker
+    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--strict',
+                            *map(str, out.rglob('*.nodl.yaml'))], cwd=REPO, text=True, capture_output=True,
+                           timeout=60)
+    assert check.returncode == 0, check.stdout
+    # no 'no entry point' note on a C++ node CMakeLists.txt maps (the Python wording was given to all)
+    printed = _run(str(sources / 'demo_nodes_cpp'), '--format', 'json')
+    codes = [d['code'] for d in json.loads(printed.stdout)]
+    assert 'NODL911' not in codes and 'NODL944' not in codes, codes
+
+
+def test_a_component_only_class_is_noted_once(tmp_path: Path) -> None:
+    sources = _cpp_packages(tmp_path / 'src')
+    result = _run(str(sources / 'composition'), '--format', 'json')
+    assert result.returncode == 0
+    notes = [(d['code'], d['message']) for d in json.loads(result.stdout)]
+    assert [c for c, _ in notes] == ['NODL944'], notes
+    assert 'plugin composition::Talker of library talker_component' in notes[0][1]
+
+
+def test_mixed_ament_cmake_python_package(tmp_path: Path) -> None:
+    import shutil
+
+    package = tmp_path / 'mixed_pkg'
+    shutil.copytree(EXTRACT / 'packages' / 'mixed_pkg', package)
+    (package / 'src').mkdir()
+    shutil.copy(EXTRACT / 'cpp' / 'demo_talker' / 'talker.cpp', package / 'src' / 'talker.cpp')
+    (package / 'scripts').mkdir()
+    shutil.copy(FIXTURES / 'real' / 'demo_nodes_py__talker.py', package / 'scripts' / 'py_talker.py')
+    shutil.copy(FIXTURES / 'real' / 'demo_nodes_py__listener.py', package / 'scripts' / 'tool.py')
+    result = _run(str(package), '-o', str(tmp_path / 'out'), '--format', 'json')
+    assert result.returncode == 0, result.stdout + result.stderr
+    out = tmp_path / 'out' / 'mixed_pkg'
+    assert sorted(p.name for p in out.iterdir()) == [
+        'Listener.nodl.yaml', 'cpp_talker.nodl.yaml', 'nodes.yaml', 'py_talker.py.nodl.yaml',
+        'talker_py.nodl.yaml']
+    assert 'publishers:' in (out / 'cpp_talker.nodl.yaml').read_text(encoding='utf-8')
+    assert '(mixed_pkg talker_py, python)' in (out / 'talker_py.nodl.yaml').read_text(encoding='utf-8')
+    # a script installed elsewhere than lib/<package> is no executable of the package: noted
+    notes = [d for d in json.loads(result.stdout) if d['code'] == 'NODL911']
+    assert [n['file'].rsplit('/', 1)[-1] for n in notes] == ['tool.py']

@@ -80,3 +80,16 @@ def test_unreadable_file_is_one_error(tmp_path: Path) -> None:
     targets = read_cmake(str(tmp_path / 'CMakeLists.txt'))
     (diagnostic,) = targets.diagnostics
     assert diagnostic.code == 'NODL931' and 'Errno' not in diagnostic.message
+
+
+def test_install_programs_into_lib_package_are_executables(tmp_path: Path) -> None:
+    text = ('project(mixed_pkg)\nset(SCRIPTS scripts/a.py scripts/b)\n'
+            'install(PROGRAMS ${SCRIPTS} DESTINATION lib/${PROJECT_NAME})\n'
+            'install(PROGRAMS scripts/c.py DESTINATION lib/${PROJECT_NAME}/ RENAME c_node)\n'
+            'install(PROGRAMS scripts/tool.py DESTINATION bin)\n'
+            'install(PROGRAMS ${UNKNOWN}/d.py DESTINATION lib/${PROJECT_NAME})\n'
+            'install(TARGETS x DESTINATION lib/${PROJECT_NAME})\n')
+    targets = read_cmake_text(text, str(tmp_path / 'CMakeLists.txt'))
+    assert {k: os.path.relpath(v, tmp_path) for k, v in targets.programs.items()} == {
+        'a.py': 'scripts/a.py', 'b': 'scripts/b', 'c_node': 'scripts/c.py'}
+    assert [(d.code, d.line) for d in targets.diagnostics] == [('NODL946', 6)]

@@ -10,7 +10,9 @@ either source).  What it records:
   ``ament_auto_add_library`` with their sources (``target_sources`` adds more), and an
   executable's ``OUTPUT_NAME`` (``set_target_properties``);
 * ``rclcpp_components_register_node(LIB PLUGIN CLASS EXECUTABLE EXE)``: a component with an
-  executable of its own; ``rclcpp_components_register_nodes(LIB CLASS...)``: components only.
+  executable of its own; ``rclcpp_components_register_nodes(LIB CLASS...)``: components only;
+* ``install(PROGRAMS file... DESTINATION lib/${PROJECT_NAME} [RENAME name])``: scripts (Python
+  nodes of an ament_cmake_python package) installed where ``ros2 run`` finds them.
 
 A command that cannot be read, or a source path that depends on something this reader cannot
 know (an undefined variable, the build tree), is one located diagnostic; the rest is read.
@@ -59,6 +61,8 @@ class CMakeTargets:
     output_names: dict[str, str] = field(default_factory=dict)
     #: Component class -> (library, executable or None).
     plugins: dict[str, tuple[str, str | None]] = field(default_factory=dict)
+    #: Scripts installed into ``lib/<package>`` (``install(PROGRAMS)``): executable -> source.
+    programs: dict[str, str] = field(default_factory=dict)
     diagnostics: list[Diagnostic] = field(default_factory=list)
 
     def executable_name(self, target: str) -> str:
@@ -378,11 +382,45 @@ class _Evaluator:
                             self.targets.output_names[target] = value
         elif name == 'rclcpp_components_register_node' and first:
             self.register_node(command, first)
+        elif name == 'install' and first[:1] == ['PROGRAMS']:
+            self.install_programs(command, first[1:], scope)
         elif name == 'rclcpp_components_register_nodes' and first:
             for cls in first[1:]:
                 if cls.startswith('RESOURCE_INDEX'):
                     break
                 self.targets.plugins.setdefault(cls.lstrip(':'), (first[0], None))
+
+    def install_programs(self, command: Command, args: list[str], scope: dict[str, list[str]]) -> None:
+        """``install(PROGRAMS file... DESTINATION lib/<package> [RENAME name])``: executables
+        ``ros2 run`` finds (other destinations are not executables of the package)."""
+        keywords = ('DESTINATION', 'PERMISSIONS', 'CONFIGURATIONS', 'COMPONENT', 'RENAME', 'OPTIONAL',
+                    'EXCLUDE_FROM_ALL')
+        files: list[str] = []
+        options: dict[str, str] = {}
+        current = None
+        for item in args:
+            if item in keywords:
+                current = item
+            elif current is None:
+                files.append(item)
+            elif current in ('DESTINATION', 'RENAME') and current not in options:
+                options[current] = item
+        project = (scope.get('PROJECT_NAME') or [self.targets.package or ''])[0]
+        destination = options.get('DESTINATION', '').rstrip('/')
+        if '\0' in destination:
+            self.problem(command, 'the DESTINATION of install(PROGRAMS) is not known here; its scripts are '
+                         'not mapped to executables')
+            return
+        if not project or destination != f'lib/{project}':
+            return
+        for source in files:
+            if '\0' in source or source.startswith('$<'):
+                self.problem(command, 'a file of install(PROGRAMS) uses a variable not known here; it is not '
+                             'mapped to an executable')
+                continue
+            path = os.path.normpath(source if os.path.isabs(source) else os.path.join(self.folder, source))
+            name = options['RENAME'] if 'RENAME' in options and len(files) == 1 else os.path.basename(path)
+            self.targets.programs[name] = path
 
     def register_node(self, command: Command, first: list[str]) -> None:
         library = first[0]

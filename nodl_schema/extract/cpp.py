@@ -544,6 +544,9 @@ class _Reader:
 
     def _map_executable(self, node: ExtractedNode, targets: 'CMakeTargets | None') -> None:
         registered = self.registered.get(node.name)
+        if node.made_by == 'class' and (registered is not None or (
+                targets is not None and targets.library_of_plugin(node.name) is not None)):
+            node.plugin = node.name  # a component: the class is what a container loads
         if targets is None:
             if registered is not None and node.executable is None:
                 node.notes.append(Diagnostic(Severity.INFO, f'{node.name} is a component '

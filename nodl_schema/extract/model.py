@@ -146,6 +146,8 @@ class ExtractedNode:
     made_by: str = 'class'
     #: For a node made by a call: the top-level function it is made in (``''``: module level).
     made_in: str | None = None
+    #: For a component (an rclcpp class registered as a plugin): its class, ``pkg::Class``.
+    plugin: str | None = None
 
     def section(self, key: str) -> list[Entity]:
         """The entities of one section, in source order."""
@@ -165,8 +167,17 @@ class ExtractedNode:
 
     @property
     def output_name(self) -> str:
-        """The name of its draft definition file, without ``.nodl.yaml``."""
-        return self.executable or self.name
+        """The name of its draft definition file, without ``.nodl.yaml``: the executable; for a
+        C++ class no executable runs (a component), its registration key (the class in snake
+        case, as ``nodl describe`` names composable nodes); else the node's name."""
+        if self.executable:
+            return self.executable
+        name = self.plugin or self.name
+        if '::' in name:
+            from nodl_schema.index.node_info import plugin_key
+
+            return plugin_key(name)
+        return name
 
 
 @dataclass(slots=True)

@@ -1283,18 +1283,21 @@ def _calls(stmt: ast.stmt) -> Iterator[ast.Call]:
 # -- files ------------------------------------------------------------------------------------
 
 def _starts(tree: ast.Module) -> dict[str, list[str]]:
-    """Each top-level function -> the names it calls (what an entry point's function starts)."""
-    out: dict[str, list[str]] = {}
+    """Each top-level function -> the names it calls (what an entry point's function starts);
+    ``''``: the names the module-level code calls (what a script run as a program starts)."""
+    out: dict[str, list[str]] = {'': []}
     for stmt in tree.body:
+        if isinstance(stmt, ast.ClassDef):
+            continue
+        names = out[''] if not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)) else []
+        for node in ast.walk(stmt):
+            if isinstance(node, ast.Call):
+                func = node.func
+                name = func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) \
+                    else None
+                if name and name not in names:
+                    names.append(name)
         if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
-            names: list[str] = []
-            for node in ast.walk(stmt):
-                if isinstance(node, ast.Call):
-                    func = node.func
-                    name = func.id if isinstance(func, ast.Name) else func.attr if isinstance(func, ast.Attribute) \
-                        else None
-                    if name and name not in names:
-                        names.append(name)
             out[stmt.name] = names
     return out
 

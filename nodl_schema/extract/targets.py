@@ -4,9 +4,13 @@ A PATH is a package (a folder with ``package.xml``, ``setup.py`` or ``setup.cfg`
 holding packages, or source files.  For a Python package, ``setup.py`` (read with ``ast``, never
 run) and ``setup.cfg`` give the package name, the console-script entry points (which function
 of which module each executable runs) and the generate_parameter_library modules
-(``generate_parameter_module(NAME, YAML)``).  Other build systems plug in through
-:data:`BUILD_READERS` (a reader of ``CMakeLists.txt`` for C++ packages) and other languages
-through :data:`LANGUAGES`.
+(``generate_parameter_module(NAME, YAML)``).  For an ament_cmake package, ``CMakeLists.txt``
+(:mod:`nodl_schema.extract.cmake`, read, never run) says which executables are built from which
+C++ sources, which classes are components, and which scripts ``install(PROGRAMS)`` puts where
+``ros2 run`` finds them (the Python nodes of an ament_cmake_python package).  Every reader of
+:data:`BUILD_READERS` is asked, so a mixed package is read by both.  :data:`LANGUAGES` maps a
+source suffix to its extractor; the files of one extractor are given to it together (C++
+headers and sources are read as one).
 """
 
 from __future__ import annotations
@@ -23,8 +27,10 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Any, Callable, Iterable
 
+    from nodl_schema.extract.cmake import CMakeTargets
+
 __all__ = ['Package', 'BUILD_READERS', 'LANGUAGES', 'find_packages', 'read_python_build',
-           'extract_paths', 'output_paths']
+           'read_cmake_build', 'extract_paths', 'output_paths', 'registrations', 'nodes_file_text']
 
 _SKIPPED_FOLDERS = {'build', 'install', 'log', '.git', '__pycache__', 'node_modules', '.venv', 'venv',
                     '.tox', '.mypy_cache', '.pytest_cache'}
@@ -35,8 +41,10 @@ class Package:
     """A package (or a set of loose files, ``name`` None) and what its build files say.
 
     ``executables``: executable -> ``(source file, function)`` (for Python, the module file and
-    the function an entry point runs; for C++, the file and ``''``).  ``genparam``: a
-    generate_parameter_library module (dotted) -> its YAML file.
+    the function an entry point runs; for a script ``install(PROGRAMS)`` installs, the file and
+    ``''``: its module-level code).  ``genparam``: a generate_parameter_library module (dotted)
+    -> its YAML file.  ``cmake``: what ``CMakeLists.txt`` builds (C++ executables and
+    components), None without one.
     """
 
     name: str | None
@@ -45,6 +53,7 @@ class Package:
     executables: dict[str, tuple[str, str]] = field(default_factory=dict)
     genparam: dict[str, str] = field(default_factory=dict)
     diagnostics: list[Diagnostic] = field(default_factory=list)
+    cmake: CMakeTargets | None = None
 
 
 def _package_xml_name(root: str) -> str | None:
@@ -177,13 +186,31 @@ def read_python_build(root: str) -> Package | None:
     return package
 
 
-#: Readers of build files, tried in order on each package folder: each returns a
-#: :class:`Package` (its executables and generated-parameter modules) or None.  A reader for
-#: another build system (CMakeLists.txt) is added here.
-BUILD_READERS: list[Callable[[str], Package | None]] = [read_python_build]
+def read_cmake_build(root: str) -> Package | None:
+    """A CMake package's name, C++ targets and installed scripts, from ``CMakeLists.txt`` (None
+    when the folder has none); what it cannot read is one located diagnostic each."""
+    path = os.path.join(root, 'CMakeLists.txt')
+    if not os.path.isfile(path):
+        return None
+    from nodl_schema.extract.cmake import read_cmake
+
+    targets = read_cmake(path)
+    package = Package(_package_xml_name(root) or targets.package, root, cmake=targets)
+    package.diagnostics += targets.diagnostics
+    for name, source in sorted(targets.programs.items()):
+        if source.endswith('.py') or not os.path.splitext(source)[1]:
+            package.executables[name] = (source, '')
+    return package
+
+
+#: Readers of build files, each asked on every package folder: each returns a :class:`Package`
+#: (its executables, generated-parameter modules, CMake targets) or None; what several readers
+#: find is merged (an ament_cmake_python package has a CMakeLists.txt and Python sources).
+BUILD_READERS: list[Callable[[str], Package | None]] = [read_python_build, read_cmake_build]
 
 #: Source extensions -> the extractor of that language: ``(files, package) -> Extraction``.
-#: The Python extractor is built in; another language is added here.
+#: The files of one extractor are given to it in one call (all the C++ sources and headers
+#: of a package together).
 LANGUAGES: dict[str, Callable[[list[str], Package], Extraction]] = {}
 
 
@@ -199,6 +226,19 @@ def _extract_python(files: list[str], package: Package) -> Extraction:
 
 
 LANGUAGES['.py'] = _extract_python
+
+
+def _extract_cpp(files: list[str], package: Package) -> Extraction:
+    from nodl_schema.extract.cpp import extract_cpp
+
+    extraction = extract_cpp(files, package=package.name, targets=package.cmake, relative_to=os.getcwd())
+    if package.cmake is not None:
+        extraction.files.insert(0, package.cmake.file)
+    return extraction
+
+
+for _suffix in ('.cpp', '.cc', '.cxx', '.c++', '.hpp', '.hh', '.hxx', '.h', '.ipp'):
+    LANGUAGES[_suffix] = _extract_cpp
 
 
 def _is_package(folder: str) -> bool:
@@ -219,13 +259,26 @@ def _source_files(root: str, stop_at_packages: bool) -> list[str]:
 
 
 def _read_package(root: str) -> Package:
+    package: Package | None = None
     for reader in BUILD_READERS:
-        package = reader(root)
-        if package is not None:
-            break
-    else:
+        found = reader(root)
+        if found is None:
+            continue
+        if package is None:
+            package = found
+            continue
+        package.name = package.name or found.name
+        for name, target in found.executables.items():
+            package.executables.setdefault(name, target)
+        package.genparam.update(found.genparam)
+        package.diagnostics += found.diagnostics
+        package.cmake = package.cmake or found.cmake
+    if package is None:
         package = Package(_package_xml_name(root), root)
     package.files = _source_files(root, stop_at_packages=True)
+    for path, _function in package.executables.values():  # a script without a suffix (#!/usr/bin/env python3)
+        if not os.path.splitext(path)[1] and os.path.isfile(path) and path not in package.files:
+            package.files.append(path)
     return package
 
 
@@ -271,26 +324,50 @@ def _assign_executables(package: Package, extraction: Extraction) -> list[Extrac
     a NODL911 note.  A node class several executables run is one node per executable."""
     out: list[ExtractedNode] = []
     by_file: dict[str, list[ExtractedNode]] = {}
+    real_paths: dict[str, str] = {}
+
+    def real(path: str) -> str:
+        found = real_paths.get(path)
+        if found is None:
+            found = real_paths[path] = os.path.realpath(path)
+        return found
+
+    python: list[ExtractedNode] = []
     for node in extraction.nodes:
+        if node.language != 'python':  # C++: CMakeLists.txt named the executable (or said why not)
+            node.package = package.name or node.package
+            if node.executable is None and not any(d.code == 'NODL944' for d in node.notes):
+                where = 'its package has no CMakeLists.txt that builds it' if package.name else \
+                    'it is not in a package (no CMakeLists.txt maps executables)'
+                node.notes.append(Diagnostic(Severity.INFO, f"node '{node.name}': {where}; its draft is named "
+                                             f"'{node.output_name}'", file=node.location.file,
+                                             line=node.location.line, column=node.location.column,
+                                             code='NODL911'))
+            out.append(node)
+            continue
         node.package = package.name
-        by_file.setdefault(os.path.realpath(node.location.file), []).append(node)
-    starts = {os.path.realpath(f): calls for f, calls in extraction.starts.items()}
+        python.append(node)
+        by_file.setdefault(real(node.location.file), []).append(node)
+    starts = {real(f): calls for f, calls in extraction.starts.items()}
     used: set[int] = set()
     for executable, (path, function) in sorted(package.executables.items()):
-        real = os.path.realpath(path)
-        called = starts.get(real, {}).get(function, [])
-        here = by_file.get(real, [])
-        started = [n for n in here if n.made_by == 'call' and n.made_in in (function, '')]
+        here = by_file.get(real(path), [])
+        calls = starts.get(real(path), {})
+        called = list(calls.get(function, []))
+        if function == '':  # a script: its module-level code and the module functions it calls
+            called += [name for top in calls.get('', []) for name in calls.get(top, []) if name not in called]
+        started = [n for n in here if n.made_by == 'call' and (n.made_in in (function, '') or (
+            function == '' and n.made_in in calls.get('', [])))]
         for name in called:  # node classes of the same module first, then of the package
             same = [n for n in here if n.made_by == 'class' and n.name == name]
-            other = same or [n for n in extraction.nodes if n.made_by == 'class' and n.name == name][:1]
+            other = same or [n for n in python if n.made_by == 'class' and n.name == name][:1]
             started += [n for n in other if n not in started]
         for node in started:
             copy_ = node if id(node) not in used else copy.deepcopy(node)
             used.add(id(node))
             copy_.executable = executable
             out.append(copy_)
-    for node in extraction.nodes:
+    for node in python:
         if id(node) in used:
             continue
         where = 'its package has no entry point that runs it' if package.name else \
@@ -308,20 +385,22 @@ def extract_paths(paths: Iterable[str]) -> Extraction:
     result = Extraction(diagnostics=problems)
     for package in packages:
         result.diagnostics += package.diagnostics
-        by_language: dict[str, list[str]] = {}
+        by_extractor: dict[Callable[[list[str], Package], Extraction], list[str]] = {}
         for path in package.files:
-            by_language.setdefault(os.path.splitext(path)[1], []).append(path)
+            suffix = os.path.splitext(path)[1]
+            by_extractor.setdefault(LANGUAGES[suffix] if suffix else _extract_python, []).append(path)
         found = Extraction()
-        for suffix, files in by_language.items():
-            found.extend(LANGUAGES[suffix](files, package))
+        for extractor, files in by_extractor.items():
+            found.extend(extractor(files, package))
         result.diagnostics += found.diagnostics
         result.files += found.files
         result.nodes += _assign_executables(package, found)
     if not result.nodes and not any(d.severity is Severity.ERROR for d in result.diagnostics):
         shown = ', '.join(paths) if not isinstance(paths, str) else paths
         result.diagnostics.append(Diagnostic(
-            Severity.ERROR, f'no node found in {shown}: no class derived from an rclpy Node or LifecycleNode, '
-            'and no node made with Node(...) or rclpy.create_node(...)', file=str(shown), code='NODL912'))
+            Severity.ERROR, f'no node found in {shown}: no class derived from an rclpy or rclcpp Node or '
+            'LifecycleNode, and no node made with Node(...), rclpy.create_node(...) or '
+            'rclcpp::Node::make_shared(...)', file=str(shown), code='NODL912'))
     return result
 
 
@@ -342,3 +421,52 @@ def output_paths(extraction: Extraction) -> dict[int, str]:
         out[id(node)] = os.path.join(node.package, f'{stem}.nodl.yaml') if node.package else f'{stem}.nodl.yaml'
     return out
 
+
+
+def registrations(extraction: Extraction) -> tuple[dict[str, dict[str, dict[str, str]]], list[Diagnostic]]:
+    """What each package's ``nodes.yaml`` of the overlay layout records (see
+    :mod:`nodl_schema.targets.overlay`): package -> ``{key: {plugin: pkg::Class, node_name: name}}``,
+    the key being the draft's file stem.  A component is recorded with its plugin class, every
+    node whose name the source fixes with its ``node_name``.  A plugin class outside its package's
+    namespace cannot be recorded there (the layout refuses it): one NODL961 note each."""
+    import re
+
+    from nodl_schema.targets.overlay import NODES_FILE
+
+    paths = output_paths(extraction)
+    tables: dict[str, dict[str, dict[str, str]]] = {}
+    problems: list[Diagnostic] = []
+    for node in extraction.nodes:
+        if not node.package:
+            continue
+        key = os.path.basename(paths[id(node)])[:-len('.nodl.yaml')]
+        if not re.fullmatch(r'[A-Za-z0-9_][A-Za-z0-9_.-]*', key):
+            continue
+        record: dict[str, str] = {}
+        if node.plugin:
+            if re.fullmatch(r'[A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)+', node.plugin) and \
+                    node.plugin.split('::', 1)[0] == node.package:
+                record['plugin'] = node.plugin
+            else:
+                problems.append(Diagnostic(
+                    Severity.INFO, f"component {node.plugin} is not recorded in {node.package}/{NODES_FILE}: a "
+                    f"definitions folder records plugins as {node.package}::<Class> (its package's namespace); "
+                    'record it where the node is registered (ament_nodl_register_node PLUGIN)',
+                    file=node.location.file, line=node.location.line, column=node.location.column,
+                    code='NODL961'))
+        if node.node_name and re.fullmatch(r'[A-Za-z_][A-Za-z0-9_]*', node.node_name):
+            record['node_name'] = node.node_name
+        if record:
+            tables.setdefault(node.package, {})[key] = record
+    return tables, problems
+
+
+def nodes_file_text(package: str, table: dict[str, dict[str, str]]) -> str:
+    """The text of ``<package>/nodes.yaml`` for :func:`registrations`' table of one package."""
+    import yaml
+
+    from nodl_schema.text_safety import one_line
+
+    header = (f'# What registrations record for {one_line(package)} (plugin, node name), as extracted '
+              'from its source by nodl extract.\n# Provenance: extracted.\n')
+    return header + yaml.safe_dump(table, sort_keys=True, default_flow_style=False)

@@ -23,19 +23,20 @@ def _is_file_output(path: str) -> bool:
 
 
 class ExtractVerb(Verb):
-    """Draft node definitions from rclpy source code (read, never run), or compare the source with a definition."""
+    """Draft node definitions from rclpy and rclcpp source code (read, never run), or compare the source with a definition."""
 
     failure = ('the sources have errors (a file that cannot be parsed), or with --diff the source and the '
                'definition differ (with --strict: also a gap or another warning)')
 
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
         parser.add_argument('paths', nargs='+', metavar='PATH',
-                            help='a package (its setup.py/setup.cfg entry points name the executables), '
-                                 'a folder of packages or sources, or source files')
+                            help='a package (its setup.py/setup.cfg entry points or CMakeLists.txt name '
+                                 'the executables), a folder of packages or sources, or source files')
         parser.add_argument('-o', '--output', metavar='DIR|FILE',
                             help='write the drafts: DIR/<package>/<executable>.nodl.yaml (the overlay '
-                                 'layout), or FILE (.yaml) when exactly one node is found; without it, '
-                                 'the drafts are printed')
+                                 'layout; components and node names recorded in DIR/<package>/nodes.yaml), '
+                                 'or FILE (.yaml) when exactly one node is found; without it, the drafts '
+                                 'are printed')
         parser.add_argument('--diff', metavar='DEFINITION',
                             help='compare the one node found with this node definition: each difference '
                                  'is a diagnostic (NODL920-926)')
@@ -71,10 +72,9 @@ class ExtractVerb(Verb):
                                           'file or package of the node', file=args.paths[0], code='NODL913'))
             usage = True
         if not usage and args.output:
-            written, problem = self._write(args, extraction)
-            if problem is not None:
-                diagnostics.append(problem)
-                usage = True
+            written, problems = self._write(args, extraction)
+            diagnostics += problems
+            usage = any(d.severity is Severity.ERROR for d in problems)
         if not usage and args.diff:
             from nodl_schema.diagnostics import ValidationError
             from nodl_schema.extract.diff import diff_node
@@ -100,9 +100,10 @@ class ExtractVerb(Verb):
             return EXIT_USAGE
         return EXIT_FAILURE if has_errors(diagnostics, args.strict) else EXIT_OK
 
-    def _write(self, args: argparse.Namespace, extraction: Extraction) -> tuple[list[str], Diagnostic | None]:
-        from nodl_schema.extract.targets import output_paths
+    def _write(self, args: argparse.Namespace, extraction: Extraction) -> tuple[list[str], list[Diagnostic]]:
+        from nodl_schema.extract.targets import nodes_file_text, output_paths, registrations
         from nodl_schema.extract.writer import draft_text
+        from nodl_schema.targets.overlay import NODES_FILE
         from nodl_schema.writing import WriteError, output_is_input, write_marked
 
         single = _is_file_output(args.output)
@@ -112,14 +113,27 @@ class ExtractVerb(Verb):
             target = args.output if single else os.path.join(args.output, paths[id(node)])
             problem = output_is_input(target, extraction.files + ([args.diff] if args.diff else []))
             if problem is not None:
-                return written, problem
+                return written, [problem]
             text = draft_text(node, relative_to=os.path.dirname(os.path.abspath(target)))
             try:
                 write_marked(target, text, force=args.force, make_parents=True)
             except WriteError as exc:
-                return written, exc.diagnostic
+                return written, [exc.diagnostic]
             written.append(target)
-        return written, None
+        if single:
+            return written, []
+        tables, notes = registrations(extraction)
+        for package, table in sorted(tables.items()):
+            target = os.path.join(args.output, package, NODES_FILE)
+            problem = output_is_input(target, extraction.files)
+            if problem is not None:
+                return written, notes + [problem]
+            try:
+                write_marked(target, nodes_file_text(package, table), force=args.force, make_parents=True)
+            except WriteError as exc:
+                return written, notes + [exc.diagnostic]
+            written.append(target)
+        return written, notes
 
     def _report(self, args: argparse.Namespace, extraction: Extraction, diagnostics: list[Diagnostic],
                 written: list[str], usage: bool) -> None:
@@ -128,7 +142,8 @@ class ExtractVerb(Verb):
         tally = Tally()
         tally.files = len(extraction.files)
         tally.add(diagnostics)
-        summary = f'{plural(len(extraction.nodes), "node")} found, {plural(len(written), "draft")} written; ' + \
+        drafts = [path for path in written if os.path.basename(path) != 'nodes.yaml']
+        summary = f'{plural(len(extraction.nodes), "node")} found, {plural(len(drafts), "draft")} written; ' + \
             summary_line(tally)
         if args.format == 'text':
             if not args.output and not args.diff and not usage:
