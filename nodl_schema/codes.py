@@ -165,6 +165,17 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL416': ('warning', 'describe --launch: a launched node that cannot be found or filed (final name or executable unknown)'),
     'NODL420': ('error', "version skew: a running endpoint's type hash differs from the installed definition's"),
     'NODL421': ('info', "version skew: an endpoint's type hash cannot be compared (not reported, or the installed file cannot be read)"),
+    'NODL430': ('error', 'monitor: an expected node is not running (not seen within the grace period, or gone from the graph)'),
+    'NODL431': ('warning', 'monitor: a node is running that the expected system does not have'),
+    'NODL432': ('warning', "monitor: a node is restarting (a new node of its name while the old one's participant lease runs)"),
+    'NODL433': ('info', 'monitor: a node without a usable definition is monitored for presence only'),
+    'NODL434': ('error', 'monitor: a node stopped answering its parameter services (killed or hung; before its lease ends)'),
+    'NODL435': ('error', 'monitor: no message in the rate window on a topic whose definition declares a deadline'),
+    'NODL436': ('warning', 'monitor: a topic with a declared deadline is published more slowly than 1/deadline (beyond the tolerance)'),
+    'NODL437': ('error', 'monitor: the endpoints of a topic agree on its type name but not on its type hash (version skew)'),
+    'NODL438': ('error', 'monitor: a parameter the definition declares read_only was changed at run time'),
+    'NODL439': ('warning', 'monitor: shedding: the monitor cannot keep up within its CPU budget (graph scans spaced out)'),
+    'NODL440': ('warning', 'monitor: a launched node cannot be monitored (its final name cannot be computed)'),
     # -- NODL5xx: system analysis (launch files: 501-539) -------------------
     'NODL501': ('error', 'launch file: an unknown tag (action) or a misplaced one'),
     'NODL502': ('error', 'launch file: an unknown attribute'),
@@ -199,6 +210,8 @@ CODES: dict[str, tuple[str, str]] = {
                 'file, a package.xml, other text)'),
     'NODL532': ('error', 'nodl deps: a mixin of the node definition leads outside its package (an installed '
                 'copy cannot reach it)'),
+    'NODL533': ('error', "composable node: an extra argument rclcpp_components reads (use_intra_process_comms, "
+                'forward_global_arguments) is not a bool: the container refuses to load the node'),
     # -- NODL55x-59x: system analysis (nodl analyse) ------------------------
     'NODL550': ('error', 'duplicate-node: two launched nodes end up with the same fully qualified name'),
     'NODL551': ('warning', 'multiple-publishers: more than one node publishes a topic (not on the allow list)'),
@@ -246,7 +259,7 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL705': ('warning', 'parameter file: no node key of the files applies to the node'),
     'NODL706': ('error', 'parameter file check: the launch file cannot be read, or starts no node with a definition'),
     'NODL707': ('error', 'code generation: an option is not a valid name (--node-name, --class-name, --namespace, a package name, a keyword)'),
-    'NODL708': ('error', 'code generation: a generated file would be written outside the output folder'),
+    'NODL708': ('error', 'a file would be written outside the output folder (a generated path that leaves it, or a folder under it that is a symbolic link to a place outside)'),
     'NODL710': ('error', "parameter file read by rcl: a YAML alias (rcl refuses aliasing: the node fails to start)"),
     'NODL711': ('warning', 'parameter file read by rcl: a YAML anchor (rcl ignores it; no alias may use it)'),
     'NODL712': ('error', "parameter file read by rcl: a merge key '<<' (rcl has none: it reads '<<' as a parameter name)"),

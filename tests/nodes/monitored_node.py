@@ -1,0 +1,77 @@
+"""A node built at run time from a definition (nodl_schema.runtime) for nodl monitor's tests.
+
+Usage: monitored_node.py --name NAME [--namespace NS] --definition FILE [--rate HZ] [--lax]
+[--ros-args ...].  It publishes a String on every declared publisher at HZ (default 10);
+--lax: it does not enforce its validators (a bad value set through the parameter service
+is accepted, for the monitor to find).  On SIGUSR1 it recreates its publishers BEST_EFFORT
+(a QoS change at run time).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import sys
+from pathlib import Path
+
+from _common import ready, spin
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2]))  # the toolkit's source tree
+
+os.environ['ROS_AUTOMATIC_DISCOVERY_RANGE'] = 'LOCALHOST'
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument('--name', required=True)
+    parser.add_argument('--namespace', default='/')
+    parser.add_argument('--definition', required=True)
+    parser.add_argument('--rate', type=float, default=10.0)
+    parser.add_argument('--lax', action='store_true')
+    parser.add_argument('--ros-args', nargs=argparse.REMAINDER, default=[])
+    args = parser.parse_args()
+    import rclpy
+    import std_msgs.msg
+    from rcl_interfaces.msg import SetParametersResult
+    from rclpy.qos import QoSProfile, ReliabilityPolicy
+
+    from nodl_schema.runtime import NodlNode
+    from nodl_schema.system import EntityKind
+
+    class Monitored(NodlNode):
+        def _nodl_validate(self, parameters):  # type: ignore[no-untyped-def]
+            if args.lax:
+                return SetParametersResult(successful=True)
+            return super()._nodl_validate(parameters)
+
+    rclpy.init(args=['node', '--ros-args', *args.ros_args])
+    node = Monitored(args.definition, args.name, namespace=args.namespace,
+                     callbacks={'~/command': lambda _m: None})
+    publishers = {name: h for (kind, name), h in node.nodl_handles.items()
+                  if kind is EntityKind.PUBLISHER}
+
+    def tick() -> None:
+        for handle in publishers.values():
+            handle.publish(std_msgs.msg.String(data='reading'))
+
+    node.create_timer(1.0 / args.rate, tick)
+    changes: list[int] = []
+    signal.signal(signal.SIGUSR1, lambda *_: changes.append(1))
+
+    def change_qos() -> None:
+        if not changes:
+            return
+        changes.clear()
+        for name, handle in list(publishers.items()):
+            node.destroy_publisher(handle)
+            publishers[name] = node.create_publisher(
+                std_msgs.msg.String, name, QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT))
+
+    node.create_timer(0.05, change_qos)
+    ready()
+    spin(node)
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,296 @@
+"""nodl monitor against real processes: nodes built from a definition by the runtime
+(tests/nodes/monitored_node.py), the monitor itself a real ``nodl monitor`` process, its
+/diagnostics read by a real rclpy subscriber, and each case's ``--once`` report."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any, Callable, Iterator
+
+import pytest
+
+from conftest import FIXTURES, REPO
+
+SENSOR = FIXTURES / 'monitor' / 'sensor.nodl.yaml'
+NODE = Path(__file__).parent / 'nodes' / 'monitored_node.py'
+FAST = ['--ros-args', '-p', 'grace_period:=1.0', '-p', 'liveness_period:=0.5',
+        '-p', 'liveness_timeout:=1.0', '-p', 'rate_window:=1.0', '-p', 'scan_period:=0.5']
+
+
+class Processes:
+    """Starts processes and stops every one of them at the end."""
+
+    def __init__(self) -> None:
+        self.started: list[subprocess.Popen[str]] = []
+
+    def node(self, name: str, *extra: str) -> subprocess.Popen[str]:
+        process = subprocess.Popen([sys.executable, str(NODE), '--name', name, '--definition',
+                                    str(SENSOR), *extra], stdout=subprocess.PIPE,
+                                   stderr=subprocess.PIPE, text=True)
+        self.started.append(process)
+        assert process.stdout is not None
+        line = _readline(process, 20.0)
+        assert line.strip() == 'ready', (line, process.stderr.read() if process.poll() else '')
+        return process
+
+    def monitor(self, *arguments: str) -> subprocess.Popen[str]:
+        process = subprocess.Popen([sys.executable, '-m', 'nodl_schema', 'monitor', *arguments],
+                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                   cwd=REPO)
+        self.started.append(process)
+        return process
+
+    def stop(self) -> None:
+        for process in self.started:
+            if process.poll() is None:
+                process.send_signal(signal.SIGINT)
+        for process in self.started:
+            try:
+                process.wait(timeout=5)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait(timeout=5)
+
+
+def _readline(process: subprocess.Popen[str], timeout: float) -> str:
+    import selectors
+
+    assert process.stdout is not None
+    selector = selectors.DefaultSelector()
+    selector.register(process.stdout, selectors.EVENT_READ)
+    try:
+        if not selector.select(timeout):
+            return ''
+        return process.stdout.readline()
+    finally:
+        selector.close()
+
+
+@pytest.fixture
+def processes() -> Iterator[Processes]:
+    started = Processes()
+    try:
+        yield started
+    finally:
+        started.stop()
+
+
+class Diagnostics:
+    """A real rclpy subscriber to /diagnostics (and /parameter_events, with receipt times)."""
+
+    def __init__(self) -> None:
+        import rclpy
+        from diagnostic_msgs.msg import DiagnosticArray
+        from rcl_interfaces.msg import ParameterEvent
+        from rclpy.executors import SingleThreadedExecutor
+        from rclpy.qos import qos_profile_parameter_events
+
+        self.context = rclpy.Context()
+        rclpy.init(context=self.context)
+        self.node = rclpy.create_node('_monitor_test_reader', context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self.arrays: list[tuple[float, Any]] = []
+        self.events: list[tuple[float, Any]] = []
+        self.node.create_subscription(DiagnosticArray, '/diagnostics',
+                                      lambda m: self.arrays.append((time.monotonic(), m)), 50)
+        self.node.create_subscription(ParameterEvent, '/parameter_events',
+                                      lambda m: self.events.append((time.monotonic(), m)),
+                                      qos_profile_parameter_events)
+
+    def spin(self, seconds: float) -> None:
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            self.executor.spin_once(timeout_sec=0.02)
+
+    def wait_status(self, name: str, test: Callable[[Any], bool], timeout: float
+                    ) -> tuple[float, Any]:
+        """The first status ``name`` that passes ``test`` (its receipt time), within timeout."""
+        end = time.monotonic() + timeout
+        seen = 0
+        while time.monotonic() < end:
+            self.executor.spin_once(timeout_sec=0.02)
+            for when, array in self.arrays[seen:]:
+                for status in array.status:
+                    if status.name == name and test(status):
+                        return when, status
+            seen = len(self.arrays)
+        last = [s for _, a in self.arrays[-3:] for s in a.status if s.name == name]
+        raise AssertionError(f'no status {name} passed within {timeout} s; last: {last}')
+
+    def close(self) -> None:
+        import rclpy
+
+        self.node.destroy_node()
+        rclpy.shutdown(context=self.context)
+
+
+@pytest.fixture
+def diagnostics() -> Iterator[Diagnostics]:
+    reader = Diagnostics()
+    try:
+        yield reader
+    finally:
+        reader.close()
+
+
+def values(status: Any) -> dict[str, str]:
+    return {kv.key: kv.value for kv in status.values}
+
+
+def codes(status: Any) -> list[str]:
+    return [c for c in values(status)['codes'].split(',') if c]
+
+
+def level(status: Any) -> int:
+    return status.level[0] if isinstance(status.level, bytes) else int(status.level)
+
+
+def once(*arguments: str, wait: float = 6.0) -> tuple[int, dict[str, Any]]:
+    """``nodl monitor --once --format json``: exit status and the statuses by name."""
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'monitor', *arguments, '--once',
+                             '--wait', str(wait), '--format', 'json', *FAST],
+                            capture_output=True, text=True, cwd=REPO, timeout=wait + 30)
+    assert result.stdout, result.stderr
+    report = json.loads(result.stdout)
+    return result.returncode, {s['name']: s for s in report['statuses']}
+
+
+def test_bad_parameter_is_published_within_100_ms_of_its_event(processes: Processes,
+                                                                  diagnostics: Diagnostics) -> None:
+    from rcl_interfaces.msg import Parameter, ParameterValue
+    from rcl_interfaces.srv import SetParameters
+
+    processes.node('sensor_p', '--lax')
+    processes.monitor(str(SENSOR), '--name', '/sensor_p', '--format', 'jsonl', *FAST)
+    diagnostics.wait_status('nodl: /sensor_p', lambda s: values(s).get('state') == 'running', 20)
+    diagnostics.spin(1.5)  # its parameters read
+    client = diagnostics.node.create_client(SetParameters, '/sensor_p/set_parameters')
+    assert client.wait_for_service(timeout_sec=10)
+    future = client.call_async(SetParameters.Request(parameters=[
+        Parameter(name='mode', value=ParameterValue(type=4, string_value='turbo'))]))
+    end = time.monotonic() + 10
+    while not future.done() and time.monotonic() < end:
+        diagnostics.executor.spin_once(timeout_sec=0.02)
+    assert future.result().results[0].successful  # the node does not enforce its validators
+    when, status = diagnostics.wait_status('nodl: /sensor_p',
+                                           lambda s: 'NODL407' in codes(s), 5)
+    event = next(t for t, e in diagnostics.events if e.node == '/sensor_p'
+                 and any(p.name == 'mode' for p in e.changed_parameters))
+    assert when - event < 0.1, f'published {when - event:.3f} s after the event'
+    assert level(status) == 1
+    assert status.hardware_id == 'sensor.nodl.yaml'
+    assert status.message.startswith("value: parameter 'mode': current value 'turbo'")
+    assert values(status)['NODL407 parameters mode'] == status.message
+    rc, report = once(str(SENSOR), '--name', '/sensor_p')
+    assert rc == 0  # a warning
+    assert report['nodl: /sensor_p']['level'] == 'WARN'
+    assert 'NODL407' in report['nodl: /sensor_p']['codes']
+
+
+def test_unexpected_node(processes: Processes, diagnostics: Diagnostics) -> None:
+    processes.node('sensor_u')
+    processes.node('intruder')
+    processes.monitor(str(SENSOR), '--name', '/sensor_u', *FAST)
+    _, status = diagnostics.wait_status('nodl: system',
+                                        lambda s: 'NODL431 node /intruder' in values(s), 20)
+    assert level(status) == 1
+    assert values(status)['NODL431 node /intruder'] == ('/intruder is running but the expected '
+                                                        'system does not have it')
+    rc, report = once(str(SENSOR), '--name', '/sensor_u')
+    assert rc == 0
+    system = report['nodl: system']
+    assert system['level'] == 'WARN' and system['codes'] == ['NODL431']
+    assert report['nodl: /sensor_u']['level'] == 'OK'
+
+
+def test_qos_change(processes: Processes, diagnostics: Diagnostics) -> None:
+    node = processes.node('sensor_q')
+    processes.monitor(str(SENSOR), '--name', '/sensor_q', *FAST)
+    diagnostics.wait_status('nodl: /sensor_q', lambda s: values(s).get('state') == 'running'
+                            and level(s) == 0, 20)
+    node.send_signal(signal.SIGUSR1)  # its publisher recreated BEST_EFFORT
+    _, status = diagnostics.wait_status('nodl: /sensor_q', lambda s: 'NODL404' in codes(s), 10)
+    assert level(status) == 2
+    assert values(status)['NODL404 publishers /sensor_q/data'] == (
+        "qos: publisher '/sensor_q/data' reliability: declared RELIABLE, observed BEST_EFFORT")
+    rc, report = once(str(SENSOR), '--name', '/sensor_q')
+    assert rc == 1
+    assert report['nodl: /sensor_q']['level'] == 'ERROR'
+    assert 'NODL404' in report['nodl: /sensor_q']['codes']
+
+
+def test_incompatible_subscription(processes: Processes, diagnostics: Diagnostics) -> None:
+    import std_msgs.msg
+    from rclpy.qos import DurabilityPolicy, QoSProfile
+
+    processes.node('sensor_i')
+    processes.monitor(str(SENSOR), '--name', '/sensor_i', *FAST)
+    diagnostics.wait_status('nodl: /sensor_i', lambda s: values(s).get('state') == 'running', 20)
+    diagnostics.node.create_subscription(std_msgs.msg.String, '/sensor_i/data', lambda _m: None,
+                                         QoSProfile(depth=1,
+                                                    durability=DurabilityPolicy.TRANSIENT_LOCAL))
+    _, status = diagnostics.wait_status('nodl: /sensor_i', lambda s: 'NODL553' in codes(s), 10)
+    assert level(status) == 2
+    key = 'NODL553 topic /sensor_i/data /sensor_i -> /_monitor_test_reader'
+    assert values(status)[key].endswith('durability: the publisher offers volatile but the '
+                                        'subscription requests transient local')
+    rc, report = once(str(SENSOR), '--name', '/sensor_i')
+    assert rc == 1 and 'NODL553' in report['nodl: /sensor_i']['codes']
+
+
+def test_publishing_too_slowly_for_a_deadline(processes: Processes,
+                                              diagnostics: Diagnostics) -> None:
+    processes.node('sensor_s', '--rate', '4')
+    processes.monitor(str(SENSOR), '--name', '/sensor_s', *FAST)
+    _, status = diagnostics.wait_status('nodl: /sensor_s', lambda s: 'NODL436' in codes(s), 20)
+    assert level(status) == 1
+    assert 'slower than the 10 Hz its deadline of 100 ms asks for' in status.message
+    rc, report = once(str(SENSOR), '--name', '/sensor_s')
+    assert rc == 0 and report['nodl: /sensor_s']['codes'][0] == 'NODL436'
+
+
+def test_missing_node(diagnostics: Diagnostics) -> None:
+    rc, report = once(str(SENSOR), '--name', '/ghost', wait=2.0)
+    assert rc == 1
+    ghost = report['nodl: /ghost']
+    assert ghost['level'] == 'ERROR' and ghost['codes'] == ['NODL430']
+    assert ghost['message'] == '/ghost is not running: not seen within the grace period of 1 s'
+
+
+def test_kill_and_restart(processes: Processes, diagnostics: Diagnostics) -> None:
+    node = processes.node('sensor_k')
+    monitor = processes.monitor(str(SENSOR), '--name', '/sensor_k', '--format', 'jsonl', *FAST)
+    diagnostics.wait_status('nodl: /sensor_k', lambda s: values(s).get('state') == 'running'
+                            and level(s) == 0, 20)
+    diagnostics.spin(1.0)
+    killed = time.monotonic()
+    node.send_signal(signal.SIGKILL)
+    node.wait(timeout=5)
+    when, status = diagnostics.wait_status('nodl: /sensor_k', lambda s: 'NODL434' in codes(s), 10)
+    assert level(status) == 2
+    assert when - killed < 4.0  # long before the participant lease (~20 s) ends
+    assert status.message.startswith('/sensor_k stopped answering its parameter services')
+    # a monitor started now never discovers the dead participant: the node is missing
+    rc, report = once(str(SENSOR), '--name', '/sensor_k', wait=3.0)
+    assert rc == 1 and report['nodl: /sensor_k']['codes'] == ['NODL430']
+    processes.node('sensor_k')  # restarted while the old one is still in the graph
+    # restarting; the new one answers the parameter services
+    _, status = diagnostics.wait_status('nodl: /sensor_k', lambda s: 'NODL432' in codes(s)
+                                        and 'NODL434' not in codes(s), 10)
+    assert level(status) == 1
+    assert values(status)['instances'] == '2' and values(status)['restarts'] == '1'
+    assert 'is restarting' in status.message
+    monitor.send_signal(signal.SIGTERM)
+    assert monitor.wait(timeout=2) == 0
+    lines = [json.loads(line) for line in monitor.stdout.read().splitlines()]  # type: ignore[union-attr]
+    mine = [line for line in lines if line['status'] == 'nodl: /sensor_k']
+    assert any(line['level'] == 'ERROR' for line in mine)  # killed (no message, no answer)
+    assert mine[-1]['level'] == 'WARN' and 'NODL432' in mine[-1]['codes']
+    assert set(lines[0]) == {'time', 'status', 'level', 'message', 'codes'}
