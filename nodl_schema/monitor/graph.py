@@ -158,20 +158,20 @@ def observed_node(fqn: str, snapshot: Snapshot) -> ObservedNode | None:
     namespace, name = split_node_name(fqn)
     observed = ObservedNode(name, namespace)
     qos: dict[tuple[str, str], TopicEndpoint] = {}
-    for topic, endpoints in snapshot.topics.items():
-        for endpoint in endpoints:
-            if endpoint.node == fqn:
-                qos.setdefault((endpoint.kind, topic), endpoint)
+    for topic, infos in snapshot.topics.items():
+        for info in infos:
+            if info.node == fqn:
+                qos.setdefault((info.kind, topic), info)
     for section in _SECTIONS:
         entries = []
         for entity_name, types in sorted(raw.get(section, [])):
             endpoint = ObservedEndpoint(entity_name, types[0] if types else '')
             if section in ('publishers', 'subscriptions'):
-                info = qos.get((section[:-1], entity_name))
-                if info is None:
+                found = qos.get((section[:-1], entity_name))
+                if found is None:
                     endpoint.unobserved = ['qos']
                 else:
-                    endpoint.qos, endpoint.unobserved = info.qos_dict, list(info.unobserved)
+                    endpoint.qos, endpoint.unobserved = found.qos_dict, list(found.unobserved)
             entries.append(endpoint)
         setattr(observed, section, entries)
     _fold_actions(observed)

@@ -159,7 +159,7 @@ class Monitor:
         from rclpy.signals import SignalHandlerOptions
 
         try:
-            from diagnostic_msgs.msg import DiagnosticArray
+            from diagnostic_msgs.msg import DiagnosticArray  # type: ignore[import-untyped]
             from rcl_interfaces.msg import ParameterEvent
         except ImportError as exc:
             raise LiveError(f'nodl monitor needs diagnostic_msgs ({exc}); install it '
@@ -578,9 +578,9 @@ class Monitor:
             status.facts.append((f'rate {deadline.topic}', f'{count / window:.3g} Hz '
                                  f'(deadline {deadline.deadline_ns / 1e6:g} ms: '
                                  f'{deadline.expected_rate:g} Hz)'))
-            finding = rate_finding(deadline, count, window, settings.rate_tolerance)
-            if finding is not None:
-                status.findings.append(finding)
+            slow = rate_finding(deadline, count, window, settings.rate_tolerance)
+            if slow is not None:
+                status.findings.append(slow)
         status.ok_message = 'running as defined' if expected.resolved is not None else 'running'
         return status
 

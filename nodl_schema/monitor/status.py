@@ -104,7 +104,7 @@ class Status:
 
 def to_message(status: Status) -> Any:
     """The status as a ``diagnostic_msgs/msg/DiagnosticStatus``."""
-    from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
+    from diagnostic_msgs.msg import DiagnosticStatus, KeyValue  # type: ignore[import-untyped]
 
     return DiagnosticStatus(level=bytes([status.level]), name=status.name,
                             message=status.message, hardware_id=status.hardware_id,
