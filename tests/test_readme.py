@@ -145,3 +145,17 @@ def test_quoted_overlay_analysis_matches_the_tool() -> None:
     assert result.returncode == 0, result.stderr
     quoted = [line for line in block.group(2).splitlines() if line and line != '...']
     assert result.stdout.splitlines()[-len(quoted):] == quoted
+
+
+def test_quoted_monitor_aggregator_config_is_what_the_tool_writes(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    block = re.search(r'`(nodl monitor sensor\.nodl\.yaml [^`]*--aggregator-config agg\.yaml)` '
+                      r'writes:\n\n```yaml\n(.*?)```', README, re.S)
+    assert block, 'README lost its `nodl monitor --aggregator-config` example'
+    arguments = block.group(1).split()[2:]
+    (tmp_path / 'sensor.nodl.yaml').write_text(
+        (REPO / 'tests' / 'fixtures' / 'monitor' / 'sensor.nodl.yaml').read_text())
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'monitor', *arguments],
+                            cwd=tmp_path, env={**os.environ, 'PYTHONPATH': str(REPO)},
+                            text=True, capture_output=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / 'agg.yaml').read_text() == block.group(2)
