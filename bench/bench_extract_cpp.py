@@ -13,16 +13,20 @@ the expected ones; a gap (left open, never guessed) counts as not found, not as 
 from __future__ import annotations
 
 import shutil
+import sys
 import tempfile
 import time
 from pathlib import Path
 
 import yaml
 
-from nodl_schema.extract.cpp import CPP_SUFFIXES, cpp_parser, extract_cpp
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from nodl_schema.extract.cpp import CPP_SUFFIXES, cpp_parser, extract_cpp  # noqa: E402
 
 TARGET = 2.0
-FIXTURES = Path(__file__).resolve().parent.parent / 'tests' / 'fixtures' / 'extract' / 'cpp'
+FIXTURES = ROOT / 'tests' / 'fixtures' / 'extract' / 'cpp'
 KINDS = ['publishers', 'subscriptions', 'service_servers', 'service_clients', 'action_servers',
          'action_clients', 'parameters']
 

@@ -13,6 +13,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 import bench_analyse  # noqa: E402
 import bench_cli_start  # noqa: E402
 import bench_describe  # noqa: E402
+import bench_extract_cpp  # noqa: E402
 import bench_describe_launch  # noqa: E402
 import bench_extract_python  # noqa: E402
 import bench_generate  # noqa: E402

@@ -35,7 +35,7 @@ from nodl_schema.extract.model import PARAMETERS, Entity, ExtractedNode, Extract
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Iterable, Iterator
+    from typing import Any, Iterable
 
     from nodl_schema.extract.cmake import CMakeTargets
     from nodl_schema.model.qos import QoSProfile
@@ -253,7 +253,16 @@ class _Reader:
         self.registered: dict[str, Location] = {}
         self.methods: dict[str, list[tuple[Any, str]]] = {}
         self.member_values: dict[tuple[str, str], Any] = {}
+        self.walks: dict[tuple[int, str], list[Any]] = {}
         self.file = ''
+
+    def walk(self, node: Any, kind: str) -> list[Any]:
+        """:func:`_walk`, once per node and kind."""
+        key = (node.id, kind)
+        found = self.walks.get(key)
+        if found is None:
+            found = self.walks[key] = _walk(node, kind)
+        return found
 
     # -- locations and diagnostics
     def loc(self, node: Any, file: str | None = None) -> Location:
@@ -292,7 +301,8 @@ class _Reader:
         if b'\0' in data[:8192]:
             self.report(_UNREADABLE, 'not a C++ source (binary data); not read', Location(path, 1, 1))
             return
-        mark = _GENERATED_MARK.search(data[:4096])
+        head = data[:4096]
+        mark = _GENERATED_MARK.search(head) if b'enerated' in head or b'ENERATED' in head else None
         if mark is not None:
             line = data[:mark.start()].count(b'\n') + 1
             self.report(_GENERATED, 'generated code (it says so here); not read: extract the node from '
@@ -532,7 +542,7 @@ class _Reader:
         for path, tree in self.trees:
             if b'make_shared<' not in tree.root_node.text and b'make_unique<' not in tree.root_node.text:
                 continue
-            for call in _walk(tree.root_node, 'call_expression'):
+            for call in _walk(tree.root_node, _TEMPLATE_CALLS):
                 function = call.child_by_field_name('function')
                 if function is None:
                     continue
@@ -590,10 +600,16 @@ def _mask_macros(data: bytes) -> bytes:
     kept: export/visibility macros (``DEMO_NODES_CPP_PUBLIC``, ``class FOO_EXPORT Name``) become
     spaces, ``PRId64`` in a string concatenation a string literal of the same width, and
     ``RCLCPP_COMPONENTS_REGISTER_NODE(...)`` gains the ``;`` it leaves out (at the end)."""
-    data = _PRI.sub(lambda m: b'"d"'.ljust(len(m.group()), b' '), data)
-    data = _EXPORT.sub(lambda m: b' ' * len(m.group()), data)
-    data = _CLASS_MACRO.sub(lambda m: b' ' * len(m.group()), data)
-    return _REGISTER.sub(lambda m: m.group(1) + b';', data)
+    if b'PRI' in data:
+        data = _PRI.sub(lambda m: b'"d"'.ljust(len(m.group()), b' '), data)
+    if any(word in data for word in (b'_PUBLIC', b'_EXPORT', b'_LOCAL', b'_API', b'_DLL', b'_IMPORT',
+                                     b'_VISIBILITY_')):
+        data = _EXPORT.sub(lambda m: b' ' * len(m.group()), data)
+    if b'class ' in data:
+        data = _CLASS_MACRO.sub(lambda m: b' ' * len(m.group()), data)
+    if b'RCLCPP_COMPONENTS_REGISTER_NODE' in data:
+        data = _REGISTER.sub(lambda m: m.group(1) + b';', data)
+    return data
 
 
 def _first_error(node: Any) -> Any:
@@ -607,13 +623,44 @@ def _first_error(node: Any) -> Any:
     return None
 
 
-def _walk(node: Any, kind: str) -> Iterator[Any]:
-    cursor = [node]
-    while cursor:
-        current = cursor.pop()
-        if current.type == kind:
-            yield current
-        cursor.extend(reversed(current.children))
+_QUERIES: dict[str, Any] = {}
+#: A query (not a node type) for :func:`_walk`: the calls of a function template (``f<T>(...)``,
+#: ``ns::f<T>(...)``), where ``std::make_shared<Node>(...)`` is found.
+_TEMPLATE_CALLS = ('(call_expression function: [(template_function) '
+                   '(qualified_identifier name: (template_function))]) @found')
+
+
+def _walk(node: Any, kind: str) -> list[Any]:
+    """The nodes of type ``kind`` in ``node`` (itself included), in source order (an enclosing
+    node before the nodes it holds): found by a tree-sitter query, in C, not node by node."""
+    import tree_sitter
+
+    query = _QUERIES.get(kind)
+    if query is None:
+        import tree_sitter_cpp
+
+        query = _QUERIES[kind] = tree_sitter.Query(tree_sitter.Language(tree_sitter_cpp.language()),
+                                                   kind if kind.startswith('(') else f'({kind}) @found')
+    found = list(tree_sitter.QueryCursor(query).captures(node).get('found', []))
+    found.sort(key=lambda n: (n.start_byte, -n.end_byte))
+    return found
+
+
+#: Nodes that hold no call, declaration or assignment: not visited.
+_INERT = frozenset({'identifier', 'field_identifier', 'string_literal', 'raw_string_literal', 'number_literal',
+                    'comment', 'this', 'namespace_identifier', 'type_identifier', 'qualified_identifier',
+                    'template_argument_list', 'type_descriptor', 'primitive_type', 'true', 'false', 'null',
+                    'nullptr', 'string_content', 'escape_sequence', 'char_literal', 'concatenated_string',
+                    'break_statement', 'continue_statement', 'goto_statement', 'sized_type_specifier'})
+#: Statements skipped when they hold neither a candidate call nor an assignment (their own
+#: declarations are local to them).
+_PRUNABLE = frozenset({'expression_statement', 'return_statement', 'if_statement', 'for_statement',
+                       'while_statement', 'for_range_loop', 'do_statement', 'switch_statement', 'try_statement',
+                       'compound_statement', 'lambda_expression'})
+#: What a function body must hold for scanning it to find anything: an entity call, a helper
+#: that creates entities, a message_filters or image_transport object (a byte search first).
+_CANDIDATE = re.compile(rb'create_|declare_parameter|TransformBroadcaster|TransformListener|Updater|'
+                        rb'message_filters|image_transport|ImageTransport|advertise|subscribe')
 
 
 def _literal_text(text: bytes) -> Any:
@@ -722,6 +769,10 @@ class _Scan:
 
     def visit(self, node: Any) -> None:
         kind = node.type
+        if kind in _PRUNABLE:  # no candidate call and no assignment: nothing here to read
+            text = node.text
+            if b'=' not in text and _CANDIDATE.search(text) is None:
+                return
         if kind == 'declaration':
             self._local(node)
             return
@@ -736,7 +787,8 @@ class _Scan:
                           'do_statement', 'switch_statement', 'lambda_expression', 'try_statement')
         self.depth += nested
         for child in node.named_children:
-            self.visit(child)
+            if child.type not in _INERT:
+                self.visit(child)
         self.depth -= nested
 
     def _local(self, node: Any) -> None:
@@ -1395,6 +1447,8 @@ class _Scan:
 
     def helper(self, type_text: str, args: Any, where: Any) -> bool:
         """tf2_ros, diagnostic_updater and message_filters objects: the entities they create."""
+        if 'Transform' not in type_text and 'Updater' not in type_text and 'message_filters' not in type_text:
+            return False  # none of them (every name _HELPERS knows holds one of these words)
         plain = re.sub(r'^(?:std::)?make_(?:shared|unique)<(.+)>$', r'\1', type_text)
         plain = re.sub(r'<.*>$', '', plain) if not plain.startswith('message_filters') else plain
         short = plain.rsplit('::', 1)[-1] if plain.startswith(('tf2_ros', 'diagnostic_updater')) else plain
@@ -1537,7 +1591,7 @@ def _member_value(reader: _Reader, klass: _Class, name: str, where: Any) -> Any:
     assigned = _member_assignments(reader, klass, name)
     initial = None
     for definition, file in _class_methods(reader, klass):
-        for init in _walk(definition, 'field_initializer'):
+        for init in reader.walk(definition, 'field_initializer'):
             target = init.named_children[0] if init.named_children else None
             if target is not None and _text(target) == name:
                 args = init.named_children[1] if len(init.named_children) > 1 else None
@@ -1584,7 +1638,7 @@ def _class_methods(reader: _Reader, klass: _Class) -> list[tuple[Any, str]]:
 def _member_assignments(reader: _Reader, klass: _Class, name: str) -> list[tuple[Any, str, Any]]:
     found = []
     for definition, file in _class_methods(reader, klass):
-        for node in _walk(definition, 'assignment_expression'):
+        for node in reader.walk(definition, 'assignment_expression'):
             left = node.child_by_field_name('left')
             if left is None:
                 continue
@@ -1615,7 +1669,7 @@ class _NodeScan(_Scan):
                           Severity.INFO)
         assert self.klass is not None
         filters: dict[str, str] = {}
-        for declaration in _walk(self.klass.node, 'field_declaration'):
+        for declaration in self.r.walk(self.klass.node, 'field_declaration'):
             type_node = declaration.child_by_field_name('type')
             type_text = _squash(_text(type_node)) if type_node is not None else ''
             if type_text.startswith('message_filters::Subscriber<'):
@@ -1632,8 +1686,8 @@ class _NodeScan(_Scan):
                     for init in child.named_children:
                         self._member_init(init)
             body = definition.child_by_field_name('body')
-            if body is not None:
-                self.visit(body)
+            if body is not None and _CANDIDATE.search(body.text) is not None:
+                self.visit(body)  # a body with no candidate call creates nothing: not walked
 
     def _member_init(self, init: Any) -> None:
         if not init.named_children:
@@ -1646,7 +1700,7 @@ class _NodeScan(_Scan):
             return
         type_text = ''
         field_decl = member[2]
-        for declaration in _walk(self.klass.node, 'field_declaration'):
+        for declaration in self.r.walk(self.klass.node, 'field_declaration'):
             if declaration.start_point[0] + 1 == field_decl.line:
                 type_node = declaration.child_by_field_name('type')
                 type_text = _squash(_text(type_node)) if type_node is not None else ''
@@ -1664,7 +1718,7 @@ class _NodeScan(_Scan):
         bases = {re.sub(r'<.*>', '', b) for b in self.klass.bases}
         short = {b.rsplit('::', 1)[-1] for b in bases}
         for definition, file in _class_methods(self.r, self.klass):
-            for init in _walk(definition, 'field_initializer'):
+            for init in self.r.walk(definition, 'field_initializer'):
                 if not init.named_children:
                     continue
                 target = _squash(_text(init.named_children[0]))
