@@ -332,3 +332,44 @@ def test_a_fixed_size_array_with_too_many_elements_says_how_many_fit() -> None:
     assert 'holds 3 elements; at most 2 fit double_array_fixed_2' in finding.message
     assert 'declared double array' not in finding.message
     assert (finding.diagnostic.file, finding.diagnostic.line) == (str(fixed / 'gains.yaml'), 3)
+
+
+def test_a_container_s_command_line_rules_reach_only_forwarding_composable_nodes() -> None:
+    """rclcpp_components loads a composable node with use_global_arguments false: the rules on
+    its container's command line (ros_args/args -r) reach it only with the extra argument
+    forward_global_arguments: true.  A rule used by such a node is not reported; an unused one
+    is one finding at the ros_args attribute for the container and the forwarding nodes; a
+    rule a non-forwarding composable node would use says why it does not reach it."""
+    launch = LAUNCH / 'container_rules.launch.xml'
+    analysis = analyse_launch(launch, prefixes=PREFIX)
+    nodes = {n.fqn: n for n in analysis.nodes}
+    assert set(nodes) == {'/cams/box', '/cams/front', '/cams/side', '/back'}  # the container's
+    # __ns reaches the forwarding nodes (given no namespace), not /back
+    front = nodes['/cams/front'].instance
+    assert front is not None and '/front_image' in [b.name for b in front.endpoints]
+    back = nodes['/back'].instance
+    assert back is not None and '/back/image' in [b.name for b in back.endpoints]
+    found = sorted((f.diagnostic.line, f.diagnostic.column, f.message, f.nodes)
+                   for f in _of(analysis, 'unused-remap'))
+    assert [(line, column, fqns) for line, column, _, fqns in found] == [
+        (5, 19, ('/cams/box', '/cams/front', '/cams/side'))] * 2
+    back_rule, typo = sorted((m for _, _, m, _ in found), key=lambda m: 'side/imag' in m)
+    assert "'back/image:=/back_image', given to 3 nodes, is never used" in back_rule
+    assert '/back, loaded into the container, would use it' in back_rule
+    assert 'forward_global_arguments: true' in back_rule
+    assert "'side/imag:=/side_image'" in typo and 'loaded into the container' not in typo
+
+
+def test_a_rule_given_through_a_python_variable_is_one_finding_where_it_is_written() -> None:
+    """remappings=common given to 6 Node(...) calls: an unused rule of common is one finding
+    at its item in common = [...], not one per node; a Python container's ros_arguments reach
+    the composable node loaded with forward_global_arguments only."""
+    launch = LAUNCH / 'shared_remaps.launch.py'
+    analysis = analyse_launch(launch, prefixes=PREFIX)
+    found = [(f.diagnostic.line, f.diagnostic.column, f.nodes) for f in _of(analysis, 'unused-remap')]
+    planners = tuple(f'/planner_{i}' for i in range(6))
+    assert found == [(10, 15, planners), (16, 65, ('/box', '/front'))]
+    (typo,) = [f for f in _of(analysis, 'unused-remap') if f.diagnostic.line == 10]
+    assert "'scna:=/scan_filtered', given to 6 nodes, is never used" in typo.message
+    (missed,) = [f for f in _of(analysis, 'unused-remap') if f.diagnostic.line == 16]
+    assert '/back, loaded into the container, would use it' in missed.message

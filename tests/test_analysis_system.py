@@ -176,3 +176,21 @@ def test_a_parameter_file_rcl_cannot_parse_is_an_error_once_at_its_line() -> Non
     assert ('the parameter file is given here' in [r[3] for r in finding.diagnostic.related])
     assert analysis.findings[0] is finding  # launch-file problems first
     assert len(analysis.nodes) == 2
+
+
+def test_a_remap_rule_given_on_the_command_line_is_one_finding() -> None:
+    """analyse_definitions(remaps=[...]) (nodl analyse DEFINITION... --remap) gives the rule to
+    every node at once: an unused one is one finding at the command line (each node's
+    definition a related place), not one per definition."""
+    from nodl_schema.analysis.system import analyse_definitions
+    from nodl_schema.targets.placement import Definition
+
+    share = FIXTURES / 'prefix' / 'share' / 'nav' / 'nodl'
+    analysis = analyse_definitions([Definition(str(share / 'planner.nodl.yaml')),
+                                    Definition(str(share / 'controller.nodl.yaml'))],
+                                   remaps=['scna:=/x', 'scan:=/y'], prefixes=PREFIX)
+    (unused,) = [f for f in analysis.findings if f.kind == 'unused-remap']
+    assert unused.diagnostic.file == '<command line>' and unused.nodes == ('/planner', '/controller')
+    assert "'scna:=/x', given to 2 nodes, is never used" in unused.message
+    assert [r[0] for r in unused.diagnostic.related] == [str(share / 'planner.nodl.yaml'),
+                                                       str(share / 'controller.nodl.yaml')]

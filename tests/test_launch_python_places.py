@@ -32,3 +32,35 @@ def test_frame_location_finds_the_innermost_frame_of_the_file(tmp_path: Path) ->
     assert (found.file, found.line) == (str(launch), 4)
     assert found.column >= 1
     assert frame_location('/no/such/file.py', sys._getframe()).line == 0
+
+
+def test_a_list_given_through_a_variable_is_placed_where_it_is_written(tmp_path: Path) -> None:
+    """remappings=common (common = [...] assigned once in the function, or in the module),
+    [*common, ...] and common + [...]: each item at the place it is written, so one rule
+    given to many nodes is at one place; a parameter of the function or a name assigned
+    twice is not plain to see (the argument's place)."""
+    launch = tmp_path / 'v.launch.py'
+    launch.write_text(
+        "SHARED = [('x', 'y')]\n"                                   # 1
+        "def generate_launch_description():\n"                       # 2
+        "    common = [('a', 'b'),\n"                                # 3
+        "              ('c', 'd')]\n"                                # 4
+        "    Node(remappings=common)\n"                              # 5
+        "    Node(remappings=[*common, ('e', 'f')])\n"               # 6
+        "    Node(remappings=common + SHARED)\n"                     # 7
+        "    twice = []\n"                                           # 8
+        "    twice = [('g', 'h')]\n"                                 # 9
+        "    Node(remappings=twice)\n"                               # 10
+        "def make(rules):\n"                                         # 11
+        "    return Node(remappings=rules)\n")                       # 12
+    def at(line: int, column: int) -> list[tuple[int, int]] | tuple[int, int]:
+        found = keyword_places(SourceLocation(str(launch), line, column), 'remappings')
+        if isinstance(found, list):
+            return [(p.line, p.column) for p in found]
+        assert found is not None
+        return (found.line, found.column)
+    assert at(5, 5) == [(3, 15), (4, 15)]
+    assert at(6, 5) == [(3, 15), (4, 15), (6, 31)]
+    assert at(7, 5) == [(3, 15), (4, 15), (1, 11)]
+    assert at(10, 5) == (10, 21)
+    assert at(12, 12) == (12, 28)

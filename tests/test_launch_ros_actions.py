@@ -63,3 +63,30 @@ def test_findings_about_a_param_sit_at_the_param() -> None:
     assert placed == {('NODL561', 4, 5), ('NODL513', 5, 5), ('NODL517', 6, 5)}
     (run_time,) = [f for f in analysis.findings if f.code == 'NODL513']
     assert f'(set at {launch}:2:3)' in run_time.message
+
+
+def test_the_container_s_global_arguments_reach_a_node_only_with_forward_global_arguments() -> None:
+    """rclcpp_components loads a node with use_global_arguments false; forward_global_arguments
+    true (the last given wins) gives it the container's command-line rules after its own, and
+    the container's __node/__ns where the load gives no name/namespace (so an unnamed one takes
+    the container's name, as rcl does); a load option that is not a bool is NODL533 (the load
+    is refused: no node); one known only at run time leaves the node's rules incomplete."""
+    launch = LAUNCH / 'load_options.launch.py'
+    result = load_launch(launch, {})
+    nodes = {(n.kind, n.name): n for n in result.nodes}
+    assert set(nodes) == {('container', 'box'), ('composable', None), ('composable', 'named'),
+                          ('composable', 'maybe'), ('composable', 'off')}
+    assert nodes['composable', None].remaps == [('chatter', 'shout'), ('__node', 'box'),
+                                                ('__ns', '/robot')]
+    assert nodes['composable', 'named'].remaps == [('chatter', 'shout')]
+    assert nodes['composable', 'off'].remaps == []
+    maybe = nodes['composable', 'maybe']
+    assert maybe.remaps == [] and [s.part for s in maybe.run_time] == ['remaps']
+    found = [(d.code, d.line) for d in result.diagnostics]
+    assert found == [('NODL533', 19), ('NODL513', 21)]
+    assert "'use_intra_process_comms' is 'yes', not a bool" in result.diagnostics[0].message
+    analysis = analyse_launch(launch, prefixes=PREFIX)
+    (twice,) = [f for f in analysis.findings if f.kind == 'duplicate-node']
+    assert twice.nodes == ('/robot/box',)
+    (json_node,) = [n for n in json.loads(report.format_json(analysis))['nodes'] if n['name'] == '/maybe']
+    assert json_node['remaps_complete'] is False

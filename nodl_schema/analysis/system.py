@@ -248,6 +248,8 @@ def analyse_definitions(targets: Sequence[Definition], names: Sequence[str] = ()
                                          folders=definitions)
     entries: list[LaunchEntry] = []
     matches: list[Any] = []
+    # a --remap rule is given to every node at once: judged once, where it is written
+    given = Location('<command line>', 0, 0)
     for item in placed:
         definition, instance = item.definition, item.instance
         where = Location(item.file, 1, 1)
@@ -257,7 +259,7 @@ def analyse_definitions(targets: Sequence[Definition], names: Sequence[str] = ()
         entries.append(LaunchEntry(package, key, where, name=instance.created_name,
                                    namespace=instance.created_namespace,
                                    remaps=[(a, b) for a, b in pairs],
-                                   remap_locations=[where] * len(pairs)))
+                                   remap_locations=[given] * len(pairs)))
         origin = f'overlay {item.provenance.folder}' if item.provenance.source == 'overlay' \
             else item.provenance.source
         matches.append(Match(package, key, item.file, instance.resolved, instance.created_name,

@@ -350,7 +350,9 @@ def _placed(node: _Placed, entity: Entity) -> _Placed:
 def _composable(entity: Entity) -> R.ComposableNode:
     node = R.ComposableNode(package=entity.subs('pkg'), plugin=entity.subs('plugin'), name=entity.subs('name'),
                             namespace=entity.subs('namespace'), parameters=_parameters(entity),
-                            remappings=_remaps(entity), condition=_condition(entity))
+                            remappings=_remaps(entity), condition=_condition(entity),
+                            extra_arguments=[{a.text('name') or '': ParameterValue(a.subs('value'), dict_rules=True)}
+                                             for a in entity.nested.get('extra_arg', [])])
     node.location = entity.location
     return _placed(node, entity)
 

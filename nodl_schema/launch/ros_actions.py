@@ -444,6 +444,9 @@ class Node(Action):
         #: ``remappings``/``arguments``/``ros_arguments`` given whole as a value only the
         #: running launch knows (None: none, the usual case).
         self.run_time_lists = nodl_run_time
+        #: What the last execution launched (a container's record: its command line's rules
+        #: reach the composable nodes loaded with ``forward_global_arguments``).
+        self.record: LaunchedNode | None = None
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
         name = None
@@ -480,6 +483,7 @@ class Node(Action):
             _run_time_lists(context, self.run_time_lists, ('remappings',), record)
         check_node_text(context, record)
         context.result.nodes.append(record)
+        self.record = record
         return self.after(context)
 
     def after(self, context: LaunchContext) -> list[Action] | None:
@@ -515,6 +519,9 @@ class ComposableNode:
         self.namespace = None if namespace is None else normalize(namespace)
         self.parameters = _normalize_parameters(parameters)
         self.remappings = [(normalize(a), normalize(b)) for a, b in (remappings or [])]
+        #: ``extra_arguments``: dicts of the options rclcpp_components reads when it loads
+        #: the node (``use_intra_process_comms``, ``forward_global_arguments``).
+        self.extra_arguments = [item for item in (extra_arguments or []) if isinstance(item, dict)]
         self.condition = condition
         self.location = SourceLocation('', 0, 0)
         self.remap_sources: list[SourceLocation] = []
@@ -531,23 +538,29 @@ class LoadComposableNodes(Action):
         self.target = target_container
 
     def execute(self, context: LaunchContext) -> list[Action] | None:
+        host: LaunchedNode | None
         if isinstance(self.target, Node):
             container = self.target.node_name or ''
+            host = self.target.record
         else:
             container = perform(context, self.target)
             if container and not container.startswith('/'):
                 container = '/' + container
+            host = next((r for r in reversed(context.result.nodes) if r.kind == 'container'
+                         and join_name(r.namespace, r.name or '') == container), None)
         for description in self.descriptions:
             try:
-                _load(context, description, container)
+                _load(context, description, container, host)
             except LaunchProblem as problem:
                 context.problem(problem, description.location)
         return None
 
 
-def _load(context: LaunchContext, description: ComposableNode, container: str) -> None:
+def _load(context: LaunchContext, description: ComposableNode, container: str,
+          host: LaunchedNode | None = None) -> None:
     if description.condition is not None and not description.condition.evaluate(context):
         return
+    forwarded = _forwards_global_arguments(context, description)
     name = None if description.name is None else perform(context, description.name)
     refuse_unsafe(name, 'the node name', lambda: _attribute_place(description, 'name'))
     given = None if description.namespace is None else perform(context, description.namespace)
@@ -562,11 +575,70 @@ def _load(context: LaunchContext, description: ComposableNode, container: str) -
                                  description.location)
     if description.run_time_lists:
         _run_time_lists(context, description.run_time_lists, ('remappings',), record)
+    if forwarded is None:
+        record.run_time += (RunTimeSource('remaps', description.location),)
+    elif forwarded and host is not None:
+        record.remaps += _global_rules(host, record)
     record.parameters += _global_parameters(context, description.location, record)
     record.parameters += _own_parameters(context, description.parameters, description.location, '/**',
                                          record)
     check_node_text(context, record)
     context.result.nodes.append(record)
+
+
+#: The ``extra_arguments`` rclcpp_components reads when it loads a node; each must be a
+#: bool (else the container refuses to load the node).
+_LOAD_OPTIONS = ('use_intra_process_comms', 'forward_global_arguments')
+
+
+def _forwards_global_arguments(context: LaunchContext, description: ComposableNode) -> bool | None:
+    """Whether the container gives the composable node its process's global arguments.
+
+    rclcpp_components loads each node with ``use_global_arguments(false)``: the rules on
+    the container's command line (its ``args``/``ros_args``, ``remappings``, the
+    ``set_remap`` rules it was given, its ``__node``/``__ns``) do not reach the node, unless
+    the load's ``extra_arguments`` hold ``forward_global_arguments: true`` (the last one
+    given wins).  None when that value is known only at run time (NODL513 at the node);
+    LaunchProblem NODL533 when an option is not a bool (the container refuses the load)."""
+    forwarded: bool | None = False
+    for item in description.extra_arguments:
+        for name, spec in normalize_python_dict(item):
+            option = perform(context, name)
+            if option not in _LOAD_OPTIONS:
+                continue
+            try:
+                value = evaluate_value(context, spec, option)
+            except Unevaluable as problem:
+                context.warn(problem.code, f"extra argument '{option}': {problem.message}; whether the "
+                                           "container's command-line rules reach the composable node is "
+                                           'known only at run time (it is analysed without them)',
+                             description.location)
+                if option == 'forward_global_arguments':
+                    forwarded = None
+                continue
+            if not isinstance(value, bool):
+                raise LaunchProblem('NODL533', f"extra argument '{option}' is {value!r}, not a bool: "
+                                               'the container refuses to load the composable node '
+                                               "(rclcpp_components: it must be a boolean); write "
+                                               f"{option}: true or false")
+            if option == 'forward_global_arguments':
+                forwarded = value
+    return forwarded
+
+
+def _global_rules(host: LaunchedNode, record: LaunchedNode) -> list[tuple[str, str]]:
+    """The rules a container's process has as global arguments, in rcl's order, each at the
+    place it is written: its ``-r`` words and remappings (:attr:`LaunchedNode.remaps`), and
+    the ``__node``/``__ns`` launch_ros gives it.  The loaded node ``record`` checks them
+    after its own (rcl: local rules first), so the container's ``__node``/``__ns`` rename it
+    only when the load gives it no name/namespace of its own (launch_ros sends them as
+    local ``__node``/``__ns`` rules when they are given)."""
+    rules = list(host.remaps)
+    if host.name and not record.name:
+        rules.append(LaunchRemap('__node', host.name, host.source))
+    if host.namespace_given and not record.namespace_given:
+        rules.append(LaunchRemap('__ns', host.namespace, host.source))
+    return rules
 
 
 class ComposableNodeContainer(Node):

@@ -133,7 +133,7 @@ class UnusedRemapCheck(CheckExtension):
                 launched = {}
                 for other in context.nodes:
                     launched.setdefault(other.fqn.rpartition('/')[2], other)
-            yield _unused(key[0], given, launched)
+            yield _unused(key[0], given, launched, context)
 
 
 #: What a container of composable nodes without a definition has besides its private
@@ -164,8 +164,34 @@ def _listed(names: list[str], most: int = 3) -> str:
     return f'{", ".join(names[:most])} and {len(names) - most} more'
 
 
+def _left_out(given: list[tuple[AnalysedNode, RemapRule]], context: AnalysisContext) -> list[str]:
+    """The composable nodes that would use a rule given on their container's command line
+    but do not get it: rclcpp_components loads a node without its process's global
+    arguments unless ``forward_global_arguments`` is true (these have not)."""
+    hosts = {n.fqn for n, _ in given if n.entry.role == 'container'}
+    if not hosts:
+        return []
+    from nodl_schema.naming import NodeNames
+
+    have = {id(n) for n, _ in given}
+    rule = given[0][1]
+    out = []
+    for other in context.nodes:
+        if other.entry.container not in hosts or id(other) in have or other.instance is None \
+                or other.names is None or not rule.applies_to(other.names.name):
+            continue
+        try:
+            alone = NodeNames.create(other.names.name, other.names.namespace, [str(rule)])
+            if any(alone.rule_for(b.entity.name, service=b.entity.kind.communication == 'service')
+                   for b in other.instance.endpoints):
+                out.append(other.fqn)
+        except ValueError:
+            continue
+    return out
+
+
 def _unused(where: Location, given: list[tuple[AnalysedNode, RemapRule]],
-            launched: dict[str, AnalysedNode]) -> Finding:
+            launched: dict[str, AnalysedNode], context: AnalysisContext) -> Finding:
     """The finding for a rule written at ``where`` that none of the nodes ``given`` it uses."""
     node, rule = given[0]
     text = str(rule)
@@ -211,6 +237,13 @@ def _unused(where: Location, given: list[tuple[AnalysedNode, RemapRule]],
                        f'of the action {part[0]!r}, which splits the action (rcl remaps an action '
                        f'as a whole by its name: remap {part[0]!r})')
                 break
+    left_out = _left_out(given, context) if verdict == 'is never used' else []
+    if left_out:
+        why += (f'; {_listed(left_out)}, loaded into the container, would use it, but rules on a '
+                "container's command line do not reach the composable nodes loaded into it "
+                '(rclcpp_components loads them without the global arguments): give the rule to '
+                'the composable node (its remappings), or load it with the extra argument '
+                'forward_global_arguments: true')
     if len(fqns) == 1:
         message = (f'{node.fqn}: the remapping rule {text!r} {verdict}: {why}'
                    f' (see nodl show {node.executable_label})')
