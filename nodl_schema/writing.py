@@ -28,7 +28,12 @@ definitions, parameter files, policies, scaffold files).
   replaced only with ``force``.
 * **Outputs are not inputs.**  :func:`output_is_input` says when an output
   path names one of the inputs (the same file after resolving links, or the
-  same device and inode: NODL033).
+  same device and inode: NODL033); :func:`outputs_are_inputs` checks every
+  output option of a command against everything it read.
+* **Nothing leaves the output folder.**  A file written under a folder (``-o
+  DIR``) is refused when a folder between the two is a symbolic link that
+  leads outside it (planted by someone else): :func:`check_within` (NODL708).
+  The output folder itself may be a link: it is the user's choice.
 
 Nothing here prints or exits: problems are :class:`WriteError` exceptions
 carrying one coded :class:`~nodl_schema.diagnostics.Diagnostic`.
@@ -47,7 +52,7 @@ if TYPE_CHECKING:
 
 __all__ = ['WriteError', 'MARKER_TAG', 'comment_style', 'mark', 'unmark', 'marker_state',
            'check_replaceable', 'write_file', 'write_marked', 'marked_text', 'output_is_input',
-           'same_file', 'write_problem']
+           'same_file', 'write_problem', 'check_within', 'outputs_are_inputs']
 
 #: The words of the marker line, before the hash.
 MARKER_TAG = 'nodl: generated; sha256='
@@ -76,7 +81,7 @@ class WriteError(Exception):
 
     def __init__(self, diagnostic: Diagnostic) -> None:
         super().__init__(str(diagnostic))
-        #: The coded diagnostic (NODL030-NODL034), at the file concerned.
+        #: The coded diagnostic (NODL030-NODL034, NODL708), at the file concerned.
         self.diagnostic = diagnostic
 
 
@@ -231,15 +236,17 @@ def _umask_mode() -> int:
 
 
 def write_file(path: str, data: str | bytes, *, mode: int | None = None,
-               make_parents: bool = False) -> None:
+               make_parents: bool = False, within: str | None = None) -> None:
     """Write ``data`` (text as UTF-8, newlines as given) to ``path`` atomically.
 
     The mode is ``mode`` if given, else the replaced file's, else what the
-    umask gives.  ``make_parents``: create the missing folders first.  Raises
-    :class:`WriteError` (NODL030, NODL034); on failure the previous file is intact.
+    umask gives.  ``make_parents``: create the missing folders first.
+    ``within``: the output folder ``path`` must stay in (:func:`check_within`, checked
+    before any folder is made).  Raises :class:`WriteError` (NODL030, NODL034,
+    NODL708); on failure the previous file is intact.
     """
     raw = data.encode('utf-8', 'surrogatepass') if isinstance(data, str) else data
-    problem = _place_problem(path)
+    problem = _place_problem(path) or (check_within(path, within) if within is not None else None)
     if problem is not None:
         raise WriteError(problem)
     folder = os.path.dirname(os.path.abspath(path))
@@ -308,17 +315,22 @@ def _sync_folder(folder: str) -> None:
 
 
 def write_marked(path: str, text: str, *, force: bool = False, style: str | None = None,
-                 mode: int | None = None, make_parents: bool = False) -> bool:
+                 mode: int | None = None, make_parents: bool = False,
+                 within: str | None = None) -> bool:
     """Write ``text`` to ``path`` with a content marker, atomically (see the module doc).
 
     ``style``: the comment style (default: from the file name; None for a
     format without comments, written unmarked).  Raises :class:`WriteError`
     when the file there is the user's (NODL031) or was edited (NODL032) and
-    not ``force``, or when the write fails (NODL030).  Returns False when the
+    not ``force``, when ``within`` is given and the file would land outside that folder
+    (NODL708, :func:`check_within`), or when the write fails (NODL030).  Returns False when the
     file already holds exactly this text (it is left untouched: its time
     stamp stays, so build systems do not rebuild), True when written.
     """
     final = marked_text(path, text, style)
+    outside = check_within(path, within) if within is not None else None
+    if outside is not None:
+        raise WriteError(outside)
     try:
         if stat.S_ISREG(os.lstat(path).st_mode):
             with open(path, 'rb') as stream:
@@ -329,7 +341,7 @@ def write_marked(path: str, text: str, *, force: bool = False, style: str | None
     problem = check_replaceable(path, final, force=force)
     if problem is not None:
         raise WriteError(problem)
-    write_file(path, final, mode=mode, make_parents=make_parents)
+    write_file(path, final, mode=mode, make_parents=make_parents, within=within)
     return True
 
 
@@ -353,9 +365,75 @@ def same_file(first: str, second: str) -> bool:
 
 def output_is_input(output: str, inputs: Iterable[str], option: str = '-o') -> Diagnostic | None:
     """NODL033 when ``output`` is one of ``inputs`` (see :func:`same_file`), else None."""
+    return outputs_are_inputs([(option, output)], inputs)
+
+
+def _identity(path: str) -> tuple[str, tuple[int, int] | None]:
+    """The real path of ``path`` and its device and inode (None when nothing is there)."""
+    try:
+        status = os.stat(path)
+    except (OSError, ValueError):
+        return os.path.realpath(path), None
+    return os.path.realpath(path), (status.st_dev, status.st_ino)
+
+
+def outputs_are_inputs(outputs: Iterable[tuple[str, str | None]],
+                       inputs: Iterable[str]) -> Diagnostic | None:
+    """NODL033 for the first output that is one of ``inputs`` (see :func:`same_file`), else None.
+
+    ``outputs``: ``(option, path)`` pairs (``('-o', 'report.json')``, ``('--log', ...)``); a
+    path that is None, empty or ``-`` (standard output) is no file.  ``inputs``: every file the
+    command read (repeats and empty strings are fine).  Each file is looked at once, so checking
+    a large analysis's files costs one ``stat`` each.
+    """
+    wanted = [(option, path, _identity(path)) for option, path in outputs
+              if path and path != '-']
+    if not wanted:
+        return None
+    seen: set[str] = set()
     for item in inputs:
-        if item and same_file(output, item):
-            return Diagnostic(Severity.ERROR, f'{option} names an input of the command ({item}): '
-                              'writing it would destroy the input; give another output path',
-                              file=output, code='NODL033')
+        if not item or item in seen:
+            continue
+        seen.add(item)
+        real, inode = _identity(item)
+        for option, path, (out_real, out_inode) in wanted:
+            if real == out_real or (inode is not None and inode == out_inode):
+                return Diagnostic(Severity.ERROR, f'{option} names an input of the command ({item}): '
+                                  'writing it would destroy the input; give another output path',
+                                  file=path, code='NODL033')
+    return None
+
+
+def check_within(path: str, root: str) -> Diagnostic | None:
+    """NODL708 when writing ``path`` would put a file outside the output folder ``root``.
+
+    That is when the path leads out of ``root`` (``..``, another absolute path), or when a
+    folder between ``root`` and the file is a symbolic link to a place outside ``root`` (its
+    real path is compared with the real path of ``root``): someone may have planted it to
+    redirect the write.  ``root`` itself may be a link (the user named it); the file itself may
+    be a link (it is replaced, not followed: :func:`write_file`); folders that do not exist
+    yet are created inside ``root``.
+    """
+    base = os.path.abspath(root)
+    prefix = root.rstrip(os.sep) + os.sep
+    # the path as given (not normalised: 'link/..' is not where the kernel would go)
+    tail = path[len(prefix):] if path.startswith(prefix) else \
+        os.path.relpath(os.path.abspath(path), base)
+    parts = [part for part in tail.split(os.sep) if part not in ('', os.curdir)]
+    if not parts or os.pardir in parts or os.path.isabs(tail):
+        return Diagnostic(Severity.ERROR, f'not written: the path leads outside the output folder '
+                          f'{root}; give a path inside it', file=path, code='NODL708')
+    real_root = os.path.realpath(base)
+    inside = real_root.rstrip(os.sep) + os.sep
+    current = base
+    for part in parts[:-1]:
+        current = os.path.join(current, part)
+        if not os.path.lexists(current):
+            break  # made by the write, inside root
+        real = os.path.realpath(current)
+        if real != real_root and not real.startswith(inside):
+            link = current if os.path.islink(current) else os.path.dirname(current)
+            return Diagnostic(Severity.ERROR, f'not written: {link} is a symbolic link to {real}, '
+                              f'outside the output folder {root}; remove the link or give another '
+                              'output folder', file=path, code='NODL708')
     return None

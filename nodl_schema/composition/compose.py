@@ -62,6 +62,13 @@ class ComposedNode:
         #: The client library whose base the node inherits (``rclpy`` or ``rclcpp``).
         self.client_library = client_library
 
+    @property
+    def files(self) -> list[str]:
+        """Every file the composition read: the node definition, then each mixin's (nested
+        includes too), each once."""
+        found = [self.file] + [layer.file for layer in self.layers if layer.file is not None]
+        return list(dict.fromkeys(f for f in found if f))
+
     def layer(self, label: str) -> Layer:
         """The layer called ``label``."""
         for layer in sorted(self.layers, key=lambda l: l.role == 'mixin'):  # base/main first
@@ -159,7 +166,8 @@ def _mixin_layers(reference: str, path: DocPath, place: Callable[[Diagnostic], D
         fail(f"mixin '{reference}' ({resolved.file}) is a {sub.kind} definition, not an interface "
              f'definition: {why}', MIXIN_NOT_INTERFACE)
         return None
-    return [Layer(label, sub.model(), sub.place, role='mixin')]  # type: ignore[arg-type]
+    return [Layer(label, sub.model(), sub.place, role='mixin',  # type: ignore[arg-type]
+                  file=resolved.file)]
 
 
 def _related_entry(place: Callable[[Diagnostic], Diagnostic], path: DocPath,
@@ -188,7 +196,7 @@ def _included_layers(sub: Report, label: str, file: str, tree: _IncludeTree, cha
             layers += found
     if not complete:
         return None
-    layers.append(Layer(label, included.main, sub.place, ('main',), role='mixin'))
+    layers.append(Layer(label, included.main, sub.place, ('main',), role='mixin', file=file))
     return layers
 
 
@@ -226,7 +234,7 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None,
                 layers += found or []
             else:
                 layers.append(Layer(f'mixins[{index}]', mixin, report.place, ('mixins', index),
-                                    role='mixin'))
+                                    role='mixin', file=report.file))
     if tree is not None and tree.bases:
         # A base description included by an included document is the node's base too
         # (lifecycle_node's includes node's: the larger one wins, as for the node's own includes).
@@ -238,7 +246,7 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None,
             node = dataclasses.replace(node, base=Base(strongest))
     if node.base is not None:
         layers.insert(0, shared_base_layer(node.base, client_library))
-    layers.append(Layer(MAIN, node.main, report.place, ('main',), role='main'))
+    layers.append(Layer(MAIN, node.main, report.place, ('main',), role='main', file=report.file))
     if errors:
         return None, diagnostics + errors
     merged = merge_traced(layers)

@@ -16,12 +16,14 @@ MAIN = 'main'
 class Layer:
     """One layer: ``base:<name>``, a mixin (its reference, or ``mixins[i]`` in place) or ``main``."""
 
-    __slots__ = ('label', 'interface', '_place', 'prefix', 'role', 'shared')
+    __slots__ = ('label', 'interface', '_place', 'prefix', 'role', 'shared', 'file')
 
     def __init__(self, label: str, interface: Interface,
                  place: Callable[[Diagnostic], Diagnostic] | None = None,
-                 prefix: DocPath = (), role: str | None = None) -> None:
+                 prefix: DocPath = (), role: str | None = None, file: str | None = None) -> None:
         self.label = label
+        #: The file the interface was read from (None for a built-in base).
+        self.file = file
         self.interface = interface
         self._place = place
         #: Where the interface sits in its document (``('main',)`` in a node file).

@@ -134,6 +134,11 @@ class ResolvedNode:
         return self.composed.file
 
     @property
+    def files(self) -> list[str]:
+        """Every file the definition was read from: its own, then its mixins' (nested ones too)."""
+        return self.composed.files
+
+    @property
     def node(self) -> Node:
         """The node definition as written."""
         return self.composed.node
