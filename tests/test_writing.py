@@ -300,3 +300,192 @@ def test_analyse_and_check_never_write_over_what_they_read(tmp_path: Path) -> No
     assert run.returncode == 2 and run.stderr.splitlines()[-1].startswith(f'{definition}: error: --junit names')
     assert launch.read_bytes() == (REPO / 'examples' / 'system' / 'launch' / 'rover.launch.xml').read_bytes()
     assert definition.read_bytes() == (FIXTURES / 'generate' / 'talker.nodl.yaml').read_bytes()
+
+
+# -- every file a verb read is an input -----------------------------------------------------
+
+
+def _system(tmp_path: Path) -> Path:
+    """The example system with a definitions folder whose battery_monitor takes its
+    diagnostics from a mixin next to it (a file the analysis reads only through the definition)."""
+    import shutil
+
+    root = tmp_path / 'system'
+    shutil.copytree(REPO / 'examples' / 'system', root)
+    defs = root / 'defs' / 'rover_base'
+    defs.mkdir(parents=True)
+    for name in ('battery_monitor', 'diagnostics'):
+        shutil.copy(root / 'rover_base' / 'nodl' / f'{name}.nodl.yaml', defs)
+    monitor = defs / 'battery_monitor.nodl.yaml'
+    monitor.write_text(monitor.read_text().replace('nodl://rover_base/diagnostics',
+                                                   'diagnostics.nodl.yaml'))
+    return root
+
+
+def _tree(root: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(root)): p.read_bytes() for p in sorted(root.rglob('*')) if p.is_file()}
+
+
+def test_analyse_refuses_to_write_any_file_the_analysis_read(tmp_path: Path) -> None:
+    root = _system(tmp_path)
+    (root / 'drawing.html').symlink_to(root / 'defs' / 'rover_base' / 'battery_monitor.nodl.yaml')
+    before = _tree(root)
+    launch = ['launch/rover.launch.xml', '--definitions', 'defs']
+    for args, option, read in (
+            (launch + ['-o', 'launch/sensors.launch.yaml'], '-o', 'launch/sensors.launch.yaml'),
+            (launch + ['--log', 'launch/navigation.launch.py'], '--log', 'launch/navigation.launch.py'),
+            (launch + ['-o', 'config/base.yaml'], '-o', 'config/base.yaml'),  # a node's parameters
+            (launch + ['-o', 'nodl.toml'], '-o', 'nodl.toml'),  # the configuration
+            (launch + ['--format', 'json', '-o', 'defs/rover_base/diagnostics.nodl.yaml'], '-o',
+             'defs/rover_base/diagnostics.nodl.yaml'),  # a mixin of a definition found in defs
+            (launch + ['--graph', 'drawing.html'], '--graph',
+             'defs/rover_base/battery_monitor.nodl.yaml'),  # the definition, through a link
+            (['defs/rover_base/battery_monitor.nodl.yaml', '-o',
+              'defs/rover_base/diagnostics.nodl.yaml'], '-o', 'defs/rover_base/diagnostics.nodl.yaml')):
+        run = nodl('analyse', *args, cwd=root)
+        assert run.returncode == 2, (args, run.stderr)
+        assert len(run.stderr.splitlines()) == 1, run.stderr
+        assert run.stderr.startswith(f'{args[args.index(option) + 1]}: error: {option} names an '
+                                     'input of the command ('), run.stderr
+        assert os.path.samefile(root / read, root / run.stderr.split('(', 1)[1].split(')', 1)[0])
+        assert run.stderr.rstrip().endswith('[NODL033]') and run.stdout == ''
+    assert _tree(root) == before
+
+
+def test_policy_refuses_to_write_any_file_it_read(tmp_path: Path) -> None:
+    root = _system(tmp_path)
+    (root / 'enclaves.yaml').write_text('/rover: ["/rover/**"]\n')
+    before = _tree(root)
+    launch = ['launch/rover.launch.xml', '--definitions', 'defs', '--allow-missing', '--force']
+    for args, output in (
+            (launch, 'launch/sensors.launch.yaml'), (launch, 'config/navigation.yaml'),
+            (launch, 'defs/rover_base/diagnostics.nodl.yaml'), (launch, 'nodl.toml'),
+            (['defs/rover_base/battery_monitor.nodl.yaml', '--force'],
+             'defs/rover_base/diagnostics.nodl.yaml'),
+            (['defs/rover_base/battery_monitor.nodl.yaml', '--enclave-map', 'enclaves.yaml'],
+             'enclaves.yaml')):
+        run = nodl('policy', *args, '-o', output, cwd=root)
+        assert run.returncode == 2, (args, run.stderr)
+        assert run.stderr.splitlines()[-1].startswith(f'{output}: error: -o names an input'), run.stderr
+        assert run.stderr.rstrip().endswith('[NODL033]')
+    assert _tree(root) == before
+
+
+def test_params_export_generate_never_write_over_a_mixin(tmp_path: Path) -> None:
+    root = _system(tmp_path)
+    definition = 'defs/rover_base/battery_monitor.nodl.yaml'
+    mixin = root / 'defs' / 'rover_base' / 'diagnostics.nodl.yaml'
+    (root / 'battery_monitor_base.py').symlink_to(mixin)  # what generate writes
+    os.link(mixin, root / 'alias.yaml')
+    before = _tree(root)
+    for verb in (['params', definition, '-o', 'alias.yaml', '--force'],
+                 ['export', 'genparamlib', definition, '--with-mixins', '-o', 'alias.yaml', '--force'],
+                 ['generate', definition, '--language', 'python', '-o', '.', '--force']):
+        run = nodl(*verb, cwd=root)
+        assert run.returncode == 2, (verb, run.stderr)
+        last = run.stderr.splitlines()[-1]
+        assert ' names an input of the command (' in last and last.endswith('[NODL033]'), last
+        assert 'diagnostics.nodl.yaml' in last
+    assert _tree(root) == before and (root / 'battery_monitor_base.py').is_symlink()
+
+
+def test_new_never_writes_over_a_definition_it_read(tmp_path: Path) -> None:
+    out = tmp_path / 'ws'
+    definition = REPO / 'examples' / 'laser_driver.nodl.yaml'
+    first = nodl('new', 'pkg', '--from', str(definition), '--build-type', 'ament_python', '-o', str(out))
+    assert first.returncode == 0, first.stderr
+    mine = out / 'pkg' / 'nodl' / 'laser_driver.nodl.yaml'
+    mine.write_text(mine.read_text() + '# my change\n')  # the package's copy, now the source
+    before = mine.read_bytes()
+    for force in ([], ['--force']):
+        run = nodl('new', 'pkg', '--from', str(mine), '--build-type', 'ament_python', '-o', str(out),
+                   '--update', *force)
+        assert run.returncode == 2, run.stderr
+        lines = run.stderr.splitlines()  # (its mixin, copied beside it, comes first)
+        mixin = mine.parent / 'diagnostics.nodl.yaml'
+        assert lines == [f'{mixin}: error: -o names an input of the command ({mixin}): writing it '
+                         'would destroy the input; give another output path [NODL033]'], lines
+    assert mine.read_bytes() == before
+
+
+def test_convert_never_writes_over_an_exported_legacy_file(tmp_path: Path) -> None:
+    import shutil
+
+    package = tmp_path / 'package'
+    shutil.copytree(FIXTURES / 'legacy' / 'package', package)
+    before = _tree(package)
+    out = tmp_path / 'out'
+    out.mkdir()
+    first = nodl('convert', str(package / 'package.xml'), '-o', str(out))
+    assert first.returncode == 0, first.stderr
+    written = sorted(p.name for p in out.iterdir())
+    for name in written:
+        (out / name).unlink()
+    exported = package / 'interfaces' / 'talker.nodl.xml'
+    (out / written[0]).symlink_to(exported)  # a link where the converted file goes
+    run = nodl('convert', str(package / 'package.xml'), '-o', str(out), '--force')
+    assert run.returncode == 2, run.stderr
+    assert f'names an input of the command ({exported})' in run.stdout + run.stderr
+    assert _tree(package) == before
+
+
+# -- no folder under -o leads outside it ----------------------------------------------------
+
+
+def test_check_within(tmp_path: Path) -> None:
+    from nodl_schema.writing import check_within
+
+    out, elsewhere = tmp_path / 'out', tmp_path / 'elsewhere'
+    (out / 'real').mkdir(parents=True)
+    elsewhere.mkdir()
+    (out / 'planted').symlink_to(elsewhere)
+    (out / 'inner').symlink_to(out / 'real')  # a link that stays inside is fine
+    chosen = tmp_path / 'chosen'
+    chosen.symlink_to(out)  # -o itself may be a link: the user chose it
+    assert check_within(str(out / 'real' / 'x.py'), str(out)) is None
+    assert check_within(str(out / 'inner' / 'x.py'), str(out)) is None
+    assert check_within(str(out / 'new' / 'deeper' / 'x.py'), str(out)) is None
+    assert check_within(str(chosen / 'real' / 'x.py'), str(chosen)) is None
+    refused = check_within(str(out / 'planted' / 'sub' / 'x.py'), str(out))
+    assert refused is not None and refused.code == 'NODL708'
+    assert refused.file == str(out / 'planted' / 'sub' / 'x.py')
+    assert refused.message == (f'not written: {out / "planted"} is a symbolic link to {elsewhere}, '
+                               f'outside the output folder {out}; remove the link or give another '
+                               'output folder')
+    for outside in ('../x.py', 'a/../../x.py', 'inner/../../x.py'):
+        assert check_within(str(out) + '/' + outside, str(out)).code == 'NODL708'  # type: ignore[union-attr]
+    with pytest.raises(WriteError) as raised:
+        write_file(str(out / 'planted' / 'sub' / 'x.py'), 'x', make_parents=True, within=str(out))
+    assert raised.value.diagnostic.code == 'NODL708'
+    with pytest.raises(WriteError):
+        write_marked(str(out / 'planted' / 'x.yaml'), 'a: 1\n', within=str(out))
+    assert list(elsewhere.iterdir()) == []
+
+
+def test_a_planted_folder_link_redirects_no_verb(tmp_path: Path) -> None:
+    elsewhere = tmp_path / 'elsewhere'
+    elsewhere.mkdir()
+    # nodl new: the package folder, or one inside it, planted as a link to a folder outside
+    ws = tmp_path / 'ws'
+    ws.mkdir()
+    (ws / 'pkg').symlink_to(elsewhere)
+    definition = str(REPO / 'examples' / 'laser_driver.nodl.yaml')
+    run = nodl('new', 'pkg', '--from', definition, '--build-type', 'ament_python', '-o', str(ws), '--force')
+    assert run.returncode == 2, run.stderr
+    assert run.stderr.splitlines()[-1].endswith(
+        f'not written: {ws / "pkg"} is a symbolic link to {elsewhere}, outside the output folder '
+        f'{ws}; remove the link or give another output folder [NODL708]')
+    (ws / 'pkg').unlink()
+    (ws / 'pkg').mkdir()
+    (ws / 'pkg' / 'test').symlink_to(elsewhere)
+    run = nodl('new', 'pkg', '--from', definition, '--build-type', 'ament_python', '-o', str(ws), '--force')
+    assert run.returncode == 2 and run.stderr.rstrip().endswith('[NODL708]'), run.stderr
+    assert sorted(p.name for p in (ws / 'pkg').iterdir()) == ['test']  # refused before writing any
+    # nodl extract -o DIR: the package's folder of the overlay
+    out = tmp_path / 'drafts'
+    out.mkdir()
+    (out / 'demo_pkg').symlink_to(elsewhere)
+    run = nodl('extract', str(REPO / 'tests' / 'fixtures' / 'extract' / 'python' / 'pkg'), '-o', str(out))
+    assert run.returncode == 2
+    assert f'not written: {out / "demo_pkg"} is a symbolic link to {elsewhere}' in run.stdout + run.stderr
+    assert list(elsewhere.iterdir()) == []

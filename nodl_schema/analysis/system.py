@@ -48,6 +48,27 @@ class Analysis:
     context: AnalysisContext | None = field(default=None, repr=False)
     #: True if the launch file could not be read or parsed at all (exit status 2).
     unreadable: bool = False
+    #: What the launch reader read: the launch file, every file it includes and every
+    #: parameter file it gives a node (empty for entries given directly).
+    launch_files: list[str] = field(default_factory=list)
+
+    def files(self) -> list[str]:
+        """Every file the analysis read, each once: :attr:`launch_files`, then each node's
+        definition with its mixins (or the registration file of one that does not resolve).
+
+        An output of the analysis (a report, a log, a graph) must be none of them."""
+        found = list(self.launch_files)
+        seen: set[int] = set()
+        for node in self.nodes:
+            match = node.match
+            if id(match) in seen:  # (matches are shared by the instances of one executable)
+                continue
+            seen.add(id(match))
+            if match.resolved is not None:
+                found += match.resolved.files
+            if match.file:
+                found.append(match.file)
+        return list(dict.fromkeys(found))
 
     @property
     def errors(self) -> list[Finding]:
@@ -219,6 +240,9 @@ def analyse_launch(launch_file: str | os.PathLike[str], arguments: Mapping[str, 
                                launch_findings=[_launch_finding(d) for d in diagnostics],
                                launch_file=path, definitions=definitions)
     analysis.unreadable = unreadable
+    analysis.launch_files = list(result.files) + [
+        source.path for record in records for source in (record.parameters or ())
+        if source.kind == 'file' and source.path]
     return analysis
 
 

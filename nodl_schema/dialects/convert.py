@@ -173,7 +173,7 @@ def convert_dialect_file(path: str, out_dir: str, dialect: str | None = None, *,
     with an empty ``problem`` and that diagnostic last.  The output is written
     atomically, with a content marker (:mod:`nodl_schema.writing`).
     """
-    from nodl_schema.writing import WriteError, output_is_input, write_marked
+    from nodl_schema.writing import WriteError, check_within, output_is_input, write_marked
 
     try:
         conversion = convert_dialect(path, dialect, out_dir)
@@ -185,10 +185,10 @@ def convert_dialect_file(path: str, out_dir: str, dialect: str | None = None, *,
         return FileConversion(path, [], conversion.diagnostics), conversion.dialect
     target = os.path.join(out_dir, conversion.file_name)
     try:
-        clash = output_is_input(target, [path, *inputs], '-o')
+        clash = check_within(target, out_dir) or output_is_input(target, [path, *inputs], '-o')
         if clash is not None:
             raise WriteError(clash)
-        write_marked(target, conversion.text(), force=force, make_parents=True)
+        write_marked(target, conversion.text(), force=force, make_parents=True, within=out_dir)
     except WriteError as exc:
         return FileConversion(path, [], conversion.diagnostics + [exc.diagnostic], ''), \
             conversion.dialect

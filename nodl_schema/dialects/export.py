@@ -26,13 +26,16 @@ class ExportSource:
     """The parameters to export (None on errors), the diagnostics, and a default name."""
 
     def __init__(self, parameters: dict[str, ParameterDefinition] | None,
-                 diagnostics: list[Diagnostic], name: str, source: str) -> None:
+                 diagnostics: list[Diagnostic], name: str, source: str,
+                 files: list[str] | None = None) -> None:
         self.parameters = parameters
         self.diagnostics = diagnostics
         #: A name for the exported document (the file's stem, or the executable).
         self.name = name
         #: Where the definition was read from.
         self.source = source
+        #: Every file read: the definition, then its mixins (an export must overwrite none).
+        self.files: list[str] = files if files is not None else [source]
 
 
 def default_name(path: str) -> str:
@@ -66,7 +69,8 @@ def parameters_of_file(path: str, with_mixins: bool = False) -> ExportSource:
         composed, diagnostics = compose_report(report)
         if composed is None:
             return ExportSource(None, diagnostics, name, path)
-        return ExportSource(_from_composed(composed, with_mixins), diagnostics, name, path)
+        return ExportSource(_from_composed(composed, with_mixins), diagnostics, name, path,
+                            [path, *composed.files])
     if report.kind is Kind.INTERFACE:
         model = report.model()
         return ExportSource(dict(model.parameters or {}), report.diagnostics, name, path)  # type: ignore[union-attr]
@@ -84,4 +88,4 @@ def parameters_of_registered(package: str, executable: str, with_mixins: bool = 
     if found.node is None:
         return ExportSource(None, found.diagnostics, executable, found.source)
     return ExportSource(_from_composed(found.node.composed, with_mixins), found.diagnostics,
-                        executable, found.source)
+                        executable, found.source, [found.source, *found.node.files])

@@ -164,17 +164,19 @@ def write_files(files: Sequence[GeneratedFile], out_dir: str, *, check: bool = F
     included, so a hand-edited file is stale).  Every file is checked before
     any is written, so a refusal writes nothing.  Raises
     :class:`~nodl_schema.writing.WriteError`: NODL708 for a path outside
-    ``out_dir``, NODL031/NODL032 for a file that is not nodl's to replace,
-    NODL030 when a write fails.
+    ``out_dir`` (a generated path that leaves it, or a folder under it that is a symbolic
+    link to a place outside: :func:`nodl_schema.writing.check_within`),
+    NODL031/NODL032 for a file that is not nodl's to replace, NODL030 when a write fails.
     """
-    from nodl_schema.writing import WriteError, check_replaceable, marked_text, write_marked
+    from nodl_schema.writing import (
+        WriteError, check_replaceable, check_within, marked_text, write_marked)
 
     planned: list[tuple[str, str]] = []
     for item in files:
-        problem = _outside(item.path, out_dir)
+        path = os.path.join(out_dir, item.path)
+        problem = _outside(item.path, out_dir) or check_within(path, out_dir)
         if problem is not None:
             raise WriteError(problem)
-        path = os.path.join(out_dir, item.path)
         planned.append((path, marked_text(path, item.text)))
     changed: list[str] = []
     for path, text in planned:
@@ -193,7 +195,8 @@ def write_files(files: Sequence[GeneratedFile], out_dir: str, *, check: bool = F
     if not check:
         for path, text in planned:
             if path in changed:
-                write_marked(path, text, force=True, make_parents=True)  # checked above
+                write_marked(path, text, force=True, make_parents=True,  # checked above
+                             within=out_dir)
     return changed
 
 

@@ -483,20 +483,22 @@ def _convert(path: str, out_dir: str, taken: dict[str, str], force: bool = False
     if has_errors(diagnostics):
         return [], _sorted(diagnostics)
     from nodl_schema.writing import (
-        WriteError, check_replaceable, marked_text, output_is_input, write_marked)
+        WriteError, check_replaceable, check_within, marked_text, output_is_input, write_marked)
 
     written: list[str] = []
     texts = {key: render_converted(item) for key, item in planned.items()}
+    read = [path, *inputs, *(item.source for item in converted)]  # a package.xml's exports too
     for key, item in planned.items():  # a refusal writes none of this input's files
         target = os.path.join(out_dir, item.file_name)
-        refusal = output_is_input(target, [path, *inputs], '-o') or check_replaceable(
-            target, marked_text(target, texts[key]), force=force)
+        refusal = check_within(target, out_dir) or output_is_input(target, read, '-o') or \
+            check_replaceable(target, marked_text(target, texts[key]), force=force)
         if refusal is not None:
             raise _WriteFailed(WriteError(refusal), written, _sorted(diagnostics))
     for key, item in planned.items():
         target = os.path.join(out_dir, item.file_name)
         try:
-            write_marked(target, texts[key], force=True, make_parents=True)  # checked above
+            write_marked(target, texts[key], force=True, make_parents=True,  # checked above
+                         within=out_dir)
         except WriteError as exc:
             raise _WriteFailed(exc, written, _sorted(diagnostics)) from None
         taken[key] = f'{item.source}:{item.node.line}'

@@ -54,7 +54,8 @@ def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = Tru
     :func:`~nodl_schema.live.describe.describe_observed` (by default deduced per node).
     Each file is written as :func:`~nodl_schema.writing.write_marked` writes it: a file
     there that nodl did not write, or that was edited, stops the run with a
-    :class:`~nodl_schema.writing.WriteError` unless ``force``.
+    :class:`~nodl_schema.writing.WriteError` unless ``force``; so does a file that would
+    land outside ``directory`` (NODL708).
     """
     with ros_session() as node:
         names = _discover(node, timeout, settle)
@@ -73,6 +74,9 @@ def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = Tru
                 written.append((fqn, '(skipped)', [str(exc)]))
                 continue
             path = os.path.join(directory, file_name_for(fqn, format))
-            write_marked(path, render_description(description, format), force=force)
-            written.append((fqn, path, description.warnings + description.notes))
+            write_marked(path, render_description(description, format), force=force,
+                         within=directory)
+            written.append((fqn, path, description.warnings + description.notes
+                            + [f'version skew: {w} [NODL423]' for w in description.skew_warnings]
+                            + description.skew_notes))
     return written

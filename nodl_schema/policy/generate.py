@@ -42,6 +42,9 @@ class PolicyResult(NamedTuple):
     #: Where each node's definition came from (``index``, ``overlay``, ``file``, ``none``),
     #: for the coverage line (:func:`nodl_schema.targets.resolve.coverage_line`).
     sources: tuple[str, ...] = ()
+    #: Every file read to make the policy (launch files and what they include, parameter
+    #: files, definitions and their mixins), each once: ``policy -o`` writes none of them.
+    files: tuple[str, ...] = ()
 
     @property
     def ok(self) -> bool:

@@ -68,4 +68,5 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
                f'{display_path(os.path.abspath(path))} launches.'])
     sources = tuple(node.match.origin.split(' ', 1)[0] if node.match.file is not None else 'none'
                     for node in analysis.nodes)
-    return result._replace(diagnostics=launch_problems + result.diagnostics, sources=sources)
+    return result._replace(diagnostics=launch_problems + result.diagnostics, sources=sources,
+                           files=tuple(dict.fromkeys([path, *analysis.files()])))

@@ -179,6 +179,12 @@ def load_nodes(sources: Sequence[Sequence[str]], build_type: str) -> list[NodeSo
         try:
             node, diagnostics, file = resolve_target(list(source), BUILD_TYPES[build_type])
         except (OSError, ValueError) as exc:
+            if isinstance(exc, OSError):  # in words, the path once, no '[Errno N]'
+                from nodl_schema.files import describe_os_error
+
+                words, name = describe_os_error(exc), exc.filename or source[0]
+                raise ScaffoldError(words if words.startswith(f'{name}:') else
+                                    f'{name}: {words}') from None
             raise ScaffoldError(str(exc)) from None
         if node is None:
             raise ScaffoldError(f'{" ".join(source)}: the definition is invalid',
@@ -262,9 +268,12 @@ def write_package(plan: PackagePlan, out_dir: str, *, update: bool = False,
     files carry a content marker, and ``update`` refuses to replace one that
     was edited since (or has no marker) unless ``force``: a
     :class:`~nodl_schema.writing.WriteError` (NODL031/NODL032), raised
-    before anything is written, as is NODL030 when a write fails.
+    before anything is written, as are a file that is one of the definitions (or
+    mixins) read (NODL033, even with ``force``) and a folder under ``out_dir`` that is a
+    symbolic link leading outside it (NODL708); NODL030 when a write fails.
     """
-    from nodl_schema.writing import WriteError, check_replaceable, marked_text, write_file
+    from nodl_schema.writing import (
+        WriteError, check_replaceable, check_within, marked_text, output_is_input, write_file)
 
     root = os.path.join(out_dir, plan.package)
     if os.path.exists(root) and not (update or force):
@@ -272,9 +281,13 @@ def write_package(plan: PackagePlan, out_dir: str, *, update: bool = False,
                             'missing ones, or --force to replace every file')
     report = WriteReport()
     pending: list[tuple[str, str, PlannedFile]] = []
+    inputs = [f for node in plan.nodes for f in [node.definition, *node.node.files]]
     for item in plan.files:
         path = os.path.join(root, item.path)
         shown = os.path.join(plan.package, item.path)
+        outside = check_within(path, out_dir) or output_is_input(path, inputs)
+        if outside is not None:
+            raise WriteError(outside)
         exists = os.path.lexists(path)
         if exists and not item.generated and not force:
             report.kept.append(shown)
@@ -294,6 +307,7 @@ def write_package(plan: PackagePlan, out_dir: str, *, update: bool = False,
             raise WriteError(refusal)
         pending.append((path, text, item))
     for path, text, item in pending:
-        write_file(path, text, mode=0o755 if item.executable else None, make_parents=True)
+        write_file(path, text, mode=0o755 if item.executable else None, make_parents=True,
+                   within=out_dir)
         report.written.append(os.path.join(plan.package, item.path))
     return report

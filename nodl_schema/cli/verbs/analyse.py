@@ -128,7 +128,8 @@ class AnalyseVerb(Verb):
         analysis = analyse_launch(args.launch_file, arguments, client_library=args.client_library,
                                   settings=settings, limits=launch_limits(args),
                                   definitions=definitions)
-        return self._report(args, prog, analysis, policy, graph_format)
+        return self._report(args, prog, analysis, policy, graph_format,
+                            [args.launch_file, *_config_files(args.launch_file)])
 
     @staticmethod
     def _definitions_mode(first: str) -> bool:
@@ -220,16 +221,26 @@ class AnalyseVerb(Verb):
 
             print(f'{prog}: error: {describe_os_error(exc)}', file=sys.stderr)
             return EXIT_USAGE
-        return self._report(args, prog, analysis, policy, graph_format)
+        return self._report(args, prog, analysis, policy, graph_format,
+                            [*files, *_config_files(os.path.join(start, 'definitions'))])
 
     @staticmethod
     def _report(args: argparse.Namespace, prog: str, analysis: Any, policy: Any,
-                graph_format: str | None) -> int:
-        """Print or write the report (and the log and graph): the exit status."""
+                graph_format: str | None, inputs: list[str]) -> int:
+        """Print or write the report (and the log and graph): the exit status.
+
+        ``inputs``: files read besides the analysis's own (the launch file, the configuration);
+        an output naming any file read is refused before anything is written (NODL033)."""
         from nodl_schema.cli.diagnostic_options import PolicyError
         from nodl_schema.cli.output import write_file
         from nodl_schema.analysis import report
+        from nodl_schema.writing import outputs_are_inputs
 
+        clash = outputs_are_inputs((('-o', args.output), ('--log', args.log),
+                                    ('--graph', args.graph)), [*inputs, *analysis.files()])
+        if clash is not None:
+            print(clash, file=sys.stderr)
+            return EXIT_USAGE
         try:
             analysis.apply_overrides(policy.apply)
         except PolicyError as exc:
@@ -268,3 +279,13 @@ class AnalyseVerb(Verb):
         if analysis.unreadable:
             return EXIT_USAGE
         return EXIT_FAILURE if analysis.errors else EXIT_OK
+
+
+def _config_files(near: str) -> list[str]:
+    """The configuration file that applies to ``near`` (read for settings and overrides), if any."""
+    import os
+
+    from nodl_schema.config import find_config_file
+
+    found = find_config_file(os.path.dirname(os.path.abspath(near)))
+    return [found] if found else []

@@ -104,6 +104,18 @@ class CheckVerb(Verb):
         except (LiveError, ValueError) as exc:
             print(f'nodl check: error: {exc}', file=sys.stderr)
             return EXIT_USAGE
+        if args.junit:  # now that the definition is found: none of the files it was read from
+            import os
+
+            from nodl_schema.config import find_config_file
+            from nodl_schema.writing import output_is_input
+
+            config = find_config_file(os.path.dirname(os.path.abspath(result.definition)))
+            clash = output_is_input(args.junit, [result.definition, *result.composed.files,
+                                                 config or ''], '--junit')
+            if clash is not None:
+                print(clash, file=sys.stderr)
+                return EXIT_USAGE
         # A definition in the reference's include dialect says so once, as in every verb (NODL851).
         dialect = [d for d in result.composed.diagnostics if d.code == 'NODL851']
         if dialect:

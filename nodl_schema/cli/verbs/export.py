@@ -80,7 +80,7 @@ class ExportVerb(Verb):
             return EXIT_OK
         from nodl_schema.writing import output_is_input, write_marked
 
-        inputs = [source.source] + (args.definition if len(args.definition) == 1 else [])
+        inputs = source.files + (args.definition if len(args.definition) == 1 else [])
         clash = output_is_input(args.output, inputs)
         if clash is not None:
             print(clash, file=sys.stderr)

@@ -104,11 +104,23 @@ class ExtractVerb(Verb):
         from nodl_schema.extract.targets import nodes_file_text, output_paths, registrations
         from nodl_schema.extract.writer import draft_text
         from nodl_schema.targets.overlay import NODES_FILE
-        from nodl_schema.writing import WriteError, output_is_input, write_marked
+        from nodl_schema.writing import WriteError, check_within, output_is_input, write_marked
 
         single = _is_file_output(args.output)
+        within = None if single else args.output  # no folder under -o DIR may lead outside it
         paths = output_paths(extraction)
         written: list[str] = []
+        read = extraction.files + ([args.diff] if args.diff else [])
+        targets = [args.output if single else os.path.join(args.output, paths[id(node)])
+                   for node in extraction.nodes]
+        if not single:
+            targets += [os.path.join(args.output, package, NODES_FILE)
+                        for package in registrations(extraction)[0]]
+        for target in targets:  # every output is checked before any is written
+            problem = (check_within(target, args.output) if within else None) or \
+                output_is_input(target, read)
+            if problem is not None:
+                return written, [problem]
         for node in extraction.nodes:
             target = args.output if single else os.path.join(args.output, paths[id(node)])
             problem = output_is_input(target, extraction.files + ([args.diff] if args.diff else []))
@@ -116,7 +128,7 @@ class ExtractVerb(Verb):
                 return written, [problem]
             text = draft_text(node, relative_to=os.path.dirname(os.path.abspath(target)))
             try:
-                write_marked(target, text, force=args.force, make_parents=True)
+                write_marked(target, text, force=args.force, make_parents=True, within=within)
             except WriteError as exc:
                 return written, [exc.diagnostic]
             written.append(target)
@@ -129,7 +141,8 @@ class ExtractVerb(Verb):
             if problem is not None:
                 return written, notes + [problem]
             try:
-                write_marked(target, nodes_file_text(package, table), force=args.force, make_parents=True)
+                write_marked(target, nodes_file_text(package, table), force=args.force,
+                             make_parents=True, within=args.output)
             except WriteError as exc:
                 return written, notes + [exc.diagnostic]
             written.append(target)

@@ -77,6 +77,12 @@ class GenerateVerb(Verb):
         try:
             node, diagnostics, _ = resolve_target(args.target, generator.CLIENT_LIBRARY or None)
         except (OSError, ValueError) as exc:
+            if isinstance(exc, OSError):
+                from nodl_schema.files import describe_os_error
+
+                words = describe_os_error(exc)
+                name = exc.filename or args.target[0]
+                exc = ValueError(words if words.startswith(f'{name}:') else f'{name}: {words}')
             print(f'nodl generate: error: {exc}', file=sys.stderr)
             return EXIT_USAGE
         shown = without_info(diagnostics)
@@ -92,7 +98,7 @@ class GenerateVerb(Verb):
         from nodl_schema.writing import output_is_input
 
         for item in files:  # the definition (or a mixin of it) is never overwritten
-            clash = output_is_input(os.path.join(args.output, item.path), [node.file])
+            clash = output_is_input(os.path.join(args.output, item.path), node.files)
             if clash is not None:
                 print(clash, file=sys.stderr)
                 return EXIT_USAGE

@@ -74,7 +74,10 @@ class NewVerb(Verb):
             print(f'nodl new: error: {exc}', file=sys.stderr)
             return EXIT_USAGE
         except OSError as exc:
-            print(f'nodl new: error: {exc}', file=sys.stderr)
+            from nodl_schema.files import describe_os_error
+
+            print(f'nodl new: error: {exc.filename or args.output}: {describe_os_error(exc)}',
+                  file=sys.stderr)
             return EXIT_USAGE
         for path in report.written:
             print(f'wrote {os.path.join(args.output, path)}')

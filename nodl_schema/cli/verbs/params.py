@@ -68,8 +68,10 @@ class ParamsVerb(Verb):
         except (OSError, ValueError) as exc:
             from nodl_schema.files import describe_os_error
 
-            why = f'{exc.filename or target[0]}: {describe_os_error(exc)}' \
-                if isinstance(exc, OSError) else str(exc)
+            why = str(exc)
+            if isinstance(exc, OSError):
+                why, name = describe_os_error(exc), exc.filename or target[0]
+                why = why if why.startswith(f'{name}:') else f'{name}: {why}'  # the path once
             print(f'nodl params: error: {why}', file=sys.stderr)
             return None, EXIT_USAGE
         shown = without_info(diagnostics)
@@ -115,7 +117,8 @@ class ParamsVerb(Verb):
             return EXIT_OK
         from nodl_schema.writing import output_is_input, write_marked
 
-        inputs = [getattr(node, 'file', '')] + (args.args if len(args.args) == 1 else [])
+        # the definition and its mixins (a parameter file must overwrite none of them)
+        inputs = list(getattr(node, 'files', [])) + (args.args if len(args.args) == 1 else [])
         clash = output_is_input(args.output, inputs)
         if clash is not None:
             print(clash, file=sys.stderr)

@@ -139,6 +139,14 @@ class PolicyVerb(Verb):
             from nodl_schema.targets.resolve import coverage_line
 
             print(coverage_line(result.sources), file=sys.stderr)
+        if args.output and args.output != '-':  # what was read is known now: none is written
+            from nodl_schema.writing import output_is_input
+
+            clash = output_is_input(args.output, [*result.files, args.enclave_map or '',
+                                                  *_config_files(targets)])
+            if clash is not None:
+                print(clash, file=sys.stderr)
+                return EXIT_USAGE
         from nodl_schema.diagnostics import Severity
 
         failed = any(d.severity is Severity.ERROR for d in diagnostics)
@@ -234,9 +242,12 @@ class PolicyVerb(Verb):
                                       allow_missing=args.allow_missing,
                                       notes=['Least-privilege SROS 2 policy written by nodl policy '
                                              'from node definitions.'])
+        read = [d.file for d in definitions if d.file is not None] + [
+            f for p in placed for f in [p.file, *p.instance.resolved.files]]
         return result._replace(diagnostics=layout + problems + result.diagnostics,
                                sources=tuple(p.provenance.source for p in placed)
-                               + ('none',) * (len(definitions) - len(placed)))
+                               + ('none',) * (len(definitions) - len(placed)),
+                               files=tuple(dict.fromkeys(read)))
 
 
 def _intermixed(parser: argparse.ArgumentParser) -> None:
@@ -272,6 +283,18 @@ def _typed(value: str) -> Any:
         return yaml.safe_load(value) if value else ''
     except yaml.YAMLError:
         return value
+
+
+def _config_files(targets: list[str]) -> list[str]:
+    """The configuration files that apply to the targets given as files (definitions folders
+    and settings are read from them)."""
+    import os
+
+    from nodl_schema.config import find_config_file
+
+    found = (find_config_file(os.path.dirname(os.path.abspath(t))) for t in targets
+             if os.path.isfile(t))
+    return [f for f in found if f]
 
 
 def _os_words(exc: OSError) -> str:
