@@ -32,16 +32,16 @@ def render_graph(analysis: Analysis, format: str) -> str:
     from nodl_schema.analysis.graph.dot import format_dot
     from nodl_schema.analysis.graph.model import build_graph
 
+    if format not in FORMATS:
+        raise GraphError(f"unknown graph format '{format}'; expected one of {', '.join(FORMATS)}")
     graph = build_graph(analysis)
     if format == 'dot':
         return format_dot(graph)
-    from nodl_schema.analysis.graph.layout import layout_svg
+    from nodl_schema.analysis.graph.layout import layout_graph
 
-    svg = layout_svg(format_dot(graph))
+    svg = layout_graph(graph)
     if format == 'svg':
         return svg
-    if format == 'html':
-        from nodl_schema.analysis.graph.html import format_html
+    from nodl_schema.analysis.graph.html import format_html
 
-        return format_html(graph, svg, analysis)
-    raise GraphError(f"unknown graph format '{format}'; expected one of {', '.join(FORMATS)}")
+    return format_html(graph, svg, analysis)

@@ -9,7 +9,16 @@ import sys
 
 from nodl_schema.analysis.graph.model import GraphError
 
-__all__ = ['LAYOUT_PROGRAM', 'find_layout_program', 'layout_svg']
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from nodl_schema.analysis.graph.model import Graph
+
+__all__ = ['LAYOUT_PROGRAM', 'VIEW', 'find_layout_program', 'layout_svg', 'layout_graph',
+           'fit_scale']
+
+#: The picture's part of the page in a 1280x800 window (CSS pixels): what the layout is
+#: chosen to fit.
+VIEW = (900.0, 700.0)
 
 #: The program that lays graphs out (it reads DOT like Graphviz's ``dot``).
 LAYOUT_PROGRAM = 'graphviz-pure'
@@ -46,3 +55,28 @@ def layout_svg(dot: str) -> str:
         raise GraphError(f'{LAYOUT_PROGRAM} failed ({done.returncode}): '
                          f'{message[-1] if message else "no message"}')
     return done.stdout.decode('utf-8')
+
+
+def fit_scale(svg: str, view: tuple[float, float] = VIEW) -> float:
+    """How much ``svg`` (its ``viewBox``, in points) is scaled to fit ``view`` (CSS pixels)."""
+    import re
+
+    found = re.search(r'viewBox="[-\d.]+ [-\d.]+ ([\d.]+) ([\d.]+)"', svg)
+    if found is None:
+        return 1.0
+    width, height = (float(n) * 4 / 3 for n in found.groups())   # pt -> px
+    return min(view[0] / max(width, 1.0), view[1] / max(height, 1.0))
+
+
+def layout_graph(graph: Graph, view: tuple[float, float] = VIEW) -> str:
+    """The SVG of ``graph``: left to right as rqt_graph draws it, or top to bottom when that
+    fits ``view`` at a larger scale (a long pipeline is far wider than a window, and fitted
+    to it its labels would be dots)."""
+    from nodl_schema.analysis.graph.dot import format_dot
+
+    svg = layout_svg(format_dot(graph))
+    scale = fit_scale(svg, view)
+    if scale >= 1.0:   # shown at its natural size already
+        return svg
+    down = layout_svg(format_dot(graph, 'TB'))
+    return down if fit_scale(down, view) > scale * 1.1 else svg
