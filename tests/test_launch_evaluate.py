@@ -213,8 +213,9 @@ def test_required_arguments_of_nested_includes_are_checked_as_launch_does(tmp_pa
 
 def test_a_configuration_known_only_at_run_time_keeps_the_nodes_that_use_it(tmp_path: Path) -> None:
     """<let value="$(command ...)"> (the xacro idiom), an argument default and an include
-    argument from $(command): the nodes that use them stay, the value is unchecked and the
-    warning is at the use; a condition on such a value says what may be missing."""
+    argument from $(command): the nodes that use them stay, the value is unchecked; the
+    let's warning is at the let (its use a related place), the others' at the use; a
+    condition on such a value says what may be missing."""
     from nodl_schema.launch.params import RuntimeValue
 
     main = _write(tmp_path, {
@@ -243,9 +244,10 @@ def test_a_configuration_known_only_at_run_time_keeps_the_nodes_that_use_it(tmp_
         (values,) = [p.values for p in node.parameters]
         assert all(isinstance(v, RuntimeValue) for v in values.values())
     assert [(d.code, d.severity.value, os.path.basename(d.file), d.line) for d in result.diagnostics] == [
-        ('NODL513', 'warning', 'main.launch.xml', 5), ('NODL513', 'warning', 'inner.launch.xml', 4),
+        ('NODL513', 'warning', 'main.launch.xml', 2), ('NODL513', 'warning', 'inner.launch.xml', 4),
         ('NODL513', 'warning', 'main.launch.xml', 10)]
     assert "launch configuration 'description'" in result.diagnostics[0].message
+    assert [r[1:3] for r in result.diagnostics[0].related] == [(5, 5)]
     assert result.diagnostics[2].message.endswith('this node is missing from the analysis')
 
 

@@ -53,16 +53,40 @@ def test_allow_substs_problems_are_at_the_param() -> None:
 
 
 def test_findings_about_a_param_sit_at_the_param() -> None:
-    """An XML <param>'s findings (a value of the wrong type, a value known only at run time,
-    a parameter file that is not a file) sit at the <param> line, not at the node's; the
-    run-time value names the let that sets it."""
+    """An XML <param>'s findings (a value of the wrong type, a parameter file that is not a
+    file) sit at the <param> line, not at the node's; a value known only at run time that a
+    let sets is said at the let, the <param> using it a related location."""
     launch = LAUNCH / 'param_places.launch.xml'
     analysis = analyse_launch(launch, prefixes=PREFIX)
     placed = {(f.code, f.diagnostic.line, f.diagnostic.column) for f in analysis.findings
               if f.code in ('NODL561', 'NODL513', 'NODL517')}
-    assert placed == {('NODL561', 4, 5), ('NODL513', 5, 5), ('NODL517', 6, 5)}
+    assert placed == {('NODL561', 4, 5), ('NODL513', 2, 3), ('NODL517', 6, 5)}
     (run_time,) = [f for f in analysis.findings if f.code == 'NODL513']
-    assert f'(set at {launch}:2:3)' in run_time.message
+    assert [r[:3] for r in run_time.diagnostic.related] == [(str(launch), 5, 5)]
+    assert "parameter 'robot_name'" in run_time.diagnostic.related[0][3]
+
+
+def test_a_run_time_let_is_one_finding_at_the_let() -> None:
+    """<let value="$(command ...)"> used by three nodes (two <param> values, a <param from>):
+    one NODL513 at the let naming where it is used (in the message, for the text report, and
+    as related locations), not one per use; each node still knows what it lacks (null value
+    or an incomplete parameter set)."""
+    launch = LAUNCH / 'let_places.launch.xml'
+    analysis = analyse_launch(launch, prefixes=PREFIX)
+    (run_time,) = [f for f in analysis.findings if f.code == 'NODL513']
+    assert (run_time.diagnostic.line, run_time.diagnostic.column) == (2, 3)
+    assert "launch configuration 'robot'" in run_time.message and 'used at 4:5, 7:5, 10:5' in run_time.message
+    assert [r[:3] for r in run_time.diagnostic.related] == [(str(launch), 4, 5), (str(launch), 7, 5),
+                                                            (str(launch), 10, 5)]
+    sarif = json.loads(report.format_sarif(analysis))
+    (result,) = [r for r in sarif['runs'][0]['results'] if r['ruleId'] == 'NODL513']
+    assert [loc['physicalLocation']['region']['startLine'] for loc in result['relatedLocations']] == [4, 7, 10]
+    nodes = {n['name']: n for n in json.loads(report.format_json(analysis))['nodes']}
+    assert nodes['/planner']['parameters']['robot_name'] is None
+    assert nodes['/planner_2']['parameters']['robot_name'] is None
+    assert nodes['/controller']['parameters_complete'] is False
+    (finding,) = [f for f in json.loads(report.format_json(analysis))['findings'] if f['code'] == 'NODL513']
+    assert [(r['line'], r['column']) for r in finding['related']] == [(4, 5), (7, 5), (10, 5)]
 
 
 def test_the_container_s_global_arguments_reach_a_node_only_with_forward_global_arguments() -> None:

@@ -83,7 +83,8 @@ class Finding:
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON form: code, kind, severity, message, file, line, column, nodes, and
-        ``endpoint`` or ``parameter`` where it applies."""
+        ``endpoint`` or ``parameter`` where it applies, ``related`` places when there are
+        some (``{file, line, column, message}``)."""
         d = self.diagnostic
         out: dict[str, Any] = {'code': d.code, 'kind': self.kind, 'severity': d.severity.value,
                                'message': d.message, 'file': d.file, 'line': d.line,
@@ -92,6 +93,9 @@ class Finding:
             out['endpoint'] = self.endpoint
         if self.parameter is not None:
             out['parameter'] = self.parameter
+        if d.related:  # other places that matter (where a run-time let is used...)
+            out['related'] = [{'file': f, 'line': li, 'column': c, 'message': m}
+                              for f, li, c, m in d.related]
         return out
 
     def __str__(self) -> str:

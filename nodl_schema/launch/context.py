@@ -47,6 +47,8 @@ class LaunchContext:
         self._missing: set[str] = set()
         self._anonymous: dict[str, str] = {}
         self._seen_diagnostics: set[tuple[str, int, int, str]] = set()
+        #: (where a let sets a run-time value, its name) -> the one diagnostic said there.
+        self._run_time_lets: dict[tuple[tuple[str, int, int], str], Diagnostic] = {}
         self._namespace_errors: dict[str, str | None] = {}
         #: Environment variables an ``append_env`` would have made longer than the substitution
         #: limit -> the problem reported there (raised again where they are read).
@@ -150,14 +152,57 @@ class LaunchContext:
         self.result.diagnostics.append(diagnostic)
 
     def problem(self, problem: LaunchProblem, at: SourceLocation | None) -> None:
-        """Report a :class:`LaunchProblem` at its own place or at ``at``."""
+        """Report a :class:`LaunchProblem` at its own place or at ``at`` (a value a ``let``
+        sets that only the running launch knows: at the ``let``, see :meth:`run_time`)."""
         if at is None:
             at = SourceLocation(self.current_file, 0, 0)
+        if getattr(problem, 'origin', None) is not None and not (problem.file and problem.line):
+            self.run_time(problem, problem.message, at)
+            return
         self.report(problem.diagnostic(at.file, at.line, at.column))
 
-    def warn(self, code: str, message: str, at: SourceLocation) -> None:
-        """Report a warning at ``at``."""
+    def warn(self, code: str, message: str, at: SourceLocation, cause: LaunchProblem | None = None) -> None:
+        """Report a warning at ``at``; ``cause``: the problem it says, when it is one (a
+        run-time value a ``let`` sets is said at the ``let``: :meth:`run_time`)."""
+        if cause is not None and getattr(cause, 'origin', None) is not None:
+            self.run_time(cause, message, at)
+            return
         self.report(Diagnostic(Severity.WARNING, message, (), at.file, at.line, at.column, code=code))
+
+    def run_time(self, problem: LaunchProblem, message: str, at: SourceLocation) -> None:
+        """Say that a value only the running launch knows is used at ``at`` (``message``:
+        what that leaves out).  A value a ``let`` or an ``arg`` default sets
+        (:attr:`~nodl_schema.launch.errors.Unevaluable.origin`) is one NODL513 warning at
+        that ``let``, each place that uses it a related location; else one at ``at``."""
+        origin = getattr(problem, 'origin', None)
+        if origin is None:
+            self.warn(problem.code, message, at)
+            return
+        name = getattr(problem, 'configuration', '')
+        message = message.replace(f' (set at {origin[0]}:{origin[1]}:{origin[2]})', '')
+        use = (at.file, at.line, at.column, f'used here: {message}')
+        key = (origin, name)
+        said = self._run_time_lets.get(key)
+        related = (use,) if said is None else (*said.related, use)
+        if said is not None and any(r[:3] == use[:3] for r in said.related):
+            return  # (a use met twice: an include read again)
+        places = [f'{line}:{column}' if file == origin[0] else f'{file}:{line}:{column}'
+                  for file, line, column, _ in related]
+        shown = ', '.join(places[:5]) + (f' and {len(places) - 5} more' if len(places) > 5 else '')
+        text = (f"launch configuration '{name}': {getattr(problem, 'reason', '') or problem.message}; "
+                f'what uses it is analysed without its value (used at {shown})')
+        more = Diagnostic(Severity.WARNING, text, (), origin[0], origin[1], origin[2],
+                          code=problem.code, related=related)
+        if said is None:
+            self._run_time_lets[key] = more
+            self.result.diagnostics.append(more)
+            return
+        diagnostics = self.result.diagnostics
+        for index in range(len(diagnostics) - 1, -1, -1):
+            if diagnostics[index] is said:
+                diagnostics[index] = more
+                break
+        self._run_time_lets[key] = more
 
     def declare(self, argument: LaunchArgument) -> None:
         """Record a declared argument (the first declaration of a name is kept)."""

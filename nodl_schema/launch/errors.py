@@ -48,7 +48,19 @@ class LaunchProblem(Exception):
 
 
 class Unevaluable(LaunchProblem):
-    """A value only a running launch can know (``$(command ...)``, an ``OpaqueFunction``)."""
+    """A value only a running launch can know (``$(command ...)``, an ``OpaqueFunction``).
+
+    When the value is a launch configuration a ``let`` (or an ``arg`` default) sets,
+    :attr:`origin` is where it is set, :attr:`configuration` its name and :attr:`reason` why
+    it is unknown: the problem is then said once at the ``let``, each use a related place
+    (:meth:`nodl_schema.launch.context.LaunchContext.run_time`)."""
+
+    #: Where the ``let``/``arg`` that sets the unknown configuration is written, if it is one.
+    origin: tuple[str, int, int] | None = None
+    #: The configuration's name (with :attr:`origin`).
+    configuration: str = ''
+    #: Why its value is unknown (with :attr:`origin`).
+    reason: str = ''
 
     def __init__(self, message: str) -> None:
         super().__init__('NODL513', message, severity=Severity.WARNING)

@@ -101,7 +101,7 @@ class SetParametersFromFile(Action):
         except Unevaluable as problem:
             # The nodes in scope stay in the analysis, known to lack what this file gives.
             context.warn(problem.code, f'parameter file: {problem.message}; the nodes in its scope are '
-                                    'analysed without the parameters it gives', self.location)
+                                    'analysed without the parameters it gives', self.location, cause=problem)
             params.append(_RunTimeFile(self.location))
         context.configurations['global_params'] = params
         return None
@@ -240,7 +240,7 @@ def evaluate_parameter(context: LaunchContext, spec: Any, name: str, location: S
         return evaluate_value(context, spec, name)
     except Unevaluable as problem:
         context.warn(problem.code, f"parameter '{name}': {problem.message}; the node is analysed "
-                                'without this value', location)
+                                'without this value', location, cause=problem)
         return RuntimeValue(name)
 
 
@@ -265,7 +265,7 @@ def _run_time_parameters(context: LaunchContext, problem: Unevaluable, record: L
     what = 'composable node' if record.kind == 'composable' else 'node'
     context.warn(problem.code, f'parameters entry: {problem.message}; the {what} is analysed without the '
                             'parameters this entry gives (the known ones are checked; no parameter is '
-                            'reported missing for it)', where)
+                            'reported missing for it)', where, cause=problem)
     record.run_time += (RunTimeSource('parameters', where),)
 
 
@@ -334,7 +334,7 @@ def _substitute_file(context: LaunchContext, source: ParameterSource, record: La
     except Unevaluable as unknown:
         what = 'composable node' if record.kind == 'composable' else 'node'
         context.warn(unknown.code, f"parameter file '{source.path}' (allow_substs): {unknown.message}; "
-                                f'the {what} is analysed without the parameters it gives', where)
+                                f'the {what} is analysed without the parameters it gives', where, cause=unknown)
         record.run_time += (RunTimeSource('parameters', where),)
         source.path = None  # (its values are unknown: none are read from the text as written)
     except LaunchProblem as failed:
@@ -612,7 +612,7 @@ def _forwards_global_arguments(context: LaunchContext, description: ComposableNo
                 context.warn(problem.code, f"extra argument '{option}': {problem.message}; whether the "
                                            "container's command-line rules reach the composable node is "
                                            'known only at run time (it is analysed without them)',
-                             description.location)
+                             description.location, cause=problem)
                 if option == 'forward_global_arguments':
                     forwarded = None
                 continue

@@ -200,7 +200,11 @@ class LaunchConfiguration(Substitution):
         if isinstance(value, Deferred):
             where = value.location
             set_at = f' (set at {where[0]}:{where[1]}:{where[2]})' if where and where[1] else ''
-            raise Unevaluable(f"launch configuration '{name}'{set_at}: {value.message}")
+            problem = Unevaluable(f"launch configuration '{name}'{set_at}: {value.message}")
+            if where and where[1]:  # reported once at the let/arg, each use a related place
+                problem.origin = (where[0], where[1], where[2])
+                problem.configuration, problem.reason = name, value.message
+            raise problem
         if isinstance(value, Oversized):
             raise value.problem.again()
         if self.default is not None:
