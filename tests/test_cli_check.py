@@ -307,3 +307,63 @@ def test_bad_codes_and_configurations_are_usage_errors(files: dict[str, Path],
     assert broken.returncode == 2 and broken.stdout == ''
     assert broken.stderr == f"{tmp_path / 'nodl.toml'}: error: unknown key 'ignroe'; " \
                             "did you mean 'ignore'?\n"
+
+
+LIMITED = '''
+import resource, signal, sys
+signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a write past the limit fails (EFBIG), not the process
+resource.setrlimit(resource.RLIMIT_FSIZE, (256, 256))
+from nodl_schema.cli.main import main
+sys.exit(main(sys.argv[1:]))
+'''
+
+
+def test_junit_is_replaced_atomically(files: dict[str, Path], tmp_path: Path) -> None:
+    """A --junit report that cannot be written whole leaves the previous one; a link planted
+    where it goes is replaced, its target untouched."""
+    junit = tmp_path / 'report.xml'
+    junit.write_text('<testsuites name="the last run"/>\n', encoding='utf-8')
+    junit.chmod(0o640)
+    limited = subprocess.run([sys.executable, '-c', LIMITED, 'check', '/cli_c/full', str(files['good']),
+                              '--timeout', '15', '--junit', str(junit)],
+                             cwd=REPO, text=True, capture_output=True, timeout=60)
+    assert limited.returncode == 2, limited.stdout + limited.stderr
+    assert limited.stderr.splitlines()[-1] == (
+        f'{junit}: error: cannot write the file: File too large (the file size limit); the '
+        'previous file is unchanged [NODL030]')
+    assert 'Traceback' not in limited.stderr and '[Errno' not in limited.stderr
+    assert junit.read_text(encoding='utf-8') == '<testsuites name="the last run"/>\n'
+    assert sorted(p.name for p in tmp_path.iterdir()) == ['report.xml']  # no temporary left
+    # written whole: the old report replaced (its mode kept)
+    result = nodl('check', '/cli_c/full', str(files['good']), '--timeout', '15', '--junit', str(junit))
+    assert result.returncode == 0, result.stderr
+    assert ET.parse(junit).getroot().tag in ('testsuites', 'testsuite')
+    assert junit.stat().st_mode & 0o777 == 0o640
+    victim = tmp_path / 'victim.txt'
+    victim.write_text('precious\n', encoding='utf-8')
+    planted = tmp_path / 'planted.xml'
+    planted.symlink_to(victim)
+    result = nodl('check', '/cli_c/full', str(files['good']), '--timeout', '15', '--junit', str(planted))
+    assert result.returncode == 0, result.stderr
+    assert victim.read_text(encoding='utf-8') == 'precious\n'
+    assert not planted.is_symlink() and ET.parse(planted).getroot().tag in ('testsuites', 'testsuite')
+
+
+def test_junit_never_replaces_a_mixin_of_the_definition(files: dict[str, Path], tmp_path: Path) -> None:
+    """The definition's mixins are inputs too (known once it is found): refused, nothing written."""
+    import yaml
+
+    definition: dict[str, Any] = yaml.safe_load(files['good'].read_text(encoding='utf-8'))
+    definition['mixins'] = ['extra.nodl.yaml']
+    wrapper = tmp_path / 'wrapper.nodl.yaml'
+    wrapper.write_text(dump_nodl(definition, 'yaml'), encoding='utf-8')
+    mixin = tmp_path / 'extra.nodl.yaml'
+    mixin.write_text('nodl_version: 2\nparameters:\n  extra_gain:\n    type: double\n'
+                     '    default_value: 1.0\n', encoding='utf-8')
+    before = mixin.read_bytes()
+    result = nodl('check', '/cli_c/full', str(wrapper), '--timeout', '15', '--junit', str(mixin))
+    assert result.returncode == 2, result.stdout + result.stderr
+    assert result.stderr.splitlines() == [
+        f'{mixin}: error: --junit names an input of the command ({mixin}): '
+        'writing it would destroy the input; give another output path [NODL033]']
+    assert result.stdout == '' and mixin.read_bytes() == before
