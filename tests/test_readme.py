@@ -159,3 +159,18 @@ def test_quoted_monitor_aggregator_config_is_what_the_tool_writes(tmp_path) -> N
                             text=True, capture_output=True, timeout=60)
     assert result.returncode == 0, result.stderr
     assert (tmp_path / 'agg.yaml').read_text() == block.group(2)
+
+
+def test_quoted_doc_example_is_what_the_tool_writes(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    block = re.search(r'```text\n\$ nodl doc (\S+) -o site\n(.*?)```', README, re.S)
+    assert block, 'README lost its `nodl doc` example'
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'doc', block.group(1), '-o',
+                             str(tmp_path / 'site')], cwd=REPO, text=True, capture_output=True,
+                            timeout=60, env={**os.environ, 'AMENT_PREFIX_PATH': sys.prefix})
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.replace(str(tmp_path) + os.sep, '') == block.group(2)
+    checked = subprocess.run([sys.executable, '-m', 'nodl_schema', 'doc', block.group(1), '-o',
+                              str(tmp_path / 'site'), '--check'], cwd=REPO, text=True,
+                             capture_output=True, timeout=60,
+                             env={**os.environ, 'AMENT_PREFIX_PATH': sys.prefix})
+    assert checked.returncode == 0, checked.stderr
