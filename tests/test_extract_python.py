@@ -238,3 +238,68 @@ def test_live_example_node_matches_its_extraction() -> None:
         for stream in (process.stdout, process.stderr):
             if stream is not None:
                 stream.close()
+
+
+# -- nodes whose interface the source does not hold: one located gap, never silence -----------------
+
+GENERATE = Path(__file__).parent / 'fixtures' / 'generate'
+
+
+def _whole_gap(node):  # type: ignore[no-untyped-def]
+    (note,) = [d for d in node.notes if d.code == 'NODL960']
+    assert note.line > 0 and note.column > 0
+    return note
+
+
+def _compare_opaque(live, node, name: str) -> None:  # type: ignore[no-untyped-def]
+    """Nothing extracted is absent live; every live entity is covered by the node's one gap."""
+    from nodl_schema.model.interface import ENDPOINT_SECTIONS
+
+    observed = {('parameters', k) for k in (live.parameters or {})}
+    for section in ENDPOINT_SECTIONS:
+        observed |= {(section, _expand(e.name, name, '/')) for e in getattr(live, section) or []}
+    assert observed  # the node has an interface, and the extraction says it does not hold it
+    for entity in node.entities:
+        if entity.complete:
+            key = (entity.section, _expand(entity.name, name, '/') if not entity.is_parameter else entity.name)
+            assert key in observed, f'extracted but not live: {key}'
+
+
+def test_live_generated_node_is_one_gap_at_its_class(ros_node, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
+    import shutil
+
+    from nodl_schema.live.describe import describe_node
+
+    shutil.copy(GENERATE / 'python' / 'talker_base.py', tmp_path / 'talker_base.py')
+    process = ros_node('generated_node.py', 'x_gen', '/', '--module-dir', str(tmp_path), '--kind', 'talker')
+    live = describe_node(process.fqn, timeout=15).node
+    extraction = extract_file(str(NODES / 'generated_node.py'))
+    assert sorted(n.name for n in extraction.nodes) == ['Camera', 'Everything', 'Talker']
+    talker = _node(extraction, 'Talker')
+    note = _whole_gap(talker)
+    assert (note.line, note.column) == (22, 5) and 'module.TalkerBase' in note.message
+    assert live.base is not None and live.base.value == talker.base
+    _compare_opaque(live.main, talker, 'x_gen')
+
+
+def test_live_runtime_node_is_one_gap_at_its_making(ros_node) -> None:  # type: ignore[no-untyped-def]
+    from nodl_schema.live.describe import describe_node
+
+    process = ros_node('runtime_node.py', 'x_rt', '/', '--definition', str(GENERATE / 'talker.nodl.yaml'),
+                       '--kind', 'talker')
+    live = describe_node(process.fqn, timeout=15).node
+    extraction = extract_file(str(NODES / 'runtime_node.py'))
+    assert sorted((n.name, n.base) for n in extraction.nodes) == [
+        ('Camera', 'lifecycle_node'), ('Everything', 'node'), ('node', 'node')]
+    made = _node(extraction, 'node')  # NodlNode(definition, name, ...) in build()
+    note = _whole_gap(made)
+    assert note.line == 40 and 'NodlNode reads when it starts (definition)' in note.message
+    _compare_opaque(live.main, made, 'x_rt')
+
+
+def test_a_class_of_an_unknown_base_is_a_node_only_when_it_acts_as_one() -> None:
+    text = ('import rclpy\nfrom helpers import Mixin, TalkerBase\n\n\nclass Plain(Mixin):\n    pass\n\n\n'
+            'class Talker(TalkerBase):\n    pass\n\n\nclass Worker(Mixin):\n'
+            '    def on_configure(self, state):\n        return super().on_configure(state)\n')
+    found = {n.name: [d.code for d in n.notes] for n in extract_source(text, 'x.py').nodes}
+    assert found == {'Talker': ['NODL960'], 'Worker': ['NODL960']}

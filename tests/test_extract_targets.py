@@ -46,3 +46,19 @@ def test_unreadable_paths_and_no_node(tmp_path: Path) -> None:
     assert not packages and [d.code for d in problems] == ['NODL020']
     (tmp_path / 'plain.py').write_text('print(1)\n', encoding='utf-8')
     assert [d.code for d in extract_paths([str(tmp_path)]).diagnostics] == ['NODL912']
+
+
+def test_registrations_record_components_and_node_names() -> None:
+    from nodl_schema.extract.model import ExtractedNode, Extraction, Location
+    from nodl_schema.extract.targets import nodes_file_text, registrations
+
+    ours = ExtractedNode('pkg::Talker', Location('t.cpp', 3, 1), 'cpp', package='pkg', plugin='pkg::Talker',
+                         node_name='talker')
+    other = ExtractedNode('vendor::Camera', Location('c.cpp', 5, 1), 'cpp', package='pkg', executable='cam',
+                          plugin='vendor::Camera', node_name='camera')
+    loose = ExtractedNode('n', Location('n.py', 1, 1), 'python', node_name='n')
+    tables, notes = registrations(Extraction(nodes=[ours, other, loose]))
+    assert tables == {'pkg': {'talker': {'plugin': 'pkg::Talker', 'node_name': 'talker'},
+                              'cam': {'node_name': 'camera'}}}
+    assert [(d.code, d.file, d.line) for d in notes] == [('NODL961', 'c.cpp', 5)]
+    assert 'talker:\n  node_name: talker\n  plugin: pkg::Talker\n' in nodes_file_text('pkg', tables['pkg'])
