@@ -194,3 +194,33 @@ def test_a_remap_rule_given_on_the_command_line_is_one_finding() -> None:
     assert "'scna:=/x', given to 2 nodes, is never used" in unused.message
     assert [r[0] for r in unused.diagnostic.related] == [str(share / 'planner.nodl.yaml'),
                                                        str(share / 'controller.nodl.yaml')]
+
+
+def test_files_are_everything_the_analysis_read(tmp_path: Path) -> None:
+    """Launch files and what they include, the nodes' parameter files, each definition found
+    and its mixins: what nodl analyse -o/--log/--graph must never overwrite."""
+    import os
+    import shutil
+
+    from conftest import REPO
+
+    from nodl_schema.targets.resolve import gather_definitions
+
+    system = REPO / 'examples' / 'system'
+    folder = tmp_path / 'defs' / 'rover_base'
+    folder.mkdir(parents=True)
+    for name in ('battery_monitor', 'diagnostics'):
+        shutil.copy(system / 'rover_base' / 'nodl' / f'{name}.nodl.yaml', folder)
+    monitor = folder / 'battery_monitor.nodl.yaml'
+    monitor.write_text(monitor.read_text().replace('nodl://rover_base/diagnostics',
+                                                   'diagnostics.nodl.yaml'))
+    analysis = analyse_launch(str(system / 'launch' / 'rover.launch.xml'), prefixes=[],
+                              definitions=gather_definitions([str(tmp_path / 'defs')],
+                                                             use_config=False))
+    read = {os.path.relpath(os.path.realpath(f), system) if f.startswith(str(system)) else
+            os.path.relpath(os.path.realpath(f), tmp_path) for f in analysis.files()}
+    assert read == {'launch/rover.launch.xml', 'launch/sensors.launch.yaml',
+                    'launch/navigation.launch.py', 'config/base.yaml', 'config/sensors.yaml',
+                    'config/navigation.yaml', 'defs/rover_base/battery_monitor.nodl.yaml',
+                    'defs/rover_base/diagnostics.nodl.yaml'}
+    assert len(analysis.files()) == len(read)  # each once

@@ -476,3 +476,15 @@ def test_a_relative_path_without_a_file_resolver_is_an_error() -> None:
     errors = errors_of(exc)
     assert [(d.line, d.column) for d in errors] == [(4, 5), (16, 5)]
     assert "no resolver for the scheme 'file' (known: none" in errors[0].message
+
+
+def test_files_are_the_definition_and_every_mixin_read(fixture_prefix: Path) -> None:
+    """What an output must never overwrite: the node's file, then each mixin's file (a
+    nested include's too), each once; in-place mixins and the built-in base are no file."""
+    composed = layered()
+    assert [os.path.basename(f) for f in composed.files] == [
+        'node.nodl.yaml', 'first.nodl.yaml', 'second.nodl.yaml']
+    assert all(os.path.isfile(f) for f in composed.files)
+    assert [layer.file is None for layer in composed.layers] == [
+        layer.is_base for layer in composed.layers]
+    assert compose('nodl_version: 2\nmain: {nodl_version: 2}\n').files == []

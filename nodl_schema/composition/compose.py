@@ -67,7 +67,7 @@ class ComposedNode:
         """Every file the composition read: the node definition, then each mixin's (nested
         includes too), each once."""
         found = [self.file] + [layer.file for layer in self.layers if layer.file is not None]
-        return list(dict.fromkeys(f for f in found if f))
+        return list(dict.fromkeys(f for f in found if f and not f.startswith('<')))  # <string>: no file
 
     def layer(self, label: str) -> Layer:
         """The layer called ``label``."""
