@@ -239,3 +239,30 @@ def test_the_library_finds_what_the_command_reports(analysis, report) -> None:  
     assert kinds == sorted(f['kind'] for f in report['findings'] if f['kind'] != 'multiple-publishers')
     assert {f.endpoint for f in analysis.findings if f.kind == 'multiple-publishers'} == {
         '/rover/cmd_vel', '/diagnostics'}
+
+
+from browser import assert_fits, browser, open_page  # noqa: E402,F401  (browser: a fixture)
+
+
+def test_the_graph_page_of_the_example_system_fits_1280x800(analysis, browser, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """The page `nodl analyse --graph rover.html` writes, in headless Chromium at 1280x800: the
+    18 nodes fit the window on load (no scrolling), the /rover namespace folds to one box,
+    and the screenshot a person looks at is kept in tmp_path (fleet of 100 nodes:
+    tests/test_analysis_graph.py)."""
+    from selenium.webdriver.common.by import By
+
+    from nodl_schema.analysis.graph import render_graph
+
+    page = tmp_path / 'rover.html'
+    page.write_text(render_graph(analysis, 'html'), encoding='utf-8')
+    open_page(browser, page)
+    assert_fits(browser)
+    shot = tmp_path / 'rover-1280x800.png'
+    assert browser.save_screenshot(str(shot)) and shot.stat().st_size > 10_000
+    browser.find_element(By.CSS_SELECTOR, 'button[data-do="fold-all"]').click()
+    box = browser.find_element(By.CSS_SELECTOR, 'g.fold')
+    assert box.is_displayed() and box.text.startswith('\u25b8 /rover (')
+    lidar = browser.execute_script(
+        "var d = JSON.parse(document.getElementById('nodl-data').textContent);"
+        "return Object.keys(d.vertices).filter(k => d.vertices[k].name === '/rover/lidar')[0];")
+    assert browser.find_element(By.ID, lidar).is_displayed() is False

@@ -6,7 +6,8 @@ are told apart.  What the client library gives every node (``/rosout``,
 ``/parameter_events``, the parameter services) is left out, as rqt_graph hides
 it.  Findings are marked on the nodes and on the topics, services and actions
 they concern (red: error, orange: warning), with their messages as tooltips;
-nodes without a definition are dashed.
+nodes without a definition are dashed.  Namespaces are clusters (foldable in the
+HTML page); what has no edge is laid out as a grid.
 
 SVG and HTML are laid out by ``graphviz-pure`` (the ``graph`` extra:
 ``pip install 'nodl-toolkit[graph]'``); without it they fail with a

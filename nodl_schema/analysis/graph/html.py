@@ -1,8 +1,11 @@
 """A self-contained HTML page: the SVG inline, the data as JSON, a little CSS and JS.
 
-Nothing is fetched: no fonts, scripts or styles from the network.  Clicking a
-node (or a topic, service or action) shows its interface and its findings in
-the side panel; the findings list below links back to the picture.
+Nothing is fetched: no fonts, scripts or styles from the network.  The inlined
+script fits the drawing to the window (its ``viewBox``), zooms and pans it, searches
+names, and folds a namespace (a cluster) to one box.  Clicking a node (or a topic,
+service or action) shows its interface (the node's own first, then what its client
+library gives it) and its findings in the side panel; the findings list below links
+back to the picture.
 """
 
 from __future__ import annotations
@@ -218,7 +221,12 @@ _JS = r"""
     ['x', 'y', 'width', 'height'].forEach(function(a, i){ r.setAttribute(a, [b.x, b.y, b.width, b.height][i]); });
     r.setAttribute('rx', 8);
     var t = document.createElementNS(NS, 'text');
-    t.setAttribute('x', b.x + 10); t.setAttribute('y', b.y + 22); t.textContent = foldLabel(k);
+    /* the label across the box, as large as the box allows (a big namespace folded is read
+       zoomed out) */
+    t.textContent = foldLabel(k);
+    var font = Math.max(14, Math.min(b.width * 0.9 / (t.textContent.length * 0.6), b.height * 0.25, 200));
+    t.setAttribute('x', b.x + b.width * 0.5); t.setAttribute('y', b.y + Math.min(b.height * 0.5, font * 2));
+    t.setAttribute('text-anchor', 'middle'); t.style.fontSize = font + 'px';
     var title = document.createElementNS(NS, 'title'); title.textContent = clusters[k].name + ': click to unfold';
     box.appendChild(title); box.appendChild(r); box.appendChild(t);
     box.addEventListener('click', function(ev){ ev.stopPropagation(); unfold(k); });
