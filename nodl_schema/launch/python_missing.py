@@ -289,6 +289,30 @@ class RunTimeText(str):
         return RunTimeText(str.__add__(other, self), self.placeholder)
 
 
+def _keeps_run_time(name: str) -> Any:
+    """A ``str`` method of :class:`RunTimeText` whose text result stays a run-time text
+    (``.upper()``, ``.replace()``, ``%``...: the value it stands for is still unknown)."""
+    method = getattr(str, name)
+
+    def kept(self: RunTimeText, *args: Any, **kwargs: Any) -> Any:
+        result = method(self, *args, **kwargs)
+        if isinstance(result, str):
+            return RunTimeText(result, self.placeholder)
+        if isinstance(result, (list, tuple)):
+            return type(result)(RunTimeText(r, self.placeholder) if isinstance(r, str) else r
+                                for r in result)
+        return result
+    kept.__name__ = name
+    return kept
+
+
+for _name in ('upper', 'lower', 'casefold', 'capitalize', 'title', 'swapcase', 'strip', 'lstrip',
+              'rstrip', 'replace', 'format', 'format_map', 'center', 'ljust', 'rjust', 'zfill',
+              'expandtabs', 'removeprefix', 'removesuffix', 'split', 'rsplit', 'partition',
+              'rpartition', 'splitlines', '__mod__', '__mul__', '__rmul__', '__getitem__'):
+    setattr(RunTimeText, _name, _keeps_run_time(_name))
+
+
 def _text_value(text: str, placeholder: Placeholder | None) -> Any:
     """The run-time value a text made from a placeholder stands for."""
     if placeholder is None and _ACTIVE:
@@ -311,8 +335,8 @@ def run_time(value: Any, depth: int = 0) -> Any:
     kind = type(value)
     if kind is RunTimeText:
         return _text_value(value, value.placeholder)
-    if kind is str:
-        return _text_value(value, None) if _MARK in value else value
+    if kind is str:  # (made from a run-time text by code that lost its type: ''.join...)
+        return _text_value(value, None) if _MARK in value.lower() else value
     if kind in (list, tuple):
         items = [run_time(v, depth + 1) for v in value]
         return kind(items) if any(a is not b for a, b in zip(items, value)) else value

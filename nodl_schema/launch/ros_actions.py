@@ -478,7 +478,7 @@ class Node(Action):
         record.parameters += _own_parameters(context, self.parameters, self.location,
                                              fqn if fully else '/**', record)
         record.remaps += list(context.configurations.get('ros_remaps') or [])
-        record.remaps += _own_remaps(context, self.remappings, self.remap_sources, self.location)
+        record.remaps += _own_remaps(context, self.remappings, self.remap_sources, self.location, record)
         if self.run_time_lists:
             _run_time_lists(context, self.run_time_lists, ('remappings',), record)
         check_node_text(context, record)
@@ -501,10 +501,23 @@ def _attribute_place(node: Any, keyword: str) -> SourceLocation:
 
 
 def _own_remaps(context: LaunchContext, remappings: list[tuple[Any, Any]], sources: list[SourceLocation],
-                location: SourceLocation) -> list[tuple[str, str]]:
-    """A node's own remapping rules, each with where it is written."""
-    return [LaunchRemap(perform(context, a), perform(context, b), sources[i] if i < len(sources) else location)
-            for i, (a, b) in enumerate(remappings)]
+                location: SourceLocation, record: LaunchedNode | None = None) -> list[tuple[str, str]]:
+    """A node's own remapping rules, each with where it is written.  A rule with a side only
+    the running launch knows is left out (NODL513 at the rule; the record's remapping rules
+    are then incomplete), never kept as a made-up name."""
+    out: list[tuple[str, str]] = []
+    for i, (a, b) in enumerate(remappings):
+        where = sources[i] if i < len(sources) else location
+        try:
+            out.append(LaunchRemap(perform(context, a), perform(context, b), where))
+        except Unevaluable as problem:
+            if record is None:
+                raise
+            what = 'composable node' if record.kind == 'composable' else 'node'
+            context.warn(problem.code, f'remapping rule: {problem.message}; the {what} is analysed '
+                                       'without this rule', where, cause=problem)
+            record.run_time += (RunTimeSource('remaps', where),)
+    return out
 
 
 class ComposableNode:
@@ -572,7 +585,7 @@ def _load(context: LaunchContext, description: ComposableNode, container: str,
                           namespace_given=namespace is not None)
     record.remaps += list(context.configurations.get('ros_remaps') or [])
     record.remaps += _own_remaps(context, description.remappings, description.remap_sources,
-                                 description.location)
+                                 description.location, record)
     if description.run_time_lists:
         _run_time_lists(context, description.run_time_lists, ('remappings',), record)
     if forwarded is None:
