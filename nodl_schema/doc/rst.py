@@ -20,8 +20,9 @@ from nodl_schema.doc.blocks import (Code, Contents, Heading, Inline, Link, Liter
 
 __all__ = ['render_rst', 'escape']
 
-_PUNCTUATION = frozenset(string.punctuation)
 _SPACES = re.compile(r'\s+')
+#: Every ASCII punctuation character, backslash-escaped.
+_ESCAPES = str.maketrans({c: '\\' + c for c in string.punctuation})
 _UNDERLINES = {1: '=', 2: '-', 3: '~', 4: '^', 5: '"'}
 
 
@@ -29,8 +30,8 @@ def escape(text: str) -> str:
     """``text`` as literal reStructuredText, on one line."""
     from nodl_schema.text_safety import visible
 
-    shown = _SPACES.sub(' ', visible(text))
-    return ''.join('\\' + c if c in _PUNCTUATION else c for c in shown)
+    shown = text if text.isprintable() else _SPACES.sub(' ', visible(text))
+    return shown.translate(_ESCAPES)
 
 
 def _width(text: str) -> int:
