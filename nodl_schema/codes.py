@@ -173,6 +173,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL416': ('warning', 'describe --launch: a launched node that cannot be found or filed (final name or executable unknown)'),
     'NODL420': ('error', "version skew: a running endpoint's type hash differs from the installed definition's"),
     'NODL421': ('info', "version skew: an endpoint's type hash cannot be compared (not reported, or the installed file cannot be read)"),
+    'NODL422': ('info', "version skew: a node's service types cannot be compared (no hash for services, no ~/get_type_description), said once per node"),
+    'NODL423': ('warning', "describe: an observed endpoint's type differs from the installed definition (version skew), noted next to the entity"),
     'NODL430': ('error', 'monitor: an expected node is not running (not seen within the grace period, or gone from the graph)'),
     'NODL431': ('warning', 'monitor: a node is running that the expected system does not have'),
     'NODL432': ('warning', "monitor: a node is restarting (a new node of its name while the old one's participant lease runs)"),

@@ -135,3 +135,31 @@ def test_describe_states_the_client_library_and_takes_the_option(nodes) -> None:
     assert json.loads(asked.stdout)['main'] == load_node(deduced.stdout).main.to_dict()
     bad = nodl('describe', '/cli_d/full', '--client-library', 'rclc')
     assert bad.returncode == 2
+
+
+def test_describe_warns_of_version_skew(tmp_path: Path) -> None:
+    import os
+
+    from skewed_prefix import STRING_WITH_REVISION, VENV, skewed_prefix
+
+    prefix = skewed_prefix(tmp_path, {'std_msgs/msg/String': STRING_WITH_REVISION})
+    node = NodeProcess('typed_node.py', 'typed', '/cli_skew')
+    out = tmp_path / 'typed.nodl.yaml'
+    old = os.environ.get('AMENT_PREFIX_PATH')
+    os.environ['AMENT_PREFIX_PATH'] = f'{prefix}:{VENV}'
+    try:
+        result = nodl('describe', '/cli_skew/typed', '-o', str(out), '--timeout', '15')
+    finally:
+        node.stop()
+        if old is None:
+            del os.environ['AMENT_PREFIX_PATH']
+        else:
+            os.environ['AMENT_PREFIX_PATH'] = old
+    assert result.returncode == 0, result.stderr
+    [warning] = [l for l in result.stderr.splitlines() if 'version skew' in l]
+    assert warning.startswith('nodl describe: warning: version skew: /cli_skew/chatter: the node '
+                              "uses another definition of 'std_msgs/msg/String'")
+    assert "field 'revision' (int32)" in warning and warning.endswith('[NODL423]')
+    text = unmark(out.read_text(encoding='utf-8'))
+    assert "  # Version skew: /cli_skew/chatter: the node uses another definition" in text
+    assert text.index('# Version skew') < text.index('- name: chatter')

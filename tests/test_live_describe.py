@@ -378,3 +378,31 @@ def test_the_description_is_built_as_a_typed_node() -> None:
     assert all(isinstance(p, TopicEndpoint) for p in description.node.main.publishers or ())
     assert description.definition == description.node.to_dict()
     assert validate_node(description.definition) is not None
+
+
+def test_describe_reports_version_skew_next_to_the_entity(tmp_path, monkeypatch) -> None:
+    """A node built against another String than the installed one: the skew is a warning
+    naming the field, and a comment above the entity in the written definition."""
+    from skewed_prefix import STRING_WITH_REVISION, VENV, skewed_prefix
+
+    prefix = skewed_prefix(tmp_path, {'std_msgs/msg/String': STRING_WITH_REVISION})
+    node = NodeProcess('typed_node.py', 'typed_d', '/skew_d')
+    try:
+        monkeypatch.setenv('AMENT_PREFIX_PATH', str(VENV))
+        assert describe_node(node.fqn, timeout=15).skew_warnings == []
+        monkeypatch.setenv('AMENT_PREFIX_PATH', f'{prefix}:{VENV}')
+        description = describe_node(node.fqn, timeout=15)
+        without = describe_node(node.fqn, timeout=15, types=False)
+    finally:
+        node.stop()
+    assert without.skew == []
+    [warning] = description.skew_warnings
+    assert warning.startswith("/skew_d/chatter: the node uses another definition of "
+                              "'std_msgs/msg/String' than the installed one")
+    assert "field 'revision' (int32) is in the installed definition" in warning
+    lines = render_description(description).splitlines()
+    at = lines.index('  - name: chatter')
+    assert lines[at - 1] == f'  # Version skew: {warning}'
+    assert '# Version skew' not in render_description(without)
+    # the comment keeps the file a valid definition
+    validate_node(load_node('\n'.join(lines)).to_dict())

@@ -44,7 +44,7 @@ KIND_CODES = {
     'parameter_type': 'NODL405', 'read_only': 'NODL406', 'value': 'NODL407',
     'unverifiable': 'NODL408',
     # nodl_schema.live.type_skew: the endpoint's type hash against the installed definition's
-    'version_skew': 'NODL420', 'skew_unverifiable': 'NODL421',
+    'version_skew': 'NODL420', 'skew_unverifiable': 'NODL421', 'services_unverifiable': 'NODL422',
 }
 
 

@@ -8,6 +8,10 @@ invented: it is listed in the header comment and returned as notes (topic
 history and depth on some middlewares, service QoS).  What makes the
 observation itself doubtful (a name several nodes share) is a warning, on a
 header line of its own.
+
+Each observed endpoint's type is also compared with the installed definition
+(version skew, :mod:`nodl_schema.live.type_skew`): a difference is a warning
+(NODL423), written as a comment next to the entity it concerns.
 """
 
 from __future__ import annotations
@@ -23,7 +27,7 @@ from nodl_schema.naming import NodeNames, declared_names, expand, relativize
 from nodl_schema.vocabulary import QOS_KEYS, SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['Description', 'deduce_base', 'deduce_client_library', 'describe_observed',
-           'describe_node', 'render_description']
+           'describe_node', 'render_description', 'add_type_skew', 'annotate_yaml']
 
 
 def _lifecycle_services() -> list[str]:
@@ -54,6 +58,32 @@ class Description:
         self.forms: dict[tuple[str, str], list[str]] = {}
         #: The final names no name the node could declare resolves to (kept as observed).
         self.unmapped: list[tuple[str, str]] = []
+        #: The name written for each observed endpoint, by ``(section, final name)``.
+        self.written: dict[tuple[str, str], str] = {}
+        #: The version-skew findings (:func:`add_type_skew`): endpoints whose type differs
+        #: from the installed definition (NODL420 kind ``version_skew``), or that cannot be
+        #: compared (``skew_unverifiable``, ``services_unverifiable``: notes).
+        self.skew: list[Any] = []
+
+    @property
+    def skew_warnings(self) -> list[str]:
+        """The version skews in words, one line each (warnings: NODL423)."""
+        return [d.message for d in self.skew if d.kind == 'version_skew']
+
+    @property
+    def skew_notes(self) -> list[str]:
+        """What of the types could not be compared with the installed definitions."""
+        return [d.message for d in self.skew if d.kind != 'version_skew']
+
+    def skew_comments(self) -> dict[tuple[str, str], list[str]]:
+        """Comment lines for the written definition, by ``(section, written name)``."""
+        out: dict[tuple[str, str], list[str]] = {}
+        for d in self.skew:
+            if d.kind != 'version_skew':
+                continue
+            written = self.written.get((d.section, d.name), d.name)
+            out.setdefault((d.section, written), []).append(f'Version skew: {d.message}')
+        return out
 
     @property
     def definition(self) -> dict[str, Any]:
@@ -130,6 +160,7 @@ def describe_observed(observed: ObservedNode, client_library: str | None = None,
     unobserved: set[str] = set()
     forms: dict[tuple[str, str], list[str]] = {}
     unmapped: list[tuple[str, str]] = []
+    written: dict[tuple[str, str], str] = {}
     for section in ENDPOINT_SECTIONS:
         service = section in SERVICE_SECTIONS
         from_base = {(_final(e.name, name, namespace, names, service), e.type)
@@ -148,6 +179,7 @@ def describe_observed(observed: ObservedNode, client_library: str | None = None,
                     candidates = [endpoint.name]
                 short = candidates[0]
                 forms[(section, short)] = candidates
+            written[(section, endpoint.name)] = short
             if section not in TOPIC_SECTIONS:
                 entries.append(make(short, endpoint.type))
                 continue
@@ -181,6 +213,7 @@ def describe_observed(observed: ObservedNode, client_library: str | None = None,
                               list(observed.warnings))
     description.forms = forms
     description.unmapped = unmapped
+    description.written = written
     return description
 
 
@@ -197,14 +230,72 @@ def _final(declared: str, name: str, namespace: str, names: NodeNames | None,
 
 
 def describe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
-                  session: Any = None, client_library: str | None = None) -> Description:
+                  session: Any = None, client_library: str | None = None,
+                  types: bool = True) -> Description:
     """Observe the running node ``fqn`` and describe it (raises LiveError for the user).
 
     ``session``: an observer node of :func:`~nodl_schema.live.session.ros_session` to reuse;
-    ``client_library``: see :func:`describe_observed`.
+    ``client_library``: see :func:`describe_observed`; ``types``: compare each endpoint's
+    type with the installed definition (:func:`add_type_skew`).
     """
-    return describe_observed(observe_node(fqn, timeout=timeout, parameters=parameters,
-                                          session=session), client_library)
+    if session is None and types:
+        from nodl_schema.live.session import ros_session
+
+        with ros_session() as own:
+            return describe_node(fqn, timeout=timeout, parameters=parameters, session=own,
+                                 client_library=client_library, types=types)
+    observed = observe_node(fqn, timeout=timeout, parameters=parameters, session=session)
+    description = describe_observed(observed, client_library)
+    if types:
+        add_type_skew(description, session, observed)
+    return description
+
+
+def add_type_skew(description: Description, session: Any, observed: ObservedNode,
+                  index: Any = None) -> Description:
+    """Compare the observed endpoints' types with the installed definitions (``index``:
+    an :class:`~nodl_schema.interface_types.InterfaceIndex`, by default the environment's)
+    and keep what differs in :attr:`Description.skew`.  The endpoints the base gives are
+    compared too (the node's build may predate the installed ``rcl_interfaces``)."""
+    from nodl_schema.live.type_skew import type_skew
+
+    if index is None:
+        from nodl_schema.interface_types import interface_index
+
+        index = interface_index()
+    description.skew = type_skew(session, observed, index)
+    return description
+
+
+def annotate_yaml(text: str, comments: dict[tuple[str, str], list[str]]) -> tuple[str, list[str]]:
+    """``text`` (a definition as :func:`~nodl_schema.loading.dump_nodl` writes YAML) with
+    each comment written above the entity it concerns, by ``(section, written name)``;
+    also the comments whose entity is not in the text (for a header)."""
+    import re
+
+    import yaml
+
+    from nodl_schema.text_safety import one_line
+
+    if not comments:
+        return text, []
+    left = dict(comments)
+    out: list[str] = []
+    section = None
+    for line in text.splitlines(keepends=True):
+        heading = re.match(r'^\s*([a-z_]+):\s*$', line)
+        if heading:
+            section = heading.group(1)
+        entry = re.match(r'^(\s*)- name: (.*)$', line.rstrip('\n'))
+        if entry and section is not None:
+            try:
+                name = yaml.safe_load(entry.group(2))
+            except yaml.YAMLError:
+                name = None
+            for comment in left.pop((section, str(name)), []):
+                out.append(f'{entry.group(1)}# {one_line(comment)}\n')
+        out.append(line)
+    return ''.join(out), [c for found in left.values() for c in found]
 
 
 def render_description(description: Description, format: str = 'yaml') -> str:
@@ -220,11 +311,14 @@ def render_description(description: Description, format: str = 'yaml') -> str:
               f'# Left out: what the base gives an {one_line(description.client_library.name)} node '
               f'({one_line(description.client_library.reason)}).']
     header += [f'# Warning: {one_line(warning)}.' for warning in description.warnings]
-    if description.notes:
+    body, unplaced = annotate_yaml(dump_nodl(description.node, 'yaml'), description.skew_comments())
+    header += [f'# {one_line(comment)}' for comment in unplaced]
+    notes = description.notes + description.skew_notes
+    if notes:
         header.append('# Not observable, so not stated here:')
-        header += [f'#   - {one_line(note)}' for note in description.notes]
+        header += [f'#   - {one_line(note)}' for note in notes]
     # Marks what describe cannot know (see nodl_schema.overrides): no 'has no description'
     # warning, even with --strict, until someone writes the descriptions.
     header.append('# nodl: ignore=NODL216 (a running node has no descriptions: write them, '
                   'then remove this line)')
-    return '\n'.join(header) + '\n' + dump_nodl(description.node, 'yaml')
+    return '\n'.join(header) + '\n' + body

@@ -76,5 +76,7 @@ def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = Tru
             path = os.path.join(directory, file_name_for(fqn, format))
             write_marked(path, render_description(description, format), force=force,
                          within=directory)
-            written.append((fqn, path, description.warnings + description.notes))
+            written.append((fqn, path, description.warnings + description.notes
+                            + [f'version skew: {w} [NODL423]' for w in description.skew_warnings]
+                            + description.skew_notes))
     return written

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from typing import Any, Mapping
 
 from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.live.describe import Description, describe_observed
+from nodl_schema.live.describe import Description, annotate_yaml, describe_observed
 from nodl_schema.live.observe import (ObservedNode, count_nodes, list_nodes, observe_settled,
                                       read_lifecycle_states, read_parameters, settle_nodes)
 from nodl_schema.live.session import is_hidden_node, ros_session
@@ -159,13 +159,15 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
                     timeout: float = 5.0, parameters: bool = True, format: str = 'yaml',
                     client_library: str | None = None, force: bool = False,
                     limits: 'LaunchLimits | None' = None, prefixes: list[str] | None = None,
-                    quiet: float = QUIET) -> LaunchDescription:
+                    quiet: float = QUIET, types: bool = True) -> LaunchDescription:
     """Describe the running system ``launch_file`` (with launch ``arguments``) started into
     the definitions folder ``directory`` (see the module docstring).
 
     ``timeout``: seconds to wait for every launched node and its endpoints (and for their
     parameter and lifecycle services).  ``limits``: whether and how the launch file's
     Python code runs (:class:`~nodl_schema.launch.sandbox.LaunchLimits`; ``--no-exec``).
+    ``types``: each node's endpoint types are compared with the installed definitions; a
+    version skew is a warning (NODL423) and a comment next to the entity in its file.
     Files are written as :func:`~nodl_schema.writing.write_marked` writes them (a file nodl
     did not write, or that was edited, stops the run with a
     :class:`~nodl_schema.writing.WriteError` unless ``force``).  Problems in the launch
@@ -221,6 +223,13 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
         if lifecycle:
             for fqn, state in read_lifecycle_states(session, lifecycle, timeout).items():
                 observed[fqn].lifecycle_state = state
+        skews: dict[str, list[Any]] = {}
+        if types and seen:  # version skew: each endpoint's type against the installed one
+            from nodl_schema.interface_types import interface_index
+            from nodl_schema.live.type_skew import type_skew
+
+            index = interface_index(prefixes=prefixes)
+            skews = {fqn: type_skew(session, observed[fqn], index) for fqn in seen}
         # namesakes: every name the graph holds more often than the launch starts it
         counts = count_nodes(session)
         result.watched = time.monotonic() - float(getattr(session, 'nodl_started', time.monotonic()))
@@ -253,7 +262,12 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
                 'name)', nodes[0], launch_file))
         for node in nodes:
             description = describe_observed(observed[fqn], client_library, names=node.names)
+            description.skew = skews.get(fqn, [])
             instances.append(Instance(node, observed[fqn], description))
+            for message in description.skew_warnings:  # also a comment next to the entity
+                result.diagnostics.append(_diagnostic(
+                    'NODL423', Severity.WARNING, f'{fqn}: version skew: {message}', node,
+                    launch_file))
             for section, final in description.unmapped:
                 result.diagnostics.append(_diagnostic(
                     'NODL412', Severity.WARNING, f'{fqn}: {final} ({section}) is no name the node '
@@ -516,12 +530,19 @@ def render_merged(overlay: OverlayFile, launch_file: str, arguments: Mapping[str
     header.append(f'# Left out: what the base gives an {one_line(overlay.client_library)} node '
                   f'({one_line(overlay.client_library_reason)}).')
     header += [f'# {one_line(comment)}.' for comment in overlay.comments]
+    skews: dict[tuple[str, str], list[str]] = {}
+    for instance in overlay.instances:  # version skew, next to the entity it concerns
+        for key, comments in instance.description.skew_comments().items():
+            skews.setdefault(key, []).extend(
+                f'{instance.fqn}: {c}' if len(overlay.instances) > 1 else c for c in comments)
+    body, unplaced = annotate_yaml(dump_nodl(overlay.node, 'yaml'), skews)
+    header += [f'# {one_line(comment)}' for comment in unplaced]
     if overlay.notes:
         header.append('# Not observable, so not stated here:')
         header += [f'#   - {one_line(note)}' for note in overlay.notes]
     header.append('# nodl: ignore=NODL216 (a running node has no descriptions: write them, '
                   'then remove this line)')
-    return '\n'.join(header) + '\n' + dump_nodl(overlay.node, 'yaml')
+    return '\n'.join(header) + '\n' + body
 
 
 def _nodes_yaml(package: str, files: list[OverlayFile], launch_file: str) -> str | None:

@@ -105,6 +105,10 @@ class DescribeVerb(Verb):
                   file=sys.stderr)
         for note in description.warnings + description.notes:
             print(f'nodl describe: warning: {note}', file=sys.stderr)
+        for skew in description.skew_warnings:  # also a comment next to the entity
+            print(f'nodl describe: warning: version skew: {skew} [NODL423]', file=sys.stderr)
+        for note in description.skew_notes:
+            print(f'nodl describe: note: {note}', file=sys.stderr)
         if not args.output:
             sys.stdout.write(text)
             return EXIT_OK
