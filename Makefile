@@ -23,7 +23,7 @@ export AMENT_PREFIX_PATH := $(abspath $(VENV))
 export CMAKE_PREFIX_PATH := $(abspath $(VENV))
 export PATH := $(abspath $(BIN)):$(PATH)
 
-.PHONY: demo test bench install lock clean FORCE
+.PHONY: demo test bench install lock system-deps clean FORCE
 
 install: $(STAMP)
 
@@ -56,6 +56,21 @@ $(STAMP): $(DEPS) $(SOURCES)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation --force-reinstall .
 	touch $(STAMP)
 
+# What the suite needs from the system besides Python: a browser for the graph page's
+# tests (Debian's chromium and its driver). Installed with apt-get when missing and run
+# as root; otherwise it says what to install.
+SYSTEM_PACKAGES := chromium chromium-driver
+system-deps:
+	@missing=""; command -v chromium >/dev/null 2>&1 || missing="chromium"; \
+	  command -v chromedriver >/dev/null 2>&1 || missing="$$missing chromium-driver"; \
+	  if [ -z "$$missing" ]; then exit 0; fi; \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	    echo "make: installing $$missing (Debian packages the test suite needs)"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(SYSTEM_PACKAGES); \
+	  else \
+	    echo "make: the test suite needs the Debian packages $(SYSTEM_PACKAGES): sudo apt-get install $(SYSTEM_PACKAGES)"; exit 2; \
+	  fi
+
 demo: $(STAMP)
 	$(BIN)/python examples/demo.py
 
@@ -63,7 +78,7 @@ demo: $(STAMP)
 # modules (their module-scoped builds and nodes are made once), the costliest first
 # (tests/durations.json; see tests/conftest.py), and a ROS domain of its own.
 TEST_WORKERS ?= $(shell nproc 2>/dev/null || echo 2)
-test: $(STAMP)
+test: system-deps $(STAMP)
 	$(BIN)/python -m pytest -n $(TEST_WORKERS) --dist loadfile --no-loadscope-reorder
 
 # The lock, constraints.txt: every package of the environment pinned with ==. It is
