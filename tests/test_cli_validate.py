@@ -243,3 +243,17 @@ def test_package_without_manifest_is_a_usage_error(tmp_path: Path) -> None:
     result = _typed('--package', str(tmp_path), rel(TYPES / 'wrong_types.nodl.yaml'))
     assert result.returncode == 2
     assert 'no package.xml there' in result.stderr
+
+
+def test_types_reports_a_malformed_installed_file_once_at_its_line() -> None:
+    prefix = TYPES / 'bad_prefix'
+    env = dict(os.environ, AMENT_PREFIX_PATH=f'{prefix}{os.pathsep}{sys.prefix}')
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--types',
+                             rel(TYPES / 'bad_installed.nodl.yaml')], cwd=REPO, text=True,
+                            capture_output=True, timeout=60, env=env)
+    assert result.returncode == 1 and 'Traceback' not in result.stderr
+    reading = prefix / 'share' / 'bad_msgs' / 'msg' / 'Reading.msg'
+    assert result.stdout.count('[NODL258]') == 1, result.stdout
+    assert f"{reading}:3:1: error: 'bad_msgs/msg/Reading' cannot be read: " in result.stdout
+    # where the definition names it (the other type: values are related locations)
+    assert f"(named by {rel(TYPES / 'bad_installed.nodl.yaml')}:7:13 and 2 more)" in result.stdout

@@ -38,10 +38,11 @@ def test_package_dependencies_and_own_source_types() -> None:
     report = check_source(PACKAGE / 'nodl' / 'device.nodl.yaml')
     index = InterfaceIndex([VENV], [str(PACKAGE)])
     found = check_types(report, index, read_manifest(str(PACKAGE)))
-    assert _codes(found) == [(11, 'NODL258'), (19, 'NODL256'), (23, 'NODL255'), (27, 'NODL250')]
-    assert found[0].related[0][1:3] == (3, 0) and found[0].related[0][0].endswith('Broken.msg')
-    assert '<depend>geometry_msgs</depend>' in found[2].message
-    assert found[1].related[0][1] == 10  # the <build_depend> line of package.xml
+    assert _codes(found) == [(19, 'NODL256'), (23, 'NODL255'), (27, 'NODL250'), (3, 'NODL258')]
+    # the malformed source file, at its line, related to the type: that names it
+    assert found[3].file.endswith('Broken.msg') and found[3].related[0][1:3] == (11, 13)
+    assert '<depend>geometry_msgs</depend>' in found[1].message
+    assert found[0].related[0][1] == 10  # the <build_depend> line of package.xml
 
 
 def test_at_build_time_a_declared_uninstalled_package_is_a_warning() -> None:
@@ -86,3 +87,26 @@ def test_unreadable_manifests_are_one_error(tmp_path: Path, content: str, proble
     report = check_source(TYPES / 'wrong_types.nodl.yaml')
     found = check_types(report, InterfaceIndex([VENV]), manifest)
     assert [d.code for d in found].count('NODL259') == 1
+
+
+def test_a_malformed_installed_file_is_one_diagnostic_at_its_line() -> None:
+    """An installed .msg that does not parse: one NODL258 at its line, related to every
+    type: that names it (directly or by a type that nests it); the sound types pass."""
+    prefix = str(TYPES / 'bad_prefix')
+    report = check_source(TYPES / 'bad_installed.nodl.yaml')
+    found = check_types(report, InterfaceIndex([prefix, VENV]))
+    [problem] = found
+    assert problem.code == 'NODL258'
+    assert (problem.file, problem.line, problem.column) == (
+        str(TYPES / 'bad_prefix' / 'share' / 'bad_msgs' / 'msg' / 'Reading.msg'), 3, 1)
+    assert "'bad_msgs/msg/Reading' cannot be read: is not a valid interface definition" in problem.message
+    assert [(r[1], r[2]) for r in problem.related] == [(7, 13), (11, 13), (20, 13)]
+    assert all(r[0] == report.file for r in problem.related)
+    assert problem.related[1][3] == "'bad_msgs/msg/Outer' named here, as main.publishers[1].type"
+    # a nested type that is not installed is the nesting file's problem, at its field
+    index = InterfaceIndex([prefix])  # no std_msgs: Outer's header cannot be found
+    from nodl_schema.interface_types.check import interface_problem
+
+    missing = interface_problem(index, 'bad_msgs/msg/Outer')
+    assert missing.file.endswith('Outer.msg') and missing.line == 2
+    assert "field 'header' is of type 'std_msgs/msg/Header', which cannot be found" in missing.message

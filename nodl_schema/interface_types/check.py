@@ -5,9 +5,13 @@ package's source folder, a source) message, service or action type of the
 section's kind.  With the package's manifest, each interface package must be
 a run-time dependency of it.  Diagnostics are placed at the ``type:`` value.
 
-Only names are resolved here (the index is read once per run, no interface
-file is parsed), except the package's own source types, which no build has
-checked yet: those are parsed, and a malformed one is reported at its line.
+Names are resolved (the index is read once per run), and the file of each type
+a definition names is read, with the files of the types it nests, once per run:
+a malformed one is one diagnostic at its line (NODL258), related to every
+``type:`` that names it.  An installed type is read from its ``.msg``, ``.srv``
+or ``.action`` file with rosidl_adapter's parser (fast: the ``.idl`` beside it
+is generated from it); only a type installed as ``.idl`` alone, and the
+package's own source types, are parsed as IDL.
 """
 
 from __future__ import annotations
@@ -20,7 +24,7 @@ if TYPE_CHECKING:
     from nodl_schema.interface_types.resolve import InterfaceIndex
     from nodl_schema.loading import Report
 
-from nodl_schema.diagnostics import Diagnostic, DocPath, Severity
+from nodl_schema.diagnostics import Diagnostic, DocPath, Severity, format_path
 from nodl_schema.vocabulary import SECTIONS
 
 __all__ = ['check_types', 'type_entries', 'manifest_for']
@@ -83,14 +87,34 @@ def check_types(report: Report, index: InterfaceIndex, manifest: Manifest | None
     if manifest is not None and manifest.problem is not None:
         out.append(Diagnostic(Severity.ERROR, f'package.xml {manifest.problem}; interface '
                               'dependencies cannot be checked', file=manifest.file, code='NODL259'))
+    unreadable: dict[str, tuple[str, Any]] = {}  # interface file -> (type, InterfaceFileError)
+    named: dict[str, list[tuple[str, int, int, str]]] = {}
     for path, text, namespace in type_entries(report):
         found = list(_check_one(index, text, namespace, path, manifest, own, build))
-        out += [report.place(d) for d in found]
+        for d in found:
+            if isinstance(d, tuple):  # (type, InterfaceFileError): one diagnostic per file
+                problem = d[1]
+                unreadable.setdefault(problem.file, d)
+                where = report.place(Diagnostic(Severity.ERROR, '', path))
+                named.setdefault(problem.file, []).append(
+                    (where.file, where.line, where.column, f"'{text}' named here, as "
+                     f'{format_path(path)}'))
+            else:
+                out.append(report.place(d))
+    for file, (type_name, problem) in unreadable.items():
+        first = named[file][0]
+        more = len(named[file]) - 1
+        by = f'{first[0]}:{first[1]}:{first[2]}' + (f' and {more} more' if more else '')
+        out.append(Diagnostic(Severity.ERROR, f"'{type_name}' cannot be read: {problem.message} "
+                              f'(named by {by}); fix the file, or reinstall its package', (),
+                              file, problem.line, problem.column, code='NODL258',
+                              related=named[file]))
     return out
 
 
 def _check_one(index: InterfaceIndex, text: str, namespace: str, path: DocPath,
-               manifest: Manifest | None, own: str | None, build: bool) -> Iterator[Diagnostic]:
+               manifest: Manifest | None, own: str | None, build: bool
+               ) -> Iterator[Diagnostic | tuple[str, Any]]:
     from nodl_schema.validation.types import type_problem
 
     problem = type_problem(text, namespace)
@@ -135,8 +159,9 @@ def _check_one(index: InterfaceIndex, text: str, namespace: str, path: DocPath,
     if resolution.status == 'short':
         yield Diagnostic(Severity.WARNING, f"'{text}' resolves to '{resolution.type}'; write the "
                          'full name', path, code='NODL253')
-    if resolution.package is not None and resolution.package.origin == 'source':
-        yield from _parse_source(index, str(resolution.type), path)
+    problem = interface_problem(index, str(resolution.type))
+    if problem is not None:
+        yield str(resolution.type), problem
     if manifest is None or own is None or package == own:
         return
     if manifest.run_time(package):
@@ -158,16 +183,99 @@ def _names(package: Any, namespace: str) -> list[str]:
     return package.names(namespace)[:8] if package is not None else []
 
 
-def _parse_source(index: InterfaceIndex, name: str, path: DocPath) -> Iterator[Diagnostic]:
-    """A source package's type is parsed (no build has checked it): a malformed file is
-    reported once, at its line, as related to the ``type:`` that names it."""
+def interface_problem(index: InterfaceIndex, name: str) -> Any:
+    """The :class:`~nodl_schema.interface_types.tree.InterfaceFileError` of the file that
+    defines ``name`` or a type it nests (the first found), else None; once per index.
+
+    A source package's type is parsed as IDL (as its build will); an installed one from its
+    ``.msg``/``.srv``/``.action`` file by rosidl_adapter's parser (the ``.idl`` installed
+    beside it is generated from it), or as IDL when none is installed.
+    """
+    key = ('problem', name)
+    if key in index.cache:
+        return index.cache[key]
+    index.cache[key] = None  # a type nesting itself is checked once
+    index.cache[key] = problem = _problem(index, name)
+    return problem
+
+
+def _problem(index: InterfaceIndex, name: str) -> Any:
+    import os
+
     from nodl_schema.interface_types.tree import InterfaceFileError, load_type
 
+    package, namespace, base = name.split('/')
+    owner = index.package(package)
+    files = owner.types.get((namespace, base), []) if owner is not None else []
+    if owner is None or not files:
+        return None
+    plain = [f for f in files if not f.endswith('.idl')]
+    if owner.origin == 'source' or not plain:
+        try:
+            load_type(index, name)
+        except InterfaceFileError as exc:
+            return exc
+        except LookupError:
+            return None
+        return None
+    path = os.path.join(owner.share, plain[0])
     try:
-        load_type(index, name)
+        nested = _nested(path, package, namespace, base)
     except InterfaceFileError as exc:
-        yield Diagnostic(Severity.ERROR, f"'{name}' cannot be read: {exc}; fix the file",
-                         path, code='NODL258',
-                         related=[(exc.file, exc.line, exc.column, exc.message)])
-    except LookupError:
-        return
+        return exc
+    for field, line, (other_package, other) in nested:
+        inner = f'{other_package}/msg/{other}'
+        found = index.package(other_package)
+        if found is None or ('msg', other) not in found.types:
+            where = 'its package is not installed' if found is None else 'no such message there'
+            return InterfaceFileError(f"field '{field}' is of type '{inner}', which cannot be "
+                                      f'found ({where})', path, line)
+        problem = interface_problem(index, inner)
+        if problem is not None:
+            return problem
+    return None
+
+
+def _nested(path: str, package: str, namespace: str, base: str
+            ) -> list[tuple[str, int, tuple[str, str]]]:
+    """``(field, line, (package, Type))`` of each field of a ``.msg``/``.srv``/``.action``
+    file whose type is a message; InterfaceFileError if the file is malformed."""
+    from rosidl_adapter import parser as adapter
+
+    from nodl_schema.interface_types.tree import InterfaceFileError, _bad_line, _quiet
+
+    try:
+        with open(path, 'rb') as handle:
+            raw = handle.read(10 * 1024 * 1024 + 1)
+    except OSError as exc:
+        raise InterfaceFileError(f'cannot be read: {exc.strerror or exc}', path) from None
+    if len(raw) > 10 * 1024 * 1024:
+        raise InterfaceFileError('is larger than the 10 MB limit', path)
+    try:
+        text = raw.decode('utf-8')
+    except UnicodeDecodeError as exc:
+        raise InterfaceFileError('is not UTF-8 text', path,
+                                 raw.count(b'\n', 0, exc.start) + 1) from None
+    parse = {'msg': adapter.parse_message_string, 'srv': adapter.parse_service_string,
+             'action': adapter.parse_action_string}[namespace]
+    try:
+        with _quiet():  # rosidl_adapter prints its errors as well as raising them
+            spec = parse(package, base, text)
+    except Exception as exc:  # InvalidSpecification, InvalidValue, ValueError...
+        reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        line = _bad_line(text, package, base)
+        raise InterfaceFileError(f'is not a valid interface definition: {reason}', path, line,
+                                 1 if line else 0) from None
+    parts = {'msg': ('',), 'srv': ('request', 'response'),
+             'action': ('goal', 'result', 'feedback')}[namespace]
+    lines = text.splitlines()
+    out: list[tuple[str, int, tuple[str, str]]] = []
+    for part in parts:
+        message: Any = getattr(spec, part) if part else spec
+        for field in message.fields:
+            if field.type.is_primitive_type():
+                continue
+            line = next((n for n, t in enumerate(lines, 1)
+                         if t.split('#')[0].split()[1:2] == [field.name]), 0)
+            out.append((field.name, line, (str(field.type.pkg_name), str(field.type.type))))
+    return out
