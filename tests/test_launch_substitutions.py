@@ -142,3 +142,13 @@ def test_nodl_analyse_reports_it_at_the_let_with_exit_1(tmp_path: Path) -> None:
     report = json.loads(done.stdout)
     found = [d for d in report['findings'] if d['code'] == 'NODL521']
     assert [(d['line'], d['column']) for d in found] == [(24, 3)], found
+
+
+def test_file_content_failures_say_why_in_words() -> None:
+    # the system's own message, never "[Errno 2] ..." with the path twice
+    result = load_launch(FIXTURES / 'launch' / 'file_content' / 'missing.launch.xml')
+    messages = [d.message for d in result.diagnostics if d.code == 'NODL510']
+    assert len(messages) == 2, [str(d) for d in result.diagnostics]
+    assert messages[0].endswith("no_such_robot.urdf': No such file or directory")
+    assert messages[1].endswith("latin1.txt': it is not UTF-8 text")
+    assert not [m for m in messages if '[Errno' in m]

@@ -280,3 +280,14 @@ def test_callbacks_keyed_by_kind_and_local_set_parameters_give_the_validators_wo
         for n in (node, decorated):
             client.executor.remove_node(n)
             n.destroy_node()
+
+
+def test_a_missing_definition_file_is_named_in_words(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    from nodl_schema.runtime import NodlNode
+
+    missing = tmp_path / 'absent.nodl.yaml'
+    with pytest.raises(RuntimeDefinitionError) as raised:
+        NodlNode(missing)
+    message = str(raised.value)
+    assert '[Errno' not in message
+    assert message.startswith(f'{missing}: ') and 'no such file' in message.lower()

@@ -496,8 +496,14 @@ class FileContent(Substitution):
         try:
             with open(path, encoding='utf-8') as stream:
                 text = stream.read(MAX_BYTES + 1)
-        except (OSError, UnicodeDecodeError) as exc:
-            raise LaunchProblem('NODL510', f"$(file-content): cannot read '{path}': {exc}")
+        except OSError as exc:
+            from nodl_schema.files import describe_os_error
+
+            raise LaunchProblem('NODL510', f"$(file-content): cannot read '{path}': "
+                                           f'{describe_os_error(exc)}') from None
+        except UnicodeDecodeError:
+            raise LaunchProblem('NODL510', f"$(file-content): cannot read '{path}': it is not "
+                                           'UTF-8 text') from None
         if len(text) > MAX_BYTES:
             raise LaunchProblem('NODL508', f"$(file-content): '{path}' is larger than 10 MB")
         return text

@@ -36,7 +36,12 @@ def _resolve(definition: Definition) -> ResolvedNode:
     target = list(definition) if isinstance(definition, tuple) else [os.fspath(definition)]
     try:
         node, diagnostics, _ = resolve_target(target, 'rclpy')
-    except (OSError, ValueError) as exc:
+    except OSError as exc:
+        from nodl_schema.files import describe_os_error
+
+        why = describe_os_error(exc)
+        raise RuntimeDefinitionError(f'{exc.filename}: {why}' if exc.filename else why) from None
+    except ValueError as exc:
         raise RuntimeDefinitionError(str(exc)) from None
     if node is None:
         raise RuntimeDefinitionError('\n'.join(str(d) for d in diagnostics if d.severity.value == 'error'))
