@@ -218,9 +218,9 @@ def test_definitions_folders_serve_nodes_with_their_source_in_json_and_a_coverag
     folder = str(OVERLAYS / 'defs')
     assert nodes == {'/planner': ('index', None, None), '/controller': ('overlay', folder, 'extracted'),
                      '/drv': ('overlay', folder, None), '/thing': (None, None, None)}
-    assert '4 nodes: 1 registered, 2 overlay, 1 without definition' in done.stderr
+    assert '4 nodes: 1 registered, 2 overlay (1 extracted), 1 without definition' in done.stderr
     text = run('analyse', launch, '--definitions', str(OVERLAYS / 'defs'), '-v').stdout.splitlines()
-    assert text[-2:] == ['4 nodes: 1 registered, 2 overlay, 1 without definition',
+    assert text[-2:] == ['4 nodes: 1 registered, 2 overlay (1 extracted), 1 without definition',
                          '4 nodes, 0 errors, 6 warnings, 1 info']
     assert f'/drv: {folder}/upstream_drv/driver.nodl.yaml (overlay {folder})' in text
     # without the folder: the index alone (nav controller from the index, upstream_drv unknown)
@@ -230,14 +230,14 @@ def test_definitions_folders_serve_nodes_with_their_source_in_json_and_a_coverag
 
 def test_a_project_configuration_and_nodl_path_give_folders(tmp_path: Path) -> None:
     done = run('analyse', str(OVERLAYS / 'project' / 'launch' / 'system.launch.xml'))
-    assert done.stdout.splitlines()[-2] == '4 nodes: 1 registered, 2 overlay, 1 without definition'
+    assert done.stdout.splitlines()[-2] == '4 nodes: 1 registered, 2 overlay (1 extracted), 1 without definition'
     env = dict(os.environ, AMENT_PREFIX_PATH=str(FIXTURES / 'prefix'),
                NODL_PATH=str(OVERLAYS / 'defs'))
     via_env = subprocess.run([sys.executable, '-m', 'nodl_schema', 'analyse',
                               str(OVERLAYS / 'launch' / 'system.launch.xml')], cwd=REPO, env=env,
                              capture_output=True, text=True, timeout=120)
     assert via_env.stdout.splitlines()[-2] == \
-        '4 nodes: 1 registered, 2 overlay, 1 without definition'
+        '4 nodes: 1 registered, 2 overlay (1 extracted), 1 without definition'
 
 
 def test_a_bad_definitions_folder_is_located_findings_and_exit_1() -> None:

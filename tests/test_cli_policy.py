@@ -148,10 +148,10 @@ def test_definitions_folders_serve_nodes_and_the_coverage_line_says_so() -> None
                   '--definitions', str(overlays / 'defs'))
     assert done.returncode == 0, done.stderr
     assert '<topic>status</topic>' in done.stdout  # from the folder's nodl:// mixin
-    assert done.stderr == '2 nodes: 0 registered, 2 overlay, 0 without definition\n'
+    assert done.stderr == '2 nodes: 0 registered, 2 overlay (1 extracted), 0 without definition\n'
     launched = policy(str(overlays / 'launch' / 'system.launch.xml'),
                       '--definitions', str(overlays / 'defs'))
     assert launched.returncode == 1 and '[NODL601]' in launched.stderr
-    assert '4 nodes: 1 registered, 2 overlay, 1 without definition' in launched.stderr
+    assert '4 nodes: 1 registered, 2 overlay (1 extracted), 1 without definition' in launched.stderr
     bad = policy('nav', 'planner', '--definitions', str(overlays / 'bad'))
     assert bad.returncode == 1 and '[NODL242]' in bad.stderr and 'no policy written' in bad.stderr

@@ -75,6 +75,16 @@ def test_provenance_header(tmp_path) -> None:  # type: ignore[no-untyped-def]
     marked.write_text('nodl_version: 2\n# Extracted from talker.py by nodl extract\n')
     assert made_by(str(marked)) is None  # a comment below the document is not its header
     assert made_by(str(tmp_path / 'missing')) is None
+    # the headers nodl describe writes: one node, and a launched system (--all --launch)
+    marked.write_text('# nodl: generated; sha256=00\n# Described from the running node /a by '
+                      '`nodl describe`.\nnodl_version: 2\n')
+    assert made_by(str(marked)) == 'described'
+    marked.write_text('# nodl: generated; sha256=00\n# Described by `nodl describe --all --launch` '
+                      'from the running system robot.launch.xml started.\n# Provenance: described; '
+                      'a executable b, 1 instance:\nnodl_version: 2\n')
+    assert made_by(str(marked)) == 'described'
+    marked.write_text('# Described by hand, not by nodl describe\nnodl_version: 2\n')
+    assert made_by(str(marked)) is None
 
 
 def test_coverage_line() -> None:
@@ -84,3 +94,10 @@ def test_coverage_line() -> None:
     assert coverage_line(['file', 'index']) == \
         '2 nodes: 1 registered, 0 overlay, 1 from files, 0 without definition'
     assert coverage_line([]) == '0 nodes'
+    # drafts nodl extract or nodl describe wrote are counted within their source
+    drafts = [Provenance('index'), Provenance('overlay', 'a', 'extracted'),
+              Provenance('overlay', 'b', 'described'), Provenance('overlay', 'b', 'described'),
+              Provenance('overlay', 'c'), Provenance('none')]
+    assert coverage_line(drafts) == \
+        '6 nodes: 1 registered, 4 overlay (1 extracted, 2 described), 1 without definition'
+    assert coverage_line([Provenance('file', None, 'extracted')]) == '1 node: 1 from files (1 extracted)'

@@ -62,11 +62,10 @@ def node_provenance(node: AnalysedNode) -> Provenance:
 
 
 def coverage(analysis: Analysis) -> str:
-    """``16 nodes: 9 registered, 6 overlay, 1 without definition``."""
+    """``16 nodes: 9 registered, 6 overlay (2 extracted), 1 without definition``."""
     from nodl_schema.targets.resolve import coverage_line
 
-    return coverage_line(node.match.origin.split(' ', 1)[0] if node.match.file is not None
-                         else 'none' for node in analysis.nodes)
+    return coverage_line(node_provenance(node) for node in analysis.nodes)
 
 
 def node_to_dict(node: AnalysedNode) -> dict[str, Any]:

@@ -20,6 +20,10 @@ from nodl_schema.policy.model import Policy, Profile
 from nodl_schema.system.entities import Location
 from nodl_schema.system.instance import NodeInstance
 
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from nodl_schema.targets.resolve import Provenance
+
 __all__ = ['MissingNode', 'PolicyResult', 'policy_for_instances']
 
 
@@ -39,9 +43,10 @@ class PolicyResult(NamedTuple):
 
     policy: Policy
     diagnostics: list[Diagnostic]
-    #: Where each node's definition came from (``index``, ``overlay``, ``file``, ``none``),
-    #: for the coverage line (:func:`nodl_schema.targets.resolve.coverage_line`).
-    sources: tuple[str, ...] = ()
+    #: Where each node's definition came from (a :class:`~nodl_schema.targets.resolve.Provenance`,
+    #: or ``index``, ``overlay``, ``file``, ``none``), for the coverage line
+    #: (:func:`nodl_schema.targets.resolve.coverage_line`).
+    sources: tuple[Provenance | str, ...] = ()
     #: Every file read to make the policy (launch files and what they include, parameter
     #: files, definitions and their mixins), each once: ``policy -o`` writes none of them.
     files: tuple[str, ...] = ()

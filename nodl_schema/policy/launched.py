@@ -66,7 +66,8 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
         containers=containers,
         notes=[f'Least-privilege SROS 2 policy written by nodl policy for the system '
                f'{display_path(os.path.abspath(path))} launches.'])
-    sources = tuple(node.match.origin.split(' ', 1)[0] if node.match.file is not None else 'none'
-                    for node in analysis.nodes)
+    from nodl_schema.analysis.report import node_provenance
+
+    sources = tuple(node_provenance(node) for node in analysis.nodes)
     return result._replace(diagnostics=launch_problems + result.diagnostics, sources=sources,
                            files=tuple(dict.fromkeys([path, *analysis.files()])))

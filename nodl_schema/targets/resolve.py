@@ -33,7 +33,9 @@ NODL_PATH = 'NODL_PATH'
 #: How many lines from the top a provenance header may start (after a marker line).
 _HEADER_WINDOW = 8
 _EXTRACTED = re.compile(r'#\s*Extracted from .* by nodl extract')
-_DESCRIBED = re.compile(r'#\s*Described from the running node .* by `?nodl describe`?')
+# ``nodl describe NODE`` / ``--all``: "Described from the running node /x by `nodl describe`";
+# ``nodl describe --all --launch``: "Described by `nodl describe --all --launch` from ..."
+_DESCRIBED = re.compile(r'#\s*Described (from the running node .* )?by `?nodl describe\b')
 
 
 class Provenance(NamedTuple):
@@ -185,18 +187,28 @@ _COVERAGE = (('index', 'registered'), ('overlay', 'overlay'), ('file', 'from fil
 
 
 def coverage_line(sources: Iterable[Provenance | str]) -> str:
-    """``16 nodes: 9 registered, 6 overlay, 1 without definition``: how many nodes each
-    source served (``from files`` only when some node came from a file given by path; the
-    others whenever some node was looked up by package)."""
+    """``16 nodes: 9 registered, 6 overlay (2 extracted, 1 described), 1 without definition``:
+    how many nodes each source served (``from files`` only when some node came from a file
+    given by path; the others whenever some node was looked up by package), and of those,
+    how many files ``nodl extract`` or ``nodl describe`` wrote (drafts to review; known from
+    a :class:`Provenance`, not from a bare source name)."""
     from nodl_schema.reporting import plural
 
     counts = {key: 0 for key, _ in _COVERAGE}
+    drafts: dict[str, dict[str, int]] = {key: {} for key, _ in _COVERAGE}
     total = 0
     for source in sources:
         key = source.source if isinstance(source, Provenance) else source
-        counts[key if key in counts else 'none'] += 1
+        key = key if key in counts else 'none'
+        counts[key] += 1
+        if isinstance(source, Provenance) and source.made_by and key != 'none':
+            drafts[key][source.made_by] = drafts[key].get(source.made_by, 0) + 1
         total += 1
     looked_up = counts['index'] or counts['overlay'] or counts['none']
-    parts = [f'{counts[key]} {words}' for key, words in _COVERAGE
-             if counts[key] or (key != 'file' and looked_up)]
+    parts = []
+    for key, words in _COVERAGE:
+        if counts[key] or (key != 'file' and looked_up):
+            made = ', '.join(f'{drafts[key][how]} {how}' for how in ('extracted', 'described')
+                             if drafts[key].get(how))
+            parts.append(f'{counts[key]} {words}' + (f' ({made})' if made else ''))
     return plural(total, 'node') + (': ' + ', '.join(parts) if parts else '')

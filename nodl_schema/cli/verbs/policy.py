@@ -135,7 +135,7 @@ class PolicyVerb(Verb):
         if isinstance(result, int):
             return result
         diagnostics = _report(result.diagnostics, args, options)
-        if any(source != 'file' for source in result.sources):  # some node was looked up
+        if any(getattr(source, 'source', source) != 'file' for source in result.sources):  # looked up
             from nodl_schema.targets.resolve import coverage_line
 
             print(coverage_line(result.sources), file=sys.stderr)
@@ -245,7 +245,7 @@ class PolicyVerb(Verb):
         read = [d.file for d in definitions if d.file is not None] + [
             f for p in placed for f in [p.file, *p.instance.resolved.files]]
         return result._replace(diagnostics=layout + problems + result.diagnostics,
-                               sources=tuple(p.provenance.source for p in placed)
+                               sources=tuple(p.provenance for p in placed)
                                + ('none',) * (len(definitions) - len(placed)),
                                files=tuple(dict.fromkeys(read)))
 
