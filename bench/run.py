@@ -14,6 +14,7 @@ import bench_analyse  # noqa: E402
 import bench_cli_start  # noqa: E402
 import bench_describe  # noqa: E402
 import bench_describe_launch  # noqa: E402
+import bench_doc  # noqa: E402
 import bench_extract_cpp  # noqa: E402
 import bench_extract_python  # noqa: E402
 import bench_generate  # noqa: E402
@@ -24,7 +25,7 @@ import bench_validate_types  # noqa: E402
 
 BENCHMARKS = [bench_load, bench_cli_start, bench_describe, bench_describe_launch, bench_analyse,
               bench_generate, bench_policy, bench_hostile, bench_extract_python, bench_extract_cpp,
-              bench_validate_types]
+              bench_validate_types, bench_doc]
 
 
 def main() -> int:

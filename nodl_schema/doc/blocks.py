@@ -9,6 +9,7 @@ format and never need escaping.
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass, field
 from typing import Union
@@ -120,6 +121,7 @@ class Page:
 _NOT_LABEL = re.compile(r'[^a-z0-9]+')
 
 
+@functools.lru_cache(maxsize=8192)  # the same labels are made for every page that links them
 def label(*parts: str) -> str:
     """An explicit target's name: the parts lowered, every run of other characters a ``-``
     (``('type', 'std_msgs/msg/String')`` -> ``type-std-msgs-msg-string``)."""

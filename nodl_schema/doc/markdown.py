@@ -12,6 +12,7 @@ backticks than it holds.
 
 from __future__ import annotations
 
+import functools
 import re
 import string
 
@@ -26,12 +27,14 @@ _ESCAPES = str.maketrans({c: '\\' + c for c in string.punctuation})
 _BACKTICKS = re.compile('`+')
 
 
+@functools.lru_cache(maxsize=8192)  # table cells repeat from page to page
 def escape(text: str) -> str:
     """``text`` as literal Markdown text, on one line."""
+    if text.isprintable():
+        return text.translate(_ESCAPES)
     from nodl_schema.text_safety import visible
 
-    shown = text if text.isprintable() else _SPACES.sub(' ', visible(text))
-    return shown.translate(_ESCAPES)
+    return _SPACES.sub(' ', visible(text)).translate(_ESCAPES)
 
 
 def _fence(text: str, char: str = '`') -> str:
@@ -39,10 +42,14 @@ def _fence(text: str, char: str = '`') -> str:
     return char * max(3, longest + 1)
 
 
+@functools.lru_cache(maxsize=4096)  # pages repeat the same names and types many times over
 def _literal(text: str) -> str:
-    from nodl_schema.text_safety import visible
+    if text.isascii() and text.isprintable():  # what visible() leaves as it is
+        shown = ' '.join(text.split())
+    else:
+        from nodl_schema.text_safety import visible
 
-    shown = ' '.join(visible(text).split())
+        shown = ' '.join(visible(text).split())
     if not shown or '|' in shown or '`' in shown or shown != shown.strip():
         return escape(text)  # a code span cannot hold these safely in a table: plain text
     return f'`{shown}`'

@@ -13,6 +13,8 @@ the table is unavailable and what to install (NODL270, NODL271, NODL272).
 
 from __future__ import annotations
 
+import functools
+
 from nodl_schema.diagnostics import Diagnostic, Severity
 from nodl_schema.doc.blocks import Block, Heading, Inline, Link, Literal, Note, Paragraph, Table, label
 
@@ -21,7 +23,7 @@ if TYPE_CHECKING:
     from typing import Any
 
     from nodl_schema.interface_types.resolve import InterfaceIndex
-    from nodl_schema.interface_types.tree import Field, MessageType
+    from nodl_schema.interface_types.tree import Field, FieldType, MessageType
     from nodl_schema.system.entities import Location
 
 __all__ = ['type_label', 'type_appendix', 'FIELD_COLUMNS']
@@ -50,9 +52,15 @@ def _comment(field: Field | Any) -> str:
     return f'{text} [{unit}]'.strip() if unit else text
 
 
-def _field_rows(page: str, message: MessageType, pending: list[str]) -> tuple[tuple[tuple[Inline, ...], ...], ...]:
+@functools.lru_cache(maxsize=4096)  # every page that uses a type shows the same field types
+def _language_types(field_type: FieldType) -> tuple[Inline, Inline]:
+    """The C++ and Python type cells of a field type."""
     from nodl_schema.interface_types.mapping import cpp_type, python_type
 
+    return Literal(cpp_type(field_type)), Literal(python_type(field_type))
+
+
+def _field_rows(page: str, message: MessageType, pending: list[str]) -> tuple[tuple[tuple[Inline, ...], ...], ...]:
     rows: list[tuple[tuple[Inline, ...], ...]] = []
     for field in message.fields:
         kind: tuple[Inline, ...] = (Literal(field.type.idl),)
@@ -60,8 +68,8 @@ def _field_rows(page: str, message: MessageType, pending: list[str]) -> tuple[tu
             if field.type.base not in pending:
                 pending.append(field.type.base)
             kind = (Link(field.type.idl, type_label(page, field.type.base)),)
-        rows.append(((Literal(field.name),), kind, (Literal(cpp_type(field.type)),),
-                     (Literal(python_type(field.type)),), (_value(field.default),),
+        cpp, python = _language_types(field.type)
+        rows.append(((Literal(field.name),), kind, (cpp,), (python,), (_value(field.default),),
                      (_comment(field),)))
     return tuple(rows)
 

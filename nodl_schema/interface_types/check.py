@@ -240,32 +240,10 @@ def _nested(path: str, package: str, namespace: str, base: str
             ) -> list[tuple[str, int, tuple[str, str]]]:
     """``(field, line, (package, Type))`` of each field of a ``.msg``/``.srv``/``.action``
     file whose type is a message; InterfaceFileError if the file is malformed."""
-    from rosidl_adapter import parser as adapter
+    from nodl_schema.interface_types.tree import _adapter_spec, _read_text
 
-    from nodl_schema.interface_types.tree import InterfaceFileError, _bad_line, _quiet
-
-    try:
-        with open(path, 'rb') as handle:
-            raw = handle.read(10 * 1024 * 1024 + 1)
-    except OSError as exc:
-        raise InterfaceFileError(f'cannot be read: {exc.strerror or exc}', path) from None
-    if len(raw) > 10 * 1024 * 1024:
-        raise InterfaceFileError('is larger than the 10 MB limit', path)
-    try:
-        text = raw.decode('utf-8')
-    except UnicodeDecodeError as exc:
-        raise InterfaceFileError('is not UTF-8 text', path,
-                                 raw.count(b'\n', 0, exc.start) + 1) from None
-    parse = {'msg': adapter.parse_message_string, 'srv': adapter.parse_service_string,
-             'action': adapter.parse_action_string}[namespace]
-    try:
-        with _quiet():  # rosidl_adapter prints its errors as well as raising them
-            spec = parse(package, base, text)
-    except Exception as exc:  # InvalidSpecification, InvalidValue, ValueError...
-        reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        line = _bad_line(text, package, base)
-        raise InterfaceFileError(f'is not a valid interface definition: {reason}', path, line,
-                                 1 if line else 0) from None
+    text = _read_text(path)
+    spec = _adapter_spec(text, path, package, namespace, base)  # as the typed tree reads it
     parts = {'msg': ('',), 'srv': ('request', 'response'),
              'action': ('goal', 'result', 'feedback')}[namespace]
     lines = text.splitlines()

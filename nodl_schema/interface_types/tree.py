@@ -1,10 +1,15 @@
 """The typed tree of an interface type, read with ROS's own parsers.
 
-An installed ``.idl`` file is read by rosidl_parser; a ``.msg``, ``.srv`` or
-``.action`` file (a package's source, or an installation without ``.idl``)
-is first turned into IDL by rosidl_adapter, as ``rosidl_generate_interfaces``
-does.  Each type becomes a :class:`MessageType`, :class:`ServiceType` or
-:class:`ActionType`; nested types are expanded (each loaded once per index).
+An installed type that has a ``.msg``, ``.srv`` or ``.action`` file is read
+from it by rosidl_adapter's parser alone (the ``.idl`` installed beside it is
+generated from it by rosidl_adapter, so the tree is the same, at a fraction of
+the cost of rosidl_parser's grammar).  A type installed as ``.idl`` alone is
+read by rosidl_parser; a package's source ``.msg``/``.srv``/``.action`` is
+first turned into IDL by rosidl_adapter, as ``rosidl_generate_interfaces``
+does, and parsed as IDL, as its build will.  Each type becomes a
+:class:`MessageType`, :class:`ServiceType` or :class:`ActionType`; nested
+types are expanded.  Every file is read once per index (one per run), and
+only when a type it defines is asked for.
 
 A file that cannot be read or parsed raises :class:`InterfaceFileError`,
 placed at the line (and column) of the problem when the parser says where.
@@ -214,7 +219,9 @@ def load_idl(index: InterfaceIndex, package: str, namespace: str, name: str) -> 
     return content
 
 
-def _parse(path: str, share: str, package: str, namespace: str, name: str) -> Any:
+def _read_text(path: str) -> str:
+    """The text of an interface file; InterfaceFileError if it cannot be read, is larger than
+    10 MB or is not UTF-8."""
     try:
         with open(path, 'rb') as handle:
             raw = handle.read(10 * 1024 * 1024 + 1)
@@ -223,10 +230,38 @@ def _parse(path: str, share: str, package: str, namespace: str, name: str) -> An
     if len(raw) > 10 * 1024 * 1024:
         raise InterfaceFileError('is larger than the 10 MB limit', path)
     try:
-        text = raw.decode('utf-8')
+        return raw.decode('utf-8')
     except UnicodeDecodeError as exc:
         line = raw.count(b'\n', 0, exc.start) + 1
         raise InterfaceFileError('is not UTF-8 text', path, line) from None
+
+
+def read_spec(path: str, package: str, namespace: str, name: str) -> Any:
+    """A ``.msg``/``.srv``/``.action`` file read by rosidl_adapter's parser (its
+    ``MessageSpecification``, ``ServiceSpecification`` or ``ActionSpecification``), printing
+    nothing.  InterfaceFileError (at the first line the parser refuses) if the file is
+    malformed or cannot be read."""
+    text = _read_text(path)
+    return _adapter_spec(text, path, package, namespace, name)
+
+
+def _adapter_spec(text: str, path: str, package: str, namespace: str, name: str) -> Any:
+    from rosidl_adapter import parser as adapter
+
+    parse = {'msg': adapter.parse_message_string, 'srv': adapter.parse_service_string,
+             'action': adapter.parse_action_string}[namespace]
+    try:
+        with _quiet():  # rosidl_adapter prints its errors as well as raising them
+            return parse(package, name, text)
+    except Exception as exc:  # InvalidSpecification, InvalidValue, ValueError...
+        line = _bad_line(text, package, name)
+        reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise InterfaceFileError(f'is not a valid interface definition: {reason}', path,
+                                 line, 1 if line else 0) from None
+
+
+def _parse(path: str, share: str, package: str, namespace: str, name: str) -> Any:
+    text = _read_text(path)
     if path.endswith('.idl'):
         idl = text
     else:
@@ -258,19 +293,9 @@ def _element_name(element: Any) -> str:
 
 def _to_idl(text: str, path: str, package: str, namespace: str, name: str) -> str:
     """A ``.msg``/``.srv``/``.action`` file's IDL, as rosidl_adapter writes it."""
-    from rosidl_adapter import parser as adapter
     from rosidl_adapter.resource import evaluate_template
 
-    parse = {'msg': adapter.parse_message_string, 'srv': adapter.parse_service_string,
-             'action': adapter.parse_action_string}[namespace]
-    try:
-        with _quiet():  # rosidl_adapter prints its errors as well as raising them
-            spec = parse(package, name, text)
-    except Exception as exc:  # InvalidSpecification, InvalidValue, ValueError...
-        line = _bad_line(text, package, name)
-        reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise InterfaceFileError(f'is not a valid interface definition: {reason}', path,
-                                 line) from None
+    spec = _adapter_spec(text, path, package, namespace, name)
     data = {'pkg_name': package, 'relative_input_file': f'{namespace}/{os.path.basename(path)}',
             namespace: spec}
     with _quiet():
@@ -321,6 +346,9 @@ def load_type(index: InterfaceIndex, name: TypeName | str) -> MessageType | Serv
         return found
     package, namespace, type_name = _split(text)
     base = type_name.split('_', 1)[0]
+    spec = _plain_spec(index, package, namespace, base)
+    if spec is not None:
+        return _tree_from_spec(index, text, namespace, type_name, base, spec)
     content = load_idl(index, package, namespace, base)
     from rosidl_parser.definition import Action, Message, Service
 
@@ -428,4 +456,166 @@ def _message(index: InterfaceIndex, message: Any) -> MessageType:
     for constant in message.constants:
         result.constants.append(Constant(constant.name, field_type(constant.type), constant.value,
                                          _comment(constant)))
+    return result
+
+
+# -- the fast path: an installed .msg/.srv/.action read by rosidl_adapter alone -----------------
+#
+# An installed package's .idl is generated from its .msg/.srv/.action by rosidl_adapter, so the
+# adapter's own reading of the plain file holds the same fields, bounds, defaults, constants,
+# comments and units; it costs a fraction of parsing the generated IDL with rosidl_parser's
+# Earley grammar.  A package's source types, and a type installed as .idl alone, are still
+# parsed as IDL (as the package's build will).
+
+#: rosidl_adapter's primitive type names -> the IDL basic types of the generated .idl.
+_IDL_BASIC = {'bool': 'boolean', 'byte': 'octet', 'char': 'uint8', 'float32': 'float',
+              'float64': 'double', 'string': 'string', 'wstring': 'wstring'}
+
+
+def _plain_spec(index: InterfaceIndex, package: str, namespace: str, name: str) -> Any:
+    """rosidl_adapter's specification of an installed type that has a ``.msg``/``.srv``/
+    ``.action`` file, read once per index; None when the type is to be parsed as IDL (a source
+    package's, one installed as ``.idl`` alone, or one not defined at all)."""
+    key = ('spec', package, namespace, name)
+    cache = index.cache
+    if key in cache:
+        found = cache[key]
+        if isinstance(found, InterfaceFileError):
+            raise found
+        return found
+    owner = index.package(package)
+    files = owner.types.get((namespace, name), []) if owner is not None else []
+    plain = [f for f in files if not f.endswith('.idl')]
+    if owner is None or owner.origin == 'source' or not plain:
+        cache[key] = None
+        return None
+    try:
+        spec = read_spec(os.path.join(owner.share, plain[0]), package, namespace, name)
+    except InterfaceFileError as exc:
+        cache[key] = exc
+        raise
+    cache[key] = spec
+    return spec
+
+
+def _spec_field_type(adapter_type: Any) -> FieldType:
+    """A :class:`FieldType` from a rosidl_adapter type, spelled as the generated IDL spells it."""
+    container: str | None = None
+    size: int | None = None
+    if adapter_type.is_array:
+        if adapter_type.array_size is None:
+            container = 'sequence'
+        else:
+            container = 'bounded_sequence' if adapter_type.is_upper_bound else 'array'
+            size = int(adapter_type.array_size)
+    if not adapter_type.is_primitive_type():
+        return FieldType(f'{adapter_type.pkg_name}/msg/{adapter_type.type}', container, size,
+                         nested=True)
+    base = _IDL_BASIC.get(adapter_type.type, adapter_type.type)
+    bound = adapter_type.string_upper_bound if base in ('string', 'wstring') else None
+    return FieldType(base, container, size, int(bound) if bound is not None else None)
+
+
+def _spec_value(ftype: FieldType, value: Any) -> Any:
+    """A default or constant value as rosidl_parser reads it back from the generated IDL: the
+    text of the tuple for an array or sequence, else the scalar itself."""
+    if value is None:
+        return None
+    if ftype.container is not None:
+        return repr(tuple(value))
+    return value
+
+
+def _spec_comment(annotations: Any) -> str:
+    return '\n'.join(str(line) for line in annotations.get('comment', ()))
+
+
+def _spec_message(index: InterfaceIndex, name: str, file: str, spec: Any) -> MessageType:
+    key = ('tree', name)
+    if key in index.cache:
+        cached: MessageType = index.cache[key]
+        return cached
+    result = MessageType(name, [], [], _spec_comment(spec.annotations), file)
+    index.cache[key] = result  # before the fields: a (forbidden) recursive type stays finite
+    for member in spec.fields:
+        ftype = _spec_field_type(member.type)
+        nested = None
+        if ftype.nested:
+            loaded = load_type(index, ftype.base)
+            assert isinstance(loaded, MessageType)
+            nested = loaded
+        result.fields.append(Field(member.name, ftype, _spec_value(ftype, member.default_value),
+                                   _spec_comment(member.annotations),
+                                   str(member.annotations.get('unit', '')), nested))
+    if not spec.fields:  # rosidl_adapter's IDL (and so every generated message) holds one
+        result.fields.append(Field('structure_needs_at_least_one_member', FieldType('uint8')))
+    for constant in spec.constants:
+        base = _IDL_BASIC.get(constant.type, constant.type)
+        # rosidl_parser bounds a string constant's type by its value's length
+        ctype = FieldType(base, string_bound=len(constant.value)
+                          if base in ('string', 'wstring') else None)
+        result.constants.append(Constant(constant.name, ctype, constant.value,
+                                         _spec_comment(constant.annotations)))
+    return result
+
+
+def _synthetic(index: InterfaceIndex, name: str, file: str,
+               members: list[tuple[str, FieldType]]) -> MessageType:
+    """A message rosidl adds to a service or action (its event message, an action's feedback
+    message), as rosidl_parser builds it: no comment, no defaults."""
+    key = ('tree', name)
+    if key in index.cache:
+        cached: MessageType = index.cache[key]
+        return cached
+    result = MessageType(name, [], [], '', file)
+    index.cache[key] = result
+    for field_name, ftype in members:
+        loaded = load_type(index, ftype.base)
+        assert isinstance(loaded, MessageType)
+        result.fields.append(Field(field_name, ftype, message=loaded))
+    return result
+
+
+def _tree_from_spec(index: InterfaceIndex, text: str, namespace: str, type_name: str, base: str,
+                    spec: Any) -> MessageType | ServiceType | ActionType:
+    package = text.split('/', 1)[0]
+    prefix = f'{package}/{namespace}/{base}'
+    file = index.file(prefix) or ''
+    result: MessageType | ServiceType | ActionType
+    if namespace == 'msg':
+        if type_name != base:
+            raise UnknownTypeError(text)
+        return _spec_message(index, text, file, spec)
+    if namespace == 'srv':
+        parts = {'Request': spec.request, 'Response': spec.response}
+        made = {suffix: _spec_message(index, f'{prefix}_{suffix}', file, part)
+                for suffix, part in parts.items()}
+        if type_name == base:
+            result = ServiceType(text, made['Request'], made['Response'], file)
+        elif type_name == f'{base}_Event':
+            result = _synthetic(index, text, file, [
+                ('info', FieldType('service_msgs/msg/ServiceEventInfo', nested=True)),
+                ('request', FieldType(f'{prefix}_Request', 'bounded_sequence', 1, nested=True)),
+                ('response', FieldType(f'{prefix}_Response', 'bounded_sequence', 1, nested=True))])
+        else:
+            found = made.get(type_name[len(base) + 1:]) if type_name.startswith(f'{base}_') else None
+            if found is None:
+                raise UnknownTypeError(text)
+            result = found
+    else:
+        parts = {'Goal': spec.goal, 'Result': spec.result, 'Feedback': spec.feedback}
+        made = {suffix: _spec_message(index, f'{prefix}_{suffix}', file, part)
+                for suffix, part in parts.items()}
+        if type_name == base:
+            result = ActionType(text, made['Goal'], made['Result'], made['Feedback'], file)
+        elif type_name == f'{base}_FeedbackMessage':
+            result = _synthetic(index, text, file, [
+                ('goal_id', FieldType('unique_identifier_msgs/msg/UUID', nested=True)),
+                ('feedback', FieldType(f'{prefix}_Feedback', nested=True))])
+        else:
+            found = made.get(type_name[len(base) + 1:]) if type_name.startswith(f'{base}_') else None
+            if found is None:
+                raise UnknownTypeError(text)
+            result = found
+    index.cache[('tree', text)] = result
     return result
