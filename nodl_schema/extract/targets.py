@@ -54,6 +54,15 @@ class Package:
     genparam: dict[str, str] = field(default_factory=dict)
     diagnostics: list[Diagnostic] = field(default_factory=list)
     cmake: CMakeTargets | None = None
+    #: os.path.realpath of the paths looked up while the package is extracted (asked once each).
+    _real: dict[str, str] = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def real(self, path: str) -> str:
+        """``os.path.realpath(path)``, found once per package."""
+        found = self._real.get(path)
+        if found is None:
+            found = self._real[path] = os.path.realpath(path)
+        return found
 
 
 def _package_xml_name(root: str) -> str | None:
@@ -218,10 +227,14 @@ def _extract_python(files: list[str], package: Package) -> Extraction:
     from nodl_schema.extract.python import extract_file
 
     out = Extraction()
+    runs: dict[str, set[str]] = {}  # file -> the functions its entry points run ('': a script)
+    for target, function in package.executables.values():
+        runs.setdefault(package.real(target), set()).add(function)
     for path in files:
         rel = os.path.relpath(os.path.dirname(path), package.root)
         module_package = '.'.join(p for p in rel.split(os.sep) if p not in ('', '.')) or None
-        out.extend(extract_file(path, package=module_package, genparam=package.genparam))
+        out.extend(extract_file(path, package=module_package, genparam=package.genparam,
+                                starts=runs.get(package.real(path), ())))
     return out
 
 
@@ -324,13 +337,7 @@ def _assign_executables(package: Package, extraction: Extraction) -> list[Extrac
     a NODL911 note.  A node class several executables run is one node per executable."""
     out: list[ExtractedNode] = []
     by_file: dict[str, list[ExtractedNode]] = {}
-    real_paths: dict[str, str] = {}
-
-    def real(path: str) -> str:
-        found = real_paths.get(path)
-        if found is None:
-            found = real_paths[path] = os.path.realpath(path)
-        return found
+    real = package.real
 
     python: list[ExtractedNode] = []
     for node in extraction.nodes:
@@ -349,6 +356,10 @@ def _assign_executables(package: Package, extraction: Extraction) -> list[Extrac
         python.append(node)
         by_file.setdefault(real(node.location.file), []).append(node)
     starts = {real(f): calls for f, calls in extraction.starts.items()}
+    classes: dict[str, ExtractedNode] = {}  # the first node class of each name in the package
+    for node in python:
+        if node.made_by == 'class':
+            classes.setdefault(node.name, node)
     used: set[int] = set()
     for executable, (path, function) in sorted(package.executables.items()):
         here = by_file.get(real(path), [])
@@ -360,7 +371,7 @@ def _assign_executables(package: Package, extraction: Extraction) -> list[Extrac
             function == '' and n.made_in in calls.get('', [])))]
         for name in called:  # node classes of the same module first, then of the package
             same = [n for n in here if n.made_by == 'class' and n.name == name]
-            other = same or [n for n in python if n.made_by == 'class' and n.name == name][:1]
+            other = same or ([classes[name]] if name in classes else [])
             started += [n for n in other if n not in started]
         for node in started:
             copy_ = node if id(node) not in used else copy.deepcopy(node)
