@@ -234,6 +234,12 @@ def test_no_exec_applies_to_the_launch_file(tmp_path: Path) -> None:
      'missing.launch.xml: error: cannot read the launch file: no such file [NODL020]'),
     (['--all', '--launch', str(SYSTEM), 'rate', '-o', 'out'],
      "launch argument 'rate' is not NAME:=VALUE"),
+    (['--all', '-o', 'out', '--missing'],
+     '--missing is about the nodes a launch file starts: it needs --all --launch'),
+    (['/talker', '--definitions', 'defs'],
+     '--definitions is about the nodes a launch file starts: it needs --all --launch'),
+    (['--all', '--launch', str(SYSTEM), '--definitions', 'no/such/defs', '-o', 'out'],
+     'nodl describe: error: --definitions no/such/defs: no such folder [NODL246]'),
 ])
 def test_usage_errors(args: list[str], message: str) -> None:
     result = nodl('describe', *args)

@@ -174,3 +174,24 @@ def test_quoted_doc_example_is_what_the_tool_writes(tmp_path) -> None:  # type: 
                              capture_output=True, timeout=60,
                              env={**os.environ, 'AMENT_PREFIX_PATH': sys.prefix})
     assert checked.returncode == 0, checked.stderr
+
+
+def test_the_integrators_flow_names_what_the_tools_write(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """'From a launch file to a fully covered system': step 2's extract writes the drafts it
+    names (with the gap it mentions), the hand-written files of step 4 are the fixture's, and
+    its commands are the verbs' (the outputs quoted are checked by
+    tests/test_integration_definitions.py, which builds and runs the system)."""
+    section = README[README.index('### From a launch file to a fully covered system'):]
+    section = section[:section.index('\n### ', 1)]
+    fixture = REPO / 'tests' / 'fixtures' / 'integration_definitions'
+    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'extract',
+                             str(fixture / 'src' / 'cart_autonomy'), '-o', str(tmp_path / 'extracted')],
+                            cwd=REPO, text=True, capture_output=True, timeout=60)
+    assert result.returncode == 0, result.stderr
+    assert '`nodl extract ~/src/cart_autonomy -o extracted`' in section
+    for name in ('planner.nodl.yaml', 'mission.nodl.yaml'):
+        assert name in section and (tmp_path / 'extracted' / 'cart_autonomy' / name).is_file()
+    assert '[NODL901]' in result.stdout + result.stderr and 'NODL901' in section
+    for name in re.findall(r'`hand/([\w/]+\.yaml)`', section):
+        assert (fixture / 'hand' / name).is_file(), name
+    assert '--missing --definitions extracted -o described' in ' '.join(section.split())

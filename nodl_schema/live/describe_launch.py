@@ -20,7 +20,10 @@ What the instances disagree on is said in the merged file's header and as a warn
 (NODL410); what differs with their parameters, which a definition cannot express, is
 left out of the definition and said (NODL411).  A lifecycle node's state is recorded;
 one observed before ``configure`` lacks what it creates there (NODL413).  Hidden nodes
-and nodes the launch file does not start are left out.  Nothing here prints.
+and nodes the launch file does not start are left out.  With ``missing``, so are the
+launched nodes a definition already covers (registered in the ament index, or in a
+definitions folder): only what nothing defines is waited for and described, so the folder
+written never shadows a package's own definition.  Nothing here prints.
 """
 
 from __future__ import annotations
@@ -43,6 +46,7 @@ TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl_schema.analysis.instances import AnalysedNode
     from nodl_schema.launch.sandbox import LaunchLimits
+    from nodl_schema.targets.overlay import Definitions
 
 __all__ = ['OverlayFile', 'LaunchDescription', 'Instance', 'describe_launch', 'merge_instances',
            'render_merged']
@@ -159,7 +163,9 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
                     timeout: float = 5.0, parameters: bool = True, format: str = 'yaml',
                     client_library: str | None = None, force: bool = False,
                     limits: 'LaunchLimits | None' = None, prefixes: list[str] | None = None,
-                    quiet: float = QUIET, types: bool = True) -> LaunchDescription:
+                    quiet: float = QUIET, types: bool = True,
+                    definitions: 'Definitions | None' = None,
+                    missing: bool = False) -> LaunchDescription:
     """Describe the running system ``launch_file`` (with launch ``arguments``) started into
     the definitions folder ``directory`` (see the module docstring).
 
@@ -172,12 +178,25 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
     did not write, or that was edited, stops the run with a
     :class:`~nodl_schema.writing.WriteError` unless ``force``).  Problems in the launch
     file and with what was observed are :attr:`LaunchDescription.diagnostics`.
+
+    ``definitions``: the definitions folders the launch file is analysed with, as ``nodl
+    analyse`` does (the node names their ``nodes.yaml`` record), except ``directory`` itself:
+    what it holds is what this run replaces.  ``missing``: describe only the launched nodes
+    no definition covers (neither the ament index ``prefixes`` nor ``definitions``); the
+    others are :attr:`LaunchDescription.left_out`, not waited for.
     """
     from nodl_schema.analysis import analyse_launch
     from nodl_schema.analysis.system import LAUNCH_KIND
 
     result = LaunchDescription(launch_file)
-    analysis = analyse_launch(launch_file, arguments, prefixes=prefixes, checks={}, limits=limits)
+    if definitions:  # the folder written is refreshed by this run, not read by it
+        from nodl_schema.targets.overlay import Definitions
+
+        written = os.path.realpath(directory)
+        definitions = Definitions([f for f in definitions.folders
+                                   if os.path.realpath(f.root) != written])
+    analysis = analyse_launch(launch_file, arguments, prefixes=prefixes, checks={}, limits=limits,
+                              definitions=definitions)
     result.diagnostics.extend(f.diagnostic for f in analysis.findings if f.kind == LAUNCH_KIND)
     if analysis.unreadable:
         result.unreadable = True
@@ -185,6 +204,7 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
 
     expected: dict[str, int] = {}
     launched: list[AnalysedNode] = []
+    covered: set[str] = set()  # launched, and left out because a definition covers them
     for node in analysis.nodes:
         if node.names is None:
             result.diagnostics.append(_diagnostic(
@@ -194,6 +214,13 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
             continue
         if is_hidden_node(node.fqn):
             result.left_out.append((node.fqn, 'a hidden node (its name starts with _)'))
+            continue
+        if missing and node.match.file is not None:
+            from nodl_schema.analysis.report import node_provenance
+
+            covered.add(node.fqn)
+            result.left_out.append((node.fqn, f'has a definition: {node.match.file} '
+                                              f'({node_provenance(node)})'))
             continue
         if _group_key(node) is None:
             result.diagnostics.append(_diagnostic(
@@ -234,7 +261,7 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
         counts = count_nodes(session)
         result.watched = time.monotonic() - float(getattr(session, 'nodl_started', time.monotonic()))
         for fqn in list_nodes(session):
-            if fqn in expected:
+            if fqn in expected or fqn in covered:
                 continue
             why = ('a hidden node (its name starts with _)' if is_hidden_node(fqn)
                    else f'not started by {launch_file}')

@@ -26,6 +26,13 @@ class DescribeVerb(Verb):
                                  'arguments) started into the definitions folder -o DIR: '
                                  'DIR/<package>/<executable>.nodl.yaml, instances merged, remaps '
                                  'undone, composable nodes recorded in DIR/<package>/nodes.yaml')
+        parser.add_argument('--missing', action='store_true',
+                            help='with --launch: describe only the launched nodes no definition '
+                                 'covers (registered, or in a definitions folder); the others are '
+                                 'left out, not waited for')
+        from nodl_schema.cli.arguments import add_definitions_argument
+
+        add_definitions_argument(parser)
         parser.add_argument('--timeout', type=seconds, default=5.0, metavar='S',
                             help='seconds to wait for the node to appear and settle (default: 5)')
         parser.add_argument('--no-parameters', action='store_true',
@@ -67,6 +74,11 @@ class DescribeVerb(Verb):
         if args.no_exec and not args.launch:
             print('nodl describe: error: --no-exec is about the launch file: it needs --launch',
                   file=sys.stderr)
+            return EXIT_USAGE
+        if (args.missing or args.definitions) and not args.launch:
+            option = '--missing' if args.missing else '--definitions'
+            print(f'nodl describe: error: {option} is about the nodes a launch file starts: it '
+                  'needs --all --launch', file=sys.stderr)
             return EXIT_USAGE
         if args.launch:
             return self._describe_launch(args)
@@ -141,13 +153,21 @@ class DescribeVerb(Verb):
             print(f'{launch_file}: error: cannot read the launch file: {why} [NODL020]',
                   file=sys.stderr)
             return EXIT_USAGE
+        from nodl_schema.cli.arguments import definitions_failed, load_definitions
+
+        # as nodl analyse reads the launch file: --definitions, NODL_PATH, the nodl.toml that
+        # applies to it (their layout's problems are printed)
+        definitions = load_definitions(args, prog, os.path.dirname(os.path.abspath(launch_file)))
+        if isinstance(definitions, int):
+            return definitions
         from nodl_schema.live.describe_launch import describe_launch
 
         try:
             result = describe_launch(launch_file, arguments, args.output, timeout=args.timeout,
                                      parameters=not args.no_parameters, format=args.format,
                                      client_library=args.client_library, force=args.force,
-                                     limits=launch_limits(args))
+                                     limits=launch_limits(args), definitions=definitions,
+                                     missing=args.missing)
         except LiveError as exc:
             print(f'{prog}: error: {exc}', file=sys.stderr)
             return EXIT_USAGE
@@ -166,4 +186,7 @@ class DescribeVerb(Verb):
             print(diagnostic, file=sys.stderr)
         if result.unreadable:
             return EXIT_USAGE
-        return EXIT_FAILURE if result.errors else EXIT_OK
+        if args.missing and not result.files and not result.errors:
+            print(f'{prog}: every node {launch_file} starts has a definition: nothing to describe',
+                  file=sys.stderr)
+        return EXIT_FAILURE if result.errors or definitions_failed(definitions) else EXIT_OK
