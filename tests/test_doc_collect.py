@@ -48,6 +48,11 @@ def test_paths_are_shown_relative_to_the_root_or_the_prefix() -> None:
     assert display('/work/x/a/b.yaml') == 'a/b.yaml'
     assert display('/opt/ros/share/p/n.yaml') == 'share/p/n.yaml'
     assert display('/elsewhere/n.yaml') == '/elsewhere/n.yaml'
+    # a workspace's install inside the folder the pages are built from: still the prefix's
+    # path, so that the pages are the same built from the workspace or from the package
+    inside = Displayer('/ws', ['/ws/install/pkg'])
+    assert inside('/ws/install/pkg/share/pkg/nodl/n.nodl.yaml') == 'share/pkg/nodl/n.nodl.yaml'
+    assert inside('/ws/src/pkg/nodl/n.nodl.yaml') == 'src/pkg/nodl/n.nodl.yaml'
 
 
 def test_a_launch_file_gives_the_system_page_and_its_node_pages() -> None:

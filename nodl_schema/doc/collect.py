@@ -37,8 +37,9 @@ __all__ = ['DocSet', 'collect', 'Displayer']
 
 
 class Displayer:
-    """File paths as pages show them: relative to ``root`` when inside it, else to the ament
-    prefix they are installed in, else as given."""
+    """File paths as pages show them: relative to the ament prefix they are installed in
+    (``share/<package>/nodl/...``: the same wherever the workspace is and whichever folder
+    the pages are built from), else to ``root`` when inside it, else as given."""
 
     def __init__(self, root: str, prefixes: Sequence[str]) -> None:
         self.root = os.path.abspath(root)
@@ -48,7 +49,7 @@ class Displayer:
         if not path:
             return ''
         absolute = os.path.abspath(path)
-        for base in (self.root, *self.prefixes):
+        for base in (*self.prefixes, self.root):
             if absolute.startswith(base.rstrip(os.sep) + os.sep):
                 return os.path.relpath(absolute, base).replace(os.sep, '/')
         return path

@@ -5,6 +5,7 @@
 #   ament_nodl_register_node(<executable> FILE <file>)
 #   ament_nodl_generate_cpp(<target> <definition> ...)    # the rclcpp base class, as a library
 #   ament_nodl_generate_python(<definition> ...)          # the rclpy base class, installed
+#   ament_nodl_doc_check(<dir> [TARGETS ...])             # test: nodl doc --check of <dir>
 #
 # Included by ament_nodlConfig.cmake: the one ament_package() generates when colcon builds
 # the ament_nodl package (CONFIG_EXTRAS), or the one `pip install nodl-toolkit` installs.
@@ -33,3 +34,4 @@ endif()
 find_package(ament_cmake_core QUIET REQUIRED)
 include("${CMAKE_CURRENT_LIST_DIR}/ament_nodl_register.cmake")
 include("${CMAKE_CURRENT_LIST_DIR}/ament_nodl_generate.cmake")
+include("${CMAKE_CURRENT_LIST_DIR}/ament_nodl_doc.cmake")
