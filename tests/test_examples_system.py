@@ -268,3 +268,32 @@ def test_the_graph_page_of_the_example_system_fits_1280x800(analysis, browser, t
         "var d = JSON.parse(document.getElementById('nodl-data').textContent);"
         "return Object.keys(d.vertices).filter(k => d.vertices[k].name === '/rover/lidar')[0];")
     assert browser.find_element(By.ID, lidar).is_displayed() is False
+
+
+def test_the_docs_of_the_example_system_build_with_sphinx_and_pass_check(build: Build, tmp_path: Path) -> None:
+    """nodl doc of the example system's launch file (its packages installed): the MyST pages
+    build with a real sphinx-build -W (the node launched twice is two parameter sections,
+    not one duplicate target), every launched node with a definition links its page, and
+    nodl doc --check passes on what was written."""
+    site = tmp_path / 'site'
+
+    def doc(*args: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run([sys.executable, '-m', 'nodl_schema', 'doc', str(LAUNCH), '-o',
+                               str(site), *args], cwd=REPO, env=build.env(), text=True,
+                              capture_output=True, timeout=120)
+
+    written = doc()
+    assert written.returncode == 0, written.stderr
+    system = (site / 'systems' / 'rover.md').read_text(encoding='utf-8')
+    assert system.count('(../rover_base/diagnostic_aggregator.md#') == 2
+    assert 'launched again\\, at examples\\/system\\/launch\\/rover\\.launch\\.xml\\:29' in system
+    assert (site / 'rover_sensors' / 'lidar_driver.md').is_file()
+    (site / 'conf.py').write_text("extensions = ['myst_parser']\nsource_suffix = {'.md': 'markdown'}\n"
+                                  "master_doc = 'index'\n", encoding='utf-8')
+    sphinx = subprocess.run([sys.executable, '-m', 'sphinx', '-W', '-q', '-b', 'html', str(site),
+                             str(tmp_path / 'html')], text=True, capture_output=True, timeout=120)
+    assert sphinx.returncode == 0, sphinx.stderr
+    assert 'rover_base/motor_controller.html' in (tmp_path / 'html' / 'systems' / 'rover.html').read_text(
+        encoding='utf-8')
+    checked = doc('--check')
+    assert checked.returncode == 0, checked.stderr

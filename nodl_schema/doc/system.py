@@ -92,12 +92,21 @@ def system_page(analysis: Analysis, path: str, node_pages: Mapping[int, tuple[st
         page.blocks.append(Table(('Name', 'Type', offer, use), tuple(table_rows)))
     page.heading(2, 'Parameters', label(anchor, 'parameters'))
     any_parameters = False
+    seen: dict[str, int] = {}
     for node in nodes:
         settings = node.parameters
         if not settings:
             continue
         any_parameters = True
-        page.heading(3, node.fqn, label(anchor, 'launched', node.fqn))
+        # a name launched twice (a finding of its own) is two sections, each with its target
+        seen[node.fqn] = count = seen.get(node.fqn, 0) + 1
+        heading, target = node.fqn, label(anchor, 'launched', node.fqn)
+        if count > 1:
+            where = getattr(node.entry, 'location', None)
+            place = f'{display(where.file)}:{where.line}' if where is not None and where.file else ''
+            heading = f'{node.fqn} (launched again{", at " + place if place else ""})'
+            target = label(target, str(count))
+        page.heading(3, heading, target)
         param_rows = []
         for name, setting in settings.items():
             where = display(setting.location.file)
