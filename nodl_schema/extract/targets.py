@@ -58,10 +58,19 @@ class Package:
     _real: dict[str, str] = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def real(self, path: str) -> str:
-        """``os.path.realpath(path)``, found once per package."""
+        """``os.path.realpath(path)``, found once per path (and its folder's once per folder)."""
         found = self._real.get(path)
         if found is None:
-            found = self._real[path] = os.path.realpath(path)
+            folder, name = os.path.split(path)
+            if name in ('', '.', '..') or os.path.islink(path):
+                found = os.path.realpath(path)
+            else:
+                key = folder + os.sep  # a folder's entry: no file path ends with a separator
+                base = self._real.get(key)
+                if base is None:
+                    base = self._real[key] = os.path.realpath(folder)
+                found = os.path.join(base, name)
+            self._real[path] = found
         return found
 
 
@@ -230,11 +239,17 @@ def _extract_python(files: list[str], package: Package) -> Extraction:
     runs: dict[str, set[str]] = {}  # file -> the functions its entry points run ('': a script)
     for target, function in package.executables.values():
         runs.setdefault(package.real(target), set()).add(function)
+    read: list[str] = []
     for path in files:
         rel = os.path.relpath(os.path.dirname(path), package.root)
         module_package = '.'.join(p for p in rel.split(os.sep) if p not in ('', '.')) or None
-        out.extend(extract_file(path, package=module_package, genparam=package.genparam,
-                                starts=runs.get(package.real(path), ())))
+        found = extract_file(path, package=module_package, genparam=package.genparam,
+                             starts=runs.get(package.real(path), ()))
+        out.nodes += found.nodes  # what Extraction.extend does, the files made unique once
+        out.diagnostics += found.diagnostics
+        read += found.files
+        out.starts.update(found.starts)
+    out.files = list(dict.fromkeys(read))
     return out
 
 
