@@ -161,33 +161,37 @@ class _CallValue:
 def _assigned_names(body: Iterable[ast.stmt]) -> dict[str, list[ast.expr]]:
     """Each simple name assigned in ``body`` (not in nested functions or classes) -> its values."""
     out: dict[str, list[ast.expr]] = {}
-
-    def visit(stmts: Iterable[ast.stmt]) -> None:
-        for stmt in stmts:
-            if isinstance(stmt, ast.Assign):
-                for target in stmt.targets:
-                    _record(target, stmt.value, out)
-            elif isinstance(stmt, ast.AnnAssign) and stmt.value is not None:
-                _record(stmt.target, stmt.value, out)
-            elif isinstance(stmt, (ast.AugAssign,)):
-                _record(stmt.target, stmt, out)  # type: ignore[arg-type]
-            elif isinstance(stmt, (ast.For, ast.AsyncFor)):
-                _record(stmt.target, stmt, out)  # type: ignore[arg-type]
-                visit(stmt.body)
-                visit(stmt.orelse)
-            elif isinstance(stmt, (ast.If, ast.While)):
-                visit(stmt.body)
-                visit(stmt.orelse)
-            elif isinstance(stmt, (ast.With, ast.AsyncWith)):
-                visit(stmt.body)
-            elif isinstance(stmt, ast.Try):
-                visit(stmt.body)
-                visit(stmt.orelse)
-                visit(stmt.finalbody)
-                for handler in stmt.handlers:
-                    visit(handler.body)
-    visit(body)
+    _assigned_in(body, out)
     return out
+
+
+def _assigned_in(stmts: Iterable[ast.stmt], out: dict[str, list[ast.expr]]) -> None:
+    for stmt in stmts:
+        kind = stmt.__class__
+        if kind is ast.Assign:
+            for target in stmt.targets:  # type: ignore[attr-defined]
+                _record(target, stmt.value, out)  # type: ignore[attr-defined]
+        elif kind is ast.Expr or kind is ast.FunctionDef or kind is ast.ClassDef or kind is ast.Return:
+            continue
+        elif isinstance(stmt, ast.AnnAssign) and stmt.value is not None:
+            _record(stmt.target, stmt.value, out)
+        elif isinstance(stmt, (ast.AugAssign,)):
+            _record(stmt.target, stmt, out)  # type: ignore[arg-type]
+        elif isinstance(stmt, (ast.For, ast.AsyncFor)):
+            _record(stmt.target, stmt, out)  # type: ignore[arg-type]
+            _assigned_in(stmt.body, out)
+            _assigned_in(stmt.orelse, out)
+        elif isinstance(stmt, (ast.If, ast.While)):
+            _assigned_in(stmt.body, out)
+            _assigned_in(stmt.orelse, out)
+        elif isinstance(stmt, (ast.With, ast.AsyncWith)):
+            _assigned_in(stmt.body, out)
+        elif isinstance(stmt, ast.Try):
+            _assigned_in(stmt.body, out)
+            _assigned_in(stmt.orelse, out)
+            _assigned_in(stmt.finalbody, out)
+            for handler in stmt.handlers:
+                _assigned_in(handler.body, out)
 
 
 def _targets(stmt: ast.Assign | ast.AnnAssign | ast.AugAssign) -> list[ast.expr]:
@@ -255,7 +259,11 @@ class _Module:
 
     def may_hold(self, words: str, node: ast.AST) -> bool:
         """Whether one of ``words`` is in the text of ``node`` (True when the text is not known)."""
-        return self.lines is None or self.lines.within(words, node)
+        lines = self.lines
+        if lines is None:
+            return True
+        found = lines._found.get(words)
+        return _on_lines(lines.lines(words) if found is None else found, node)
 
     def hot(self, node: ast.AST) -> bool:
         """Whether ``node`` (a function, a statement) can make an entity when walked: its text
@@ -1753,7 +1761,7 @@ def _generated(text: str) -> int:
             break
     head = text if end < 0 else text[:end]
     lowered_head = head.lower()
-    if not any(mark in lowered_head for mark in _GENERATED_MARKS):
+    if 'generated' not in lowered_head and 'do not edit' not in lowered_head:  # in every mark
         return 0
     for number, line in enumerate(head.splitlines()[:10], 1):
         lowered = line.strip().lower()
@@ -1767,13 +1775,21 @@ def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
     from nodl_schema.files import describe_os_error
 
     try:
-        with open(path, 'rb') as handle:
-            size = os.fstat(handle.fileno()).st_size
-            # read what the file holds (not a 10 MB buffer each time), more if it grew meanwhile
-            raw = handle.read(size + 1) if size <= MAX_SOURCE_BYTES else b''
-            if len(raw) > size:
-                raw += handle.read(MAX_SOURCE_BYTES + 1 - len(raw))
-                size = len(raw)
+        handle = os.open(path, os.O_RDONLY | getattr(os, 'O_BINARY', 0))
+        try:
+            size = os.fstat(handle).st_size
+            raw = b''
+            if size <= MAX_SOURCE_BYTES:  # what the file holds (no 10 MB buffer), to its end
+                parts = [os.read(handle, size + 1)]
+                total = len(parts[0])
+                # more when it grew or was read short, or its size is not known (a pipe, /proc)
+                while parts[-1] and total != size and total <= MAX_SOURCE_BYTES:
+                    parts.append(os.read(handle, min(1 << 20, MAX_SOURCE_BYTES + 1 - total)))
+                    total += len(parts[-1])
+                raw = b''.join(parts) if len(parts) > 1 else parts[0]
+                size = total
+        finally:
+            os.close(handle)
         if size > MAX_SOURCE_BYTES:
             return None, Diagnostic(Severity.ERROR, f'the file is {size:,} bytes, over the 10 MB limit of '
                                     'nodl extract; extract from the files that make nodes', file=path,

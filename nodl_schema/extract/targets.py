@@ -240,8 +240,11 @@ def _extract_python(files: list[str], package: Package) -> Extraction:
     for target, function in package.executables.values():
         runs.setdefault(package.real(target), set()).add(function)
     read: list[str] = []
+    root = os.path.join(package.root, '')
     for path in files:
-        rel = os.path.relpath(os.path.dirname(path), package.root)
+        folder = os.path.dirname(path)
+        rel = folder[len(root):] if folder.startswith(root) and '..' not in folder else \
+            os.path.relpath(folder, package.root)
         module_package = '.'.join(p for p in rel.split(os.sep) if p not in ('', '.')) or None
         found = extract_file(path, package=module_package, genparam=package.genparam,
                              starts=runs.get(package.real(path), ()))
