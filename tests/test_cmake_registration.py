@@ -186,10 +186,13 @@ def test_list_the_installed_definitions(build: Build) -> None:
     assert result.returncode == 0, result.stderr
     listed = [tuple(line.split()) for line in result.stdout.splitlines()]
     share = lambda pkg, f: str(build.prefix(pkg) / 'share' / pkg / 'nodl' / f)  # noqa: E731
+    # package, kind, name, origin (the ament index here), file
     assert listed == [
-        ('laser_driver', 'node', 'laser_driver_node', share('laser_driver', 'laser_driver_node.nodl.yaml')),
-        ('laser_driver', 'interface', 'motor_control', share('laser_driver', 'motor_control.nodl.yaml')),
-        ('robot_interfaces_nodl', 'interface', 'diagnostics',
+        ('laser_driver', 'node', 'laser_driver_node', 'index',
+         share('laser_driver', 'laser_driver_node.nodl.yaml')),
+        ('laser_driver', 'interface', 'motor_control', 'index',
+         share('laser_driver', 'motor_control.nodl.yaml')),
+        ('robot_interfaces_nodl', 'interface', 'diagnostics', 'index',
          share('robot_interfaces_nodl', 'diagnostics.nodl.yaml')),
     ]
 

@@ -154,7 +154,11 @@ function(_ament_nodl_install_relative_mixins what file)
     "${file}")
   execute_process(COMMAND "${AMENT_NODL_EXECUTABLE}" deps "${file}"
     OUTPUT_VARIABLE _out ERROR_VARIABLE _err RESULT_VARIABLE _rc)
-  if(NOT _rc EQUAL 0)
+  if(_rc EQUAL 1)
+    # Not a valid definition: its mixins cannot be known, and the build's validation step
+    # fails the package with every problem at its FILE:LINE:COL.
+    return()
+  elseif(NOT _rc EQUAL 0)
     message(FATAL_ERROR "${what}: '${AMENT_NODL_EXECUTABLE} deps ${file}' failed (${_rc}): ${_err}")
   endif()
   get_filename_component(_dir "${file}" DIRECTORY)
