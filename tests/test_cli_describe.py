@@ -77,6 +77,28 @@ def test_describe_to_stdout_as_json_without_parameters(nodes) -> None:
     assert {e['name'] for e in definition['main']['subscriptions']} == {'/emergency_stop', 'commands'}
 
 
+def test_describe_says_how_long_namesakes_were_watched(nodes, tmp_path: Path) -> None:
+    """No fixed window: namesakes are watched for while the node is read, at least 0.6 s of
+    discovery by default and longer with --watch; the output says how long."""
+    import re
+
+    out = tmp_path / 'full.nodl.yaml'
+    result = nodl('describe', '/cli_d/full', '-o', str(out), '--timeout', '15')
+    assert result.returncode == 0, result.stderr
+    line = next(l for l in out.read_text(encoding='utf-8').splitlines()
+                if l.startswith('# Namesakes watched for '))
+    found = re.match(r'# Namesakes watched for ([0-9.]+) s of discovery', line)
+    assert found is not None and float(found.group(1)) >= 0.6
+    if float(found.group(1)) < 3.5:
+        assert '--watch 3.5' in line
+    longer = nodl('describe', '/cli_d/full', '--watch', '2', '--format', 'json', '--timeout', '15')
+    assert longer.returncode == 0, longer.stderr
+    notes = [l for l in longer.stderr.splitlines()
+             if l.startswith('nodl describe: note: namesakes watched for ')]
+    assert len(notes) == 1
+    assert float(notes[0].split('watched for ')[1].split(' s')[0]) >= 2.0
+
+
 def test_describe_all_writes_one_file_per_node(nodes, tmp_path: Path) -> None:
     out = tmp_path / 'all'
     result = nodl('describe', '--all', '-o', str(out), '--timeout', '10')

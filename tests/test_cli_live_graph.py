@@ -33,7 +33,9 @@ def test_a_node_not_found_gets_did_you_mean(ros_node) -> None:
 def test_a_shared_name_warns_in_describe_and_check_refuses(ros_node, tmp_path: Path) -> None:
     first = ros_node('plain_node.py', 'twin', '/ux')
     ros_node('plain_node.py', 'twin', '/ux')
-    described = nodl('describe', first.fqn, '--timeout', '10', '-o', str(tmp_path / 'twin.nodl.yaml'))
+    # --watch 3.5: past the 3 s periodic announcements, so that the second twin is always seen
+    described = nodl('describe', first.fqn, '--timeout', '10', '--watch', '3.5',
+                     '-o', str(tmp_path / 'twin.nodl.yaml'))
     assert described.returncode == 0, described.stderr
     assert 'warning: 2 nodes in the graph are named /ux/twin' in described.stderr
     header = [l for l in (tmp_path / 'twin.nodl.yaml').read_text().splitlines() if l.startswith('#')]

@@ -83,6 +83,20 @@ def test_described_node_conforms_to_its_description(full: NodeProcess, described
     assert text.splitlines()[-1].startswith(f'/chk/full conforms to {path}')
 
 
+def test_check_watches_for_namesakes_while_it_works_and_says_how_long(full: NodeProcess,
+                                                                      described) -> None:
+    path, _ = described
+    result = check_node(full.fqn, path, timeout=15, watch=1.0)
+    assert result.watched is not None and result.watched >= 1.0
+    text = format_check_text(result)
+    assert text.splitlines()[1].startswith('/chk/full: namesakes watched for ')
+    assert json.loads(format_check_json(result))['namesakes_watched'] == round(result.watched, 2)
+    # by default, past the 3 s periodic announcements: nothing more to suggest
+    default = check_node(full.fqn, path, timeout=15)
+    assert default.watched is not None and default.watched >= 3.5
+    assert '--watch' not in format_check_text(default)
+
+
 def test_hand_written_definition_conforms(full: NodeProcess) -> None:
     """An independent definition (written from full_node.py's source, not described)."""
     path = FIXTURES / 'live' / 'full_node.nodl.yaml'

@@ -10,7 +10,7 @@ from nodl_schema.composition.client_library import ClientLibraryChoice
 from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
 from nodl_schema.live.conformance import Difference, Remaps, compare, conforms
 from nodl_schema.naming import NodeNames
-from nodl_schema.live.observe import ObservedNode, observe_node
+from nodl_schema.live.observe import DISCOVERY_WINDOW, ObservedNode, observe_node, recount
 from nodl_schema.live.session import DuplicateNode
 from nodl_schema.model import ENDPOINT_SECTIONS
 from nodl_schema.overrides import Overrides
@@ -52,6 +52,8 @@ class CheckResult:
         self.overrides = Overrides()
         #: The differences the overrides silenced (not in :attr:`differences`).
         self.ignored: list[Difference] = []
+        #: Seconds of discovery namesakes were watched for (none was seen meanwhile).
+        self.watched: float | None = observed.watched
         self._by_location: dict[Location, Entity] | None = None
 
     @property
@@ -217,7 +219,8 @@ def load_definition(definition: str | os.PathLike[str] | tuple[str, str],
 def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *,
                timeout: float = 5.0, remaps: Iterable[str] = (),
                parameters: bool = True, client_library: str | None = None,
-               overrides: Overrides | None = None, types: bool = True) -> CheckResult:
+               overrides: Overrides | None = None, types: bool = True,
+               watch: float = DISCOVERY_WINDOW) -> CheckResult:
     """Check the running node ``fqn`` against ``definition`` (a file or ``(package, executable)``).
 
     ``types``: each topic endpoint's type hash is also compared with the installed
@@ -232,8 +235,11 @@ def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *
     DuplicateNode if several nodes share its name), and ValueError for a
     malformed remapping rule or an unknown ``client_library`` (whose base is
     checked: see :func:`load_definition`).  Declared endpoints that are missing are
-    looked for once more after ``RECHECK`` seconds (if the timeout leaves
-    that much), as discovery may only be late.
+    looked for once more when the node's endpoints next change, within ``RECHECK``
+    seconds (if the timeout leaves that much), as discovery may only be late.
+    Namesakes are watched for while all this goes on, and at least until discovery
+    has run ``watch`` seconds (within ``timeout``): the check refuses a name several
+    nodes share (:attr:`CheckResult.watched` says how long it watched).
     """
     import time
 
@@ -246,29 +252,41 @@ def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *
     # ``__ns`` rules made it), against which node-scoped rules are matched, as rcl does.
     rules = tuple(parse_remap_rules(list(remaps)))
     start = time.monotonic()
+    from nodl_schema.live.graph_events import follower
+
     with ros_session() as session:
-        observed = observe_node(fqn, timeout=timeout, parameters=parameters, session=session)
-        if observed.instances > 1:
-            raise DuplicateNode(f'{observed.instances} nodes in the graph are named '
-                                f'{observed.fully_qualified_name}: their endpoints cannot be told '
-                                'apart, so none is checked; give each a unique name (e.g. '
-                                '--ros-args -r __node:=other_name) and check again')
+        # namesakes are counted last (recount): watched while the node is read and compared
+        observed = observe_node(fqn, timeout=timeout, parameters=parameters, session=session,
+                                watch=0.0)
+        _refuse_namesakes(observed)
         names = NodeNames(observed.name, observed.namespace, rules)
         differences = compare(composed, observed, names)
         late = max(0.0, min(RECHECK, timeout - (time.monotonic() - start)))
         if late and any(d.kind == 'missing' and d.section != 'parameters' for d in differences):
-            # Declared endpoints not seen yet may only be late in discovery: look again.
-            deadline = time.monotonic() + late
-            while time.monotonic() < deadline:
-                session.nodl_executor.spin_once(timeout_sec=0.05)
-            observed = observe_node(fqn, timeout=max(1.0, timeout - (time.monotonic() - start)),
-                                    parameters=parameters, session=session)
-            differences = compare(composed, observed, names)
+            # Declared endpoints not seen yet may only be late in discovery: look again when
+            # the node's endpoints change (within RECHECK seconds).
+            graph = follower(session)
+            before = graph.part(observed.fully_qualified_name)
+            if graph.wait(lambda: graph.part(observed.fully_qualified_name) != before,
+                          time.monotonic() + late):
+                observed = observe_node(fqn, timeout=max(1.0, timeout - (time.monotonic() - start)),
+                                        parameters=parameters, session=session, watch=0.0)
+                differences = compare(composed, observed, names)
         if types:
             differences += _type_skew(session, composed, observed, names)
+        recount(session, observed, watch, start + timeout)
+        _refuse_namesakes(observed)
     result = CheckResult(observed.fully_qualified_name, composed.file, differences, composed,
                          observed, names)
     return result.with_overrides(overrides) if overrides else result
+
+
+def _refuse_namesakes(observed: ObservedNode) -> None:
+    if observed.instances > 1:
+        raise DuplicateNode(f'{observed.instances} nodes in the graph are named '
+                            f'{observed.fully_qualified_name}: their endpoints cannot be told '
+                            'apart, so none is checked; give each a unique name (e.g. '
+                            '--ros-args -r __node:=other_name) and check again')
 
 
 def _type_skew(session: object, composed: ResolvedNode, observed: ObservedNode,

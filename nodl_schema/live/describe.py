@@ -16,11 +16,13 @@ Each observed endpoint's type is also compared with the installed definition
 
 from __future__ import annotations
 
+import time
 from typing import Any
 
 from nodl_schema.composition.bases import base_layer
 from nodl_schema.composition.client_library import ClientLibraryChoice
-from nodl_schema.live.observe import ObservedNode, ObservedParameter, observe_node
+from nodl_schema.live.observe import (DISCOVERY_WINDOW, ObservedNode, ObservedParameter,
+                                      observe_node, recount, watched_line)
 from nodl_schema.model import (
     ENDPOINT_SECTIONS, Base, Interface, Node, ParameterDefinition, QoSProfile)
 from nodl_schema.naming import NodeNames, declared_names, expand, relativize
@@ -58,6 +60,9 @@ class Description:
         self.forms: dict[tuple[str, str], list[str]] = {}
         #: The final names no name the node could declare resolves to (kept as observed).
         self.unmapped: list[tuple[str, str]] = []
+        #: Seconds of discovery namesakes were watched for (None: not counted); the
+        #: header says it (:func:`~nodl_schema.live.observe.watched_line`).
+        self.watched: float | None = None
         #: The name written for each observed endpoint, by ``(section, final name)``.
         self.written: dict[tuple[str, str], str] = {}
         #: The version-skew findings (:func:`add_type_skew`): endpoints whose type differs
@@ -214,6 +219,7 @@ def describe_observed(observed: ObservedNode, client_library: str | None = None,
     description.forms = forms
     description.unmapped = unmapped
     description.written = written
+    description.watched = observed.watched
     return description
 
 
@@ -231,23 +237,33 @@ def _final(declared: str, name: str, namespace: str, names: NodeNames | None,
 
 def describe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
                   session: Any = None, client_library: str | None = None,
-                  types: bool = True) -> Description:
+                  types: bool = True, watch: float = DISCOVERY_WINDOW) -> Description:
     """Observe the running node ``fqn`` and describe it (raises LiveError for the user).
 
     ``session``: an observer node of :func:`~nodl_schema.live.session.ros_session` to reuse;
     ``client_library``: see :func:`describe_observed`; ``types``: compare each endpoint's
-    type with the installed definition (:func:`add_type_skew`).
+    type with the installed definition (:func:`add_type_skew`); ``watch``: seconds of
+    discovery to watch for namesakes at least (see :func:`~nodl_schema.live.observe.observe_node`;
+    the version skew is read while they are watched for).
     """
     if session is None and types:
         from nodl_schema.live.session import ros_session
 
         with ros_session() as own:
             return describe_node(fqn, timeout=timeout, parameters=parameters, session=own,
-                                 client_library=client_library, types=types)
-    observed = observe_node(fqn, timeout=timeout, parameters=parameters, session=session)
+                                 client_library=client_library, types=types, watch=watch)
+    if not types:
+        return describe_observed(observe_node(fqn, timeout=timeout, parameters=parameters,
+                                              session=session, watch=watch), client_library)
+    # the types are compared before namesakes are counted: the watch goes on meanwhile
+    deadline = time.monotonic() + timeout
+    observed = observe_node(fqn, timeout=timeout, parameters=parameters, session=session,
+                            watch=0.0)
     description = describe_observed(observed, client_library)
-    if types:
-        add_type_skew(description, session, observed)
+    add_type_skew(description, session, observed)
+    recount(session, observed, watch, deadline)
+    description.warnings = list(observed.warnings)
+    description.watched = observed.watched
     return description
 
 
@@ -311,6 +327,9 @@ def render_description(description: Description, format: str = 'yaml') -> str:
               f'# Left out: what the base gives an {one_line(description.client_library.name)} node '
               f'({one_line(description.client_library.reason)}).']
     header += [f'# Warning: {one_line(warning)}.' for warning in description.warnings]
+    if description.watched is not None:
+        header.append(f'# {watched_line(description.watched)[:1].upper()}'
+                      f'{watched_line(description.watched)[1:]}.')
     body, unplaced = annotate_yaml(dump_nodl(description.node, 'yaml'), description.skew_comments())
     header += [f'# {one_line(comment)}' for comment in unplaced]
     notes = description.notes + description.skew_notes

@@ -24,22 +24,16 @@ def _discover(node: Any, timeout: float, settle: float, quiet: float = 0.5) -> l
 
     Remote participants are discovered one by one, each up to one announcement
     period after we start (Fast DDS: 3 s; from milliseconds to 3 s in practice),
-    so the list is taken once ``settle`` seconds have passed and it has not
-    changed for ``quiet`` seconds; while it is empty, up to ``timeout``.
+    so the node list is followed (:mod:`~nodl_schema.live.graph_events`) and taken
+    as soon as discovery has run ``settle`` seconds and the list has not changed
+    for ``quiet`` seconds; while it is empty, up to ``timeout``.
     """
-    start = time.monotonic()
-    names = list_nodes(node)
-    changed = start
-    while True:
-        now = time.monotonic()
-        if now - start >= timeout:
-            return names
-        if names and now - start >= settle and now - changed >= quiet:
-            return names
-        node.nodl_executor.spin_once(timeout_sec=0.01)
-        current = list_nodes(node)
-        if current != names:
-            names, changed = current, time.monotonic()
+    from nodl_schema.live.graph_events import follower
+
+    graph = follower(node)
+    graph.settle(quiet, time.monotonic() + timeout, on=['nodes'], ready=lambda: bool(graph.counts),
+                 watched=settle)
+    return list_nodes(node)
 
 
 def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = True,
@@ -69,7 +63,8 @@ def describe_all(directory: str, *, timeout: float = 5.0, parameters: bool = Tru
                 continue
             try:
                 description = describe_node(fqn, timeout=timeout, parameters=parameters,
-                                            session=node, client_library=client_library)
+                                            session=node, client_library=client_library,
+                                            watch=settle)
             except LiveError as exc:
                 written.append((fqn, '(skipped)', [str(exc)]))
                 continue

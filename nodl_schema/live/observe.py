@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable
 
+from nodl_schema.live.graph_events import ANSWERS, follower, spin_once
 from nodl_schema.live.qos import qos_from_rclpy
 from nodl_schema.naming import join_name
 from nodl_schema.live.session import (LiveError, NodeNotFound, did_you_mean, is_toolkit_node,
@@ -19,14 +20,20 @@ from nodl_schema.vocabulary import SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
            'wait_for_node', 'list_nodes', 'count_nodes', 'ACTION_INFIX', 'DISCOVERY_WINDOW',
-           'settle_nodes', 'observe_settled', 'read_parameters', 'read_lifecycle_states']
+           'settle_nodes', 'observe_settled', 'read_parameters', 'read_lifecycle_states',
+           'NAMESAKE_WATCH', 'namesake_warning', 'watched_line', 'recount']
 
 ACTION_INFIX = '/_action/'
 #: How long a session must have been discovering before the graph is taken as complete.
 #: Remote participants are discovered one by one: one that misses our first announcements
 #: is seen only at its own next periodic announcement (Fast DDS: every 3 s), so a second
-#: node of the same name can show up seconds after the first.
+#: node of the same name can show up seconds after the first.  The library's observations
+#: watch for namesakes that long by default (the work overlapping the watch).
 DISCOVERY_WINDOW = 3.5
+#: How long ``nodl describe`` watches for namesakes by default: as long as its work takes,
+#: and at least until the answers to the session's first announcements are in
+#: (:data:`~nodl_schema.live.graph_events.ANSWERS`); what it watched is said in its output.
+NAMESAKE_WATCH = ANSWERS
 _PARAMETER_TYPES = {0: 'none', 1: 'bool', 2: 'int', 3: 'double', 4: 'string', 5: 'byte_array',
                     6: 'bool_array', 7: 'int_array', 8: 'double_array', 9: 'string_array'}
 
@@ -79,6 +86,9 @@ class ObservedNode:
     #: The lifecycle state it was observed in (``unconfigured``, ``inactive``...), for a
     #: lifecycle node whose state was asked (:func:`read_lifecycle_states`); else None.
     lifecycle_state: str | None = None
+    #: Seconds of discovery (from the session's start) after which :attr:`instances` was
+    #: counted: a namesake discovered later is not counted.  None when not counted.
+    watched: float | None = None
 
     @property
     def fully_qualified_name(self) -> str:
@@ -116,16 +126,12 @@ def count_nodes(node: Any) -> dict[str, int]:
 
 def wait_for_node(node: Any, fqn: str, timeout: float) -> None:
     """Wait until ``fqn`` is in the graph, or raise NodeNotFound (naming the closest nodes seen)."""
-    deadline = time.monotonic() + timeout
-    while True:
-        names = list_nodes(node)
-        if fqn in names:
-            return
-        if time.monotonic() >= deadline:
-            hint = did_you_mean(fqn, names)
-            raise NodeNotFound(f"node '{fqn}' was not found within {timeout:g} s{hint} (is it "
-                               'running, in the same ROS_DOMAIN_ID, with discovery reaching it?)')
-        node.nodl_executor.spin_once(timeout_sec=0.01)
+    graph = follower(node)
+    if graph.wait(lambda: fqn in graph.counts, time.monotonic() + timeout):
+        return
+    hint = did_you_mean(fqn, list_nodes(node))
+    raise NodeNotFound(f"node '{fqn}' was not found within {timeout:g} s{hint} (is it "
+                       'running, in the same ROS_DOMAIN_ID, with discovery reaching it?)')
 
 
 def _endpoints(node: Any, name: str, namespace: str) -> dict[str, list[tuple[str, list[str]]]]:
@@ -135,10 +141,6 @@ def _endpoints(node: Any, name: str, namespace: str) -> dict[str, list[tuple[str
         'service_servers': node.get_service_names_and_types_by_node(name, namespace),
         'service_clients': node.get_client_names_and_types_by_node(name, namespace),
     }
-
-
-def _signature(raw: dict[str, list[tuple[str, list[str]]]]) -> tuple[Any, ...]:
-    return tuple((k, tuple((n, tuple(t)) for n, t in sorted(v))) for k, v in sorted(raw.items()))
 
 
 #: How long the endpoints must stay unchanged when only writers or only readers are seen.
@@ -159,31 +161,37 @@ def _lopsided(raw: dict[str, list[tuple[str, list[str]]]]) -> bool:
 
 
 def _settle(node: Any, name: str, namespace: str, fqn: str, timeout: float,
-            quiet: float) -> dict[str, list[tuple[str, list[str]]]]:
-    """Poll the node's endpoints until they stop changing for ``quiet`` seconds.
+            quiet: float, meanwhile: Callable[[], Any] | None = None
+            ) -> dict[str, list[tuple[str, list[str]]]]:
+    """Follow the graph until the node's endpoints (and the rest of the graph) have not
+    changed for ``quiet`` seconds (``LOPSIDED_QUIET`` seconds if only writers or only
+    readers are seen), or ``timeout`` seconds pass; then read them.  ``meanwhile`` is
+    called after every poll (other work going on while the endpoints settle)."""
+    graph = follower(node)
+    graph.follow([fqn])
 
-    (``LOPSIDED_QUIET`` seconds if only writers or only readers are seen.)
-    """
-    deadline = time.monotonic() + timeout
-    last = None
-    stable_since = time.monotonic()
-    while True:
-        try:
-            raw = _endpoints(node, name, namespace)
-        except Exception as exc:  # the node vanished between two calls
-            if fqn not in list_nodes(node):
-                raise LiveError(f"node '{fqn}' disappeared while it was being observed") from None
-            raise LiveError(f"cannot read the endpoints of '{fqn}': {exc}") from None
-        signature = _signature(raw)
-        now = time.monotonic()
-        if signature != last:
-            last = signature
-            stable_since = now
-        needed = max(quiet, LOPSIDED_QUIET) if _lopsided(raw) else quiet
-        if now - stable_since >= needed or now >= deadline:
-            # at the deadline, a node whose endpoints keep changing is taken as it is then
-            return raw
-        node.nodl_executor.spin_once(timeout_sec=0.01)
+    def needed() -> float:
+        if meanwhile is not None:
+            meanwhile()
+        raw = _followed(graph, fqn)
+        return max(quiet, LOPSIDED_QUIET) if raw is not None and _lopsided(raw) else quiet
+
+    # at the deadline, a node whose endpoints keep changing is taken as it is then
+    graph.settle(needed, time.monotonic() + timeout, on=[fqn])
+    try:
+        return _endpoints(node, name, namespace)
+    except Exception as exc:  # the node vanished between two calls
+        if fqn not in list_nodes(node):
+            raise LiveError(f"node '{fqn}' disappeared while it was being observed") from None
+        raise LiveError(f"cannot read the endpoints of '{fqn}': {exc}") from None
+
+
+def _followed(graph: Any, fqn: str) -> RawEndpoints | None:
+    """The endpoints of a followed node as the follower's last poll read them."""
+    sections = graph.part(fqn)
+    if sections is None:
+        return None
+    return {section: [(n, list(t)) for n, t in entries] for section, entries in sections}
 
 
 def _topic_qos(node: Any, topic: str, name: str, namespace: str, publishers: bool) -> Any:
@@ -210,15 +218,6 @@ def _fold_actions(observed: ObservedNode, node: Any, name: str, namespace: str) 
 
     for section in TOPIC_SECTIONS + SERVICE_SECTIONS:
         setattr(observed, section, [e for e in getattr(observed, section) if not hidden(e)])
-
-
-def _call(node: Any, client: Any, request: Any, deadline: float) -> Any:
-    if not client.wait_for_service(timeout_sec=max(0.0, deadline - time.monotonic())):
-        return None
-    future = client.call_async(request)
-    while not future.done() and time.monotonic() < deadline:
-        node.nodl_executor.spin_once(timeout_sec=0.02)
-    return future.result() if future.done() else None
 
 
 def _value(value: Any) -> Any:
@@ -262,75 +261,145 @@ def _parameter_table(names: list[str], values: Any, descriptors: Any
     return found
 
 
-def _parameters(node: Any, fqn: str, timeout: float) -> dict[str, ObservedParameter] | None:
-    from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
+class _ParameterRead:
+    """One node's parameters read step by step while something else is waited for:
+    ``list_parameters``, then ``get_parameters`` and ``describe_parameters`` together, each
+    sent as soon as its server is discovered; :meth:`step` after each spin."""
 
-    list_client = node.create_client(ListParameters, f'{fqn}/list_parameters')
-    get_client = node.create_client(GetParameters, f'{fqn}/get_parameters')
-    describe_client = node.create_client(DescribeParameters, f'{fqn}/describe_parameters')
-    deadline = time.monotonic() + timeout  # for the three calls together
-    try:
-        listed = _call(node, list_client, ListParameters.Request(), deadline)
-        if listed is None:
+    def __init__(self, node: Any, fqn: str, deadline: float) -> None:
+        from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
+
+        self.node = node
+        self.deadline = deadline
+        self.kinds = (ListParameters, GetParameters, DescribeParameters)
+        self.clients = [node.create_client(kind, f'{fqn}/{service}') for kind, service in
+                        zip(self.kinds, ('list_parameters', 'get_parameters',
+                                         'describe_parameters'))]
+        self.futures: list[Any] = [None, None, None]
+        self.names: list[str] | None = None
+
+    def step(self) -> bool:
+        """Send what can be sent; True once every answer is in, or past the deadline."""
+        futures, clients = self.futures, self.clients
+        if futures[0] is None and clients[0].service_is_ready():
+            futures[0] = clients[0].call_async(self.kinds[0].Request())
+        if self.names is None and futures[0] is not None and futures[0].done():
+            listed = futures[0].result()
+            self.names = sorted(listed.result.names) if listed is not None else []
+        if self.names is not None:
+            for i in (1, 2):
+                if futures[i] is None and clients[i].service_is_ready():
+                    futures[i] = clients[i].call_async(self.kinds[i].Request(names=self.names))
+        done = all(f is not None and f.done() for f in futures)
+        return done or time.monotonic() >= self.deadline
+
+    def result(self) -> dict[str, ObservedParameter] | None:
+        """The parameters read, or None if some answer is missing."""
+        if self.names is None or not all(f is not None and f.done() for f in self.futures):
             return None
-        names = sorted(listed.result.names)
-        values = _call(node, get_client, GetParameters.Request(names=names), deadline)
-        descriptors = _call(node, describe_client, DescribeParameters.Request(names=names), deadline)
+        values, descriptors = self.futures[1].result(), self.futures[2].result()
         if values is None or descriptors is None:
             return None
-        return _parameter_table(names, values, descriptors)
-    finally:
-        for client in (list_client, get_client, describe_client):
-            node.destroy_client(client)
+        return _parameter_table(self.names, values, descriptors)
+
+    def close(self) -> None:
+        """Destroy the clients."""
+        for client in self.clients:
+            self.node.destroy_client(client)
 
 
 def observe_node(fqn: str, *, timeout: float = 5.0, parameters: bool = True,
-                 quiet: float = 0.15, session: Any = None) -> ObservedNode:
+                 quiet: float = 0.15, session: Any = None,
+                 watch: float = DISCOVERY_WINDOW) -> ObservedNode:
     """Observe the running node ``fqn`` (``/namespace/name``).
 
     Waits up to ``timeout`` seconds for the node to appear and its endpoints
-    to settle (no change for ``quiet`` seconds).  The nodes that share its
-    name (:attr:`ObservedNode.instances`, a warning) are counted once the
-    session has been discovering for :data:`DISCOVERY_WINDOW` seconds (or
-    ``timeout`` seconds have passed): a namesake is often discovered seconds
-    after the first node of that name.  Raises :class:`LiveError`
-    (:class:`NodeNotFound` if it never appears) with a message for the user.
-    ``session`` is an observer node from :func:`ros_session` to reuse (its
-    discovery is then already under way, and no window is waited again); by
-    default a session of its own.
+    to settle (no change for ``quiet`` seconds), following the graph's changes
+    (:mod:`~nodl_schema.live.graph_events`).  The nodes that share its name
+    (:attr:`ObservedNode.instances`, a warning) are watched for while the
+    endpoints settle and the parameters are read, and at least until the session
+    has been discovering for ``watch`` seconds (or ``timeout`` seconds have
+    passed): a namesake is often discovered seconds after the first node of that
+    name.  :attr:`ObservedNode.watched` says how long that was.  Raises
+    :class:`LiveError` (:class:`NodeNotFound` if it never appears) with a message
+    for the user.  ``session`` is an observer node from :func:`ros_session` to
+    reuse (its discovery is then already under way, and counts from its start);
+    by default a session of its own.
     """
     if session is None:
         with ros_session() as node:
-            return _observe(node, fqn, timeout, parameters, quiet)
-    return _observe(session, fqn, timeout, parameters, quiet)
+            return _observe(node, fqn, timeout, parameters, quiet, watch)
+    return _observe(session, fqn, timeout, parameters, quiet, watch)
 
 
-def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float) -> ObservedNode:
+def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float,
+             watch: float = DISCOVERY_WINDOW) -> ObservedNode:
     namespace, name = split_node_name(fqn)
     fqn = join_name(namespace, name)
     start = time.monotonic()
     wait_for_node(node, fqn, timeout)
     remaining = max(0.5, timeout - (time.monotonic() - start))
-    raw = _settle(node, name, namespace, fqn, remaining, quiet)
-    observed = observe_settled(node, fqn, raw)
-    if parameters:
-        remaining = max(1.0, timeout - (time.monotonic() - start))
-        observed.parameters = _parameters(node, fqn, remaining)
-        if observed.parameters is None:
-            observed.notes.append(_NO_PARAMETERS)
-    # Namesakes are counted only once discovery has had its time (the first node of a name
-    # seen says nothing about a second one whose participant is not discovered yet).
-    discovering_since = getattr(node, 'nodl_started', start)
-    _spin_until(node, min(discovering_since + DISCOVERY_WINDOW, start + timeout))
-    counts = count_nodes(node)
+    # the parameters are read while the endpoints settle (each call sent once its server
+    # is discovered)
+    reading = _ParameterRead(node, fqn, start + max(1.0, timeout)) if parameters else None
+    try:
+        raw = _settle(node, name, namespace, fqn, remaining, quiet,
+                      reading.step if reading is not None else None)
+        observed = observe_settled(node, fqn, raw)
+        if reading is not None:
+            follower(node).wait(reading.step, reading.deadline)
+            observed.parameters = reading.result()
+            if observed.parameters is None:
+                observed.notes.append(_NO_PARAMETERS)
+    finally:
+        if reading is not None:
+            reading.close()
+    # Namesakes were watched for while the work above went on; at least ``watch`` seconds of
+    # discovery (the first node of a name seen says nothing about a second one whose
+    # participant is not discovered yet).
+    return recount(node, observed, watch, start + timeout)
+
+
+def recount(node: Any, observed: ObservedNode, watch: float, deadline: float) -> ObservedNode:
+    """Count the nodes named as ``observed`` once the session ``node`` has discovered for
+    ``watch`` seconds (not past ``deadline``), following the graph until then: its
+    :attr:`~ObservedNode.instances`, :attr:`~ObservedNode.watched` and namesake warning
+    are set again.  For work done after :func:`observe_node` (``watch=0``) that namesakes
+    should be watched during.  Raises :class:`LiveError` if the node is gone."""
+    fqn = observed.fully_qualified_name
+    graph = follower(node)
+    graph.watch_until(watch, deadline)
+    counts = graph.counts
     if fqn not in counts:
         raise LiveError(f"node '{fqn}' disappeared while it was being observed")
+    old = namesake_warning(fqn, observed.instances)
+    observed.warnings = [w for w in observed.warnings if w != old]
     observed.instances = counts[fqn]
-    if observed.instances > 1:
-        observed.warnings.append(f'{observed.instances} nodes in the graph are named {fqn}: what '
-                                 'was observed is all of them together (give each node a unique '
-                                 'name)')
+    observed.watched = graph.watched
+    warning = namesake_warning(fqn, observed.instances)
+    if warning:
+        observed.warnings.append(warning)
     return observed
+
+
+def namesake_warning(fqn: str, instances: int) -> str | None:
+    """The warning for a name ``instances`` nodes share (None for one node)."""
+    if instances < 2:
+        return None
+    return (f'{instances} nodes in the graph are named {fqn}: what was observed is all of them '
+            'together (give each node a unique name)')
+
+
+def watched_line(watched: float | None, watch: float | None = None) -> str:
+    """One line saying how long namesakes were watched for (``watched``: seconds of
+    discovery) and what a longer watch would add."""
+    if watched is None:
+        return 'namesakes: not counted'
+    text = f'namesakes watched for {watched:.1f} s of discovery'
+    if watched < DISCOVERY_WINDOW:
+        text += (' (a node of the same name whose participant is discovered later is not '
+                 f'counted: --watch {DISCOVERY_WINDOW:g} waits for the 3 s periodic announcements)')
+    return text
 
 
 _NO_PARAMETERS = ('parameters could not be read (the node serves no parameter services, or they '
@@ -351,32 +420,26 @@ def settle_nodes(node: Any, expected: dict[str, int], timeout: float, quiet: flo
     has none) and how many nodes of each name the graph held at the end (the toolkit's
     own left out).  Waiting for them together costs one ``quiet`` period, not one each.
     """
-    start = time.monotonic()
-    deadline = start + timeout
-    last: Any = None
-    stable_since = start
-    while True:
-        counts = count_nodes(node)
-        raw: dict[str, RawEndpoints] = {}
+    graph = follower(node)
+    graph.follow(expected)
+
+    def seen() -> dict[str, RawEndpoints]:
+        raw = {}
         for fqn in expected:
-            if counts.get(fqn, 0) < 1:
-                continue
-            namespace, name = split_node_name(fqn)
-            try:
-                raw[fqn] = _endpoints(node, name, namespace)
-            except Exception:  # it vanished between two calls: seen again on the next round
-                continue
-        signature = (tuple(sorted(counts.items())),
-                     tuple((fqn, _signature(r)) for fqn, r in sorted(raw.items())))
-        now = time.monotonic()
-        if signature != last:
-            last, stable_since = signature, now
-        complete = all(counts.get(fqn, 0) >= n for fqn, n in expected.items()) and all(
-            any(r.values()) for r in raw.values())
-        needed = max(quiet, LOPSIDED_QUIET) if any(_lopsided(r) for r in raw.values()) else quiet
-        if (complete and now - stable_since >= needed) or now >= deadline:
-            return raw, counts
-        node.nodl_executor.spin_once(timeout_sec=0.01)
+            found = _followed(graph, fqn)
+            if found is not None and graph.counts.get(fqn, 0) >= 1:
+                raw[fqn] = found
+        return raw
+
+    def complete() -> bool:
+        return all(graph.counts.get(fqn, 0) >= n for fqn, n in expected.items()) and all(
+            any(r.values()) for r in seen().values())
+
+    def needed() -> float:
+        return max(quiet, LOPSIDED_QUIET) if any(_lopsided(r) for r in seen().values()) else quiet
+
+    graph.settle(needed, time.monotonic() + timeout, on=['nodes', *expected], ready=complete)
+    return seen(), dict(graph.counts)
 
 
 def observe_settled(node: Any, fqn: str, raw: RawEndpoints) -> ObservedNode:
@@ -414,7 +477,7 @@ def _call_many(node: Any, calls: list[tuple[Any, str, Any]], deadline: float) ->
                     futures[i] = client.call_async(calls[i][2])
             if all(f is not None and f.done() for f in futures):
                 break
-            node.nodl_executor.spin_once(timeout_sec=0.01)
+            spin_once(node, 0.01)  # the graph followed meanwhile (namesakes)
         return [f.result() if f is not None and f.done() else None for f in futures]
     finally:
         for client in clients:
@@ -458,7 +521,3 @@ def read_lifecycle_states(node: Any, fqns: list[str], timeout: float) -> dict[st
     return {fqn: (str(a.current_state.label) or None) if a is not None else None
             for fqn, a in zip(fqns, answers)}
 
-
-def _spin_until(node: Any, deadline: float) -> None:
-    while time.monotonic() < deadline:
-        node.nodl_executor.spin_once(timeout_sec=min(0.05, max(0.0, deadline - time.monotonic())))

@@ -11,6 +11,7 @@ import json
 from typing import Any
 
 from nodl_schema.live.check import CheckResult
+from nodl_schema.live.observe import watched_line
 from nodl_schema.text_safety import xml_report_attribute as quoteattr, xml_report_text as escape
 from nodl_schema.vocabulary import SECTION_KEYS
 
@@ -22,6 +23,8 @@ def format_check_text(result: CheckResult, verbose: bool = False) -> str:
     lines = []
     if result.client_library is not None:
         lines.append(f'{result.fqn}: client library: {result.client_library}')
+    if result.watched is not None:
+        lines.append(f'{result.fqn}: {watched_line(result.watched)}')
     folded = result.base_differences if not verbose else []
     if result.base_hint:
         more = (f' ({len(folded)} differences of the base, listed with -v)' if folded else '')
@@ -57,7 +60,7 @@ def _difference_dict(result: CheckResult, difference: Any) -> dict[str, Any]:
 
 
 def format_check_json(result: CheckResult) -> str:
-    """``{"node", "definition", "conforms", "ignored", "differences": [...]}``.
+    """``{"node", "definition", "conforms", "ignored", "namesakes_watched", "differences": [...]}``.
 
     Each difference has its kind, code, severity (after the overrides),
     section, name, declared and observed values, layer, message, and where
@@ -70,6 +73,8 @@ def format_check_json(result: CheckResult) -> str:
                             'client_library': (result.client_library._asdict()
                                                if result.client_library is not None else None),
                             'ignored': len(result.ignored),
+                            'namesakes_watched': (round(result.watched, 2)
+                                                  if result.watched is not None else None),
                             'differences': [_difference_dict(result, d)
                                             for d in result.differences]}
     return json.dumps(data, indent=2, default=str) + '\n'

@@ -71,7 +71,8 @@ def live_policy(*, timeout: float = 5.0, settle: float = 3.5, distro: str = DEFA
                 unobserved.append(f'{fqn}: a hidden node, left out')
                 continue
             try:
-                observed = observe_node(fqn, timeout=timeout, parameters=True, session=node)
+                observed = observe_node(fqn, timeout=timeout, parameters=True, session=node,
+                                        watch=settle)
             except LiveError as exc:
                 unobserved.append(f'{fqn}: {exc}')
                 continue

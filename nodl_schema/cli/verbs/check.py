@@ -35,6 +35,11 @@ class CheckVerb(Verb):
                             help='a remapping the node was launched with (repeatable)')
         parser.add_argument('--timeout', type=seconds, default=5.0, metavar='S',
                             help='seconds to wait for the node (default: 5)')
+        parser.add_argument('--watch', type=seconds, default=3.5, metavar='S',
+                            help='watch for other nodes of the same name (which the check refuses) '
+                                 'until discovery has run S seconds, the node being read and '
+                                 'compared meanwhile (default: 3.5, past the 3 s periodic '
+                                 'announcements; within --timeout)')
         parser.add_argument('--no-parameters', action='store_true',
                             help='do not check parameters')
         from nodl_schema.cli.arguments import add_client_library_argument
@@ -91,7 +96,7 @@ class CheckVerb(Verb):
         try:
             result = check_node(args.node, definition, timeout=args.timeout, remaps=args.remap,
                                 parameters=not args.no_parameters,
-                                client_library=args.client_library)
+                                client_library=args.client_library, watch=args.watch)
         except ValidationError as exc:
             sys.stderr.write(format_text(exc.diagnostics))
             return EXIT_USAGE

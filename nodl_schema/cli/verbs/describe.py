@@ -35,6 +35,10 @@ class DescribeVerb(Verb):
         add_definitions_argument(parser)
         parser.add_argument('--timeout', type=seconds, default=5.0, metavar='S',
                             help='seconds to wait for the node to appear and settle (default: 5)')
+        parser.add_argument('--watch', type=seconds, default=None, metavar='S',
+                            help='keep watching for other nodes of the same name until discovery '
+                                 'has run S seconds (default: while the node is read, at least '
+                                 '0.6; 3.5 waits for the 3 s periodic announcements)')
         parser.add_argument('--no-parameters', action='store_true',
                             help="do not read the node's parameters")
         parser.add_argument('--format', choices=('yaml', 'json'), default='yaml',
@@ -54,7 +58,6 @@ class DescribeVerb(Verb):
         import os
 
         from nodl_schema.cli.output import OutputError
-        from nodl_schema.live.describe import describe_node, render_description
         from nodl_schema.live.session import LiveError
 
         if args.launch and not args.all:
@@ -87,9 +90,13 @@ class DescribeVerb(Verb):
                 from nodl_schema.live.describe_all import describe_all
 
                 try:
+                    from nodl_schema.live.observe import DISCOVERY_WINDOW
+
                     written = describe_all(args.output, timeout=args.timeout,
                                            parameters=not args.no_parameters, format=args.format,
-                                           client_library=args.client_library, force=args.force)
+                                           client_library=args.client_library, force=args.force,
+                                           settle=DISCOVERY_WINDOW if args.watch is None
+                                           else args.watch)
                 except OSError as exc:
                     from nodl_schema.files import describe_os_error
 
@@ -105,16 +112,29 @@ class DescribeVerb(Verb):
                     for note in notes:
                         print(f'  note: {note}', file=sys.stderr)
                 return EXIT_OK
-            description = describe_node(args.node, timeout=args.timeout,
-                                        parameters=not args.no_parameters,
-                                        client_library=args.client_library)
+            from nodl_schema.live.observe import NAMESAKE_WATCH
+            from nodl_schema.live.session import ros_session
+
+            with ros_session() as session:  # discovery runs while the rest is imported
+                from nodl_schema.live.describe import describe_node
+
+                description = describe_node(args.node, timeout=args.timeout,
+                                            parameters=not args.no_parameters,
+                                            client_library=args.client_library, session=session,
+                                            watch=NAMESAKE_WATCH if args.watch is None
+                                            else args.watch)
         except LiveError as exc:
             print(f'nodl describe: error: {exc}', file=sys.stderr)
             return EXIT_USAGE
+        from nodl_schema.live.describe import render_description
+
         text = render_description(description, args.format)
         if args.format == 'json':  # YAML says it in its header; JSON has no comments
+            from nodl_schema.live.observe import watched_line
+
             print(f'nodl describe: note: client library {description.client_library}',
                   file=sys.stderr)
+            print(f'nodl describe: note: {watched_line(description.watched)}', file=sys.stderr)
         for note in description.warnings + description.notes:
             print(f'nodl describe: warning: {note}', file=sys.stderr)
         for skew in description.skew_warnings:  # also a comment next to the entity
