@@ -272,12 +272,12 @@ class _Module:
                     imports[alias.asname or alias.name] = f'{base}.{alias.name}' if base else alias.name
             elif not isinstance(stmt, _HOLDERS) or not self.may_hold(_IMPORT_WORD, stmt):
                 continue
-            elif kind is ast.FunctionDef or kind is ast.AsyncFunctionDef:
+            elif isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 if top:
-                    self._collect_imports(stmt.body, False)  # type: ignore[attr-defined]
-            elif kind is ast.ClassDef:
+                    self._collect_imports(stmt.body, False)
+            elif isinstance(stmt, ast.ClassDef):
                 if top:
-                    for method in stmt.body:  # type: ignore[attr-defined]
+                    for method in stmt.body:
                         if isinstance(method, (ast.FunctionDef, ast.AsyncFunctionDef)) and \
                                 self.may_hold(_IMPORT_WORD, method):
                             self._collect_imports(method.body, False)
