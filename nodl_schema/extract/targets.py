@@ -234,6 +234,7 @@ LANGUAGES: dict[str, Callable[[list[str], Package], Extraction]] = {}
 
 def _extract_python(files: list[str], package: Package) -> Extraction:
     from nodl_schema.extract.python import extract_file
+    from nodl_schema.extract.writer import check_entities
 
     out = Extraction()
     runs: dict[str, set[str]] = {}  # file -> the functions its entry points run ('': a script)
@@ -247,12 +248,14 @@ def _extract_python(files: list[str], package: Package) -> Extraction:
             os.path.relpath(folder, package.root)
         module_package = '.'.join(p for p in rel.split(os.sep) if p not in ('', '.')) or None
         found = extract_file(path, package=module_package, genparam=package.genparam,
-                             starts=runs.get(package.real(path), ()))
+                             starts=runs.get(package.real(path), ()), check=False)
         out.nodes += found.nodes  # what Extraction.extend does, the files made unique once
         out.diagnostics += found.diagnostics
         read += found.files
         out.starts.update(found.starts)
     out.files = list(dict.fromkeys(read))
+    for node in out.nodes:  # the validator's checks together, once every file is read
+        check_entities(node)
     return out
 
 
