@@ -332,7 +332,7 @@ class _Module:
         lines = self.lines
         if lines is None:
             return None
-        key = receivers if isinstance(receivers, tuple) else tuple(sorted(receivers))
+        key = receivers if receivers.__class__ is tuple else tuple(sorted(receivers))
         found = self._reached.get(key)
         if found is None:
             merged = set(lines.lines(_ENTITY_CALL_WORDS))

@@ -183,7 +183,9 @@ def read_python_build(root: str) -> Package | None:
         for stmt in tree.body:
             if isinstance(stmt, ast.Assign) and len(stmt.targets) == 1 and isinstance(stmt.targets[0], ast.Name):
                 constants[stmt.targets[0].id] = _literal(stmt.value, constants)
-        for call in ast.walk(tree):
+        from nodl_schema.extract.python import _walk
+
+        for call in _walk(tree):  # ast.walk's order, gathered faster
             if not isinstance(call, ast.Call):
                 continue
             callee = call.func.attr if isinstance(call.func, ast.Attribute) else \
