@@ -186,6 +186,9 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL438': ('error', 'monitor: a parameter the definition declares read_only was changed at run time'),
     'NODL439': ('warning', 'monitor: shedding: the monitor cannot keep up within its CPU budget (graph scans spaced out)'),
     'NODL440': ('warning', 'monitor: a launched node cannot be monitored (its final name cannot be computed)'),
+    'NODL441': ('warning', "monitor: shedding: a parameter event storm (more than 50 events a second from one node): every event is checked, the node's status refreshed and published at most every 20 ms"),
+    'NODL442': ('warning', "monitor: parameter events never reached the monitor (a gap in the publisher's sequence numbers): the node's parameters are read again"),
+    'NODL443': ('warning', 'monitor: the graph does not settle (it changed at least 10 times in 10 s): endpoint findings follow the last scan; the nodes whose endpoints keep changing are named'),
     # -- NODL5xx: system analysis (launch files: 501-539) -------------------
     'NODL501': ('error', 'launch file: an unknown tag (action) or a misplaced one'),
     'NODL502': ('error', 'launch file: an unknown attribute'),

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import time
+
 from nodl_schema.monitor.graph import Snapshot, TopicEndpoint, observed_node
 
 
@@ -21,3 +23,82 @@ def test_observed_node_from_a_snapshot() -> None:
     assert [(e.name, e.type) for e in observed.action_servers] == [('/f', 'test_msgs/action/Fibonacci')]
     assert observed.service_servers == []
     assert observed_node('/absent', snapshot) is None
+
+
+class _Graph:
+    """What rcl reports, for GraphView.scan: one publisher on '/t', whose node rcl names
+    once its node's announcement has arrived (before that: rmw's unknown node)."""
+
+    def __init__(self) -> None:
+        self.node_name, self.node_namespace = '_NODE_NAME_UNKNOWN_', '_NODE_NAMESPACE_UNKNOWN_'
+
+    def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
+        return [('n', '/')]
+
+    def get_topic_names_and_types(self) -> list[tuple[str, list[str]]]:
+        return [('/t', ['std_msgs/msg/String'])]
+
+    def get_publisher_names_and_types_by_node(self, name: str, namespace: str) -> list[object]:
+        return [('/t', ['std_msgs/msg/String'])]
+
+    get_subscriber_names_and_types_by_node = get_service_names_and_types_by_node = \
+        get_client_names_and_types_by_node = lambda self, name, namespace: []  # noqa: E731
+
+    def publishers(self, topic: str) -> list[dict[str, object]]:
+        from rclpy.duration import Duration
+
+        forever = Duration(nanoseconds=2**63 - 1)
+        return [{'node_name': self.node_name, 'node_namespace': self.node_namespace,
+                 'topic_type': 'std_msgs/msg/String', 'topic_type_hash': {'version': 0, 'value': b''},
+                 'endpoint_type': 1, 'endpoint_gid': list(range(16)),
+                 'qos_profile': {'depth': 0, 'history': 3, 'reliability': 1, 'durability': 2,
+                                 'lifespan': forever, 'deadline': forever, 'liveliness': 1,
+                                 'liveliness_lease_duration': forever,
+                                 'avoid_ros_namespace_conventions': False}}]
+
+
+def test_an_endpoint_is_converted_again_once_its_node_is_known() -> None:
+    from nodl_schema.monitor.graph import GraphView
+
+    graph = _Graph()
+    view = GraphView(graph)
+    view._info_functions = lambda: (graph.publishers, lambda topic: [])  # type: ignore[method-assign]
+    first = view.scan(['/n'])
+    assert [e.node for e in first.topics['/t']] == ['/_NODE_NAMESPACE_UNKNOWN_/_NODE_NAME_UNKNOWN_']
+    assert first.of_node('/n') == ()
+    graph.node_name, graph.node_namespace = 'n', '/'  # same endpoint (GID), its node now known
+    second = view.scan(['/n'])
+    assert [(e.node, e.qos_dict['reliability']) for e in second.of_node('/n')] == [('/n', 'RELIABLE')]
+    observed = observed_node('/n', second)
+    assert observed is not None and observed.publishers[0].unobserved == ['history', 'depth']
+
+
+def test_the_raw_infos_and_rclpy_s_own_methods_give_one_snapshot(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    import rclpy
+    import std_msgs.msg
+    from rclpy.qos import QoSProfile, ReliabilityPolicy
+
+    from nodl_schema.monitor.graph import GraphView
+
+    context = rclpy.Context()
+    rclpy.init(context=context)
+    try:
+        talker = rclpy.create_node('graph_talker', namespace='/g', context=context)
+        talker.create_publisher(std_msgs.msg.String, 'out', QoSProfile(
+            depth=5, reliability=ReliabilityPolicy.BEST_EFFORT))
+        me = rclpy.create_node('_graph_me', context=context)
+        end = time.monotonic() + 10
+        while time.monotonic() < end and not me.get_publishers_info_by_topic('/g/out'):
+            time.sleep(0.05)
+        raw = GraphView(me, ['/_graph_me']).scan(['/g/graph_talker'])
+        # an rclpy whose extension lacks the raw calls (rclpy's own module keeps its own)
+        from rclpy.impl import implementation_singleton
+        with monkeypatch.context() as patch:
+            patch.setattr(implementation_singleton, 'rclpy_implementation', object())
+            wrapped = GraphView(me, ['/_graph_me']).scan(['/g/graph_talker'])
+        assert raw.topics == wrapped.topics
+        assert [(e.node, e.kind, e.qos_dict['reliability']) for e in raw.topics['/g/out']] == [
+            ('/g/graph_talker', 'publisher', 'BEST_EFFORT')]
+        assert '/_graph_me' not in {e.node for infos in raw.topics.values() for e in infos}
+    finally:
+        rclpy.shutdown(context=context)

@@ -40,10 +40,26 @@ __all__ = ['MonitorSettings', 'Monitor', 'DEFAULT_IGNORED', 'POLL_PERIOD']
 #: Nodes never reported as unexpected (besides hidden ones): launch_ros's own node and
 #: tf2's transform listener nodes.
 DEFAULT_IGNORED = ('launch_ros_*', 'transform_listener_impl_*')
-#: How often the graph's signature is polled (10 Hz).
+#: How often the graph's signature is polled (10 Hz): node names each time, topic names
+#: every TOPIC_POLLS-th time.
 POLL_PERIOD = 0.1
-#: How often timers (grace, liveness, rates) are evaluated.
-TICK = 0.25
+TOPIC_POLLS = 3
+#: How often timers (grace, liveness, rates) are evaluated (at a poll's wake-up; a scan
+#: that saw a change, and a parameter event, refresh the statuses at once).
+TICK = 0.5
+#: The largest history a rate subscription keeps between two drains.
+_MAX_RATE_DEPTH = 10000
+#: A node's status is refreshed for its parameter events at most this often: the first
+#: event after a quiet spell is checked and published at once, a storm's are coalesced.
+EVENT_GAP = 0.02
+#: Parameter events a second from one node beyond which they are a storm (NODL441).
+STORM_RATE = 50
+#: Seconds a storm is still reported after its last second above STORM_RATE.
+STORM_HOLD = 2.0
+#: The graph does not settle (NODL443) when it changed at least CHURN_CHANGES times in the
+#: last CHURN_WINDOW seconds.
+CHURN_WINDOW = 10.0
+CHURN_CHANGES = 10
 _PARAMETER_TYPES = {0: 'none', 1: 'bool', 2: 'int', 3: 'double', 4: 'string', 5: 'byte_array',
                     6: 'bool_array', 7: 'int_array', 8: 'double_array', 9: 'string_array'}
 
@@ -99,11 +115,27 @@ class _NodeState:
     event_findings: dict[str, list[Finding]] = field(default_factory=dict)
     endpoint_findings: list[Finding] = field(default_factory=list)
     clients: dict[str, Any] = field(default_factory=dict)
-    ping: Any = None
+    #: The parameter read's clients are no longer needed (destroyed at the next tick).
+    release_clients: bool = False
+    #: The liveness client (``~/get_parameters``, on the probe node: polled, not waited on).
+    liveness: Any = None
+    #: The sequence number of the liveness request awaiting its answer.
+    ping: int | None = None
     ping_sent: float = 0.0
     not_answering_since: float | None = None
     last_answer: float | None = None
     read_started: float = 0.0
+    #: When its parameter events arrived in the last second (storm detection).
+    event_times: deque[float] = field(default_factory=deque)
+    #: The most events it sent in one second during the current storm, and when the storm
+    #: was last above STORM_RATE.
+    storm_peak: int = 0
+    storm_at: float | None = None
+    #: Parameter events of it that never reached the monitor (sequence gaps).
+    events_lost: int = 0
+    lost_at: float | None = None
+    #: When scans found its endpoints changed (the last CHURN_WINDOW seconds).
+    churn: deque[float] = field(default_factory=deque)
     #: The endpoint findings' inputs when last computed (the raw endpoints, the parameters'
     #: version): they are computed again only when these change.
     compared: Any = None
@@ -141,14 +173,28 @@ class Monitor:
         self._published: dict[str, tuple[Any, ...]] = {}
         self._levels: dict[str, int] = {}
         self._signature: Any = None
+        self._topics_signature: Any = None
+        self._polls = 0
+        #: When polls found the graph changed (the last CHURN_WINDOW seconds).
+        self._changes: deque[float] = deque()
         self._next_scan = 0.0
         self._min_scan_gap = 0.0
         self._scan_wanted = False
         self._stable_since = 0.0
         self._shedding: list[str] = []
         self._events = 0
+        #: Nodes whose status awaits a coalesced refresh for their parameter events.
+        self._pending_events: set[str] = set()
+        self._event_refreshed: dict[str, float] = {}
+        #: The last sequence number of each /parameter_events publisher (by GID).
+        self._event_sequences: dict[bytes, int] = {}
         self._unverifiable_rates: list[Finding] = []
+        self._rate_subscriptions: list[tuple[Any, deque[float]]] = []
         self.publisher: Any = None
+        #: A second node, never waited on: the rate subscriptions and liveness clients,
+        #: drained and polled at each tick (an executor rebuilds its wait set of every
+        #: entity at every wake-up: with them there, 50 nodes cost a core's tenth).
+        self.probe: Any = None
 
     # -- life cycle ------------------------------------------------------------------------
 
@@ -176,9 +222,12 @@ class Monitor:
         self.node = rclpy.create_node(MONITOR_NODE_NAME, context=self.context,
                                       start_parameter_services=True, enable_rosout=False)
         self._declare_parameters()
+        self.probe = rclpy.create_node(MONITOR_NODE_NAME + '_probe', context=self.context,
+                                       start_parameter_services=False, enable_rosout=False)
         self.executor = SingleThreadedExecutor(context=self.context)
         self.executor.add_node(self.node)
-        self.view = GraphView(self.node, [self.node.get_fully_qualified_name()])
+        self.view = GraphView(self.node, [self.node.get_fully_qualified_name(),
+                                          self.probe.get_fully_qualified_name()])
         self.publisher = self.node.create_publisher(DiagnosticArray, '/diagnostics',
                                                     QoSProfile(depth=10))
         self.node.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
@@ -190,6 +239,9 @@ class Monitor:
         """Destroy the node and shut its context down (safe to call twice)."""
         import rclpy
 
+        if self.probe is not None:
+            self.probe.destroy_node()
+            self.probe = None
         if self.node is not None:
             self.node.destroy_node()
             self.node = None
@@ -236,8 +288,6 @@ class Monitor:
         for state in self.states.values():
             for deadline in state.expected.deadlines:
                 topics.setdefault(deadline.topic, deadline)
-        qos = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT,
-                         durability=DurabilityPolicy.VOLATILE)
         for topic, deadline in sorted(topics.items()):
             package, _, name = deadline.type.partition('/msg/')
             try:
@@ -250,8 +300,25 @@ class Monitor:
             arrivals: deque[float] = deque(maxlen=100000)
             self.arrivals[topic] = arrivals
             self.subscribed_at[topic] = time.monotonic()
-            self.node.create_subscription(kind, topic, lambda _m, a=arrivals: a.append(time.monotonic()),
-                                          qos, raw=True)
+            # drained every TICK: room for four times the declared rate between two drains
+            depth = min(_MAX_RATE_DEPTH, max(16, int(4 * TICK * deadline.expected_rate) + 1))
+            qos = QoSProfile(depth=depth, reliability=ReliabilityPolicy.BEST_EFFORT,
+                             durability=DurabilityPolicy.VOLATILE)
+            subscription = self.probe.create_subscription(kind, topic, lambda _m: None, qos,
+                                                          raw=True)
+            self._rate_subscriptions.append((subscription, arrivals))
+
+    def _drain_rates(self) -> None:
+        """Take every message the rate subscriptions hold, recording when each arrived."""
+        for subscription, arrivals in self._rate_subscriptions:
+            offset = time.monotonic() - time.time()
+            with subscription.handle:
+                while True:
+                    taken = subscription.handle.take_message(subscription.msg_type, True)
+                    if taken is None:
+                        break
+                    received = taken[1].get('received_timestamp') if len(taken) > 1 else None
+                    arrivals.append(received / 1e9 + offset if received else time.monotonic())
 
     # -- the loop --------------------------------------------------------------------------
 
@@ -267,13 +334,15 @@ class Monitor:
             now = time.monotonic()
             if now >= deadline:
                 break
-            self.executor.spin_once(timeout_sec=max(0.0, min(next_poll, next_tick, next_publish,
-                                                             deadline) - now))
+            # ticks ride on polls' wake-ups: every wake-up rebuilds the executor's wait set
+            self.executor.spin_once(timeout_sec=max(0.0, min(next_poll, next_publish, deadline,
+                                                             self._next_flush()) - now))
             now = time.monotonic()
+            self._flush_events(now)
             if now >= next_poll:
                 next_poll = now + POLL_PERIOD
                 self._poll(now)
-            if now >= next_tick:
+            if now >= next_tick - POLL_PERIOD / 2:  # on the poll's wake-up
                 next_tick = now + TICK
                 self._tick(now)
                 self._refresh(now)
@@ -293,14 +362,22 @@ class Monitor:
 
     def _poll(self, now: float) -> None:
         assert self.view is not None
-        signature = self.view.signature()
-        if signature != self._signature:
-            self._signature = signature
+        self._polls += 1
+        topics = self._polls % TOPIC_POLLS == 1 or self._signature is None
+        nodes, listed = self.view.signature(topics)
+        changed = nodes != self._signature
+        self._signature = nodes
+        if topics:
+            changed = changed or listed != self._topics_signature
+            self._topics_signature = listed
+        if changed:
             self._stable_since = now
             self._scan_wanted = True
+            self._changes.append(now)
         if now >= self._next_scan and (self._scan_wanted or self.snapshot is None
                                        or now - self.snapshot.time >= self.settings.scan_period):
             self._scan(now)
+            self._refresh(now)  # a change is published within a poll, not a tick
         elif self._scan_wanted and self._min_scan_gap > 1.0:
             self._shed('graph scans spaced out to every %.1f s to stay within the CPU budget'
                        % self._min_scan_gap)
@@ -322,13 +399,19 @@ class Monitor:
             self._shedding = [w for w in self._shedding if not w.startswith('graph')]
         for fqn, state in self.states.items():
             self._update_presence(state, snapshot.counts.get(fqn, 0), now)
-            observed = observed_node(fqn, snapshot)
-            if observed is not None:
-                old = previous.endpoints.get(fqn) if previous else None
-                if old != snapshot.endpoints.get(fqn) or state.observed is None:
-                    self._stable_since = now
-                    state.observed = observed
-                elif state.observed is not None and _qos_of(state.observed) != _qos_of(observed):
+            raw = snapshot.endpoints.get(fqn)
+            if raw is None:
+                continue
+            old = previous.endpoints.get(fqn) if previous else None
+            if old != raw or state.observed is None:
+                self._stable_since = now
+                if old is not None:
+                    state.churn.append(now)
+                state.observed = observed_node(fqn, snapshot)
+            elif previous is None or previous.of_node(fqn) != snapshot.of_node(fqn):
+                # an endpoint recreated (another GID): compared again if its QoS changed
+                observed = observed_node(fqn, snapshot)
+                if observed is not None and _qos_of(state.observed) != _qos_of(observed):
                     state.observed = observed
         self.connections = connection_findings(snapshot.topics)
 
@@ -363,10 +446,12 @@ class Monitor:
         state.not_answering_since = None
 
     def _drop_clients(self, state: _NodeState) -> None:
-        for client in state.clients.values():
-            self.node.destroy_client(client)
-        state.clients.clear()
+        self._release_clients(state)
+        if state.liveness is not None:
+            self.probe.destroy_client(state.liveness)
+            state.liveness = None
         state.ping = None
+        state.last_answer = None
         state.params_state = 'unread'
         state.parameters = None
 
@@ -378,6 +463,13 @@ class Monitor:
         return observed is not None and any(e.name == f'{fqn}/get_parameters'
                                             for e in observed.service_servers)
 
+    def _release_clients(self, state: _NodeState) -> None:
+        """Destroy the parameter read's clients (the executor waits on each of them)."""
+        for client in state.clients.values():
+            self.node.destroy_client(client)
+        state.clients.clear()
+        state.release_clients = False
+
     def _client(self, state: _NodeState, kind: Any, service: str) -> Any:
         client = state.clients.get(service)
         if client is None:
@@ -386,9 +478,14 @@ class Monitor:
         return client
 
     def _tick(self, now: float) -> None:
-        from rcl_interfaces.srv import GetParameters
-
         for state in self.states.values():
+            if state.storm_at is not None and now - state.storm_at > STORM_HOLD:
+                state.storm_at, state.storm_peak = None, 0
+            if state.lost_at is not None and state.params_state == 'read' \
+                    and now - state.lost_at > STORM_HOLD:
+                state.lost_at = None
+            if state.release_clients:
+                self._release_clients(state)
             if not state.count or state.expected.resolved is None:
                 continue
             if state.observed is None:
@@ -403,20 +500,33 @@ class Monitor:
                 self._read_parameters(state, now)
             elif state.params_state == 'reading' and now - state.read_started > 5.0:
                 state.params_state = 'unread'  # no answer: ask again
-            getter = self._client(state, GetParameters, 'get_parameters')
-            if state.ping is not None:
-                if state.ping.done():
+            self._liveness(state, now)
+
+    def _liveness(self, state: _NodeState, now: float) -> None:
+        """Poll the node's answer to the last ``~/get_parameters`` call; call again every
+        ``liveness_period`` seconds.  The client is on the probe node: nothing waits on it."""
+        from rcl_interfaces.srv import GetParameters
+
+        if state.liveness is None:
+            state.liveness = self.probe.create_client(GetParameters,
+                                                      f'{state.expected.fqn}/get_parameters')
+        client = state.liveness
+        with client.handle:
+            while state.ping is not None:
+                header, _response = client.handle.take_response(GetParameters.Response)
+                if header is None:
+                    break
+                if header.request_id.sequence_number == state.ping:
                     state.ping = None
                     state.last_answer = now
                     state.not_answering_since = None
-                elif now - state.ping_sent > self.settings.liveness_timeout:
-                    if state.not_answering_since is None:
-                        state.not_answering_since = state.ping_sent
-                    getter.remove_pending_request(state.ping)
-                    state.ping = None
+            if state.ping is not None and now - state.ping_sent > self.settings.liveness_timeout:
+                if state.not_answering_since is None:
+                    state.not_answering_since = state.ping_sent
+                state.ping = None
             if state.ping is None and now - state.ping_sent >= self.settings.liveness_period \
-                    and getter.service_is_ready():
-                state.ping = getter.call_async(GetParameters.Request(names=[]))
+                    and (state.last_answer is not None or client.service_is_ready()):
+                state.ping = client.handle.send_request(GetParameters.Request(names=[]))
                 state.ping_sent = now
 
     def _read_parameters(self, state: _NodeState, now: float) -> None:
@@ -451,6 +561,7 @@ class Monitor:
                 for name, type_name, value, changed in state.params_buffer:
                     self._apply_parameter(state, name, type_name, value, changed)
                 state.params_buffer.clear()
+                state.release_clients = True
                 self._refresh(time.monotonic())
 
             values.add_done_callback(both)
@@ -458,13 +569,17 @@ class Monitor:
 
         lister.call_async(ListParameters.Request()).add_done_callback(listed)
 
-    def _on_parameter_event(self, event: Any) -> None:
+    def _on_parameter_event(self, event: Any, info: Any) -> None:
+        """Check one parameter event as it arrives (the callback takes the message info:
+        a gap in a publisher's sequence numbers is events lost)."""
         from nodl_schema.live.observe import _value
 
         state = self.states.get(event.node)
         if state is None:
             return
         self._events += 1
+        now = time.monotonic()
+        self._count_event(state, info, now)
         touched = False
         for items, changed in ((event.new_parameters, False), (event.changed_parameters, True)):
             for parameter in items:
@@ -480,7 +595,48 @@ class Monitor:
                 state.params_version += 1
                 touched = True
         if touched:
-            self._refresh(time.monotonic(), only=event.node)
+            self._pending_events.add(event.node)
+            self._flush_events(now)
+
+    def _count_event(self, state: _NodeState, info: Any, now: float) -> None:
+        """Storm detection (events in the last second) and lost events (sequence gaps:
+        the node's parameters are read again)."""
+        times = state.event_times
+        times.append(now)
+        while times and times[0] < now - 1.0:
+            times.popleft()
+        if len(times) > STORM_RATE:
+            first = state.storm_at is None
+            state.storm_peak = max(state.storm_peak, len(times))
+            state.storm_at = now
+            if first:
+                self._refresh(now)  # NODL441 published at once
+        gid = (info or {}).get('publisher_gid') or {}
+        sequence = (info or {}).get('publication_sequence_number')
+        if not isinstance(gid, dict) or not isinstance(sequence, int) or sequence <= 0:
+            return
+        key = bytes(gid.get('data') or b'')
+        last = self._event_sequences.get(key)
+        self._event_sequences[key] = sequence
+        if last is not None and sequence > last + 1:
+            state.events_lost += sequence - last - 1
+            state.lost_at = now
+            if state.params_state == 'read':
+                state.params_state = 'unread'  # read again: the values lost are not known
+
+    def _flush_events(self, now: float) -> None:
+        """Refresh (and publish, if changed) the statuses of the nodes whose parameter
+        events arrived, each at most every EVENT_GAP seconds."""
+        for fqn in sorted(self._pending_events):
+            if now - self._event_refreshed.get(fqn, -1.0) >= EVENT_GAP:
+                self._pending_events.discard(fqn)
+                self._event_refreshed[fqn] = now
+                self._refresh(now, only=fqn)
+
+    def _next_flush(self) -> float:
+        """When the next coalesced refresh is due (infinity when none is pending)."""
+        return min((self._event_refreshed.get(f, 0.0) + EVENT_GAP for f in self._pending_events),
+                   default=float('inf'))
 
     def _apply_parameter(self, state: _NodeState, name: str, type_name: str, value: Any,
                          changed: bool) -> None:
@@ -551,9 +707,12 @@ class Monitor:
             key = (id(state.observed), state.params_state, state.params_version)
             if key != state.compared:
                 observed = state.observed
-                observed.parameters = state.parameters if state.params_state == 'read' else None
+                # read, or being read again (events were lost): the values known so far
+                known = state.params_state == 'read' or (state.params_state == 'reading'
+                                                         and state.parameters is not None)
+                observed.parameters = state.parameters if known else None
                 differences = compare(expected.resolved, observed, expected.names)
-                if state.params_state != 'read':
+                if not known:
                     differences = [d for d in differences if d.section != 'parameters']
                 state.endpoint_findings = endpoint_findings(differences)
                 state.compared = key
@@ -611,6 +770,24 @@ class Monitor:
         for why in self._shedding:
             status.findings.append(Finding('NODL439', 'warning', 'shedding ' + why.split()[0],
                                            f'shedding: {why}'))
+        churn = self._churn(now)
+        if churn is not None:
+            status.findings.append(churn)
+        lost = 0
+        for fqn, state in sorted(self.states.items()):
+            lost += state.events_lost
+            if state.storm_at is not None:
+                status.findings.append(Finding(
+                    'NODL441', 'warning', f'parameter events {fqn}',
+                    f'shedding: a parameter event storm from {fqn} (up to {state.storm_peak} '
+                    f'events a second): every event is checked, its status refreshed and '
+                    f'published at most every {EVENT_GAP * 1000:g} ms'))
+            if state.lost_at is not None:
+                status.findings.append(Finding(
+                    'NODL442', 'warning', f'parameter events lost {fqn}',
+                    f'{state.events_lost} parameter events of {fqn} never reached the monitor '
+                    f'(it fell behind, or the network dropped them): its parameters are read '
+                    f'again'))
         presence = [s.expected.fqn for s in self.states.values() if s.expected.resolved is None]
         if presence:
             status.facts.append(('presence only', ', '.join(presence)))
@@ -618,12 +795,33 @@ class Monitor:
         status.facts.append(('running', str(sum(1 for s in self.states.values() if s.count))))
         status.facts.append(('unexpected', str(len(unexpected))))
         status.facts.append(('parameter events', str(self._events)))
+        if lost:
+            status.facts.append(('parameter events lost', str(lost)))
         return status
+
+    def _churn(self, now: float) -> Finding | None:
+        """NODL443 when the graph changed CHURN_CHANGES times in CHURN_WINDOW seconds,
+        naming the expected nodes whose endpoints kept changing."""
+        for times in [self._changes] + [s.churn for s in self.states.values()]:
+            while times and times[0] < now - CHURN_WINDOW:
+                times.popleft()
+        if len(self._changes) < CHURN_CHANGES:
+            return None
+        busy = sorted(((len(s.churn), fqn) for fqn, s in self.states.items() if s.churn),
+                      key=lambda item: (-item[0], item[1]))
+        named = ', '.join(f'{fqn} ({n} times)' for n, fqn in busy[:5])
+        more = f' and {len(busy) - 5} more' if len(busy) > 5 else ''
+        where = f'; endpoints keep changing on {named}{more}' if busy else ''
+        return Finding('NODL443', 'warning', 'graph',
+                       f'the graph does not settle: it changed {len(self._changes)} times in the '
+                       f'last {CHURN_WINDOW:g} s (nodes, topics or endpoints keep coming and '
+                       f'going){where}; endpoint findings follow the last scan')
 
     def _refresh(self, now: float, *, only: str | None = None, publish_changes: bool = True) -> None:
         """Recompute the statuses (one node's with ``only``); publish at once if one changed."""
         if self.node is None:
             return
+        self._drain_rates()  # the rates counted up to now
         if only is not None:
             state = self.states[only]
             fresh = {status_name(only): self._node_status(state, now)}
