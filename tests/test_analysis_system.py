@@ -38,10 +38,14 @@ def test_json_shape() -> None:
     report = analysis_to_dict(analyse_launch(LAUNCH / 'checks.launch.xml', prefixes=PREFIX))
     assert set(report) == {'nodes', 'findings'}
     for node in report['nodes']:
-        assert set(node) == {'name', 'package', 'executable', 'definition', 'source', 'remaps',
+        assert set(node) == {'name', 'package', 'executable', 'definition', 'definition_source',
+                             'definition_folder', 'definition_provenance', 'source', 'remaps',
                              'remaps_complete', 'parameters', 'parameters_complete', 'run_time',
                              'endpoints'}
         assert node['parameters_complete'] is True and node['remaps_complete'] is True
+        # every definition here comes from the ament index of the fixture prefix (or none)
+        assert node['definition_source'] in ('index', None), node
+        assert node['definition_folder'] is None
         assert set(node['source']) == {'file', 'line'}
     planner = next(n for n in report['nodes'] if n['executable'] == 'planner')
     assert planner['remaps'] == [['odm', 'odom']]

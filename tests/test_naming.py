@@ -355,6 +355,22 @@ _NOT_ROS_NAMES = {
     # SROS 2's own resolution of the names written in a policy profile (its XSL templates)
     ('nodl_schema/policy/names.py', "return namespace if namespace.endswith('/') else namespace + '/'"),
     ('nodl_schema/policy/names.py', "own = _delimited(namespace) + node + '/'"),
+    # type names (pkg/msg/T), file paths in messages, a node's own prefix to test names against,
+    # the diagnostic aggregator's status paths: not ROS graph names being built
+    ('nodl_schema/analysis/checks/definitions.py', "f'as DIR/{node.match.package}/{node.match.key}.nodl.yaml and give --definitions DIR)',"),
+    ('nodl_schema/analysis/checks/names.py', "return expanded.startswith(names.fqn.rstrip('/') + '/') or expanded in _CONTAINER_GLOBALS"),
+    ('nodl_schema/extract/targets.py', 'Severity.INFO, f"component {node.plugin} is not recorded in {node.package}/{NODES_FILE}: a "'),
+    ('nodl_schema/interface_types/resolve.py', "return f'{self.package}/{self.namespace}/{self.name}'"),
+    ('nodl_schema/interface_types/resolve.py', "return sorted(f'{self.name}/{ns}/{name}' for ns, name in self.types"),
+    ('nodl_schema/interface_types/resolve.py', "files += [f'{namespace}/{e.name}' for e in entries if e.is_file()]"),
+    ('nodl_schema/interface_types/resolve.py', "tuple(f'{package_name}/{namespace}/{c}' for c in close), package)"),
+    ('nodl_schema/interface_types/tree.py', "raise UnknownTypeError(f'{package}/{namespace}/{name}')"),
+    ('nodl_schema/interface_types/tree.py', "raise InterfaceFileError(f'does not define {package}/{namespace}/{name}', path)"),
+    ('nodl_schema/interface_types/tree.py', "data = {'pkg_name': package, 'relative_input_file': f'{namespace}/{os.path.basename(path)}',"),
+    ('nodl_schema/interface_types/tree.py', 'file = index.file(f\'{package}/{namespace}/{type_name.split("_", 1)[0]}\') or \'\''),
+    ('nodl_schema/interface_types/tree.py', "prefix = f'{package}/{namespace}/{base}'"),
+    ('nodl_schema/live/type_skew.py', "own = observed.fully_qualified_name + '/'  # the base's services (parameters...) last"),
+    ('nodl_schema/monitor/aggregator.py', "prefix = PREFIX + namespace.rstrip('/') + '/'"),
 }
 
 

@@ -78,9 +78,10 @@ def test_nodl_list_finds_both_packages(installed: Path) -> None:
     assert result.returncode == 0, result.stderr
     share = lambda pkg, f: str(installed / 'share' / pkg / 'nodl' / f)  # noqa: E731
     assert [tuple(line.split()) for line in result.stdout.splitlines()] == [
-        ('py_recipe', 'node', 'listener', share('py_recipe', 'listener.nodl.yaml')),
-        ('py_talker', 'interface', 'chatter', share('py_talker', 'chatter.nodl.yaml')),
-        ('py_talker', 'node', 'talker', share('py_talker', 'talker.nodl.yaml')),
+        # package, kind, name, origin (the ament index here), file
+        ('py_recipe', 'node', 'listener', 'index', share('py_recipe', 'listener.nodl.yaml')),
+        ('py_talker', 'interface', 'chatter', 'index', share('py_talker', 'chatter.nodl.yaml')),
+        ('py_talker', 'node', 'talker', 'index', share('py_talker', 'talker.nodl.yaml')),
     ]
 
 
