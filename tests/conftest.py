@@ -177,13 +177,15 @@ NODES = Path(__file__).parent / 'nodes'
 
 
 #: Runs before a node's script, in the node's process (it ends by exec-ing the script, so
-#: the process is the node's): asks Linux to end it (SIGTERM) when the test process that
+#: the process is the node's): asks Linux to end it (SIGKILL) when the test process that
 #: started it dies, so that a run stopped half-way (a timeout, Ctrl-C, a crashed xdist
-#: worker) leaves no node behind in the domain for the next run to see.  A separate
-#: step, not Popen's preexec_fn, which is unsafe in a process with threads (rclpy's).
+#: worker) leaves no node behind in the domain for the next run to see.  SIGKILL, not
+#: SIGTERM: an orphan has nobody to shut down for, and rclpy's graceful shutdown could
+#: take longer than the next run waits on a loaded machine.  A separate step, not Popen's
+#: preexec_fn, which is unsafe in a process with threads (rclpy's).
 _ENDS_WITH_ITS_PARENT = (
     'import ctypes, os, signal, sys\n'
-    'ctypes.CDLL(None).prctl(1, int(signal.SIGTERM), 0, 0, 0)  # PR_SET_PDEATHSIG\n'
+    'ctypes.CDLL(None).prctl(1, int(signal.SIGKILL), 0, 0, 0)  # PR_SET_PDEATHSIG\n'
     'if os.getppid() != int(sys.argv[1]):  # the parent died before that\n'
     '    os._exit(1)\n'
     'os.execv(sys.argv[2], sys.argv[2:])\n')
