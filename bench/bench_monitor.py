@@ -194,10 +194,12 @@ def parameter_latency(changes: int = 10) -> dict[str, float]:
                 for when, array in arrays[before:]:
                     status = next(s for s in array.status if s.name == 'nodl: /bench_param')
                     codes = next(kv.value for kv in status.values if kv.key == 'codes')
-                    if ('NODL407' in codes) == bad and future.done():
+                    if ('NODL407' in codes) == bad:
                         found = when
                         break
             assert found is not None, 'no status change published'
+            while not future.done() and time.monotonic() < end:
+                executor.spin_once(timeout_sec=0.01)
             event = [e for e in events if e[2].node == '/bench_param'][-1]
             received, wall, message = event
             latencies.append(found - received)

@@ -20,6 +20,7 @@ import bench_extract_python  # noqa: E402
 import bench_generate  # noqa: E402
 import bench_hostile  # noqa: E402
 import bench_load  # noqa: E402
+import bench_monitor  # noqa: E402
 import bench_policy  # noqa: E402
 import bench_validate_types  # noqa: E402
 

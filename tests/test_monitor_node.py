@@ -489,3 +489,24 @@ def test_lost_parameter_events_are_said_and_the_parameters_read_again(
     assert values(system)['parameter events lost'] == str(lost)
     now = [s for s in diagnostics.arrays[-1][1].status if s.name == 'nodl: /lossy'][0]
     assert level(now) == 0
+
+
+def test_a_killed_process_of_three_nodes_makes_each_error(processes: Processes,
+                                                          diagnostics: Diagnostics) -> None:
+    # one process, one DDS participant: its nodes are called in turn, all once one is silent
+    node = processes.node('trio', '--more', '2', '--more-definition',
+                          str(FIXTURES / 'monitor' / 'plain.nodl.yaml'))
+    processes.monitor(str(SENSOR), str(FIXTURES / 'monitor' / 'plain.nodl.yaml'),
+                      str(FIXTURES / 'monitor' / 'plain.nodl.yaml'), '--name', '/trio', '--name',
+                      '/trio_1', '--name', '/trio_2', '--format', 'jsonl', *FAST)
+    for name in ('/trio', '/trio_1', '/trio_2'):
+        diagnostics.wait_status(f'nodl: {name}', lambda s: values(s).get('state') == 'running'
+                                and level(s) == 0, 20)
+    diagnostics.spin(2.0)  # each called in turn a few times
+    killed = time.monotonic()
+    node.send_signal(signal.SIGKILL)
+    node.wait(timeout=5)
+    for name in ('/trio', '/trio_1', '/trio_2'):
+        when, status = diagnostics.wait_status(f'nodl: {name}', lambda s: 'NODL434' in codes(s), 10)
+        assert level(status) == 2
+        assert when - killed < 5.0, f'{name}: {when - killed:.1f} s'

@@ -136,6 +136,8 @@ class _NodeState:
     lost_at: float | None = None
     #: When scans found its endpoints changed (the last CHURN_WINDOW seconds).
     churn: deque[float] = field(default_factory=deque)
+    #: Its DDS participant (the GUID prefix its endpoints' GIDs share), None if unknown.
+    participant: str | None = None
     #: The endpoint findings' inputs when last computed (the raw endpoints, the parameters'
     #: version): they are computed again only when these change.
     compared: Any = None
@@ -402,6 +404,8 @@ class Monitor:
             raw = snapshot.endpoints.get(fqn)
             if raw is None:
                 continue
+            prefixes = {e.gid[:24] for e in snapshot.of_node(fqn) if len(e.gid) == 32}
+            state.participant = prefixes.pop() if len(prefixes) == 1 else None
             old = previous.endpoints.get(fqn) if previous else None
             if old != raw or state.observed is None:
                 self._stable_since = now
@@ -478,6 +482,7 @@ class Monitor:
         return client
 
     def _tick(self, now: float) -> None:
+        due = self._liveness_due(now)
         for state in self.states.values():
             if state.storm_at is not None and now - state.storm_at > STORM_HOLD:
                 state.storm_at, state.storm_peak = None, 0
@@ -500,11 +505,34 @@ class Monitor:
                 self._read_parameters(state, now)
             elif state.params_state == 'reading' and now - state.read_started > 5.0:
                 state.params_state = 'unread'  # no answer: ask again
-            self._liveness(state, now)
+            self._liveness(state, now, state.expected.fqn in due)
 
-    def _liveness(self, state: _NodeState, now: float) -> None:
-        """Poll the node's answer to the last ``~/get_parameters`` call; call again every
-        ``liveness_period`` seconds.  The client is on the probe node: nothing waits on it."""
+    def _liveness_due(self, now: float) -> set[str]:
+        """The nodes to call this period.  The nodes of one process share its DDS
+        participant (their endpoints' GIDs share one GUID prefix), and a process killed
+        takes them all: each period one of them is called, in turn (a component container
+        of 20 nodes costs one call a period, not 20), and all of them as soon as one has
+        stopped answering.  A node whose participant is not known is called every period."""
+        groups: dict[str, list[str]] = {}
+        due: set[str] = set()
+        for fqn, state in self.states.items():
+            if state.participant is None:
+                due.add(fqn)
+            else:
+                groups.setdefault(state.participant, []).append(fqn)
+        turn = int(now / self.settings.liveness_period)
+        for members in groups.values():
+            if len(members) == 1 or any(self.states[f].not_answering_since is not None
+                                        for f in members):
+                due.update(members)
+            else:
+                due.add(sorted(members)[turn % len(members)])
+        return due
+
+    def _liveness(self, state: _NodeState, now: float, due: bool = True) -> None:
+        """Poll the node's answer to the last ``~/get_parameters`` call; call again (when
+        ``due``) every ``liveness_period`` seconds.  The client is on the probe node: nothing
+        waits on it."""
         from rcl_interfaces.srv import GetParameters
 
         if state.liveness is None:
@@ -524,7 +552,7 @@ class Monitor:
                 if state.not_answering_since is None:
                     state.not_answering_since = state.ping_sent
                 state.ping = None
-            if state.ping is None and now - state.ping_sent >= self.settings.liveness_period \
+            if due and state.ping is None and now - state.ping_sent >= self.settings.liveness_period \
                     and (state.last_answer is not None or client.service_is_ready()):
                 state.ping = client.handle.send_request(GetParameters.Request(names=[]))
                 state.ping_sent = now
