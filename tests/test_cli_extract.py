@@ -166,3 +166,24 @@ def test_mixed_ament_cmake_python_package(tmp_path: Path) -> None:
     # a script installed elsewhere than lib/<package> is no executable of the package: noted
     notes = [d for d in json.loads(result.stdout) if d['code'] == 'NODL911']
     assert [n['file'].rsplit('/', 1)[-1] for n in notes] == ['tool.py']
+
+
+def test_a_base_class_of_another_module_end_to_end(tmp_path: Path) -> None:
+    """The drafts of nodes derived from bases of other modules hold the bases' entities, each
+    under a comment that points into the base's file; a base the package does not hold is the one
+    NODL960 warning at the class."""
+    package = 'tests/fixtures/extract/packages/base_pkg'
+    result = _run(package, '-o', str(tmp_path / 'out'), '--format', 'json')
+    assert result.returncode == 0, result.stdout + result.stderr
+    talker = (tmp_path / 'out' / 'base_pkg' / 'talker.nodl.yaml').read_text(encoding='utf-8')
+    assert f'    # {package}/base_pkg/base.py:18:9\n    rate:\n' in talker
+    assert f'    # {package}/base_pkg/base.py:19:23\n    - name: talker_status\n' in talker
+    assert f'    # {package}/base_pkg/talker.py:14:24\n    - name: chatter\n' in talker
+    managed = (tmp_path / 'out' / 'base_pkg' / 'managed.nodl.yaml').read_text(encoding='utf-8')
+    assert 'base: lifecycle_node' in managed
+    unread = [(d['file'].rsplit('/', 1)[-1], d['line']) for d in json.loads(result.stdout) if d['code'] == 'NODL960']
+    assert sorted(unread) == [('orphans.py', 10), ('orphans.py', 16)]
+    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--strict',
+                            *map(str, (tmp_path / 'out').rglob('*.nodl.yaml'))], cwd=REPO, text=True,
+                           capture_output=True, timeout=60)
+    assert check.returncode == 0, check.stdout

@@ -303,3 +303,54 @@ def test_a_class_of_an_unknown_base_is_a_node_only_when_it_acts_as_one() -> None
             '    def on_configure(self, state):\n        return super().on_configure(state)\n')
     found = {n.name: [d.code for d in n.notes] for n in extract_source(text, 'x.py').nodes}
     assert found == {'Talker': ['NODL960'], 'Worker': ['NODL960']}
+
+
+PACKAGES = Path(__file__).parent / 'fixtures' / 'extract' / 'packages'
+
+
+def _sources(root: Path):  # type: ignore[no-untyped-def]
+    from nodl_schema.extract.python import PackageSources
+
+    return PackageSources(str(root), [str(p) for p in sorted(root.rglob('*.py'))])
+
+
+def test_package_sources_name_modules_and_find_bases_through_reexports() -> None:
+    root = PACKAGES / 'base_pkg'
+    sources = _sources(root)
+    assert sources.path('base_pkg') == str(root / 'base_pkg' / '__init__.py')
+    assert sources.path('base_pkg.nodes.deep') == str(root / 'base_pkg' / 'nodes' / 'deep.py')
+    assert sources.path('setup') == str(root / 'setup.py') and sources.path('base_pkg.missing') is None
+    alone = extract_file(str(root / 'base_pkg' / 'relay.py'), package='base_pkg')
+    assert [d.code for d in _node(alone, 'Relay').notes] == ['NODL960']  # without the package: a gap
+    relay = _node(extract_file(str(root / 'base_pkg' / 'relay.py'), package='base_pkg', sources=sources), 'Relay')
+    assert [(e.name, Path(e.location.file).name) for e in relay.entities] == [
+        ('rate', 'base.py'), ('status', 'base.py'), ('~/reset', 'base.py')] and relay.notes == []
+
+
+def test_bases_of_each_other_across_modules_end(tmp_path: Path) -> None:
+    pkg = tmp_path / 'loop_pkg'
+    pkg.mkdir()
+    (pkg / '__init__.py').write_text('')
+    (pkg / 'a.py').write_text('from rclpy.node import Node\nfrom std_msgs.msg import String\n\n'
+                              'from .b import B\n\n\nclass A(B, Node):\n    def __init__(self):\n'
+                              '        self.create_publisher(String, self.topic, 1)\n')
+    (pkg / 'b.py').write_text('from .a import A\n\n\nclass B(A):\n    pass\n')
+    extraction = extract_file(str(pkg / 'a.py'), package='loop_pkg', sources=_sources(tmp_path))
+    assert not extraction.diagnostics  # bases that are each other's (Python refuses them): no endless reading
+    (node,) = extraction.nodes
+    assert node.name == 'A' and [(e.name, [g.code for g in e.gaps]) for e in node.entities] == [
+        (None, ['NODL901'])]
+
+
+def test_live_node_of_a_base_in_another_module(ros_node) -> None:  # type: ignore[no-untyped-def]
+    from nodl_schema.live.describe import describe_node
+
+    root = PACKAGES / 'base_pkg'
+    process = ros_node('package_node.py', 'x_base', '/', '--root', str(root), '--module', 'base_pkg.talker',
+                       '--class', 'Talker')
+    live = describe_node(process.fqn, timeout=15).node
+    node = _node(extract_file(str(root / 'base_pkg' / 'talker.py'), package='base_pkg', sources=_sources(root)),
+                 'Talker')
+    assert all(e.complete for e in node.entities) and len(node.entities) == 4
+    assert live.base is not None and live.base.value == node.base
+    _compare(live.main, node, 'x_base', '/')  # the base's entities live too, under the class's names

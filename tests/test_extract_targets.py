@@ -62,3 +62,85 @@ def test_registrations_record_components_and_node_names() -> None:
                               'cam': {'node_name': 'camera'}}}
     assert [(d.code, d.file, d.line) for d in notes] == [('NODL961', 'c.cpp', 5)]
     assert 'talker:\n  node_name: talker\n  plugin: pkg::Talker\n' in nodes_file_text('pkg', tables['pkg'])
+
+
+BASES = Path(__file__).parent / 'fixtures' / 'extract' / 'packages' / 'base_pkg'
+
+
+def _by_executable(extraction):  # type: ignore[no-untyped-def]
+    return {n.executable: n for n in extraction.nodes if n.executable}
+
+
+def _entities(node):  # type: ignore[no-untyped-def]
+    return [(e.section, e.name, e.type, Path(e.location.file).name, e.location.line, e.complete)
+            for e in node.entities]
+
+
+def test_a_base_in_another_module_of_the_package_gives_its_entities() -> None:
+    nodes = _by_executable(extract_paths([str(BASES)]))
+    base = [('parameters', 'rate', 'double', 'base.py', 18, True),
+            ('service_servers', '~/reset', 'std_srvs/srv/Trigger', 'base.py', 20, True)]
+    talker = nodes['talker']  # from .base import SensorBase
+    assert (talker.name, talker.base, talker.node_name) == ('Talker', 'node', 'talker')
+    assert _entities(talker) == [  # the base's first, where the base creates them; the class's own after
+        base[0], ('publishers', 'talker_status', 'std_msgs/msg/String', 'base.py', 19, True), base[1],
+        ('publishers', 'chatter', 'std_msgs/msg/String', 'talker.py', 14, True)]
+    # the base's publisher is named by the class's constant (TOPIC), as at run time
+    assert talker.sources == [str(BASES / 'base_pkg' / 'talker.py'), str(BASES / 'base_pkg' / 'base.py')]
+    status = ('publishers', 'status', 'std_msgs/msg/String', 'base.py', 19, True)
+    counter = nodes['counter']  # import base_pkg.base as b; class Counter(b.SensorBase)
+    assert _entities(counter) == [base[0], status, base[1],
+                                  ('subscriptions', 'count', 'std_msgs/msg/String', 'counter.py', 12, True)]
+    relay = nodes['relay']  # from base_pkg import SensorBase (re-exported by the package's __init__)
+    assert _entities(relay) == [base[0], status, base[1]]
+    assert relay.node_name is None  # its base's __init__ takes the name as an argument: not guessed
+    deep = nodes['deep']  # from ..base import SensorBase, two folders down
+    assert _entities(deep)[-1] == ('publishers', 'echo', 'std_msgs/msg/String', 'deep.py', 12, True)
+    assert _entities(deep)[:3] == [base[0], status, base[1]]
+    managed = nodes['managed']  # a lifecycle base of another module: its kind, and the name it gives
+    assert (managed.base, managed.node_name) == ('lifecycle_node', 'managed')
+    assert _entities(managed) == [('parameters', 'period', 'double', 'base.py', 32, True),
+                                  ('publishers', 'out', 'std_msgs/msg/String', 'managed.py', 11, True)]
+    for node in (talker, counter, relay, deep, managed):
+        assert not any(d.code == 'NODL960' for d in node.notes), node.name
+
+
+def test_a_base_not_in_the_package_sources_is_one_located_gap() -> None:
+    extraction = extract_paths([str(BASES)])
+    orphan = _by_executable(extraction)['orphans']  # from .missing import GoneBase: no such module
+    (note,) = orphan.notes
+    assert (note.code, Path(note.file).name, note.line, note.column) == ('NODL960', 'orphans.py', 10, 1)
+    assert "base GoneBase (imported from base_pkg.missing), which is not found in the package's sources" \
+        in note.message
+    assert _entities(orphan) == [('publishers', 'own', 'std_msgs/msg/String', 'orphans.py', 13, True)]
+    stranger = next(n for n in extraction.nodes if n.name == 'Stranger')  # a base of another package
+    assert [d.code for d in stranger.notes] == ['NODL960', 'NODL911'] and stranger.entities == []
+    assert 'ExternalBase (imported from other_pkg.nodes)' in stranger.notes[0].message
+
+
+def test_a_base_module_is_read_once_more_at_most(tmp_path: Path) -> None:
+    """A module is kept parsed only while it is needed: a base module read for another module
+    before its own turn is not read again; one whose turn is past is read once more (not once
+    per node class derived from it)."""
+    import shutil
+
+    from nodl_schema.extract import python
+
+    package = tmp_path / 'base_pkg'
+    shutil.copytree(BASES, package)
+    reads: list[str] = []
+    real = python.read_source
+
+    def counting(path: str):  # type: ignore[no-untyped-def]
+        reads.append(Path(path).name)
+        return real(path)
+
+    python.read_source = counting  # type: ignore[assignment]
+    try:
+        extract_paths([str(package)])
+    finally:
+        python.read_source = real  # type: ignore[assignment]
+    from collections import Counter
+
+    assert Counter(reads) == {**{p.name: 1 for p in package.rglob('*.py')},  # setup.py too
+                              '__init__.py': 3, 'base.py': 2}  # two __init__.py: the package's read twice

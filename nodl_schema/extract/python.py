@@ -30,7 +30,7 @@ if TYPE_CHECKING:
 
     from nodl_schema.model.qos import QoSProfile
 
-__all__ = ['MAX_SOURCE_BYTES', 'extract_source', 'extract_file', 'Unknown']
+__all__ = ['MAX_SOURCE_BYTES', 'extract_source', 'extract_file', 'PackageSources', 'Unknown']
 
 #: Larger files are refused (NODL907), as definitions larger than 10 MB are.
 MAX_SOURCE_BYTES = 10 * 1024 * 1024
@@ -266,6 +266,8 @@ class _Module:
         self._members: dict[tuple[int, str], list[tuple[ast.expr, ast.FunctionDef | ast.AsyncFunctionDef]]] = {}
         self._reached: dict[tuple[str, ...], list[int]] = {}
         self._node_words: str | None = None
+        #: Its node classes (see ``PythonExtractor._node_classes``), once asked for by another module.
+        self.kinds: dict[str, str] | None = None
 
     def _collect_imports(self, body: list[ast.stmt], top: bool) -> None:
         """The imports of ``body`` (``top``: the module's, its blocks', its functions' and its
@@ -420,14 +422,70 @@ class _Module:
         return found
 
 
+class PackageSources:
+    """The Python modules of one package by dotted name (``my_pkg.base`` for
+    ``<root>/my_pkg/base.py``), each read and parsed the first time a class of another module
+    needs it (a node class's base), then kept: its own extraction takes that parse
+    (:meth:`take`) instead of reading the file again."""
+
+    def __init__(self, root: str, files: Iterable[str]) -> None:
+        self._paths: dict[str, str] = {}
+        prefix = os.path.join(root, '')
+        for path in files:
+            if not path.endswith('.py'):
+                continue
+            rel = path[len(prefix):] if path.startswith(prefix) and '..' not in path else os.path.relpath(path, root)
+            parts = rel[:-3].split(os.sep)
+            if parts[-1] == '__init__':
+                parts.pop()
+            if parts and all(part.isidentifier() for part in parts):
+                self._paths.setdefault('.'.join(parts), path)
+        self._modules: dict[str, _Module | None] = {}
+        self._parsed: dict[str, tuple[str, ast.Module]] = {}
+
+    def path(self, dotted: str) -> str | None:
+        """The file of module ``dotted`` among the package's sources."""
+        return self._paths.get(dotted)
+
+    def module(self, dotted: str) -> _Module | None:
+        """Module ``dotted`` read and indexed, or None when it is not one of the package's
+        sources (or cannot be read, or says it is generated: its own extraction says why)."""
+        if dotted in self._modules:
+            return self._modules[dotted]
+        found: _Module | None = None
+        path = self._paths.get(dotted)
+        if path is not None:
+            text, _problem = read_source(path)
+            tree: ast.Module | None = None
+            if text is not None and not _generated(text):
+                try:
+                    tree = ast.parse(text, filename=path)
+                except (SyntaxError, ValueError, RecursionError, MemoryError):
+                    tree = None
+            if text is not None and tree is not None:
+                package = dotted if os.path.basename(path) == '__init__.py' else dotted.rpartition('.')[0]
+                found = _Module(path, tree, package or None, text)
+                self._parsed[path] = (text, tree)
+        self._modules[dotted] = found
+        return found
+
+    def take(self, path: str) -> tuple[str, ast.Module] | None:
+        """The text and tree of ``path`` when it was read as another module's base (once)."""
+        return self._parsed.pop(path, None)
+
+
 class _Scope:
     """Where an expression is read: its module, class, function bindings and helper arguments."""
 
     def __init__(self, module: _Module, cls: ast.ClassDef | None = None,
                  function: ast.FunctionDef | ast.AsyncFunctionDef | None = None,
-                 arguments: dict[str, Any] | None = None, depth: int = 0) -> None:
+                 arguments: dict[str, Any] | None = None, depth: int = 0,
+                 owner: tuple[_Module, ast.ClassDef] | None = None) -> None:
         self.module = module
         self.cls = cls
+        #: The class of ``self`` and its module when they are not ``cls`` and ``module``: a
+        #: method of a base class of another module, read for a node class derived from it.
+        self.owner = owner
         self.function = function
         self.arguments = arguments or {}
         self.depth = depth
@@ -482,6 +540,41 @@ def _param_hint(expr: ast.expr) -> str | None:
 
 class _Resolver:
     """Resolves expressions to constants (or :class:`Unknown`)."""
+
+    def __init__(self, sources: PackageSources | None = None) -> None:
+        #: The package's other modules, where a class's base can be found (None: not known).
+        self.sources = sources
+
+    def package_class(self, dotted: str, depth: int = 0) -> tuple[_Module, ast.ClassDef] | None:
+        """The class ``dotted`` (``my_pkg.base.Base``) names when the package's sources define
+        it (through the module's re-exports), with its module; None when it is not found."""
+        sources = self.sources
+        if sources is None or depth > _HELPER_DEPTH:
+            return None
+        module_name, _, name = dotted.rpartition('.')
+        while module_name:
+            module = sources.module(module_name)
+            if module is not None:
+                first, _, rest = name.partition('.')
+                if not rest and first in module.classes:
+                    return module, module.classes[first]
+                if first in module.imports and first not in module.classes and first not in module.assigned:
+                    target = module.imports[first] + (f'.{rest}' if rest else '')
+                    return self.package_class(target, depth + 1) if target != dotted else None
+                return None
+            module_name, _, head = module_name.rpartition('.')
+            name = f'{head}.{name}'
+        return None
+
+    def base_class(self, base: ast.expr, module: _Module) -> tuple[_Module, ast.ClassDef] | None:
+        """The class of the package's other modules that a class's base names, with its module."""
+        if self.sources is None:
+            return None
+        value = self.value(base, _Scope(module))
+        if not isinstance(value, _Symbol):
+            return None
+        found = self.package_class(value.dotted)
+        return found if found is not None and found[0] is not module else None
 
     def value(self, expr: ast.expr, scope: _Scope, seen: frozenset[int] = frozenset()) -> Any:
         if id(expr) in seen:
@@ -593,6 +686,8 @@ class _Resolver:
 
     def _attribute(self, expr: ast.Attribute, scope: _Scope, seen: frozenset[int]) -> Any:
         owner = expr.value
+        if isinstance(owner, ast.Name) and owner.id == 'self' and scope.owner is not None:
+            return self._member(scope.owner[1], expr.attr, scope, seen, expr, module=scope.owner[0])
         if isinstance(owner, ast.Name) and owner.id == 'self' and scope.cls is not None:
             return self._member(scope.cls, expr.attr, scope, seen, expr)
         if isinstance(owner, ast.Name) and owner.id in scope.module.classes and owner.id not in scope.local:
@@ -607,21 +702,29 @@ class _Resolver:
         return Unknown(hint or f"'{_shown(expr)}' is computed at run time", expr)
 
     def _member(self, cls: ast.ClassDef, attr: str, scope: _Scope, seen: frozenset[int],
-                use: ast.expr, instance: bool = True) -> Any:
-        """A class attribute, or an instance attribute set once (from a constant) in the class."""
+                use: ast.expr, instance: bool = True, module: _Module | None = None, hops: int = 0) -> Any:
+        """A class attribute, or an instance attribute set once (from a constant) in the class
+        (of ``module``, the scope's by default), else in its bases (of the same module, then of
+        the package's other modules)."""
+        module = module or scope.module
         class_values = _assigned_names(cls.body).get(attr, [])
-        instance_values = scope.module.members(cls, attr) if instance else []
+        instance_values = module.members(cls, attr) if instance else []
         if len(class_values) + len(instance_values) > 1:
             return Unknown(f"'{attr}' is assigned more than once", use)
         if class_values:
-            return self._bound(class_values[0], _Scope(scope.module, cls), seen, use)
+            return self._bound(class_values[0], _Scope(module, cls), seen, use)
         if instance_values:
             value, method = instance_values[0]
             if isinstance(value, ast.expr) and not isinstance(value, ast.Attribute) or value is not use:
-                return self._bound(value, _Scope(scope.module, cls, method), seen, use)
+                return self._bound(value, _Scope(module, cls, method), seen, use)
         for base in cls.bases:  # a constant of a base class of the same module
-            if isinstance(base, ast.Name) and base.id in scope.module.classes:
-                return self._member(scope.module.classes[base.id], attr, scope, seen, use, instance)
+            if isinstance(base, ast.Name) and base.id in module.classes:
+                return self._member(module.classes[base.id], attr, scope, seen, use, instance, module, hops)
+        if hops < _HELPER_DEPTH:
+            for base in cls.bases:  # of another module of the package
+                found = self.base_class(base, module)
+                if found is not None:
+                    return self._member(found[1], attr, scope, seen, use, instance, found[0], hops + 1)
         return Unknown(f"'self.{attr}' is set at run time" if instance else f"'{attr}' is not found", use)
 
     def _call(self, expr: ast.Call, scope: _Scope, seen: frozenset[int]) -> Any:
@@ -941,8 +1044,8 @@ class _NodeBuilder:
 class PythonExtractor:
     """Extracts the nodes of Python modules (one :meth:`module` call per file)."""
 
-    def __init__(self, genparam: dict[str, str] | None = None) -> None:
-        self.resolver = _Resolver()
+    def __init__(self, genparam: dict[str, str] | None = None, sources: PackageSources | None = None) -> None:
+        self.resolver = _Resolver(sources)
         self.qos = _QoSReader(self.resolver)
         #: generate_parameter_library modules (dotted name) -> their YAML file.
         self.genparam = dict(genparam or {})
@@ -1036,7 +1139,8 @@ class PythonExtractor:
                         and self._acts_as_node(module, cls, base):
                     kind = 'node'
                     where = value.why if isinstance(value, Unknown) else f'imported from {value.dotted.rsplit(".", 1)[0]}'
-                    why = (f"comes from its base {_shown(base)} ({where}), which is not read: not extracted "
+                    why = (f"comes from its base {_shown(base)} ({where}), which is "
+                           f"{self._unread_base(value)}: not extracted "
                            '(a class generated by nodl generate: use the definition it was generated from)')
                 else:
                     continue
@@ -1051,6 +1155,21 @@ class PythonExtractor:
                 found.append(node)
                 break
         return found
+
+    def _unread_base(self, value: Any) -> str:
+        """Why the base a class is derived from is not read (``not read`` when the package's
+        sources are not known)."""
+        sources = self.resolver.sources
+        if sources is None or not isinstance(value, _Symbol):
+            return 'not read'
+        module_name = value.dotted.rpartition('.')[0]
+        if sources.path(module_name) is None:
+            return "not found in the package's sources"
+        if sources.module(module_name) is None:
+            return f'not read ({sources.path(module_name)} is generated or cannot be read)'
+        if self.resolver.package_class(value.dotted) is None:
+            return f'not found in {sources.path(module_name)}'
+        return f'read from {sources.path(module_name)}, but derived from a base that is not read'
 
     @staticmethod
     def _acts_as_node(module: _Module, cls: ast.ClassDef, base: ast.expr) -> bool:
@@ -1067,8 +1186,9 @@ class PythonExtractor:
             isinstance(n, ast.Attribute) and n.attr in _NODE_METHODS and isinstance(n.value, ast.Name)
             and n.value.id == 'self' for n in _walk(cls))
 
-    def _node_classes(self, module: _Module) -> dict[str, str]:
-        """Classes of the module that are nodes -> their base (``node``, ``lifecycle_node``)."""
+    def _node_classes(self, module: _Module, depth: int = 0) -> dict[str, str]:
+        """Classes of the module that are nodes -> their base (``node``, ``lifecycle_node``): derived
+        from rclpy's, or from a node class of the module or of another module of the package."""
         out: dict[str, str] = {}
         changed = True
         while changed:
@@ -1086,24 +1206,56 @@ class PythonExtractor:
                         out[name] = _NODE_CLASSES[value.dotted]
                         changed = True
                         break
+                    found = self.resolver.package_class(value.dotted) if isinstance(value, _Symbol) else None
+                    if found is not None and found[0] is not module and depth < _HELPER_DEPTH:
+                        other = found[0]
+                        if other.kinds is None:
+                            other.kinds = {}  # while it is worked out: a cycle of bases finds no node
+                            other.kinds = self._node_classes(other, depth + 1)
+                        kind = other.kinds.get(found[1].name)  # a node class of another module
+                        if kind is not None:
+                            out[name] = kind
+                            changed = True
+                            break
         return out
 
     # -- classes ---------------------------------------------------------------------------
 
     def _class_entities(self, builder: _NodeBuilder, module: _Module, cls: ast.ClassDef) -> None:
-        chain = [cls]
-        while True:  # the entities of node base classes of the same module come first
-            parents = [b for b in chain[-1].bases if isinstance(b, ast.Name) and b.id in module.classes]
-            if not parents or module.classes[parents[0].id] in chain:
-                break
-            chain.append(module.classes[parents[0].id])
-        for current in reversed(chain):
+        chain: list[tuple[_Module, ast.ClassDef]] = [(module, cls)]
+        while len(chain) <= _HELPER_DEPTH * 4:  # the entities of node base classes come first
+            here, current = chain[-1]
+            parents = [b for b in current.bases if isinstance(b, ast.Name) and b.id in here.classes]
+            if parents:  # of the same module
+                parent: tuple[_Module, ast.ClassDef] | None = (here, here.classes[parents[0].id])
+            else:  # of another module of the package
+                parent = next((found for found in (self.resolver.base_class(b, here) for b in current.bases)
+                               if found is not None), None)
+            if parent is None or any((m.path, c.name, c.lineno) == (parent[0].path, parent[1].name, parent[1].lineno)
+                                     for m, c in chain):
+                break  # (a module read again for another module's base is another object: same place)
+            chain.append(parent)
+            if parent[0] is not module and parent[0].path not in builder.node.sources:
+                builder.node.sources.append(parent[0].path)
+        named = False
+        for here, current in reversed(chain):
             for stmt in current.body:
                 if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
-                    if module.reaches(_SELF, stmt):
-                        self._walk_function(builder, _Scope(module, cls, stmt), {'self'})
+                    if here.reaches(_SELF, stmt):
+                        scope = _Scope(module, cls, stmt) if here is module else \
+                            _Scope(here, current, stmt, owner=(module, cls))
+                        self._walk_function(builder, scope, {'self'})
                     if stmt.name == '__init__' and current is cls and module.may_hold(_INIT_WORD, stmt):
                         self._node_name(builder, _Scope(module, cls, stmt))
+                        named = True
+        if not named:  # no __init__ of its own: the name its nearest base of another module gives
+            for here, current in chain[1:]:
+                init = next((s for s in current.body if isinstance(s, (ast.FunctionDef, ast.AsyncFunctionDef))
+                             and s.name == '__init__'), None)
+                if init is not None:
+                    if here is not module and here.may_hold(_INIT_WORD, init):
+                        self._node_name(builder, _Scope(here, current, init, owner=(module, cls)))
+                    break
 
     def _node_name(self, builder: _NodeBuilder, scope: _Scope) -> None:
         assert scope.function is not None
@@ -1822,12 +1974,15 @@ def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
 
 def extract_source(text: str, path: str, *, package: str | None = None,
                    genparam: dict[str, str] | None = None, starts: Iterable[str] | None = None,
-                   check: bool = True) -> Extraction:
+                   check: bool = True, sources: PackageSources | None = None,
+                   tree: ast.Module | None = None) -> Extraction:
     """Extract the nodes of one Python module given as text (``path`` is where it is reported).
     ``starts``: the functions entry points run in this module (``''``: it is run as a script);
     only these are in :attr:`Extraction.starts` (None: every function).  ``check``: give the
     entities the validator refuses their gap (:func:`~nodl_schema.extract.writer.check_entities`);
-    False for a caller that checks them itself (all of a package's at once)."""
+    False for a caller that checks them itself (all of a package's at once).  ``sources``: the
+    package's modules, where the bases of its node classes are found; ``tree``: ``text`` parsed
+    already."""
     extraction = Extraction(files=[path])
     mark = _generated(text)
     if mark:
@@ -1837,7 +1992,8 @@ def extract_source(text: str, path: str, *, package: str | None = None,
             code='NODL908'))
         return extraction
     try:
-        tree = ast.parse(text, filename=path)
+        if tree is None:
+            tree = ast.parse(text, filename=path)
     except SyntaxError as exc:
         extraction.diagnostics.append(Diagnostic(
             Severity.ERROR, f'Python syntax error: {exc.msg}; nothing is extracted from this file', file=path,
@@ -1852,7 +2008,7 @@ def extract_source(text: str, path: str, *, package: str | None = None,
         return extraction
     extraction.starts[path] = _starts(tree, starts)
     try:
-        extraction.nodes = PythonExtractor(genparam).module(path, tree, package, text)
+        extraction.nodes = PythonExtractor(genparam, sources).module(path, tree, package, text)
     except RecursionError:
         extraction.diagnostics.append(Diagnostic(
             Severity.ERROR, 'the file nests too deep to be read; nothing is extracted from it', file=path,
@@ -1865,11 +2021,16 @@ def extract_source(text: str, path: str, *, package: str | None = None,
 
 def extract_file(path: str, *, package: str | None = None,
                  genparam: dict[str, str] | None = None, starts: Iterable[str] | None = None,
-                 check: bool = True) -> Extraction:
+                 check: bool = True, sources: PackageSources | None = None) -> Extraction:
     """Extract the nodes of one Python file (unreadable files are one NODL907 diagnostic);
-    ``starts`` and ``check`` as for :func:`extract_source`."""
+    ``starts``, ``check`` and ``sources`` as for :func:`extract_source`."""
+    parsed = sources.take(path) if sources is not None else None
+    if parsed is not None:  # read already, as the base of a class of another module
+        return extract_source(parsed[0], path, package=package, genparam=genparam, starts=starts, check=check,
+                              sources=sources, tree=parsed[1])
     text, problem = read_source(path)
     if text is None:
         assert problem is not None
         return Extraction(diagnostics=[problem], files=[path])
-    return extract_source(text, path, package=package, genparam=genparam, starts=starts, check=check)
+    return extract_source(text, path, package=package, genparam=genparam, starts=starts, check=check,
+                          sources=sources)

@@ -235,7 +235,7 @@ LANGUAGES: dict[str, Callable[[list[str], Package], Extraction]] = {}
 
 
 def _extract_python(files: list[str], package: Package) -> Extraction:
-    from nodl_schema.extract.python import extract_file
+    from nodl_schema.extract.python import PackageSources, extract_file
     from nodl_schema.extract.writer import check_entities
 
     out = Extraction()
@@ -243,6 +243,7 @@ def _extract_python(files: list[str], package: Package) -> Extraction:
     for target, function in package.executables.values():
         runs.setdefault(package.real(target), set()).add(function)
     read: list[str] = []
+    sources = PackageSources(package.root, files)  # where the bases of node classes are found
     root = os.path.join(package.root, '')
     for path in files:
         folder = os.path.dirname(path)
@@ -250,7 +251,7 @@ def _extract_python(files: list[str], package: Package) -> Extraction:
             os.path.relpath(folder, package.root)
         module_package = '.'.join(p for p in rel.split(os.sep) if p not in ('', '.')) or None
         found = extract_file(path, package=module_package, genparam=package.genparam,
-                             starts=runs.get(package.real(path), ()), check=False)
+                             starts=runs.get(package.real(path), ()), check=False, sources=sources)
         out.nodes += found.nodes  # what Extraction.extend does, the files made unique once
         out.diagnostics += found.diagnostics
         read += found.files
