@@ -354,3 +354,14 @@ def test_live_node_of_a_base_in_another_module(ros_node) -> None:  # type: ignor
     assert all(e.complete for e in node.entities) and len(node.entities) == 4
     assert live.base is not None and live.base.value == node.base
     _compare(live.main, node, 'x_base', '/')  # the base's entities live too, under the class's names
+
+
+def test_a_byte_order_mark_is_not_counted_in_a_bad_byte_place(tmp_path: Path) -> None:
+    source = tmp_path / 'bom.py'
+    source.write_bytes(b'\xef\xbb\xbfimport rclpy\nname = "\xff"\n')
+    (problem,) = extract_file(str(source)).diagnostics
+    assert (problem.code, problem.line, problem.column) == ('NODL907', 2, 9)
+    assert 'byte 0xff' in problem.message
+    source.write_bytes(b'\xef\xbb\xbf' + (CASES / 'constants_node.py').read_bytes())
+    assert [n.name for n in extract_file(str(source)).nodes] == [
+        n.name for n in extract_file(str(CASES / 'constants_node.py')).nodes]

@@ -144,3 +144,19 @@ def test_a_base_module_is_read_once_more_at_most(tmp_path: Path) -> None:
 
     assert Counter(reads) == {**{p.name: 1 for p in package.rglob('*.py')},  # setup.py too
                               '__init__.py': 3, 'base.py': 2}  # two __init__.py: the package's read twice
+
+
+def test_a_package_s_entities_the_validator_refuses_are_gaps(tmp_path: Path) -> None:
+    """The validator's checks run once every file of the package is read: an invalid name the
+    source fixes is still a gap (NODL914), in every module."""
+    pkg = tmp_path / 'bad_pkg'
+    (pkg / 'bad_pkg').mkdir(parents=True)
+    (pkg / 'setup.py').write_text("from setuptools import setup\nsetup(name='bad_pkg')\n")
+    node = ('from rclpy.node import Node\nfrom std_msgs.msg import String\n\n\nclass {0}(Node):\n'
+            '    def __init__(self):\n        super().__init__("{1}")\n'
+            '        self.create_publisher(String, "{2}", 10)\n')
+    (pkg / 'bad_pkg' / 'a.py').write_text(node.format('A', 'a', 'bad name!'))
+    (pkg / 'bad_pkg' / 'b.py').write_text(node.format('B', 'b', 'good'))
+    (pkg / 'bad_pkg' / 'c.py').write_text(node.format('C', 'c', '2bad'))
+    gaps = {n.name: [g.code for g in n.gaps] for n in extract_paths([str(pkg)]).nodes}
+    assert gaps == {'A': ['NODL914'], 'B': [], 'C': ['NODL914']}
