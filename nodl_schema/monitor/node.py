@@ -6,8 +6,13 @@ and at once when a status changes level (or gains or loses a finding).  It subsc
 ``/parameter_events`` (every change checked as it arrives) and, best effort, to every
 topic whose definition declares a deadline (its rate measured).  It follows the graph
 (:mod:`nodl_schema.monitor.graph`) and calls each node's ``~/get_parameters`` service
-every ``liveness_period`` seconds: a node that stops answering for ``liveness_timeout``
-seconds is ERROR long before its participant lease ends.
+every ``liveness_period`` seconds (one node of a process in turn, all of them once one is
+silent): a node that stops answering for ``liveness_timeout`` seconds is ERROR long
+before its participant lease ends.  The rate subscriptions and liveness clients belong to
+a second hidden node that nothing waits on (taken from at each tick).  Bad input is kept
+up with or said in ``nodl: system``: a parameter event storm is coalesced (NODL441),
+events lost are said and the parameters read again (NODL442), a graph that does not
+settle is said (NODL443), scans spaced out for the budget are said (NODL439).
 
 Its parameters: ``publish_rate`` (Hz, 1.0), ``grace_period`` (s, 5.0: how long an
 expected node may take to appear), ``rate_window`` (s, 2.0) and ``rate_tolerance`` (0.2:
