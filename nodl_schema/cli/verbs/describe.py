@@ -38,7 +38,7 @@ class DescribeVerb(Verb):
         parser.add_argument('--watch', type=seconds, default=None, metavar='S',
                             help='keep watching for other nodes of the same name until discovery '
                                  'has run S seconds (default: while the node is read, at least '
-                                 '0.6; 3.5 waits for the 3 s periodic announcements)')
+                                 '0.3; 3.5 waits for the 3 s periodic announcements)')
         parser.add_argument('--no-parameters', action='store_true',
                             help="do not read the node's parameters")
         parser.add_argument('--format', choices=('yaml', 'json'), default='yaml',
