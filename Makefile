@@ -13,7 +13,7 @@ STAMP := $(VENV)/.installed
 CONSTRAINTS := constraints.txt
 # The project is installed for real (not editable: editable installs skip the CMake
 # files that `find_package(ament_nodl)` needs), and reinstalled when a source changes.
-SOURCES := $(shell find nodl_schema ros -type f -not -name '*.pyc') pyproject.toml
+SOURCES := $(shell find nodl nodl_schema ros -type f -not -name '*.pyc') pyproject.toml
 
 # Anything that starts ROS stays on loopback, in its own domain.
 export ROS_AUTOMATIC_DISCOVERY_RANGE := LOCALHOST

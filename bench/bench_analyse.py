@@ -35,8 +35,8 @@ def best(fn, repeat: int = 3) -> float:  # type: ignore[no-untyped-def]
 
 
 def main() -> bool:
-    from nodl_schema import load_nodl
-    from nodl_schema.analysis import analyse_launch
+    from nodl import load_nodl
+    from nodl.analysis import analyse_launch
 
     root = Path(tempfile.mkdtemp(prefix='nodl-bench-analyse-'))
     try:

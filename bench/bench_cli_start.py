@@ -54,9 +54,9 @@ def _compile_package() -> None:
     """Byte-compile the toolkit, as pip does for a regular (non-editable) install."""
     import compileall
 
-    import nodl_schema
+    import nodl
 
-    compileall.compile_dir(str(Path(nodl_schema.__file__).parent), quiet=1)
+    compileall.compile_dir(str(Path(nodl.__file__).parent), quiet=1)
 
 
 def run(repeats: int = 15) -> dict[str, float]:

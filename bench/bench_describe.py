@@ -60,7 +60,7 @@ def run(rounds: int = 15) -> dict[str, float]:
                               cwd=NODE_SCRIPT.parent)
     try:
         assert target.stdout is not None and target.stdout.readline().strip() == 'ready'
-        from nodl_schema.live.observe import observe_node
+        from nodl.live.observe import observe_node
 
         observed = observe_node(f'{namespace}/{name}', timeout=20, parameters=False, quiet=1.0)
         expected = sum(len(getattr(observed, s)) for s in (

@@ -65,7 +65,7 @@ def _launch_file(folder: Path) -> Path:
 
 
 def _start(launch: Path) -> list[subprocess.Popen[str]]:
-    from nodl_schema.analysis import analyse_launch
+    from nodl.analysis import analyse_launch
 
     processes = []
     for node in analyse_launch(launch, {}, checks={}).nodes:
@@ -99,8 +99,8 @@ def run(rounds: int = 9) -> dict[str, float]:
         launch = _launch_file(Path(tmp))
         processes = _start(launch)
         try:
-            from nodl_schema.live.observe import settle_nodes
-            from nodl_schema.live.session import ros_session
+            from nodl.live.observe import settle_nodes
+            from nodl.live.session import ros_session
 
             fqns = [f'/bench_{i}/{"talker" if i % 2 == 0 else "listener"}_{i}' for i in range(NODES)]
             with ros_session() as session:
@@ -108,7 +108,7 @@ def run(rounds: int = 9) -> dict[str, float]:
             expected = {f: sum(len(v) for v in raw[f].values()) for f in fqns}
             floor_cmd = [sys.executable, '-c', FLOOR, json.dumps(expected)]
             # the working tree's toolkit (python -m from the repository), as the tests run it
-            nodl_cmd = [sys.executable, '-m', 'nodl_schema', 'describe', '--all', '--launch',
+            nodl_cmd = [sys.executable, '-m', 'nodl', 'describe', '--all', '--launch',
                         str(launch), '-o', str(Path(tmp) / 'out'), '--timeout', '30', '--force']
             floors, tools = [], []
             for _ in range(rounds):

@@ -46,7 +46,7 @@ def _cpu() -> float:
 def _run(verb: str, arguments: list[str], env: dict[str, str]) -> tuple[float, float]:
     """(wall seconds, CPU seconds) of ``nodl VERB ARGUMENTS``."""
     cpu, start = _cpu(), time.perf_counter()
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', verb, *arguments],
+    result = subprocess.run([sys.executable, '-m', 'nodl', verb, *arguments],
                             cwd=REPO, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                             text=True, timeout=600)
     elapsed = time.perf_counter() - start

@@ -23,7 +23,7 @@ import yaml
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from nodl_schema.extract.cpp import CPP_SUFFIXES, cpp_parser, extract_cpp  # noqa: E402
+from nodl.extract.cpp import CPP_SUFFIXES, cpp_parser, extract_cpp  # noqa: E402
 
 TARGET = 2.0
 FIXTURES = ROOT / 'tests' / 'fixtures' / 'extract' / 'cpp'

@@ -25,8 +25,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from nodl_schema.extract.python import extract_file  # noqa: E402
-from nodl_schema.extract.targets import extract_paths  # noqa: E402
+from nodl.extract.python import extract_file  # noqa: E402
+from nodl.extract.targets import extract_paths  # noqa: E402
 
 REAL = ROOT / 'tests' / 'fixtures' / 'extract' / 'python' / 'real'
 TARGET = 2.0

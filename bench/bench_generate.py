@@ -13,8 +13,8 @@ from __future__ import annotations
 import time
 
 from corpus import corpus
-from nodl_schema.generate import GenerateOptions, load_generators
-from nodl_schema.system import resolve_node
+from nodl.generate import GenerateOptions, load_generators
+from nodl.system import resolve_node
 
 TARGET = 3.0
 LANGUAGES = ('python', 'cpp')

@@ -43,7 +43,7 @@ def _timed(args: list[str], env: dict[str, str] | None = None) -> tuple[float, f
     environment = dict(os.environ, ROS_AUTOMATIC_DISCOVERY_RANGE='LOCALHOST', **(env or {}))
     start = time.perf_counter()
     with tempfile.TemporaryFile('w+') as out:
-        process = subprocess.Popen([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, env=environment,
+        process = subprocess.Popen([sys.executable, '-m', 'nodl', *args], cwd=REPO, env=environment,
                                    stdout=out, stderr=subprocess.STDOUT, text=True)
         _, _, usage = os.wait4(process.pid, 0)
         seconds = time.perf_counter() - start

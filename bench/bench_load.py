@@ -16,7 +16,7 @@ import time
 import yaml
 
 from corpus import block_corpus, corpus
-from nodl_schema import load_nodl
+from nodl import load_nodl
 
 TARGET = 1.0
 CORPORA = {'hand-written style': corpus, 'block style (yaml.safe_dump)': block_corpus}

@@ -103,7 +103,7 @@ class Processes:
         return process
 
     def monitor(self, *arguments: str) -> subprocess.Popen[str]:
-        return self.start([sys.executable, '-m', 'nodl_schema', 'monitor', *arguments])
+        return self.start([sys.executable, '-m', 'nodl', 'monitor', *arguments])
 
     def stop(self) -> None:
         for process in self.started:

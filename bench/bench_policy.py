@@ -46,7 +46,7 @@ def _cpu() -> float:
 def _run(arguments: list[str], env: dict[str, str]) -> tuple[float, float]:
     """(wall seconds, CPU seconds) of ``nodl ARGUMENTS`` (CPU: user + system of the process)."""
     cpu, start = _cpu(), time.perf_counter()
-    process = subprocess.Popen([sys.executable, '-m', 'nodl_schema', *arguments], cwd=REPO, env=env,
+    process = subprocess.Popen([sys.executable, '-m', 'nodl', *arguments], cwd=REPO, env=env,
                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     try:
         _, stderr = process.communicate(timeout=600)

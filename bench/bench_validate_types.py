@@ -43,7 +43,7 @@ def _cpu() -> float:
 def _run(arguments: list[str], env: dict[str, str]) -> tuple[float, float]:
     """(wall seconds, CPU seconds) of ``nodl validate ARGUMENTS``."""
     cpu, start = _cpu(), time.perf_counter()
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '-q', *arguments],
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '-q', *arguments],
                             cwd=REPO, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                             text=True, timeout=600)
     elapsed = time.perf_counter() - start

@@ -17,7 +17,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent
 OUT = REPO / 'demo-out'
-NODL = [sys.executable, '-m', 'nodl_schema']
+NODL = [sys.executable, '-m', 'nodl']
 SYSTEM = HERE / 'system'
 SYSTEM_PACKAGES = ('rover_base', 'rover_sensors', 'rover_navigation', 'rover_tools')
 SYSTEM_LAUNCH = 'examples/system/launch/rover.launch.xml'

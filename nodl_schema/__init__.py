@@ -1,115 +1,77 @@
-"""NoDL toolkit: the ROS 2 Node Definition Language (v2) in Python.
+"""``nodl_schema``: the name of the reference implementation's Python package.
 
-The public API (importable without ROS)::
-
-    from nodl_schema import load_nodl, dump_nodl, ValidationError
-
-    node = load_nodl(pathlib.Path('driver.nodl.yaml'))
-
-Names are imported lazily so that the command line starts fast.
+The toolkit's own library is :mod:`nodl` (it was called ``nodl_schema`` before). This
+package keeps programs written against the toolkit's former paths working for one
+release: ``nodl_schema.X`` is :mod:`nodl.X`, with a :class:`DeprecationWarning` saying so.
+The reference implementation's own module names are not redirected: they belong to the
+reference's API (see README, "The nodl_schema compatibility package").
 """
 
 from __future__ import annotations
 
 import importlib
+import importlib.abc
+import importlib.machinery
+import importlib.util
+import sys
+import types
+import warnings
+from typing import Any, Sequence
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any
+import nodl
 
-__version__ = '0.1.0'
+#: Submodules of the reference implementation's ``nodl_schema``: never redirected to ``nodl``.
+REFERENCE_MODULES = frozenset({'ament_resolver', 'composition', 'loader', 'local_resolver',
+                               'models', 'rewrite', 'validation', 'schemas'})
 
-_EXPORTS = {
-    'load_nodl': 'nodl_schema.loading',
-    'load_parameter': 'nodl_schema.loading',
-    'load_interface': 'nodl_schema.loading',
-    'load_node': 'nodl_schema.loading',
-    'validate_parameter': 'nodl_schema.loading',
-    'validate_interface': 'nodl_schema.loading',
-    'validate_node': 'nodl_schema.loading',
-    'dump_nodl': 'nodl_schema.loading',
-    'check_source': 'nodl_schema.loading',
-    'model_from_data': 'nodl_schema.loading',
-    'Report': 'nodl_schema.loading',
-    'Document': 'nodl_schema.loading',
-    'Interface': 'nodl_schema.model',
-    'Node': 'nodl_schema.model',
-    'ParameterDefinition': 'nodl_schema.model',
-    'Base': 'nodl_schema.model',
-    'QoSProfile': 'nodl_schema.model',
-    'TopicEndpoint': 'nodl_schema.model',
-    'ServiceEndpoint': 'nodl_schema.model',
-    'ActionEndpoint': 'nodl_schema.model',
-    'ValidationError': 'nodl_schema.diagnostics',
-    'Diagnostic': 'nodl_schema.diagnostics',
-    'Severity': 'nodl_schema.diagnostics',
-    'Kind': 'nodl_schema.validation.kinds',
-    'detect_kind': 'nodl_schema.validation.kinds',
-    'compose': 'nodl_schema.composition',
-    'ComposedNode': 'nodl_schema.composition',
-    'load_schema': 'nodl_schema.schemas',
-    'bundled_schema': 'nodl_schema.schemas',
-    'expand_name': 'nodl_schema.naming',
-    'resolve_name': 'nodl_schema.naming',
-    'node_fqn': 'nodl_schema.naming',
-    'parse_remap_rules': 'nodl_schema.naming',
-    'RemapRule': 'nodl_schema.naming',
-    'NodeNames': 'nodl_schema.naming',
-    'InvalidNameError': 'nodl_schema.naming',
-    'InvalidRemapRuleError': 'nodl_schema.naming',
-    'check_qos_compatible': 'nodl_schema.qos_compat',
-    'ResolvedNode': 'nodl_schema.system',
-    'resolve_node': 'nodl_schema.system',
-    'Entity': 'nodl_schema.system',
-    'EntityKind': 'nodl_schema.system',
-    'Provider': 'nodl_schema.system',
-    'InterfaceType': 'nodl_schema.system',
-    'Location': 'nodl_schema.system',
-    'NodeInstance': 'nodl_schema.system',
-    'System': 'nodl_schema.system',
-    'Connection': 'nodl_schema.system',
-}
 
-#: The public names, written out for type checkers and readers; a test keeps it equal
-#: to the keys of _EXPORTS.
-__all__ = ['ActionEndpoint', 'Base', 'ComposedNode', 'Diagnostic', 'Document', 'Interface',
-    'Kind', 'Node', 'ParameterDefinition', 'QoSProfile', 'Report', 'ServiceEndpoint',
-    'Severity', 'TopicEndpoint', 'ValidationError', 'bundled_schema', 'check_source',
-    'compose', 'detect_kind', 'dump_nodl', 'load_interface', 'load_node', 'load_nodl',
-    'load_parameter', 'load_schema', 'model_from_data', 'validate_interface', 'validate_node',
-    'validate_parameter',
-    'InvalidNameError', 'InvalidRemapRuleError', 'NodeNames', 'RemapRule', 'check_qos_compatible',
-    'expand_name', 'node_fqn', 'parse_remap_rules', 'resolve_name',
-    'Connection', 'Entity', 'EntityKind', 'InterfaceType', 'Location', 'NodeInstance', 'Provider',
-    'ResolvedNode', 'System', 'resolve_node']
+def _moved(old: str, new: str) -> None:
+    warnings.warn(f'{old} moved to {new}; import {new} (the nodl_schema path goes away in the '
+                  'next release)', DeprecationWarning, stacklevel=3)
 
-if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
-    from nodl_schema.composition.compose import ComposedNode, compose
-    from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError
-    from nodl_schema.loading import (
-        Document, Report, check_source, dump_nodl, load_interface, load_node, load_nodl,
-        load_parameter, model_from_data, validate_interface, validate_node, validate_parameter)
-    from nodl_schema.model import (
-        ActionEndpoint, Base, Interface, Node, ParameterDefinition, QoSProfile, ServiceEndpoint,
-        TopicEndpoint)
-    from nodl_schema.naming import (InvalidNameError, InvalidRemapRuleError, NodeNames, RemapRule,
-                                    expand_name, node_fqn, parse_remap_rules, resolve_name)
-    from nodl_schema.qos_compat import check_qos_compatible
-    from nodl_schema.schemas import bundled_schema, load_schema
-    from nodl_schema.system import (
-        Connection, Entity, EntityKind, InterfaceType, Location, NodeInstance, Provider,
-        ResolvedNode, System, resolve_node)
-    from nodl_schema.validation.kinds import Kind, detect_kind
+
+class _MovedModuleLoader(importlib.abc.Loader):
+    """Loads ``nodl_schema.X`` as the already imported :mod:`nodl.X`."""
+
+    def __init__(self, target: str) -> None:
+        self.target = target
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType:
+        _moved(spec.name, self.target)
+        return importlib.import_module(self.target)
+
+    def exec_module(self, module: types.ModuleType) -> None:
+        """The module is :mod:`nodl`'s, already executed."""
+
+
+class _MovedModuleFinder(importlib.abc.MetaPathFinder):
+    """Finds ``nodl_schema.X`` (X not a module of this package) as ``nodl.X``."""
+
+    def find_spec(self, fullname: str, path: Sequence[str] | None,
+                  target: types.ModuleType | None = None) -> importlib.machinery.ModuleSpec | None:
+        prefix = __name__ + '.'
+        if not fullname.startswith(prefix):
+            return None
+        first = fullname[len(prefix):].split('.', 1)[0]
+        if first in REFERENCE_MODULES:
+            return None
+        moved = 'nodl.' + fullname[len(prefix):]
+        if importlib.util.find_spec(moved) is None:
+            return None
+        return importlib.machinery.ModuleSpec(fullname, _MovedModuleLoader(moved))
+
+
+if not any(isinstance(finder, _MovedModuleFinder) for finder in sys.meta_path):
+    sys.meta_path.insert(0, _MovedModuleFinder())
 
 
 def __getattr__(name: str) -> Any:
-    module = _EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
+    """``nodl_schema.X`` for a name of :mod:`nodl` (deprecated: use ``nodl.X``)."""
+    if name.startswith('__'):
+        raise AttributeError(name)
+    try:
+        value = getattr(nodl, name)
+    except AttributeError:
+        raise AttributeError(f"module 'nodl_schema' has no attribute '{name}'") from None
+    _moved(f'nodl_schema.{name}', f'nodl.{name}')
     return value
-
-
-def __dir__() -> list[str]:
-    return sorted(list(globals()) + __all__)

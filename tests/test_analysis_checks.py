@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.analysis import KINDS, AnalysisSettings, analyse_launch
-from nodl_schema.analysis.checks import load_checks
-from nodl_schema.analysis.checks.parameters import launch_value_fits, launch_value_verdict
-from nodl_schema.model.parameter_types import parse_type
+from nodl.analysis import KINDS, AnalysisSettings, analyse_launch
+from nodl.analysis.checks import load_checks
+from nodl.analysis.checks.parameters import launch_value_fits, launch_value_verdict
+from nodl.model.parameter_types import parse_type
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
 PREFIX = [str(FIXTURES / 'prefix')]
@@ -64,7 +64,7 @@ def test_each_kind_is_found_at_its_launch_entry(checks_analysis, kind, line, nod
 
 
 def test_severities_are_the_catalogue_defaults(checks_analysis) -> None:  # type: ignore[no-untyped-def]
-    from nodl_schema.codes import default_severity
+    from nodl.codes import default_severity
 
     for finding in checks_analysis.findings:
         assert finding.severity.value == default_severity(finding.code)
@@ -164,7 +164,7 @@ def test_parameter_type_verdicts_agree_with_rclpy(type_name: str, written: str, 
     """parameter-type against the oracle: the value as rcl reads the file, then the check's verdict
     must be rclpy's (refused by declare_parameter: parameter-type; an empty list leaves the
     parameter unset, reading it raises: parameter-invalid; accepted: no finding)."""
-    from nodl_schema.launch import load_parameter_file
+    from nodl.launch import load_parameter_file
 
     params_file = tmp_path / 'params.yaml'
     params_file.write_text(f'/**:\n  ros__parameters:\n    x: {written}\n', encoding='utf-8')

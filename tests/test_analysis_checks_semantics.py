@@ -1,4 +1,4 @@
-"""The analysis checks against the real semantics (nodl_schema.analysis.checks.names,
+"""The analysis checks against the real semantics (nodl.analysis.checks.names,
 connections, orphans): final names as rcl makes them (``__node``/``__ns`` rules, pushed
 namespaces, composable nodes), QoS exactly as ``check_qos_compatible`` decides for every
 publisher/subscription pair, actions remapped as a whole by their name as rcl remaps them
@@ -12,8 +12,8 @@ from typing import Any
 
 import yaml
 
-from nodl_schema.analysis import analyse_launch
-from nodl_schema.qos_compat import check_qos_compatible
+from nodl.analysis import analyse_launch
+from nodl.qos_compat import check_qos_compatible
 
 
 def _prefix(root: Path, nodes: dict[str, dict[str, Any]], info: dict[str, str] | None = None) -> list[str]:
@@ -93,8 +93,8 @@ def test_duplicate_findings_at_one_place_follow_each_name_s_first_launch() -> No
     """Nodes launched from one place (a loop in a Python launch file) sort alike: their
     duplicate-node findings come in the order of context.by_fqn, that of each name's first
     launch (/a before /b here, though /b is launched again first)."""
-    from nodl_schema.analysis import LaunchEntry, analyse_entries
-    from nodl_schema.system.entities import Location
+    from nodl.analysis import LaunchEntry, analyse_entries
+    from nodl.system.entities import Location
 
     here = Location('system.launch.py', 4, 5)
     analysis = analyse_entries([LaunchEntry('demo', 'talker', here, name=name)

@@ -7,8 +7,8 @@ import shutil
 import sys
 from pathlib import Path
 
-from nodl_schema.analysis import analyse_launch
-from nodl_schema.analysis.checks.types import TypeDefinitionCheck
+from nodl.analysis import analyse_launch
+from nodl.analysis.checks.types import TypeDefinitionCheck
 
 VENV = Path(sys.prefix)
 INDEX = Path('share') / 'ament_index' / 'resource_index'

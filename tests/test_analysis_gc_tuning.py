@@ -1,4 +1,4 @@
-"""Garbage collection paused during a batch (nodl_schema.analysis.gc_tuning), and the
+"""Garbage collection paused during a batch (nodl.analysis.gc_tuning), and the
 analysis's own promise that makes the pause safe: it forms no reference cycles."""
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ from typing import Iterator
 
 import pytest
 
-from nodl_schema.analysis import analyse_launch
-from nodl_schema.analysis.gc_tuning import batch_collection
+from nodl.analysis import analyse_launch
+from nodl.analysis.gc_tuning import batch_collection
 
 PREFIX = [str(Path(__file__).parent / 'fixtures' / 'analysis' / 'prefix')]
 

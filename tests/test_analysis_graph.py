@@ -11,14 +11,14 @@ from typing import Any
 
 import pytest
 
-from nodl_schema.analysis import analyse_launch
-from nodl_schema.analysis.graph import render_graph
-from nodl_schema.analysis.graph.dot import dot_string, format_dot, grid_edges
-from nodl_schema.analysis.graph.html import json_for_script
-from nodl_schema.analysis.graph.layout import fit_scale, layout_graph, layout_svg
-from nodl_schema.analysis.graph.model import build_graph
-from nodl_schema.analysis.system import analyse_definitions
-from nodl_schema.targets.placement import Definition
+from nodl.analysis import analyse_launch
+from nodl.analysis.graph import render_graph
+from nodl.analysis.graph.dot import dot_string, format_dot, grid_edges
+from nodl.analysis.graph.html import json_for_script
+from nodl.analysis.graph.layout import fit_scale, layout_graph, layout_svg
+from nodl.analysis.graph.model import build_graph
+from nodl.analysis.system import analyse_definitions
+from nodl.targets.placement import Definition
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
 PREFIX = [str(FIXTURES / 'prefix')]
@@ -209,7 +209,7 @@ def test_a_node_s_own_interface_comes_before_its_client_library_s() -> None:
 
 
 def test_labels_and_page_text_show_control_and_bidi_characters() -> None:
-    from nodl_schema.analysis.graph.html import _h
+    from nodl.analysis.graph.html import _h
 
     assert dot_string('a\u202eb\x1b"c\nd') == '"a\\\\u202eb\\\\x1b\\"c\\nd"'
     assert _h('<a\u2066>') == '&lt;a\\u2066&gt;'

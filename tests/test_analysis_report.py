@@ -1,4 +1,4 @@
-"""The analysis report (nodl_schema.analysis.report): a value known only at run time is
+"""The analysis report (nodl.analysis.report): a value known only at run time is
 never reported as a value."""
 
 from __future__ import annotations
@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.analysis import analyse_launch, report
-from nodl_schema.analysis.log import format_log
+from nodl.analysis import analyse_launch, report
+from nodl.analysis.log import format_log
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
 PREFIX = [str(FIXTURES / 'prefix')]
@@ -47,10 +47,10 @@ _MARKERS = ('known at run time>', 'KNOWN AT RUN TIME>', 'RunTimeText', 'RuntimeV
 
 
 def _every_output(launch: Path, limits: object = None) -> tuple[object, dict[str, str]]:
-    from nodl_schema.analysis.graph import render_graph
-    from nodl_schema.params.check import check_launch_parameters
-    from nodl_schema.policy.launched import launch_policy
-    from nodl_schema.policy.writer import write_policy
+    from nodl.analysis.graph import render_graph
+    from nodl.params.check import check_launch_parameters
+    from nodl.policy.launched import launch_policy
+    from nodl.policy.writer import write_policy
 
     kwargs = {} if limits is None else {'limits': limits}
     analysis = analyse_launch(launch, prefixes=PREFIX, **kwargs)  # type: ignore[arg-type]
@@ -72,7 +72,7 @@ def test_no_output_shows_a_stand_in_for_a_run_time_value(name: str, execute: boo
     made into f-strings, .upper(), os.path.join, PathJoinSubstitution), $(command) and $(eval)
     (run, and not run: --no-exec): no output of the analysis (text, log, JSON, SARIF, JUnit,
     graph, policy, params check) holds the reader's marker text for such a value."""
-    from nodl_schema.launch.sandbox import LaunchLimits
+    from nodl.launch.sandbox import LaunchLimits
 
     _, outputs = _every_output(RUN_TIME / name, None if execute else LaunchLimits(execute=False))
     for kind, text in outputs.items():

@@ -8,9 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.analysis import analyse_launch
-from nodl_schema.analysis.log import format_log
-from nodl_schema.analysis.report import analysis_to_dict, format_junit, format_sarif
+from nodl.analysis import analyse_launch
+from nodl.analysis.log import format_log
+from nodl.analysis.report import analysis_to_dict, format_junit, format_sarif
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
 PREFIX = [str(FIXTURES / 'prefix')]
@@ -186,8 +186,8 @@ def test_a_remap_rule_given_on_the_command_line_is_one_finding() -> None:
     """analyse_definitions(remaps=[...]) (nodl analyse DEFINITION... --remap) gives the rule to
     every node at once: an unused one is one finding at the command line (each node's
     definition a related place), not one per definition."""
-    from nodl_schema.analysis.system import analyse_definitions
-    from nodl_schema.targets.placement import Definition
+    from nodl.analysis.system import analyse_definitions
+    from nodl.targets.placement import Definition
 
     share = FIXTURES / 'prefix' / 'share' / 'nav' / 'nodl'
     analysis = analyse_definitions([Definition(str(share / 'planner.nodl.yaml')),
@@ -208,7 +208,7 @@ def test_files_are_everything_the_analysis_read(tmp_path: Path) -> None:
 
     from conftest import REPO
 
-    from nodl_schema.targets.resolve import gather_definitions
+    from nodl.targets.resolve import gather_definitions
 
     system = REPO / 'examples' / 'system'
     folder = tmp_path / 'defs' / 'rover_base'

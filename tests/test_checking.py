@@ -1,10 +1,10 @@
-"""Checking many files at once (nodl_schema.checking)."""
+"""Checking many files at once (nodl.checking)."""
 
 from __future__ import annotations
 
 from conftest import FIXTURES
-from nodl_schema.checking import check_paths, failed
-from nodl_schema.validation.kinds import Kind
+from nodl.checking import check_paths, failed
+from nodl.validation.kinds import Kind
 
 CLI = FIXTURES / 'cli'
 

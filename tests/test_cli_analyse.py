@@ -20,7 +20,7 @@ LAUNCH = FIXTURES / 'launch'
 
 def run(*args: str, cwd: Path = REPO) -> subprocess.CompletedProcess[str]:
     env = dict(os.environ, AMENT_PREFIX_PATH=str(FIXTURES / 'prefix'), NO_COLOR='1')
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=cwd, env=env,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=cwd, env=env,
                           capture_output=True, text=True, timeout=120)
 
 
@@ -108,7 +108,7 @@ def test_log_file_is_the_whole_report_and_deterministic(tmp_path: Path, name: st
     """The log holds every node (final name and how it came about, source, definition,
     remapping rules with their places, parameters with their origin, final endpoint names)
     then every finding with its place; two runs give the same bytes."""
-    from nodl_schema import __version__
+    from nodl import __version__
 
     logs = [tmp_path / 'one.log', tmp_path / 'two.log']
     for log in logs:
@@ -146,7 +146,7 @@ def test_a_system_of_nodes_registered_by_the_references_ament_nodl_register() ->
     prefix = REPO / 'tests' / 'fixtures' / 'index' / 'reference'
     launch = REPO / 'tests' / 'fixtures' / 'index' / 'reference_launch' / 'robot.launch.xml'
     env = dict(os.environ, AMENT_PREFIX_PATH=str(prefix), NO_COLOR='1')
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'analyse', str(launch),
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'analyse', str(launch),
                              '--format', 'json'], cwd=REPO, env=env, capture_output=True,
                             text=True, timeout=120)
     assert result.returncode == 0, result.stdout + result.stderr
@@ -233,7 +233,7 @@ def test_a_project_configuration_and_nodl_path_give_folders(tmp_path: Path) -> N
     assert done.stdout.splitlines()[-2] == '4 nodes: 1 registered, 2 overlay (1 extracted), 1 without definition'
     env = dict(os.environ, AMENT_PREFIX_PATH=str(FIXTURES / 'prefix'),
                NODL_PATH=str(OVERLAYS / 'defs'))
-    via_env = subprocess.run([sys.executable, '-m', 'nodl_schema', 'analyse',
+    via_env = subprocess.run([sys.executable, '-m', 'nodl', 'analyse',
                               str(OVERLAYS / 'launch' / 'system.launch.xml')], cwd=REPO, env=env,
                              capture_output=True, text=True, timeout=120)
     assert via_env.stdout.splitlines()[-2] == \

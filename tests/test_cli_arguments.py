@@ -1,4 +1,4 @@
-"""Arguments checked at once, before any ROS start-up (nodl_schema.cli.arguments)."""
+"""Arguments checked at once, before any ROS start-up (nodl.cli.arguments)."""
 
 from __future__ import annotations
 
@@ -10,13 +10,13 @@ import time
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema.cli.arguments import definition_problem, node_name, seconds
+from nodl.cli.arguments import definition_problem, node_name, seconds
 
 SCAN = FIXTURES / 'scan'
 
 
 def nodl(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                           capture_output=True, timeout=60)
 
 
@@ -63,7 +63,7 @@ def test_two_files_say_what_is_accepted(verb: list[str]) -> None:
 
 
 def test_launch_limits_are_positive_numbers() -> None:
-    from nodl_schema.cli.arguments import mebibytes, positive_seconds
+    from nodl.cli.arguments import mebibytes, positive_seconds
 
     assert positive_seconds('0.5') == 0.5 and mebibytes('512') == 512.0
     for bad in ('0', '-1', 'nan', 'inf', 'soon'):

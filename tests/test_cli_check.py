@@ -15,13 +15,13 @@ from typing import Any, Iterator
 import pytest
 
 from conftest import REPO, NodeProcess
-from nodl_schema import dump_nodl
-from nodl_schema.live.describe import describe_node, render_description
+from nodl import dump_nodl
+from nodl.live.describe import describe_node, render_description
 
 
 def nodl(*args: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
-    """Run `python -m nodl_schema` (it inherits ROS_DOMAIN_ID and the loopback-only discovery)."""
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    """Run `python -m nodl` (it inherits ROS_DOMAIN_ID and the loopback-only discovery)."""
+    result = subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                             capture_output=True, timeout=timeout)
     assert 'Traceback' not in result.stdout + result.stderr, result.stderr
     return result
@@ -313,7 +313,7 @@ LIMITED = '''
 import resource, signal, sys
 signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a write past the limit fails (EFBIG), not the process
 resource.setrlimit(resource.RLIMIT_FSIZE, (256, 256))
-from nodl_schema.cli.main import main
+from nodl.cli.main import main
 sys.exit(main(sys.argv[1:]))
 '''
 

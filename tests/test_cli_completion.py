@@ -19,7 +19,7 @@ def complete(line: str) -> list[str]:
         env = dict(os.environ, _ARGCOMPLETE='1', _ARGCOMPLETE_IFS='\n',
                    _ARGCOMPLETE_SUPPRESS_SPACE='1', COMP_LINE=line, COMP_POINT=str(len(line)),
                    COMP_TYPE='9')
-        result = subprocess.run([sys.executable, '-m', 'nodl_schema'], cwd=REPO, env=env,
+        result = subprocess.run([sys.executable, '-m', 'nodl'], cwd=REPO, env=env,
                                 pass_fds=(8,), capture_output=True, text=True, timeout=60)
     finally:
         os.close(8)
@@ -50,7 +50,7 @@ def test_verbs_options_choices_and_paths_complete() -> None:
 
 def test_show_offers_registered_packages() -> None:
     env_prefix = os.environ.get('AMENT_PREFIX_PATH', '')
-    from nodl_schema.index.registry import list_registrations
+    from nodl.index.registry import list_registrations
 
     packages = {r.package for r in list_registrations()}
     words = complete('nodl show ')
@@ -59,7 +59,7 @@ def test_show_offers_registered_packages() -> None:
 
 
 def test_the_entry_module_carries_the_argcomplete_marker() -> None:
-    import nodl_schema.cli.main as main
+    import nodl.cli.main as main
 
     with open(main.__file__, encoding='utf-8') as f:
         assert 'PYTHON_ARGCOMPLETE_OK' in f.read(1024)
@@ -76,7 +76,7 @@ def test_completion_in_a_real_bash_on_a_terminal(tmp_path) -> None:
                             path=os.path.dirname(sys.executable) + os.pathsep + os.environ['PATH'])
     assert register, 'argcomplete is a test dependency'
     wrapper = tmp_path / 'nodl'  # the source tree's nodl, under the name the hook is for
-    wrapper.write_text(f'#!/bin/sh\nexec {sys.executable} -m nodl_schema "$@"\n')
+    wrapper.write_text(f'#!/bin/sh\nexec {sys.executable} -m nodl "$@"\n')
     wrapper.chmod(0o755)
     env = dict(os.environ, PATH=f'{tmp_path}{os.pathsep}{os.environ["PATH"]}', PYTHONPATH=str(REPO),
                PS1='$ ', TERM='dumb', HOME=str(tmp_path), INPUTRC='/dev/null')

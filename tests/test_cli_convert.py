@@ -9,13 +9,13 @@ from pathlib import Path
 
 from conftest import FIXTURES, REPO
 
-from nodl_schema.writing import unmark
+from nodl.writing import unmark
 
 LEGACY = FIXTURES / 'legacy'
 
 
 def nodl(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                           capture_output=True, timeout=60)
 
 
@@ -174,7 +174,7 @@ def test_converts_an_include_document_to_base_mixins_and_main(tmp_path: Path) ->
     assert data['codegen'] == {'cpp': {'class': 'ArmDriverBase',
                                        'header': 'arm_driver/arm_driver_base.hpp'}}
     env = dict(os.environ, AMENT_PREFIX_PATH=str(DIALECTS / 'include' / 'prefix'))
-    again = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve',
+    again = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--resolve',
                             str(out_dir / 'arm_driver.nodl.yaml')], cwd=REPO, text=True,
                            capture_output=True, timeout=60, env=env)
     assert again.returncode == 0, again.stdout + again.stderr

@@ -12,7 +12,7 @@ NODE = FIXTURES / 'colcon' / 'relative_mixins' / 'nodl' / 'sensor_node.nodl.yaml
 
 
 def nodl(*args: str) -> subprocess.CompletedProcess[str]:
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    result = subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                             capture_output=True, timeout=60)
     assert 'Traceback' not in result.stdout + result.stderr, result.stderr
     return result

@@ -12,13 +12,13 @@ from typing import Iterator
 import pytest
 
 from conftest import REPO, NodeProcess
-from nodl_schema import load_node, validate_node
-from nodl_schema.writing import marker_state, unmark
+from nodl import load_node, validate_node
+from nodl.writing import marker_state, unmark
 
 
 def nodl(*args: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
-    """Run `python -m nodl_schema` (it inherits ROS_DOMAIN_ID and the loopback-only discovery)."""
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    """Run `python -m nodl` (it inherits ROS_DOMAIN_ID and the loopback-only discovery)."""
+    result = subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                             capture_output=True, timeout=timeout)
     assert 'Traceback' not in result.stdout + result.stderr, result.stderr
     return result

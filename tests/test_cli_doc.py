@@ -14,7 +14,7 @@ DOC = FIXTURES / 'doc'
 
 
 def nodl(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', 'doc', *args], cwd=REPO, text=True,
+    return subprocess.run([sys.executable, '-m', 'nodl', 'doc', *args], cwd=REPO, text=True,
                           capture_output=True, timeout=60,
                           env={**os.environ, 'AMENT_PREFIX_PATH': sys.prefix})
 

@@ -16,7 +16,7 @@ PREFIX = DIALECTS / 'include' / 'prefix'
 
 
 def nodl(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    result = subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                             capture_output=True, timeout=60, env=env)
     assert 'Traceback' not in result.stdout + result.stderr, result.stderr
     return result

@@ -14,7 +14,7 @@ FIXTURES = REPO / 'tests' / 'fixtures' / 'extract' / 'python'
 
 
 def _run(*args: str, cwd: Path = REPO) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', 'extract', *args], cwd=cwd, text=True,
+    return subprocess.run([sys.executable, '-m', 'nodl', 'extract', *args], cwd=cwd, text=True,
                           capture_output=True, timeout=60, env={**os.environ, 'PYTHONPATH': str(REPO)})
 
 
@@ -25,7 +25,7 @@ def test_overlay_layout_and_drafts_that_validate(tmp_path: Path) -> None:
     assert talker.is_file() and (tmp_path / 'out' / 'demo_pkg' / 'pair__pair_server.nodl.yaml').is_file()
     text = talker.read_text(encoding='utf-8')
     assert 'by nodl extract' in text and 'nodl: generated; sha256=' in text
-    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--strict', str(talker)], cwd=REPO,
+    check = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--strict', str(talker)], cwd=REPO,
                            text=True, capture_output=True, timeout=60)
     assert check.returncode == 0, check.stdout
     # a draft edited by the user is never replaced without --force
@@ -106,7 +106,7 @@ def _cpp_packages(root: Path) -> Path:
 
 
 def test_cpp_packages_end_to_end_in_the_overlay_layout(tmp_path: Path) -> None:
-    from nodl_schema.targets.overlay import read_folder
+    from nodl.targets.overlay import read_folder
 
     sources = _cpp_packages(tmp_path / 'src')
     result = _run(str(sources), '-o', str(tmp_path / 'out'))
@@ -126,7 +126,7 @@ def test_cpp_packages_end_to_end_in_the_overlay_layout(tmp_path: Path) -> None:
         ('demo_nodes_cpp', 'talker'): ('demo_nodes_cpp::Talker', 'talker')}
     talker = (out / 'demo_nodes_cpp' / 'talker.nodl.yaml').read_text(encoding='utf-8')
     assert '(demo_nodes_cpp talker, cpp)' in talker
-    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--strict',
+    check = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--strict',
                             *map(str, out.rglob('*.nodl.yaml'))], cwd=REPO, text=True, capture_output=True,
                            timeout=60)
     assert check.returncode == 0, check.stdout
@@ -183,7 +183,7 @@ def test_a_base_class_of_another_module_end_to_end(tmp_path: Path) -> None:
     assert 'base: lifecycle_node' in managed
     unread = [(d['file'].rsplit('/', 1)[-1], d['line']) for d in json.loads(result.stdout) if d['code'] == 'NODL960']
     assert sorted(unread) == [('orphans.py', 10), ('orphans.py', 16)]
-    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--strict',
+    check = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--strict',
                             *map(str, (tmp_path / 'out').rglob('*.nodl.yaml'))], cwd=REPO, text=True,
                            capture_output=True, timeout=60)
     assert check.returncode == 0, check.stdout

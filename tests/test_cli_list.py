@@ -21,7 +21,7 @@ def nodl(*args: str, prefixes: str | None = BOTH) -> subprocess.CompletedProcess
         env.pop('AMENT_PREFIX_PATH', None)
     else:
         env['AMENT_PREFIX_PATH'] = prefixes
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', 'list', *args], cwd=REPO,
+    return subprocess.run([sys.executable, '-m', 'nodl', 'list', *args], cwd=REPO,
                           env=env, text=True, capture_output=True, timeout=60)
 
 

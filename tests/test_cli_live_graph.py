@@ -11,7 +11,7 @@ from conftest import REPO
 
 
 def nodl(*args: str, timeout: float = 90) -> subprocess.CompletedProcess[str]:
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    result = subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                             capture_output=True, timeout=timeout)
     assert 'Traceback' not in result.stderr, result.stderr
     return result

@@ -23,7 +23,7 @@ DEFINITIONS = [GENERATE / f'{n}.nodl.yaml' for n in ('talker', 'managed_camera',
 
 
 def nodl(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=cwd or REPO,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=cwd or REPO,
                           text=True, capture_output=True, timeout=120)
 
 

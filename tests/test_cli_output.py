@@ -1,4 +1,4 @@
-"""The command line's output layer (nodl_schema.cli.output and the runner): guarded writes,
+"""The command line's output layer (nodl.cli.output and the runner): guarded writes,
 exit statuses, streaming, progress, colour, Ctrl-C; real processes, real pipes and terminals."""
 
 from __future__ import annotations
@@ -16,10 +16,10 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema.cli.output import colour_enabled, colourize
+from nodl.cli.output import colour_enabled, colourize
 
 SCAN = FIXTURES / 'scan'
-CMD = [sys.executable, '-m', 'nodl_schema']
+CMD = [sys.executable, '-m', 'nodl']
 
 
 def nodl(*args: str, env: dict[str, str] | None = None, **kwargs) -> subprocess.CompletedProcess[str]:
@@ -275,7 +275,7 @@ def test_colour_rules() -> None:
 def test_a_guarded_stream_shows_control_and_bidi_characters_never_obeys_them() -> None:
     import io
 
-    from nodl_schema.cli.output import GuardedStream
+    from nodl.cli.output import GuardedStream
 
     raw = io.StringIO()
     stream = GuardedStream(raw, 'stdout', colour=True)

@@ -13,7 +13,7 @@ POLICY = 'tests/fixtures/policy'
 
 
 def nodl(*args: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', *args], cwd=REPO, text=True,
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'policy', *args], cwd=REPO, text=True,
                             capture_output=True, timeout=timeout)
     assert 'Traceback' not in result.stdout + result.stderr, result.stderr
     return result
@@ -84,7 +84,7 @@ def test_a_policy_for_nodes_registered_by_the_references_ament_nodl_register(tmp
     fixtures = REPO / 'tests' / 'fixtures' / 'index'
     env = dict(os.environ, AMENT_PREFIX_PATH=str(fixtures / 'reference'))
     out = tmp_path / 'robot.policy.xml'
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'policy',
                              str(fixtures / 'reference_launch' / 'robot.launch.xml'), '-o', str(out)],
                             cwd=REPO, env=env, text=True, capture_output=True, timeout=60)
     assert result.returncode == 0, result.stdout + result.stderr
@@ -95,7 +95,7 @@ def test_a_policy_for_nodes_registered_by_the_references_ament_nodl_register(tmp
     assert '<topic>chatter</topic>' in policy
     assert "subscription '/clock' (nodl://ref_robot/sensor_common)" in policy
     # A definition given as PACKAGE EXECUTABLE (here the PACKAGE override's) is found too.
-    named = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', 'custom_pkg', 'custom_exe',
+    named = subprocess.run([sys.executable, '-m', 'nodl', 'policy', 'custom_pkg', 'custom_exe',
                             '--name', '/reset_node'], cwd=REPO, env=env, text=True,
                            capture_output=True, timeout=60)
     assert named.returncode == 0, named.stdout + named.stderr
@@ -141,7 +141,7 @@ def test_definitions_folders_serve_nodes_and_the_coverage_line_says_so() -> None
     env.pop('NODL_PATH', None)
 
     def policy(*args: str) -> subprocess.CompletedProcess[str]:
-        return subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', *args], cwd=REPO,
+        return subprocess.run([sys.executable, '-m', 'nodl', 'policy', *args], cwd=REPO,
                               env=env, text=True, capture_output=True, timeout=60)
 
     done = policy('upstream_drv', 'driver', 'nav', 'controller',

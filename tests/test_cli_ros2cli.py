@@ -12,7 +12,7 @@ import argparse
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema.plugins import iter_entry_points
+from nodl.plugins import iter_entry_points
 
 
 def _command() -> object:
@@ -33,7 +33,7 @@ def test_extension_follows_the_ros2cli_protocol() -> None:
 
 
 def test_same_verbs_as_nodl() -> None:
-    from nodl_schema.plugins import load_plugins
+    from nodl.plugins import load_plugins
 
     command = _command()
     parser = _parser(command)

@@ -11,7 +11,7 @@ from conftest import REPO
 
 
 def nodl(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                           capture_output=True, timeout=60)
 
 

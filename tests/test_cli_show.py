@@ -8,7 +8,7 @@ import subprocess
 import sys
 
 from conftest import FIXTURES, REPO
-from nodl_schema import load_interface
+from nodl import load_interface
 
 INDEX = FIXTURES / 'index'
 BOTH = os.pathsep.join([str(INDEX / 'first'), str(INDEX / 'second')])
@@ -21,7 +21,7 @@ def nodl(*args: str, prefixes: str | None = BOTH) -> subprocess.CompletedProcess
         env.pop('AMENT_PREFIX_PATH', None)
     else:
         env['AMENT_PREFIX_PATH'] = prefixes
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', 'show', *args], cwd=REPO,
+    return subprocess.run([sys.executable, '-m', 'nodl', 'show', *args], cwd=REPO,
                           env=env, text=True, capture_output=True, timeout=60)
 
 

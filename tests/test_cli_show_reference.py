@@ -15,7 +15,7 @@ PREFIX = FIXTURES / 'dialects' / 'include' / 'prefix'
 
 def show(*args: str) -> subprocess.CompletedProcess[str]:
     env = dict(os.environ, AMENT_PREFIX_PATH=str(PREFIX))
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'show', *args], cwd=REPO,
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'show', *args], cwd=REPO,
                             env=env, text=True, capture_output=True, timeout=60)
     assert 'Traceback' not in result.stdout + result.stderr, result.stderr
     return result

@@ -14,7 +14,7 @@ CLI = FIXTURES / 'cli'
 
 
 def nodl(*args: str, stdin: str | None = None) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                           capture_output=True, input=stdin, timeout=60)
 
 
@@ -131,7 +131,7 @@ def test_resolve_strict_refuses_a_node_that_redefines_its_base() -> None:
     # The measured defect of issue 7: main redefined use_sim_time as a string and /rosout as
     # std_msgs/msg/String, and validate --resolve --strict printed two info lines and passed.
     fixture = 'tests/fixtures/composition/overrides/base_redefined.nodl.yaml'
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', '--strict',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--resolve', '--strict',
                              fixture], cwd=REPO, text=True, capture_output=True, timeout=60)
     assert result.returncode == 1, result.stdout + result.stderr
     errors = [line for line in result.stdout.splitlines() if ': error: ' in line]
@@ -145,14 +145,14 @@ def test_resolve_strict_refuses_a_node_that_redefines_its_base() -> None:
         '[NODL307]']
     # a mixin's type changed by main is a warning: it fails only with --strict
     mixin = 'tests/fixtures/composition/overrides/mixin_type_changed.nodl.yaml'
-    lenient = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', mixin],
+    lenient = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--resolve', mixin],
                              cwd=REPO, text=True, capture_output=True, timeout=60)
-    strict = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', '--strict',
+    strict = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--resolve', '--strict',
                              mixin], cwd=REPO, text=True, capture_output=True, timeout=60)
     assert (lenient.returncode, strict.returncode) == (0, 1), lenient.stdout + strict.stdout
     assert '[NODL310]' in strict.stdout
     # refining a base entity's description is allowed
-    refined = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', '--strict',
+    refined = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--resolve', '--strict',
                               'tests/fixtures/composition/overrides/base_refined.nodl.yaml'],
                              cwd=REPO, text=True, capture_output=True, timeout=60)
     assert refined.returncode == 0, refined.stdout + refined.stderr
@@ -210,7 +210,7 @@ TYPES = FIXTURES / 'interface_types'
 
 def _typed(*args: str) -> subprocess.CompletedProcess[str]:
     env = dict(os.environ, AMENT_PREFIX_PATH=sys.prefix)
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', *args], cwd=REPO,
+    return subprocess.run([sys.executable, '-m', 'nodl', 'validate', *args], cwd=REPO,
                           text=True, capture_output=True, timeout=60, env=env)
 
 
@@ -248,7 +248,7 @@ def test_package_without_manifest_is_a_usage_error(tmp_path: Path) -> None:
 def test_types_reports_a_malformed_installed_file_once_at_its_line() -> None:
     prefix = TYPES / 'bad_prefix'
     env = dict(os.environ, AMENT_PREFIX_PATH=f'{prefix}{os.pathsep}{sys.prefix}')
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--types',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--types',
                              rel(TYPES / 'bad_installed.nodl.yaml')], cwd=REPO, text=True,
                             capture_output=True, timeout=60, env=env)
     assert result.returncode == 1 and 'Traceback' not in result.stderr

@@ -4,7 +4,7 @@ installed definitions give, and fails once a definition changed and the pages we
 written again.
 
 The build uses this tree's ament_nodl CMake files and this tree's library (a `nodl` command
-next to them runs `python -m nodl_schema` from the tree), not the installed copies.
+next to them runs `python -m nodl` from the tree), not the installed copies.
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ def workspace(tmp_path_factory: pytest.TempPathFactory) -> Workspace:
                 prefix / 'share' / 'ament_nodl' / 'cmake' / 'ament_nodlConfig.cmake')
     (prefix / 'bin').mkdir()
     command = prefix / 'bin' / 'nodl'
-    command.write_text(f'#!/bin/sh\nPYTHONPATH="{REPO}" exec "{sys.executable}" -m nodl_schema "$@"\n',
+    command.write_text(f'#!/bin/sh\nPYTHONPATH="{REPO}" exec "{sys.executable}" -m nodl "$@"\n',
                        encoding='utf-8')
     command.chmod(0o755)
     shutil.copytree(FIXTURES / 'colcon_doc', root / 'src')

@@ -3,7 +3,7 @@ colcon build of two packages: one with the check (it fails, at the type: values)
 turns it off (it builds).
 
 The build uses this tree's ament_nodl CMake files and this tree's library (a `nodl` command
-next to them runs `python -m nodl_schema` from the tree), not the installed copies.
+next to them runs `python -m nodl` from the tree), not the installed copies.
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ def build(tmp_path_factory: pytest.TempPathFactory) -> str:
                 prefix / 'share' / 'ament_nodl' / 'cmake' / 'ament_nodlConfig.cmake')
     (prefix / 'bin').mkdir()
     command = prefix / 'bin' / 'nodl'
-    command.write_text(f'#!/bin/sh\nPYTHONPATH="{REPO}" exec "{sys.executable}" -m nodl_schema "$@"\n',
+    command.write_text(f'#!/bin/sh\nPYTHONPATH="{REPO}" exec "{sys.executable}" -m nodl "$@"\n',
                        encoding='utf-8')
     command.chmod(0o755)
     src = root / 'src'

@@ -1,14 +1,14 @@
-"""The code catalogue (nodl_schema.codes) and the code that reports diagnostics stay in step."""
+"""The code catalogue (nodl.codes) and the code that reports diagnostics stay in step."""
 
 from __future__ import annotations
 
 import re
 from pathlib import Path
 
-from nodl_schema.codes import CODES, RANGES, catalogue_markdown, close_codes, default_severity, explain
+from nodl.codes import CODES, RANGES, catalogue_markdown, close_codes, default_severity, explain
 
 REPO = Path(__file__).resolve().parent.parent
-LIBRARY = REPO / 'nodl_schema'
+LIBRARY = REPO / 'nodl'
 CODE = re.compile(r'NODL[0-9]{3}')
 
 
@@ -24,7 +24,7 @@ def _used() -> dict[str, list[str]]:
 
 def test_every_code_used_in_the_library_is_catalogued() -> None:
     unknown = {code: files for code, files in _used().items() if code not in CODES}
-    assert not unknown, f'add these codes to nodl_schema/codes.py: {unknown}'
+    assert not unknown, f'add these codes to nodl/codes.py: {unknown}'
 
 
 def test_every_catalogued_code_is_used_somewhere() -> None:
@@ -41,7 +41,7 @@ def test_no_code_is_catalogued_twice() -> None:
             for node in table.keys if isinstance(node, ast.Constant) and isinstance(node.value, str)
             and CODE.fullmatch(node.value)]
     duplicates = sorted({key for key in keys if keys.count(key) > 1})
-    assert not duplicates, f'catalogued twice in nodl_schema/codes.py: {duplicates}'
+    assert not duplicates, f'catalogued twice in nodl/codes.py: {duplicates}'
 
 
 def test_entries_are_well_formed_and_in_order() -> None:
@@ -65,7 +65,7 @@ def test_docs_catalogue_is_the_generated_one() -> None:
     docs = REPO / 'docs' / 'diagnostics.md'
     assert docs.read_text(encoding='utf-8') == catalogue_markdown(), (
         'docs/diagnostics.md is out of date: regenerate it with '
-        "python -c 'from nodl_schema.codes import catalogue_markdown as m; "
+        "python -c 'from nodl.codes import catalogue_markdown as m; "
         "open(\"docs/diagnostics.md\", \"w\").write(m())'")
     listed = re.findall(r'^\| (NODL[0-9]{3}) \|', docs.read_text(encoding='utf-8'), re.M)
     assert listed == list(CODES)

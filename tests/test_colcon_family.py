@@ -9,7 +9,7 @@ The environment has the ROS 2 wheels but NOT the toolkit. The test virtual envir
 has the toolkit installed, so the build runs in a *shadow* of it: a folder that is a
 virtual environment of the same interpreter whose entries are symbolic links to the
 test environment's, except every file the toolkit's distribution installed (its
-RECORD: the ``nodl_schema`` package, its metadata, the ``nodl`` command, the
+RECORD: the ``nodl`` package, its metadata, the ``nodl`` command, the
 ``ament_nodl`` CMake files and index markers). Scripts are copied with their ``#!``
 line pointing at the shadow's interpreter. Nothing is downloaded or installed, so it
 takes a second, and what colcon sees is exactly "the ROS wheels, no toolkit".
@@ -151,7 +151,7 @@ def test_the_shadow_has_the_ros_wheels_but_not_the_toolkit(build: Build) -> None
     python = str(build.shadow / 'bin' / 'python')
     probe = subprocess.run(
         [python, '-c', 'import sys, importlib.util as u, catkin_pkg, colcon_core; '
-         'print(sys.prefix); print(u.find_spec("nodl_schema"))'],
+         'print(sys.prefix); print(u.find_spec("nodl"))'],
         cwd=build.root, env=build.env(), text=True, capture_output=True, timeout=60)
     assert probe.returncode == 0, probe.stderr
     assert probe.stdout.splitlines() == [str(build.shadow), 'None']
@@ -253,7 +253,7 @@ def test_ros2nodl_registers_the_ros2_command(build: Build) -> None:
             'eps = [e for e in m.entry_points(group="ros2cli.command") if e.name == "nodl"]\n'
             'print(sorted(e.dist.name for e in eps))\n'
             'command = eps[0].load()()\n'
-            'import nodl_schema; print(nodl_schema.__file__)\n'
+            'import nodl; print(nodl.__file__)\n'
             'print(command.EXTENSION_POINT_VERSION)\n')
     result = build.sourced(f"python -c '{code}'")
     assert result.returncode == 0, result.stderr

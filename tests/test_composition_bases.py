@@ -1,4 +1,4 @@
-"""The built-in bases node and lifecycle_node (nodl_schema.composition.bases)."""
+"""The built-in bases node and lifecycle_node (nodl.composition.bases)."""
 
 from __future__ import annotations
 
@@ -9,10 +9,10 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema import load_interface
-from nodl_schema.composition.bases import (
+from nodl import load_interface
+from nodl.composition.bases import (
     BASES_DIR, CLIENT_LIBRARIES, base_file, base_files, base_layer)
-from nodl_schema.model import Base, Interface
+from nodl.model import Base, Interface
 
 SECTIONS = ('publishers', 'subscriptions', 'service_servers', 'service_clients',
             'action_servers', 'action_clients')
@@ -127,7 +127,7 @@ def test_base_layer(base: str, library: str) -> None:
     if (base, library) == ('node', 'rclpy'):
         assert layer.interface == load(base)
     # diagnostics about the base are placed in the part file that declares the entity
-    from nodl_schema.diagnostics import Diagnostic, Severity
+    from nodl.diagnostics import Diagnostic, Severity
 
     def line_of(part: str, text: str) -> int:
         return Path(BASES_DIR, f'{part}.nodl.yaml').read_text().splitlines().index(text) + 1
@@ -156,7 +156,7 @@ def test_base_layers_are_copies() -> None:
 
 def test_the_installed_package_ships_the_bases(tmp_path: Path) -> None:
     # run outside the source tree so that the installed copy is imported
-    code = ('import nodl_schema.composition.bases as b, os; '
+    code = ('import nodl.composition.bases as b, os; '
             "print(b.BASES_DIR); print(sorted(os.path.relpath(os.path.join(d, f), b.BASES_DIR) "
             "for d, _, fs in os.walk(b.BASES_DIR) for f in fs))")
     result = subprocess.run([sys.executable, '-c', code], cwd=tmp_path, text=True,

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import pytest
 
-from nodl_schema.composition.bases import base_layer
-from nodl_schema.live.observe import observe_node
-from nodl_schema.naming import expand
+from nodl.composition.bases import base_layer
+from nodl.live.observe import observe_node
+from nodl.naming import expand
 
 
 def _declared(base: str, name: str, namespace: str) -> dict[str, set[tuple[str, str]]]:

@@ -1,4 +1,4 @@
-"""Composition (nodl_schema.composition.compose): layers, origins, overrides and mixin errors."""
+"""Composition (nodl.composition.compose): layers, origins, overrides and mixin errors."""
 
 from __future__ import annotations
 
@@ -9,12 +9,12 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema import ValidationError
-from nodl_schema.composition import (
+from nodl import ValidationError
+from nodl.composition import (
     ComposedNode, ResolutionError, ResolveContext, Resolved, compose, compose_report)
-from nodl_schema.composition.path_resolver import PathResolver
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.loading import check_source
+from nodl.composition.path_resolver import PathResolver
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.loading import check_source
 
 COMPOSITION = FIXTURES / 'composition'
 LAYERS = COMPOSITION / 'layers' / 'nodl'
@@ -124,7 +124,7 @@ def test_override_is_an_info_diagnostic_naming_both_layers_at_the_winning_entity
 
 def test_declarations_trace_every_layer_that_declares_an_entity() -> None:
     composed = layered()
-    # what a generator implements is decided from these (see nodl_schema.system): the base's
+    # what a generator implements is decided from these (see nodl.system): the base's
     # entities come from the client library, a mixin's from other code, main's own from main
     assert [d.layer.label for d in composed.declarations[('parameters', 'rate')]] == [
         'first.nodl.yaml', 'file://second.nodl.yaml', 'main']

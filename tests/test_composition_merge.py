@@ -1,15 +1,15 @@
-"""Merging layers (nodl_schema.composition.merge.merge_layers)."""
+"""Merging layers (nodl.composition.merge.merge_layers)."""
 
 from __future__ import annotations
 
 import pytest
 
-from nodl_schema import load_interface
-from nodl_schema.composition import Layer
-from nodl_schema.composition.merge import merge_layers
-from nodl_schema.diagnostics import Severity
-from nodl_schema.loading import check_source
-from nodl_schema.model import Interface
+from nodl import load_interface
+from nodl.composition import Layer
+from nodl.composition.merge import merge_layers
+from nodl.diagnostics import Severity
+from nodl.loading import check_source
+from nodl.model import Interface
 
 A = """\
 nodl_version: 2
@@ -178,7 +178,7 @@ def test_a_base_entity_is_judged_against_the_base_even_after_a_mixin() -> None:
 
 
 def test_traced_declarations_list_every_layer_in_order() -> None:
-    from nodl_schema.composition.merge import merge_traced
+    from nodl.composition.merge import merge_traced
 
     result = merge_traced([layer('a', A, 'a.yaml'), layer('b', B, 'b.yaml'), layer('c', C, 'c.yaml')])
     trace = result.declarations[('parameters', 'shared')]
@@ -239,7 +239,7 @@ def test_a_layer_without_placement_gives_unplaced_notes() -> None:
 
 
 def test_merged_result_round_trips_as_an_interface_definition() -> None:
-    from nodl_schema import dump_nodl
+    from nodl import dump_nodl
 
     merged, _ = merge_layers([layer('a', A, 'a.yaml'), layer('b', B, 'b.yaml'),
                               layer('c', C, 'c.yaml')])
@@ -252,9 +252,9 @@ def test_merged_entities_are_stamped_copies_of_every_field() -> None:
     # classes: every class is copied that way, every field is kept, the layer's is untouched.
     import dataclasses
 
-    from nodl_schema.composition.merge import _SLOTS
-    from nodl_schema.model.interface import ActionEndpoint, ServiceEndpoint, TopicEndpoint
-    from nodl_schema.model.parameter import ParameterDefinition
+    from nodl.composition.merge import _SLOTS
+    from nodl.model.interface import ActionEndpoint, ServiceEndpoint, TopicEndpoint
+    from nodl.model.parameter import ParameterDefinition
 
     assert set(_SLOTS) == {TopicEndpoint, ServiceEndpoint, ActionEndpoint, ParameterDefinition}
     a = load_interface(A)
@@ -281,8 +281,8 @@ main:
 def test_a_run_shares_the_base_and_copies_a_trace_only_when_a_later_layer_adds_to_it() -> None:
     # Within a snapshot (an analysis) every node shares the base layer's merge; a node that
     # refines a base parameter must not change what the others see.
-    from nodl_schema.composition import compose
-    from nodl_schema.index import ament
+    from nodl.composition import compose
+    from nodl.index import ament
 
     refined = NODE.format(extra='    use_sim_time: {type: bool, default_value: true, '
                                 'description: Refined.}\n')

@@ -1,4 +1,4 @@
-"""Mixin references and their resolvers (nodl_schema.composition.resolvers and plugins)."""
+"""Mixin references and their resolvers (nodl.composition.resolvers and plugins)."""
 
 from __future__ import annotations
 
@@ -9,11 +9,11 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema import plugins
-from nodl_schema.composition import ResolutionError, ResolveContext, compose, load_resolvers
-from nodl_schema.composition.ament_resolver import AmentIndexResolver
-from nodl_schema.composition.path_resolver import PathResolver
-from nodl_schema.composition.resolvers import RESOLVER_GROUP, package_root, scheme_of
+from nodl import plugins
+from nodl.composition import ResolutionError, ResolveContext, compose, load_resolvers
+from nodl.composition.ament_resolver import AmentIndexResolver
+from nodl.composition.path_resolver import PathResolver
+from nodl.composition.resolvers import RESOLVER_GROUP, package_root, scheme_of
 
 SITE = FIXTURES / 'composition' / 'site'
 
@@ -76,8 +76,8 @@ def test_the_fixture_packages_have_their_roots() -> None:
 
 def test_builtin_resolvers_are_found_through_entry_points() -> None:
     specs = {spec.name: spec.value for spec in plugins.iter_entry_points(RESOLVER_GROUP)}
-    assert specs['nodl'] == 'nodl_schema.composition.ament_resolver:AmentIndexResolver'
-    assert specs['file'] == 'nodl_schema.composition.path_resolver:PathResolver'
+    assert specs['nodl'] == 'nodl.composition.ament_resolver:AmentIndexResolver'
+    assert specs['file'] == 'nodl.composition.path_resolver:PathResolver'
     resolvers = load_resolvers()
     assert isinstance(resolvers['nodl'], AmentIndexResolver)
     assert isinstance(resolvers['file'], PathResolver)
@@ -115,7 +115,7 @@ def test_a_third_party_scheme_is_used_by_compose(resolver_site: None) -> None:
 
 
 def test_a_third_party_resolution_error_is_placed_at_the_mixin(resolver_site: None) -> None:
-    from nodl_schema import ValidationError
+    from nodl import ValidationError
 
     with pytest.raises(ValidationError) as exc:
         compose('nodl_version: 2\nmixins:\n  - mem://nope\nmain: {nodl_version: 2}\n')
@@ -130,7 +130,7 @@ def test_validate_resolve_uses_plugin_resolvers_in_a_real_process() -> None:
 
     env = dict(os.environ, PYTHONPATH=str(SITE))
     node = FIXTURES / 'composition' / 'site_node.nodl.yaml'
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--resolve',
                              str(node)], cwd=REPO, env=env, text=True, capture_output=True,
                             timeout=60)
     assert result.returncode == 1, result.stdout + result.stderr

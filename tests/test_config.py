@@ -1,4 +1,4 @@
-"""nodl.toml / [tool.nodl] configuration (nodl_schema.config) and overrides (nodl_schema.overrides)."""
+"""nodl.toml / [tool.nodl] configuration (nodl.config) and overrides (nodl.overrides)."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.config import ConfigCache, ConfigError, find_config_file, load_config
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.overrides import Overrides, apply_directives, apply_overrides, directive_codes
+from nodl.config import ConfigCache, ConfigError, find_config_file, load_config
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.overrides import Overrides, apply_directives, apply_overrides, directive_codes
 
 REPO = Path(__file__).resolve().parent.parent
 WARN = Diagnostic(Severity.WARNING, 'w', (), 'f', 1, 1, code='NODL216')
@@ -42,7 +42,7 @@ def test_directives_only_in_leading_comments_and_never_for_errors() -> None:
 def test_a_directive_cannot_hide_a_trojan_source_error(tmp_path: Path) -> None:
     """'# nodl: ignore=NODL219,NODL220' in a hostile definition silences neither (errors: a file
     cannot hide its own), and says so; --ignore does, as the README says."""
-    from nodl_schema.loading import check_source
+    from nodl.loading import check_source
 
     hostile = Path(__file__).parent / 'fixtures' / 'text_safety' / 'hostile.nodl.yaml'
     path = tmp_path / 'hostile.nodl.yaml'
@@ -83,7 +83,7 @@ def test_bad_configuration_is_one_clear_line(tmp_path: Path, text: str, message:
 
 def _nodl(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
     env = dict(os.environ, PYTHONPATH=str(REPO))
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=cwd, env=env,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=cwd, env=env,
                           capture_output=True, text=True, timeout=60)
 
 

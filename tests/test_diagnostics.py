@@ -1,10 +1,10 @@
-"""Diagnostics and ValidationError (nodl_schema.diagnostics)."""
+"""Diagnostics and ValidationError (nodl.diagnostics)."""
 
 from __future__ import annotations
 
 import pytest
 
-from nodl_schema.diagnostics import Diagnostic, Severity, ValidationError, format_path
+from nodl.diagnostics import Diagnostic, Severity, ValidationError, format_path
 
 
 def test_paths_are_dotted_with_indices_and_quoted_odd_keys() -> None:
@@ -52,7 +52,7 @@ def test_code_ends_the_line_and_related_locations_are_in_the_dict() -> None:
 
 
 def test_a_diagnosed_result_says_its_errors_and_whether_it_is_ok() -> None:
-    from nodl_schema.diagnostics import Diagnosed, Diagnostic, Severity
+    from nodl.diagnostics import Diagnosed, Diagnostic, Severity
 
     class Result(Diagnosed):
         __slots__ = ('diagnostics',)
@@ -70,7 +70,7 @@ def test_a_diagnostic_pickles_to_an_equal_one() -> None:
     """A launch read in the sandbox child sends its diagnostics back pickled."""
     import pickle
 
-    from nodl_schema.diagnostics import Diagnostic, Severity
+    from nodl.diagnostics import Diagnostic, Severity
 
     diagnostic = Diagnostic(Severity.WARNING, 'm', ('a', 0), 'f.launch.py', 3, 4, anchor='key',
                             code='NODL513', related=(('g', 1, 2, 'there'),))

@@ -9,11 +9,11 @@ import yaml
 
 from conftest import FIXTURES
 
-from nodl_schema.dialects import GENPARAMLIB, recognise
-from nodl_schema.dialects.convert import convert_dialect
-from nodl_schema.dialects.genparamlib import export_genparamlib, read_genparamlib
-from nodl_schema.loading import check_source, load_interface
-from nodl_schema.model import ParameterDefinition
+from nodl.dialects import GENPARAMLIB, recognise
+from nodl.dialects.convert import convert_dialect
+from nodl.dialects.genparamlib import export_genparamlib, read_genparamlib
+from nodl.loading import check_source, load_interface
+from nodl.model import ParameterDefinition
 
 GPL = FIXTURES / 'dialects' / 'genparamlib'
 

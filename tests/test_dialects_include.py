@@ -11,14 +11,14 @@ import pytest
 
 from conftest import FIXTURES, REPO
 
-import nodl_schema
-from nodl_schema import compose
-from nodl_schema.dialects import INCLUDE, recognise
-from nodl_schema.dialects.include import read_include
-from nodl_schema.loading import check_source
-from nodl_schema.model import Base, Node
-from nodl_schema.show import show_file
-from nodl_schema.validation.kinds import Kind
+import nodl
+from nodl import compose
+from nodl.dialects import INCLUDE, recognise
+from nodl.dialects.include import read_include
+from nodl.loading import check_source
+from nodl.model import Base, Node
+from nodl.show import show_file
+from nodl.validation.kinds import Kind
 
 PKG = FIXTURES / 'dialects' / 'include' / 'arm_driver' / 'nodl'
 PREFIX = FIXTURES / 'dialects' / 'include' / 'prefix'
@@ -31,7 +31,7 @@ def prefix(monkeypatch: pytest.MonkeyPatch) -> Path:
 
 
 def test_an_include_document_loads_as_a_node_definition() -> None:
-    node = nodl_schema.load_nodl(PKG / 'arm_driver.nodl.yaml')
+    node = nodl.load_nodl(PKG / 'arm_driver.nodl.yaml')
     assert isinstance(node, Node)
     assert node.base is Base.NODE  # nodl://rclcpp/node is the built-in base description
     assert node.mixins == ['nodl://arm_common/heartbeat', 'shared/joint_limits.nodl.yaml']
@@ -64,11 +64,11 @@ def test_the_codegen_block_is_kept_as_the_nodes_codegen() -> None:
 
 
 def test_codegen_survives_load_and_dump() -> None:
-    node = nodl_schema.load_node(PKG / 'arm_driver.nodl.yaml')
+    node = nodl.load_node(PKG / 'arm_driver.nodl.yaml')
     assert node.codegen == CODEGEN
-    again = nodl_schema.load_node(nodl_schema.dump_nodl(node))
+    again = nodl.load_node(nodl.dump_nodl(node))
     assert again.codegen == CODEGEN and again == node
-    assert nodl_schema.load_node(nodl_schema.dump_nodl(node, 'json')).codegen == CODEGEN
+    assert nodl.load_node(nodl.dump_nodl(node, 'json')).codegen == CODEGEN
 
 
 @pytest.mark.parametrize(('ref', 'line', 'wording'), [
@@ -97,7 +97,7 @@ def test_an_include_reference_that_is_not_a_uri_is_an_error_at_its_value(
                                  'local://../common/x.nodl.yaml', 'test://in_memory/doc',
                                  'https://example.com/x.nodl.yaml', 'git+ssh://host/repo'])
 def test_uris_of_any_scheme_are_include_references(ref: str) -> None:
-    from nodl_schema.dialects.include import uri_problem
+    from nodl.dialects.include import uri_problem
 
     assert uri_problem(ref) is None
     report = check_source(f'nodl_version: 2\ninclude:\n  - ref: {ref}\n')
@@ -105,7 +105,7 @@ def test_uris_of_any_scheme_are_include_references(ref: str) -> None:
 
 
 def test_includes_spelling_and_the_lifecycle_base_description() -> None:
-    node = nodl_schema.load_node(PKG / 'gripper_lifecycle.nodl.yaml')
+    node = nodl.load_node(PKG / 'gripper_lifecycle.nodl.yaml')
     # Both base descriptions are included: lifecycle_node's holds node's, so it is the base.
     assert node.base is Base.LIFECYCLE_NODE
     assert not node.mixins
@@ -146,7 +146,7 @@ def test_compose_resolves_nodl_and_local_includes(prefix: Path) -> None:
 
 
 def test_an_unresolvable_local_include_is_placed_at_its_ref(prefix: Path) -> None:
-    with pytest.raises(nodl_schema.ValidationError) as caught:
+    with pytest.raises(nodl.ValidationError) as caught:
         compose(PKG / 'missing_local.nodl.yaml', file='missing_local.nodl.yaml')
     [error] = caught.value.errors
     assert (error.line, error.column) == (3, 10)
@@ -169,7 +169,7 @@ def test_recognise() -> None:
 
 def test_validate_resolve_accepts_the_dialect_in_a_real_process() -> None:
     env = dict(os.environ, AMENT_PREFIX_PATH=str(PREFIX))
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--resolve',
                              os.path.relpath(PKG / 'arm_driver.nodl.yaml', REPO)],
                             cwd=REPO, text=True, capture_output=True, timeout=60, env=env)
     assert result.returncode == 0, result.stdout + result.stderr
@@ -200,7 +200,7 @@ def test_an_included_document_that_includes_others_is_flattened(prefix: Path) ->
 
 
 def test_a_cycle_of_includes_is_an_error_where_it_closes(prefix: Path) -> None:
-    with pytest.raises(nodl_schema.ValidationError) as caught:
+    with pytest.raises(nodl.ValidationError) as caught:
         compose(CAMERA / 'looping.nodl.yaml')
     [error] = caught.value.errors
     assert error.code == 'NODL311' and 'includes itself' in error.message
@@ -211,7 +211,7 @@ def test_a_cycle_of_includes_is_an_error_where_it_closes(prefix: Path) -> None:
 
 
 def test_a_document_included_twice_is_an_error(prefix: Path) -> None:
-    with pytest.raises(nodl_schema.ValidationError) as caught:
+    with pytest.raises(nodl.ValidationError) as caught:
         compose(CAMERA / 'twice.nodl.yaml')
     [error] = caught.value.errors
     assert error.code == 'NODL311' and 'included twice' in error.message
@@ -220,7 +220,7 @@ def test_a_document_included_twice_is_an_error(prefix: Path) -> None:
 
 
 def test_an_unresolvable_nested_include_is_placed_in_the_file_that_holds_it(prefix: Path) -> None:
-    with pytest.raises(nodl_schema.ValidationError) as caught:
+    with pytest.raises(nodl.ValidationError) as caught:
         compose(CAMERA / 'bad_inner.nodl.yaml')
     [error] = caught.value.errors
     assert error.code == 'NODL301' and 'no_such_part.nodl.yaml' in error.message
@@ -233,14 +233,14 @@ def test_a_v2_node_definition_as_a_mixin_is_still_refused(tmp_path: Path) -> Non
     (tmp_path / 'inner.nodl.yaml').write_text('nodl_version: 2\nmain: {nodl_version: 2}\n')
     (tmp_path / 'outer.nodl.yaml').write_text(
         'nodl_version: 2\nmixins: [inner.nodl.yaml]\nmain: {nodl_version: 2}\n')
-    with pytest.raises(nodl_schema.ValidationError) as caught:
+    with pytest.raises(nodl.ValidationError) as caught:
         compose(tmp_path / 'outer.nodl.yaml')
     [error] = caught.value.errors
     assert error.code == 'NODL303' and 'single-level' in error.message
 
 
 def test_deps_lists_nested_local_includes_for_installation() -> None:
-    from nodl_schema.packaging import relative_mixins
+    from nodl.packaging import relative_mixins
 
     assert relative_mixins(CAMERA / 'wrist_camera.nodl.yaml') == [
         'shared/camera_common.nodl.yaml', 'shared/sensor_health.nodl.yaml']
@@ -251,10 +251,10 @@ def test_deps_lists_nested_local_includes_for_installation() -> None:
 def test_validate_resolve_and_show_nested_includes_in_a_real_process() -> None:
     env = dict(os.environ, AMENT_PREFIX_PATH=str(PREFIX))
     node = os.path.relpath(CAMERA / 'wrist_camera.nodl.yaml', REPO)
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', node],
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--resolve', node],
                             cwd=REPO, text=True, capture_output=True, timeout=60, env=env)
     assert result.returncode == 0, result.stdout + result.stderr
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'show', '--layers', node],
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'show', '--layers', node],
                             cwd=REPO, text=True, capture_output=True, timeout=60, env=env)
     assert result.returncode == 0, result.stderr
     assert '# layer: shared/camera_common.nodl.yaml > sensor_health.nodl.yaml\n  - name: ~/health' \

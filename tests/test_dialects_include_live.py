@@ -18,11 +18,11 @@ import pytest
 import yaml
 
 from conftest import REPO, NodeProcess
-from nodl_schema.live.describe import describe_node
+from nodl.live.describe import describe_node
 
 
 def nodl(*args: str) -> subprocess.CompletedProcess[str]:
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    result = subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                             capture_output=True, timeout=90)
     assert 'Traceback' not in result.stdout + result.stderr, result.stderr
     return result

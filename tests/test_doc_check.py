@@ -6,9 +6,9 @@ import sys
 from pathlib import Path
 
 from conftest import FIXTURES, REPO
-from nodl_schema.doc.check import check_files
-from nodl_schema.doc.collect import collect
-from nodl_schema.doc.writer import render_files, write_files
+from nodl.doc.check import check_files
+from nodl.doc.collect import collect
+from nodl.doc.writer import render_files, write_files
 
 DOC = FIXTURES / 'doc'
 

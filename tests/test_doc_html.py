@@ -6,9 +6,9 @@ import sys
 from html.parser import HTMLParser
 
 from conftest import FIXTURES, REPO, Golden
-from nodl_schema.doc.collect import collect
-from nodl_schema.doc.html import render_html
-from nodl_schema.targets.resolve import gather_definitions
+from nodl.doc.collect import collect
+from nodl.doc.html import render_html
+from nodl.targets.resolve import gather_definitions
 
 DOC = FIXTURES / 'doc'
 PREFIXES = [sys.prefix]

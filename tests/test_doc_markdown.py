@@ -8,9 +8,9 @@ import sys
 from pathlib import Path
 
 from conftest import FIXTURES, REPO, Golden
-from nodl_schema.doc.collect import collect
-from nodl_schema.doc.markdown import escape, render_markdown
-from nodl_schema.doc.writer import render_files, write_files
+from nodl.doc.collect import collect
+from nodl.doc.markdown import escape, render_markdown
+from nodl.doc.writer import render_files, write_files
 
 DOC = FIXTURES / 'doc'
 PREFIXES = [sys.prefix]
@@ -59,6 +59,6 @@ def test_pages_build_with_sphinx_warnings_as_errors_and_hostile_text_stays_text(
 
 
 def _defs():  # type: ignore[no-untyped-def]
-    from nodl_schema.targets.resolve import gather_definitions
+    from nodl.targets.resolve import gather_definitions
 
     return gather_definitions([str(DOC / 'defs')], use_config=False)

@@ -7,12 +7,12 @@ import sys
 import yaml
 
 from conftest import FIXTURES
-from nodl_schema.doc.blocks import Code, Heading, Link, Table, text_of
-from nodl_schema.doc.model import NodeSource, node_page, qos_words, value_text
-from nodl_schema.interface_types.resolve import interface_index
-from nodl_schema.model.qos import QoSProfile
-from nodl_schema.system.resolved import resolve_node
-from nodl_schema.validation.validators import lookup
+from nodl.doc.blocks import Code, Heading, Link, Table, text_of
+from nodl.doc.model import NodeSource, node_page, qos_words, value_text
+from nodl.interface_types.resolve import interface_index
+from nodl.model.qos import QoSProfile
+from nodl.system.resolved import resolve_node
+from nodl.validation.validators import lookup
 
 TALKER = FIXTURES / 'doc' / 'talker.nodl.yaml'
 

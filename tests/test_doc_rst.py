@@ -7,9 +7,9 @@ import sys
 from pathlib import Path
 
 from conftest import FIXTURES, REPO, Golden
-from nodl_schema.doc.collect import collect
-from nodl_schema.doc.rst import escape, render_rst
-from nodl_schema.doc.writer import render_files, write_files
+from nodl.doc.collect import collect
+from nodl.doc.rst import escape, render_rst
+from nodl.doc.writer import render_files, write_files
 
 DOC = FIXTURES / 'doc'
 PREFIXES = [sys.prefix]

@@ -5,9 +5,9 @@ from __future__ import annotations
 import sys
 
 from conftest import FIXTURES, REPO
-from nodl_schema.doc.blocks import Heading, Picture, Table, text_of
-from nodl_schema.doc.collect import collect
-from nodl_schema.targets.resolve import gather_definitions
+from nodl.doc.blocks import Heading, Picture, Table, text_of
+from nodl.doc.collect import collect
+from nodl.targets.resolve import gather_definitions
 
 DOC = FIXTURES / 'doc'
 

@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema.doc.collect import collect
-from nodl_schema.doc.writer import mark_rst, render_files, write_files
-from nodl_schema.writing import marker_state
+from nodl.doc.collect import collect
+from nodl.doc.writer import mark_rst, render_files, write_files
+from nodl.writing import marker_state
 
 DOC = FIXTURES / 'doc'
 

@@ -21,8 +21,8 @@ from pathlib import Path
 import pytest
 
 from conftest import REPO
-from nodl_schema.analysis import KINDS, analyse_launch
-from nodl_schema.index.node_info import find_plugin, read_node_info
+from nodl.analysis import KINDS, analyse_launch
+from nodl.index.node_info import find_plugin, read_node_info
 
 VENV = Path(sys.prefix)
 SYSTEM = REPO / 'examples' / 'system'
@@ -99,7 +99,7 @@ def build(tmp_path_factory: pytest.TempPathFactory) -> Build:
 @pytest.fixture(scope='module')
 def report(build: Build) -> dict:  # type: ignore[type-arg]
     # the command a user runs (the configuration examples/system/nodl.toml applies)
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'analyse', str(LAUNCH),
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'analyse', str(LAUNCH),
                              '--format', 'json'], cwd=REPO, env=build.env(), text=True,
                             capture_output=True, timeout=120)
     assert result.returncode == 1, result.stdout + result.stderr   # errors are planted
@@ -198,8 +198,8 @@ def test_composable_nodes_are_matched_by_plugin(analysis) -> None:  # type: igno
 
 
 def test_the_policy_of_the_example_system(workspace: Build, golden, monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    from nodl_schema.policy.launched import launch_policy
-    from nodl_schema.policy.writer import write_policy
+    from nodl.policy.launched import launch_policy
+    from nodl.policy.writer import write_policy
     from test_policy_generate import round_trip
 
     monkeypatch.chdir(REPO)   # the comments name launch files relative to the working directory
@@ -217,9 +217,9 @@ def test_the_policy_of_the_example_system(workspace: Build, golden, monkeypatch)
 
 
 def test_a_widened_copy_of_the_policy_is_over_privileged(workspace: Build, tmp_path: Path) -> None:
-    from nodl_schema.policy.check import check_policy_file
-    from nodl_schema.policy.launched import launch_policy
-    from nodl_schema.policy.writer import write_policy
+    from nodl.policy.check import check_policy_file
+    from nodl.policy.launched import launch_policy
+    from nodl.policy.writer import write_policy
 
     sys.path.insert(0, str(REPO / 'examples'))
     try:
@@ -253,7 +253,7 @@ def test_the_graph_page_of_the_example_system_fits_1280x800(analysis, browser, t
     tests/test_analysis_graph.py)."""
     from selenium.webdriver.common.by import By
 
-    from nodl_schema.analysis.graph import render_graph
+    from nodl.analysis.graph import render_graph
 
     page = tmp_path / 'rover.html'
     page.write_text(render_graph(analysis, 'html'), encoding='utf-8')
@@ -278,7 +278,7 @@ def test_the_docs_of_the_example_system_build_with_sphinx_and_pass_check(build: 
     site = tmp_path / 'site'
 
     def doc(*args: str) -> subprocess.CompletedProcess[str]:
-        return subprocess.run([sys.executable, '-m', 'nodl_schema', 'doc', str(LAUNCH), '-o',
+        return subprocess.run([sys.executable, '-m', 'nodl', 'doc', str(LAUNCH), '-o',
                                str(site), *args], cwd=REPO, env=build.env(), text=True,
                               capture_output=True, timeout=120)
 

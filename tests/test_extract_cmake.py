@@ -1,11 +1,11 @@
-"""nodl_schema.extract.cmake: which executables a package builds from which sources."""
+"""nodl.extract.cmake: which executables a package builds from which sources."""
 
 from __future__ import annotations
 
 import os
 from pathlib import Path
 
-from nodl_schema.extract.cmake import MAX_DEPTH, read_cmake, read_cmake_text
+from nodl.extract.cmake import MAX_DEPTH, read_cmake, read_cmake_text
 
 CMAKE = Path(__file__).parent / 'fixtures' / 'extract' / 'cmake'
 

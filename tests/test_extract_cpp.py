@@ -1,4 +1,4 @@
-"""nodl_schema.extract.cpp: rclcpp nodes read from C++ source with tree-sitter-cpp.
+"""nodl.extract.cpp: rclcpp nodes read from C++ source with tree-sitter-cpp.
 
 The accuracy tests read real nodes of public packages (tests/fixtures/extract/cpp/*, each with
 its origin and licence) and compare with expected.yaml, written by hand against the source.
@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from nodl_schema.extract.cpp import MAX_FILE_BYTES, extract_cpp, extract_cpp_package, qos_of_name
-from nodl_schema.extract.writer import GAP_MARKER, draft_text
+from nodl.extract.cpp import MAX_FILE_BYTES, extract_cpp, extract_cpp_package, qos_of_name
+from nodl.extract.writer import GAP_MARKER, draft_text
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'extract' / 'cpp'
 CMAKE = Path(__file__).parent / 'fixtures' / 'extract' / 'cmake'

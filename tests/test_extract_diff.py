@@ -1,4 +1,4 @@
-"""nodl_schema.extract.diff: the source against a definition, each difference a coded diagnostic."""
+"""nodl.extract.diff: the source against a definition, each difference a coded diagnostic."""
 
 from __future__ import annotations
 
@@ -6,9 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.diagnostics import ValidationError
-from nodl_schema.extract.diff import diff_node
-from nodl_schema.extract.python import extract_source
+from nodl.diagnostics import ValidationError
+from nodl.extract.diff import diff_node
+from nodl.extract.python import extract_source
 
 SOURCE = '''import rclpy
 from rclpy.node import Node

@@ -1,9 +1,9 @@
-"""nodl_schema.extract.model: locations, gaps as located diagnostics, nodes and extractions."""
+"""nodl.extract.model: locations, gaps as located diagnostics, nodes and extractions."""
 
 from __future__ import annotations
 
-from nodl_schema.diagnostics import Severity
-from nodl_schema.extract.model import ENTITY_SECTIONS, Entity, ExtractedNode, Extraction, Gap, Location
+from nodl.diagnostics import Severity
+from nodl.extract.model import ENTITY_SECTIONS, Entity, ExtractedNode, Extraction, Gap, Location
 
 
 def test_location_and_gap_diagnostic() -> None:

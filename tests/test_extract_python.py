@@ -1,4 +1,4 @@
-"""nodl_schema.extract.python: rclpy nodes read with ast, checked against hand-checked expectations
+"""nodl.extract.python: rclpy nodes read with ast, checked against hand-checked expectations
 of real public nodes, against the live description of the test nodes running, and on bad input."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from nodl_schema.extract.python import MAX_SOURCE_BYTES, extract_file, extract_source
+from nodl.extract.python import MAX_SOURCE_BYTES, extract_file, extract_source
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'extract' / 'python'
 REAL = FIXTURES / 'real'
@@ -156,7 +156,7 @@ def test_nothing_is_imported_or_run(tmp_path: Path) -> None:
 # -- the live comparison: every test node, running, against its extraction ----------------------
 
 def _expand(name: str, node: str, namespace: str) -> str:
-    from nodl_schema.naming import expand
+    from nodl.naming import expand
 
     return expand(name, node, namespace)
 
@@ -172,7 +172,7 @@ LIVE = {
 
 @pytest.mark.parametrize('script', sorted(LIVE))
 def test_live_entities_are_extracted_or_located_gaps(ros_node, script: str) -> None:  # type: ignore[no-untyped-def]
-    from nodl_schema.live.describe import describe_node
+    from nodl.live.describe import describe_node
 
     name, extracted_name = LIVE[script]
     args = ('--lifetime', '20') if script == 'dying_node.py' else ()
@@ -184,7 +184,7 @@ def test_live_entities_are_extracted_or_located_gaps(ros_node, script: str) -> N
 
 
 def _compare(live, node, name: str, namespace: str) -> None:  # type: ignore[no-untyped-def]
-    from nodl_schema.model.interface import ENDPOINT_SECTIONS
+    from nodl.model.interface import ENDPOINT_SECTIONS
 
     complete = {(e.section, _expand(e.name, name, namespace) if not e.is_parameter else e.name): e
                 for e in node.entities if e.complete}
@@ -204,7 +204,7 @@ def _compare(live, node, name: str, namespace: str) -> None:  # type: ignore[no-
 
 
 def test_live_action_nodes_with_a_name_computed_at_run_time(ros_node) -> None:  # type: ignore[no-untyped-def]
-    from nodl_schema.live.describe import describe_node
+    from nodl.live.describe import describe_node
 
     server = ros_node('action_nodes.py', 'x_act')
     extraction = extract_file(str(NODES / 'action_nodes.py'))
@@ -220,7 +220,7 @@ def test_live_example_node_matches_its_extraction() -> None:
     import subprocess
     import sys
 
-    from nodl_schema.live.describe import describe_node
+    from nodl.live.describe import describe_node
 
     example = Path(__file__).parent.parent / 'examples' / 'nodes' / 'laser_driver_node.py'
     node = _node(extract_file(str(example)), 'LaserDriver')
@@ -253,7 +253,7 @@ def _whole_gap(node):  # type: ignore[no-untyped-def]
 
 def _compare_opaque(live, node, name: str) -> None:  # type: ignore[no-untyped-def]
     """Nothing extracted is absent live; every live entity is covered by the node's one gap."""
-    from nodl_schema.model.interface import ENDPOINT_SECTIONS
+    from nodl.model.interface import ENDPOINT_SECTIONS
 
     observed = {('parameters', k) for k in (live.parameters or {})}
     for section in ENDPOINT_SECTIONS:
@@ -268,7 +268,7 @@ def _compare_opaque(live, node, name: str) -> None:  # type: ignore[no-untyped-d
 def test_live_generated_node_is_one_gap_at_its_class(ros_node, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
     import shutil
 
-    from nodl_schema.live.describe import describe_node
+    from nodl.live.describe import describe_node
 
     shutil.copy(GENERATE / 'python' / 'talker_base.py', tmp_path / 'talker_base.py')
     process = ros_node('generated_node.py', 'x_gen', '/', '--module-dir', str(tmp_path), '--kind', 'talker')
@@ -283,7 +283,7 @@ def test_live_generated_node_is_one_gap_at_its_class(ros_node, tmp_path: Path) -
 
 
 def test_live_runtime_node_is_one_gap_at_its_making(ros_node) -> None:  # type: ignore[no-untyped-def]
-    from nodl_schema.live.describe import describe_node
+    from nodl.live.describe import describe_node
 
     process = ros_node('runtime_node.py', 'x_rt', '/', '--definition', str(GENERATE / 'talker.nodl.yaml'),
                        '--kind', 'talker')
@@ -309,7 +309,7 @@ PACKAGES = Path(__file__).parent / 'fixtures' / 'extract' / 'packages'
 
 
 def _sources(root: Path):  # type: ignore[no-untyped-def]
-    from nodl_schema.extract.python import PackageSources
+    from nodl.extract.python import PackageSources
 
     return PackageSources(str(root), [str(p) for p in sorted(root.rglob('*.py'))])
 
@@ -343,7 +343,7 @@ def test_bases_of_each_other_across_modules_end(tmp_path: Path) -> None:
 
 
 def test_live_node_of_a_base_in_another_module(ros_node) -> None:  # type: ignore[no-untyped-def]
-    from nodl_schema.live.describe import describe_node
+    from nodl.live.describe import describe_node
 
     root = PACKAGES / 'base_pkg'
     process = ros_node('package_node.py', 'x_base', '/', '--root', str(root), '--module', 'base_pkg.talker',

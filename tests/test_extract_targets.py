@@ -1,10 +1,10 @@
-"""nodl_schema.extract.targets: packages, entry points (setup.py, setup.cfg), output paths."""
+"""nodl.extract.targets: packages, entry points (setup.py, setup.cfg), output paths."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from nodl_schema.extract.targets import extract_paths, find_packages, output_paths, read_python_build
+from nodl.extract.targets import extract_paths, find_packages, output_paths, read_python_build
 
 PKG = Path(__file__).parent / 'fixtures' / 'extract' / 'python' / 'pkg'
 
@@ -49,8 +49,8 @@ def test_unreadable_paths_and_no_node(tmp_path: Path) -> None:
 
 
 def test_registrations_record_components_and_node_names() -> None:
-    from nodl_schema.extract.model import ExtractedNode, Extraction, Location
-    from nodl_schema.extract.targets import nodes_file_text, registrations
+    from nodl.extract.model import ExtractedNode, Extraction, Location
+    from nodl.extract.targets import nodes_file_text, registrations
 
     ours = ExtractedNode('pkg::Talker', Location('t.cpp', 3, 1), 'cpp', package='pkg', plugin='pkg::Talker',
                          node_name='talker')
@@ -124,7 +124,7 @@ def test_a_base_module_is_read_once_more_at_most(tmp_path: Path) -> None:
     per node class derived from it)."""
     import shutil
 
-    from nodl_schema.extract import python
+    from nodl.extract import python
 
     package = tmp_path / 'base_pkg'
     shutil.copytree(BASES, package)

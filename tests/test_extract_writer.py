@@ -1,11 +1,11 @@
-"""nodl_schema.extract.writer: drafts with a location comment per entity, gaps commented out, valid."""
+"""nodl.extract.writer: drafts with a location comment per entity, gaps commented out, valid."""
 
 from __future__ import annotations
 
-from nodl_schema.extract.model import Entity, ExtractedNode, Gap, Location
-from nodl_schema.extract.writer import check_entities, draft_data, draft_text
-from nodl_schema.loading import load_node
-from nodl_schema.model.qos import QoSProfile
+from nodl.extract.model import Entity, ExtractedNode, Gap, Location
+from nodl.extract.writer import check_entities, draft_data, draft_text
+from nodl.loading import load_node
+from nodl.model.qos import QoSProfile
 
 QOS = QoSProfile('KEEP_LAST', 'RELIABLE', 10, 'VOLATILE')
 

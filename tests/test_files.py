@@ -1,11 +1,11 @@
-"""Finding NoDL files (nodl_schema.files)."""
+"""Finding NoDL files (nodl.files)."""
 
 from __future__ import annotations
 
 import os
 
 from conftest import FIXTURES
-from nodl_schema.files import STDIN, Target, find_nodl_files
+from nodl.files import STDIN, Target, find_nodl_files
 
 TREE = FIXTURES / 'tree'
 
@@ -103,7 +103,7 @@ def test_a_dangling_link_named_like_a_nodl_file_is_reported(tmp_path) -> None:
 
 
 def test_tidy_path_takes_out_dot_steps_and_keeps_relative_paths_relative(tmp_path) -> None:
-    from nodl_schema.files import tidy_path
+    from nodl.files import tidy_path
 
     (tmp_path / 'launch').mkdir()
     (tmp_path / 'config').mkdir()
@@ -117,7 +117,7 @@ def test_tidy_path_takes_out_dot_steps_and_keeps_relative_paths_relative(tmp_pat
 
 
 def test_tidy_path_keeps_a_dot_dot_that_a_symbolic_link_makes_lead_elsewhere(tmp_path) -> None:
-    from nodl_schema.files import tidy_path
+    from nodl.files import tidy_path
 
     (tmp_path / 'real' / 'deep').mkdir(parents=True)
     (tmp_path / 'real' / 'x.yaml').write_text('{}')      # what link/../x.yaml opens
@@ -132,7 +132,7 @@ def test_tidy_path_keeps_a_dot_dot_that_a_symbolic_link_makes_lead_elsewhere(tmp
 def test_an_os_error_is_said_in_words_without_errno() -> None:
     import errno
 
-    from nodl_schema.files import describe_os_error
+    from nodl.files import describe_os_error
 
     assert describe_os_error(FileNotFoundError(errno.ENOENT, 'No such file or directory', 'x')) \
         == 'No such file or directory'  # the system's words, without '[Errno 2]' and the path
@@ -171,7 +171,7 @@ def test_no_raw_errno_text_reaches_the_user() -> None:
          str(UNREADABLE / 'bad_refs.launch.xml' / 'n.py')],
     ]
     for args in runs:
-        done = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+        done = subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                               capture_output=True, timeout=60)
         said = done.stdout + done.stderr
         assert done.returncode != 0, (args, said)

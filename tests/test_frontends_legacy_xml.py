@@ -16,11 +16,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import FIXTURES, REPO
-from nodl_schema.diagnostics import Severity
-from nodl_schema.frontends.legacy_xml import (
+from nodl.diagnostics import Severity
+from nodl.frontends.legacy_xml import (
     LegacyDocument, LegacyEndpoint, LegacyQoS, interface_files_from_package_xml,
     package_exports, parse_legacy_xml)
-from nodl_schema.reporting import format_text
+from nodl.reporting import format_text
 
 LEGACY = FIXTURES / 'legacy'
 ERRORS = LEGACY / 'errors'
@@ -309,7 +309,7 @@ def test_records_compare_by_value_and_print_their_fields() -> None:
 
 
 def test_module_imports_neither_dataclasses_nor_pathlib() -> None:
-    code = ('import sys; import nodl_schema.frontends.legacy_xml; '
+    code = ('import sys; import nodl.frontends.legacy_xml; '
             "print('dataclasses' in sys.modules, 'pathlib' in sys.modules)")
     result = subprocess.run([sys.executable, '-S', '-c', code], cwd=REPO, text=True,
                             capture_output=True, timeout=60,

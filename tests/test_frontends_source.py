@@ -1,4 +1,4 @@
-"""Reading documents into text (nodl_schema.frontends.source).
+"""Reading documents into text (nodl.frontends.source).
 
 Covers every kind of input the loaders accept (str, bytes, bytearray,
 memoryview, text and binary file objects, pathlib.Path and other
@@ -19,9 +19,9 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema import ValidationError, check_source, load_nodl
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.frontends.source import MAX_BYTES, SourceText, decode, read_source
+from nodl import ValidationError, check_source, load_nodl
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.frontends.source import MAX_BYTES, SourceText, decode, read_source
 
 FRONTENDS = Path(__file__).parent / 'fixtures' / 'frontends'
 REPO = Path(__file__).resolve().parent.parent
@@ -411,7 +411,7 @@ def test_endless_device_is_rejected_not_read_forever() -> None:
     # /dev/zero reports size 0 and never ends: only the first MAX_BYTES + 1 may be read.
     script = textwrap.dedent('''
         from pathlib import Path
-        from nodl_schema.frontends.source import read_source
+        from nodl.frontends.source import read_source
         text, problem = read_source(Path('/dev/zero'))
         print(problem.message if problem else 'NO PROBLEM')
     ''')
@@ -424,7 +424,7 @@ def test_endless_device_is_rejected_not_read_forever() -> None:
 
 def test_read_limited_reads_what_open_reads(tmp_path: Path) -> None:
     # read_limited asks for the size the file reports, not for the whole limit.
-    from nodl_schema.frontends.source import read_limited
+    from nodl.frontends.source import read_limited
 
     for size in (0, 1, 900, 70_000, 3 * 1024 * 1024 + 7, MAX_BYTES, MAX_BYTES + 5):
         path = tmp_path / f'f{size}'
@@ -448,7 +448,7 @@ def test_read_limited_reads_what_open_reads(tmp_path: Path) -> None:
 
 
 def test_read_regular_reads_a_regular_file_and_nothing_else(tmp_path: Path) -> None:
-    from nodl_schema.frontends.source import read_limited, read_regular
+    from nodl.frontends.source import read_limited, read_regular
 
     file = tmp_path / 'a.nodl.yaml'
     file.write_bytes(b'nodl_version: 2\n' * 1000)

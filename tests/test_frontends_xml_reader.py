@@ -13,8 +13,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import FIXTURES, REPO
-from nodl_schema.diagnostics import Severity
-from nodl_schema.frontends.xml_reader import XmlAttribute, XmlElement, XmlTree, load_xml
+from nodl.diagnostics import Severity
+from nodl.frontends.xml_reader import XmlAttribute, XmlElement, XmlTree, load_xml
 
 LEGACY = FIXTURES / 'legacy'
 ERRORS = LEGACY / 'errors'
@@ -53,7 +53,7 @@ def test_crlf_and_cr_line_breaks_count_as_one_line() -> None:
 def test_attributes_are_placed_as_one_by_one(attributes, lead, close) -> None:
     """The placement of a tag's attributes in one match (a tag on one line) gives the
     positions the attribute-by-attribute scan gives (every tag, on one line or not)."""
-    from nodl_schema.frontends import xml_reader as X
+    from nodl.frontends import xml_reader as X
 
     tag = '<t' + ''.join(f'{space}{name}{equals}{value}' for name, space, equals, value in attributes) + close
     text = f'<root>\n{lead}{tag}</root>'
@@ -145,7 +145,7 @@ def test_attributes_are_placed_when_first_read() -> None:
 
 
 def test_module_imports_neither_dataclasses_nor_pathlib() -> None:
-    code = ('import sys; import nodl_schema.frontends.xml_reader; '
+    code = ('import sys; import nodl.frontends.xml_reader; '
             "print('dataclasses' in sys.modules, 'pathlib' in sys.modules)")
     result = subprocess.run([sys.executable, '-S', '-c', code], cwd=REPO, text=True,
                             capture_output=True, timeout=60,

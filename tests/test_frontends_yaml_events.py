@@ -1,4 +1,4 @@
-"""The event pass's own rules (nodl_schema.frontends.yaml_events): the nesting limit
+"""The event pass's own rules (nodl.frontends.yaml_events): the nesting limit
 applied before any parser's limit, merge keys by the YAML specification, and the list of
 anchors, aliases and merge keys it keeps for readers that refuse them."""
 
@@ -10,8 +10,8 @@ from typing import Any
 
 import pytest
 
-from nodl_schema.frontends import yaml_events
-from nodl_schema.frontends.yaml_events import MAX_DEPTH, TOO_DEEP, Stop
+from nodl.frontends import yaml_events
+from nodl.frontends.yaml_events import MAX_DEPTH, TOO_DEEP, Stop
 
 FRONTENDS = Path(__file__).parent / 'fixtures' / 'frontends'
 DEEP = f'document nests deeper than {MAX_DEPTH} levels; NoDL documents are never this deep'

@@ -1,4 +1,4 @@
-"""The YAML/JSON frontend (nodl_schema.frontends.yaml_json).
+"""The YAML/JSON frontend (nodl.frontends.yaml_json).
 
 YAML and JSON give the same data, JSON keeps JSON semantics, problems that
 YAML loaders hide (duplicate keys) or handle badly (tabs, several documents,
@@ -20,10 +20,10 @@ from typing import Any
 import pytest
 import yaml
 
-from nodl_schema import ValidationError, check_source, load_nodl
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.frontends.source import SourceText, read_source
-from nodl_schema.frontends.yaml_json import MAX_ALIAS_NODES, MAX_DEPTH, ParsedDocument, parse_document
+from nodl import ValidationError, check_source, load_nodl
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.frontends.source import SourceText, read_source
+from nodl.frontends.yaml_json import MAX_ALIAS_NODES, MAX_DEPTH, ParsedDocument, parse_document
 
 REPO = Path(__file__).resolve().parent.parent
 FRONTENDS = Path(__file__).parent / 'fixtures' / 'frontends'
@@ -201,7 +201,7 @@ def test_text_starting_with_a_brace_is_strict_json_from_stdin_too(case: str) -> 
 def test_the_command_line_reports_json_errors_at_json_positions(case: str) -> None:
     line, column, says = NOT_JSON_CASES[case]
     text = (NOT_JSON / case).read_text(encoding='utf-8')
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '-'], input=text,
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '-'], input=text,
                             cwd=REPO, capture_output=True, text=True, timeout=60)
     assert result.returncode == 1, result.stdout + result.stderr
     assert f'<stdin>:{line}:{column}: error: JSON syntax error: ' in result.stdout
@@ -726,7 +726,7 @@ def _paths(data: Any, prefix: tuple[Any, ...] = ()) -> Any:
 
 
 def test_the_source_map_places_every_path_as_the_node_tree_does() -> None:
-    from nodl_schema.frontends import yaml_events
+    from nodl.frontends import yaml_events
 
     files = sorted(p for p in (REPO / 'tests' / 'fixtures').rglob('*.yaml') if p.is_file())
     placed = 0

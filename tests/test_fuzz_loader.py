@@ -34,8 +34,8 @@ import yaml
 from hypothesis import HealthCheck, Phase, example, given, settings
 from hypothesis import strategies as st
 
-from nodl_schema import ValidationError, check_source, dump_nodl, load_nodl
-from nodl_schema.diagnostics import Severity
+from nodl import ValidationError, check_source, dump_nodl, load_nodl
+from nodl.diagnostics import Severity
 
 TESTS = Path(__file__).resolve().parent
 REPO = TESTS.parent

@@ -12,18 +12,18 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema.generate import (
+from nodl.generate import (
     GenerateOptions, GenerationError, default_class_name, default_node_name, load_generators)
-from nodl_schema.generate.cpp import CppGenerator, cpp_dependencies, generate_cpp, plan_cpp
-from nodl_schema.generate.cpp.parameters import CPP_PREDICATES
-from nodl_schema.generate.cpp.qos import CPP_POLICY_VALUES, qos_expression
-from nodl_schema.generate.cpp.text import (
+from nodl.generate.cpp import CppGenerator, cpp_dependencies, generate_cpp, plan_cpp
+from nodl.generate.cpp.parameters import CPP_PREDICATES
+from nodl.generate.cpp.qos import CPP_POLICY_VALUES, qos_expression
+from nodl.generate.cpp.text import (
     comment_lines, cpp_value, rosidl_file_stem, string_literal)
-from nodl_schema.generate.cpp.user import render_user_source
-from nodl_schema.model import QoSProfile
-from nodl_schema.system import resolve_node
-from nodl_schema.validation.validators import BUILTIN_NAMES
-from nodl_schema.vocabulary import QOS_ENUMS
+from nodl.generate.cpp.user import render_user_source
+from nodl.model import QoSProfile
+from nodl.system import resolve_node
+from nodl.validation.validators import BUILTIN_NAMES
+from nodl.vocabulary import QOS_ENUMS
 
 GENERATE = FIXTURES / 'generate'
 GOLDEN = GENERATE / 'cpp'
@@ -279,7 +279,7 @@ def test_unusable_names_are_generation_errors(bad: dict[str, str]) -> None:
 
 
 def test_control_bidi_and_trigraphs_in_comments_are_shown_not_kept() -> None:
-    from nodl_schema.text_safety import first_unsafe
+    from nodl.text_safety import first_unsafe
 
     lines = comment_lines('swap \u202e here \x1b[2J and \x85 then ??/ and ??= end??')
     assert lines == ['/// swap &#92;u202e here &#92;x1b[2J and',  # NEL ends a line, as in Python

@@ -20,10 +20,10 @@ import clang.cindex as clang  # the libclang package (test extra)
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema.generate import GenerateOptions, default_class_name, default_node_name, write_files
-from nodl_schema.generate.cpp import generate_cpp, plan_cpp
-from nodl_schema.generate.cpp.user import render_user_source
-from nodl_schema.system import resolve_node
+from nodl.generate import GenerateOptions, default_class_name, default_node_name, write_files
+from nodl.generate.cpp import generate_cpp, plan_cpp
+from nodl.generate.cpp.user import render_user_source
+from nodl.system import resolve_node
 
 GENERATE = FIXTURES / 'generate'
 STUBS = GENERATE / 'cpp_stubs'
@@ -134,8 +134,8 @@ def test_hostile_text_in_comments_and_literals_still_parses(tmp_path: Path) -> N
     """Text holding control and bidi characters, trigraphs, comment ends and backslashes (as a
     running node's descriptors or an ignored check let through), written by the generator's
     comment and literal writers, holds none of them raw and libclang parses it as intended."""
-    from nodl_schema.generate.cpp.text import comment_lines, string_literal
-    from nodl_schema.text_safety import first_unsafe
+    from nodl.generate.cpp.text import comment_lines, string_literal
+    from nodl.text_safety import first_unsafe
 
     hostile = 'node \u202e */ ??/ \x1b[2J \x00 \x85 \u2066 end \\'
     source = '\n'.join(comment_lines(hostile) + [f'const char * text = {string_literal(hostile)};',
@@ -154,10 +154,10 @@ def test_a_whole_node_with_hostile_descriptions_parses(tmp_path: Path) -> None:
     ends, trigraphs and backslashes (its validation errors NODL219/NODL220 bypassed, as a
     running node's descriptors would give them): the generated header, source and user stub
     hold none of them raw, and libclang parses them with no diagnostic."""
-    from nodl_schema.loading import Report, check_source
-    from nodl_schema.system.resolved import resolve_report
-    from nodl_schema.text_safety import UNSAFE
-    from nodl_schema.validation.kinds import Kind
+    from nodl.loading import Report, check_source
+    from nodl.system.resolved import resolve_report
+    from nodl.text_safety import UNSAFE
+    from nodl.validation.kinds import Kind
 
     definition = FIXTURES / 'scaffold' / 'hostile_text.nodl.yaml'
     path = tmp_path / 'hostile.nodl.yaml'

@@ -12,9 +12,9 @@ import subprocess
 from pathlib import Path
 from typing import Any
 
-from nodl_schema.generate.cpp.parameters import CPP_PREDICATES, helper_lines
-from nodl_schema.generate.cpp.text import cpp_type, cpp_value
-from nodl_schema.validation.validators import BUILTIN_NAMES, VALIDATORS
+from nodl.generate.cpp.parameters import CPP_PREDICATES, helper_lines
+from nodl.generate.cpp.text import cpp_type, cpp_value
+from nodl.validation.validators import BUILTIN_NAMES, VALIDATORS
 
 #: (validator, raw arguments as written, parameter type, values)
 CASES: list[tuple[str, Any, str, list[Any]]] = [
@@ -86,8 +86,8 @@ def test_every_builtin_validator_is_covered() -> None:
 
 def test_every_applicable_type_is_covered() -> None:
     """Each validator is exercised on every parameter type the validator table lets it validate."""
-    from nodl_schema.model.parameter_types import parse_type
-    from nodl_schema.vocabulary import ARRAY_TYPES, SCALAR_TYPES
+    from nodl.model.parameter_types import parse_type
+    from nodl.vocabulary import ARRAY_TYPES, SCALAR_TYPES
 
     types = [t for t in (*SCALAR_TYPES, *ARRAY_TYPES) if t != 'none']
     needed = {(name, t) for name in BUILTIN_NAMES for t in types if VALIDATORS[name].applies_to(parse_type(t))}

@@ -6,12 +6,12 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.generate import (
+from nodl.generate import (
     GeneratedFile, GenerateOptions, GenerationError, GeneratorExtension, check_options,
     default_class_name, default_node_name, generate, load_generators, write_files)
-from nodl_schema.generate.definition import resolve_target, target_name
-from nodl_schema.plugins import EXTENSION_POINTS
-from nodl_schema.writing import WriteError
+from nodl.generate.definition import resolve_target, target_name
+from nodl.plugins import EXTENSION_POINTS
+from nodl.writing import WriteError
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'generate'
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import keyword
 
-from nodl_schema.generate.identifiers import (
+from nodl.generate.identifiers import (
     CPP_KEYWORDS, IdentifierScope, is_identifier, pascal_case, snake_case)
 
 

@@ -7,11 +7,11 @@ from typing import Any
 
 import pytest
 
-from nodl_schema.generate.parameters import (
+from nodl.generate.parameters import (
     DOUBLE_MAX, INT64_MAX, INT64_MIN, plan_parameters, ros_type_of, type_problem, value_problems)
-from nodl_schema.generate.python_text import VALIDATOR_EXPRESSIONS, docstring, literal, validator_expression
-from nodl_schema.model import ParameterDefinition
-from nodl_schema.validation.validators import VALIDATORS
+from nodl.generate.python_text import VALIDATOR_EXPRESSIONS, docstring, literal, validator_expression
+from nodl.model import ParameterDefinition
+from nodl.validation.validators import VALIDATORS
 
 
 def _plan(**parameters: dict[str, Any]) -> Any:

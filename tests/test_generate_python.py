@@ -17,15 +17,15 @@ from typing import Any, Iterator
 import pytest
 from ros_client import Client
 
-from nodl_schema.generate import (
+from nodl.generate import (
     GenerateOptions,
     default_class_name,
     default_node_name,
     write_files,
 )
-from nodl_schema.generate.python import generate_python
-from nodl_schema.system import resolve_node
-from nodl_schema.writing import mark
+from nodl.generate.python import generate_python
+from nodl.system import resolve_node
+from nodl.writing import mark
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'generate'
 KINDS = ('talker', 'managed_camera', 'everything')
@@ -104,7 +104,7 @@ def test_ruff_and_mypy_pass_on_generated_code(module_dir: Path) -> None:
 
 def test_cli_generate_and_check(tmp_path: Path) -> None:
     definition = FIXTURES / 'talker.nodl.yaml'
-    run = [sys.executable, '-m', 'nodl_schema', 'generate', str(definition), '--language', 'python',
+    run = [sys.executable, '-m', 'nodl', 'generate', str(definition), '--language', 'python',
            '-o', str(tmp_path)]
     first = subprocess.run(run, capture_output=True, text=True, timeout=60)
     assert first.returncode == 0, first.stderr
@@ -150,8 +150,8 @@ def _start(ros_node: Any, module_dir: Path, kind: str, name: str, *ros_args: str
 
 
 def _conforms(fqn: str, kind: str) -> None:
-    from nodl_schema.live.check import check_node
-    from nodl_schema.live.report import format_check_text
+    from nodl.live.check import check_node
+    from nodl.live.report import format_check_text
 
     result = check_node(fqn, FIXTURES / f'{kind}.nodl.yaml', timeout=15)
     assert result.conforms, format_check_text(result, verbose=True)
@@ -366,9 +366,9 @@ def test_parameters_descriptors_batches_and_a_later_rejecting_callback(talker_cl
 
 
 def test_generated_code_runs_without_the_toolkit(module_dir: Path, tmp_path: Path) -> None:
-    """No runtime dependency: the generated base imports and runs with nodl_schema unimportable."""
+    """No runtime dependency: the generated base imports and runs with nodl unimportable."""
     code = ('import sys\n'
-            'sys.modules["nodl_schema"] = None  # any import of the toolkit fails\n'
+            'sys.modules["nodl"] = None  # any import of the toolkit fails\n'
             f'sys.path.insert(0, {str(module_dir)!r})\n'
             'import rclpy, everything_base, talker_base, managed_camera_base\n'
             'class T(talker_base.TalkerBase):\n'
@@ -390,7 +390,7 @@ def test_cli_generate_package_executable(tmp_path: Path) -> None:
 
     prefix = Path(__file__).parent / 'fixtures' / 'index' / 'first'
     env = {**os.environ, 'AMENT_PREFIX_PATH': str(prefix)}
-    run = [sys.executable, '-m', 'nodl_schema', 'generate', 'alpha', 'talker', '-o', str(tmp_path)]
+    run = [sys.executable, '-m', 'nodl', 'generate', 'alpha', 'talker', '-o', str(tmp_path)]
     for language in ('python', 'cpp'):
         done = subprocess.run(run + ['--language', language], capture_output=True, text=True,
                               timeout=60, env=env, cwd=tmp_path)

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.generate.python_text import (
+from nodl.generate.python_text import (
     LINE_LENGTH, comment, docstring, literal, mark_long_lines, multiline_string_lines)
 
 REPO = Path(__file__).resolve().parent.parent
@@ -41,7 +41,7 @@ def test_multiline_strings_as_tokenize_finds_them(text: str) -> None:
 
 def test_generated_modules_and_the_library_agree_with_tokenize() -> None:
     files = sorted((REPO / 'tests' / 'fixtures' / 'generate' / 'python').glob('*.py'))
-    files += sorted((REPO / 'nodl_schema' / 'generate').glob('*.py'))
+    files += sorted((REPO / 'nodl' / 'generate').glob('*.py'))
     assert files
     for path in files:
         text = path.read_text(encoding='utf-8')
@@ -61,7 +61,7 @@ HOSTILE = 'Gain \u202e txt.exe \x1b[2J\x00 end\u2028next \x85 "quoted" \\ done'
 
 
 def test_hostile_text_in_docstrings_and_comments_is_escaped_and_compiles() -> None:
-    from nodl_schema.text_safety import first_unsafe
+    from nodl.text_safety import first_unsafe
 
     source = docstring(HOSTILE, '    ') + comment(HOSTILE, '    ') + '    pass\n'
     code = 'def f():\n' + source

@@ -24,9 +24,9 @@ from typing import Any, Callable
 
 import pytest
 
-from nodl_schema import ValidationError, check_source, load_nodl
-from nodl_schema.frontends.source import MAX_BYTES
-from nodl_schema.frontends.yaml_json import MAX_DEPTH
+from nodl import ValidationError, check_source, load_nodl
+from nodl.frontends.source import MAX_BYTES
+from nodl.frontends.yaml_json import MAX_DEPTH
 
 REPO = Path(__file__).resolve().parent.parent
 MAX_SECONDS = 2.0
@@ -165,7 +165,7 @@ EXPECTED: dict[str, tuple[str, tuple[int, int] | None]] = {
 #: and its ru_maxrss growth is the payload's peak memory alone.
 WORKER = textwrap.dedent('''
     import json, os, resource, signal, sys, time
-    from nodl_schema import ValidationError, check_source, load_nodl
+    from nodl import ValidationError, check_source, load_nodl
     # Warm up: imports and schemas are not the payload's cost.
     check_source('nodl_version: 2\\n')
     load_nodl('type: int\\ndescription: warm-up\\n')

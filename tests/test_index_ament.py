@@ -1,4 +1,4 @@
-"""The ament resource index reader (nodl_schema.index.ament)."""
+"""The ament resource index reader (nodl.index.ament)."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema.index import ament
+from nodl.index import ament
 
 FIRST = str(FIXTURES / 'index' / 'first')
 SECOND = str(FIXTURES / 'index' / 'second')
@@ -95,7 +95,7 @@ def test_reading_needs_no_ros(tmp_path: Path) -> None:
     import sys
 
     # Importing the index reader must not import ament_index_python or rclpy.
-    code = ('import sys, nodl_schema.index.registry; '
+    code = ('import sys, nodl.index.registry; '
             "print(sorted(m for m in sys.modules if m.startswith(('rclpy', 'ament_index'))))")
     result = subprocess.run([sys.executable, '-c', code], cwd=FIXTURES.parent.parent, text=True,
                             capture_output=True, timeout=60)

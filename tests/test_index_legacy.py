@@ -1,4 +1,4 @@
-"""Packages that ship only legacy (XML) NoDL files (nodl_schema.index.legacy).
+"""Packages that ship only legacy (XML) NoDL files (nodl.index.legacy).
 
 A registered legacy node is converted to v2 in memory; what is said about it,
 and where its entities are, points into the XML file the user wrote.
@@ -11,12 +11,12 @@ import subprocess
 import sys
 
 from conftest import FIXTURES, REPO
-from nodl_schema.diagnostics import Severity
-from nodl_schema.index.legacy import compose_legacy, legacy_files, legacy_registrations
-from nodl_schema.index.registry import Registration
-from nodl_schema.show import show_registered
-from nodl_schema.system.entities import Location
-from nodl_schema.system.resolved import ResolvedNode, resolve_registered
+from nodl.diagnostics import Severity
+from nodl.index.legacy import compose_legacy, legacy_files, legacy_registrations
+from nodl.index.registry import Registration
+from nodl.show import show_registered
+from nodl.system.entities import Location
+from nodl.system.resolved import ResolvedNode, resolve_registered
 
 PREFIX = str(FIXTURES / 'index' / 'legacy')
 LEGACY_PKG = os.path.join(PREFIX, 'share', 'legacy_pkg', 'legacy_pkg.nodl.xml')
@@ -108,7 +108,7 @@ def test_show_registered_locates_a_legacy_node_in_its_xml_file() -> None:
 
 
 def test_nodl_show_prints_the_xml_position() -> None:
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'show', 'legacy_pkg', 'broken',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'show', 'legacy_pkg', 'broken',
                              '--color', 'never'], cwd=REPO, text=True, capture_output=True,
                             env=dict(os.environ, AMENT_PREFIX_PATH=PREFIX), timeout=60)
     assert result.returncode == 1, result.stderr

@@ -6,9 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.index.node_info import (find_plugin, format_node_info, parse_node_info,
+from nodl.index.node_info import (find_plugin, format_node_info, parse_node_info,
                                          plugin_key, read_node_info)
-from nodl_schema.packaging import nodl_data_files
+from nodl.packaging import nodl_data_files
 
 PREFIX = [str(Path(__file__).parent / 'fixtures' / 'analysis' / 'prefix')]
 SENSORS = Path(__file__).parent / 'fixtures' / 'analysis' / 'prefix' / 'share' / 'sensors'

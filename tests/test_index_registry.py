@@ -1,4 +1,4 @@
-"""Registered NoDL definitions (nodl_schema.index.registry)."""
+"""Registered NoDL definitions (nodl.index.registry)."""
 
 from __future__ import annotations
 
@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES
-import nodl_schema
-from nodl_schema.composition import ResolutionError
-from nodl_schema.index.registry import (
+import nodl
+from nodl.composition import ResolutionError
+from nodl.index.registry import (
     Registration, describe_missing, find_node, list_registrations, read_registration)
 
 FIRST = str(FIXTURES / 'index' / 'first')
@@ -190,7 +190,7 @@ def test_a_node_of_our_own_registration_wins_over_the_references(tmp_path: Path)
 
 
 def test_a_flat_reference_document_composes_as_a_node_of_its_interface() -> None:
-    from nodl_schema.index.registry import compose_registered
+    from nodl.index.registry import compose_registered
 
     composed, diagnostics, source = compose_registered('ref_robot', 'talker', [REFERENCE])
     assert composed is not None, diagnostics
@@ -204,7 +204,7 @@ def test_a_flat_reference_document_composes_as_a_node_of_its_interface() -> None
 
 
 def test_rewritten_includes_resolve_through_the_reference_registrations() -> None:
-    from nodl_schema.index.registry import compose_registered
+    from nodl.index.registry import compose_registered
 
     composed, diagnostics, _ = compose_registered('ref_robot', 'lidar', [REFERENCE], 'rclcpp')
     assert composed is not None, diagnostics
@@ -216,10 +216,10 @@ def test_rewritten_includes_resolve_through_the_reference_registrations() -> Non
 
 
 def test_a_missing_nodl_reference_names_both_resource_types(tmp_path: Path) -> None:
-    from nodl_schema import compose
+    from nodl import compose
 
     text = 'nodl_version: 2\ninclude:\n  - ref: nodl://ref_robot/no_such\n'
-    with pytest.raises(nodl_schema.ValidationError) as caught:
+    with pytest.raises(nodl.ValidationError) as caught:
         compose(text, prefixes=[REFERENCE])
     [error] = caught.value.errors
     assert ("package 'ref_robot' registers no interface definition 'no_such' (it registers: lidar, "
@@ -250,14 +250,14 @@ def test_a_package_installed_by_a_re_creation_of_the_references_macro(tmp_path: 
     # The local:// include was rewritten on install; it resolves through the index.
     entry_text = (install / 'share' / 'ament_index' / 'resource_index' / 'nodl' / 'ref_pkg__camera')
     assert '- ref: nodl://ref_pkg/sensor_common' in entry_text.read_text()
-    from nodl_schema.index.registry import compose_registered
+    from nodl.index.registry import compose_registered
 
     composed, diagnostics, _ = compose_registered('ref_pkg', 'camera', prefixes)
     assert composed is not None, diagnostics
     assert [l.label for l in composed.layers] == ['base:node', 'nodl://ref_pkg/sensor_common', 'main']
     assert composed.interface.parameters['frame_id'].default_value == 'camera_link'
     assert composed.node.codegen == {'cpp': {'role': 'base_class'}}
-    shown = subprocess.run([sys.executable, '-m', 'nodl_schema', 'show', 'other_pkg', 'reset_node'],
+    shown = subprocess.run([sys.executable, '-m', 'nodl', 'show', 'other_pkg', 'reset_node'],
                            cwd=FIXTURES.parent.parent, env=dict(os.environ, AMENT_PREFIX_PATH=str(install)),
                            text=True,
                            capture_output=True, timeout=60)

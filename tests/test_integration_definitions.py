@@ -71,7 +71,7 @@ class Workspace:
 
     def nodl(self, *args: str, cwd: Path = REPO, timeout: float = 60,
              **extra: str) -> subprocess.CompletedProcess[str]:
-        result = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=cwd,
+        result = subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=cwd,
                                 env=self.env(**extra), text=True, capture_output=True,
                                 timeout=timeout)
         assert 'Traceback' not in result.stdout + result.stderr, result.stderr
@@ -109,8 +109,8 @@ def _value(value: Any) -> str:
 
 def start_undefined(workspace: Workspace) -> list[NodeProcess]:
     """Start, as launch would, the launched nodes no definition covers yet (the vendors')."""
-    from nodl_schema.analysis import analyse_launch
-    from nodl_schema.targets.resolve import gather_definitions
+    from nodl.analysis import analyse_launch
+    from nodl.targets.resolve import gather_definitions
 
     definitions = gather_definitions([str(HAND), str(workspace.extracted)], environ={},
                                      use_config=False)

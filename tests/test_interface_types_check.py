@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema.interface_types import InterfaceIndex
-from nodl_schema.interface_types.check import check_types, manifest_for, type_entries
-from nodl_schema.interface_types.manifest import read_manifest
-from nodl_schema.loading import check_source
+from nodl.interface_types import InterfaceIndex
+from nodl.interface_types.check import check_types, manifest_for, type_entries
+from nodl.interface_types.manifest import read_manifest
+from nodl.loading import check_source
 
 VENV = str(Path(sys.prefix))
 TYPES = FIXTURES / 'interface_types'
@@ -105,7 +105,7 @@ def test_a_malformed_installed_file_is_one_diagnostic_at_its_line() -> None:
     assert problem.related[1][3] == "'bad_msgs/msg/Outer' named here, as main.publishers[1].type"
     # a nested type that is not installed is the nesting file's problem, at its field
     index = InterfaceIndex([prefix])  # no std_msgs: Outer's header cannot be found
-    from nodl_schema.interface_types.check import interface_problem
+    from nodl.interface_types.check import interface_problem
 
     missing = interface_problem(index, 'bad_msgs/msg/Outer')
     assert missing.file.endswith('Outer.msg') and missing.line == 2

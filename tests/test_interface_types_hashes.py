@@ -1,4 +1,4 @@
-"""RIHS01 hashes and type descriptions (nodl_schema.interface_types.hashes).
+"""RIHS01 hashes and type descriptions (nodl.interface_types.hashes).
 
 The oracle is a real rclpy node in another process: the hash the middleware
 reports for its endpoints, and its ~/get_type_description service, which
@@ -14,8 +14,8 @@ from typing import Iterator
 import pytest
 
 from conftest import NodeProcess
-from nodl_schema.interface_types import InterfaceIndex
-from nodl_schema.interface_types.hashes import (description_differences, installed_hash,
+from nodl.interface_types import InterfaceIndex
+from nodl.interface_types.hashes import (description_differences, installed_hash,
                                                 type_description, type_hash)
 
 VENV = str(Path(sys.prefix))

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.interface_types import InterfaceIndex
-from nodl_schema.interface_types.mapping import (PARAMETER_CPP, PARAMETER_PY, cpp_type, python_type,
+from nodl.interface_types import InterfaceIndex
+from nodl.interface_types.mapping import (PARAMETER_CPP, PARAMETER_PY, cpp_type, python_type,
                                                  spec_note, spec_notes)
-from nodl_schema.interface_types.tree import FieldType, MessageType, load_type
+from nodl.interface_types.tree import FieldType, MessageType, load_type
 
 VENV = str(Path(sys.prefix))
 

@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema.interface_types import InterfaceIndex, TypeName, interface_index
-from nodl_schema.interface_types.resolve import parse_type_name
+from nodl.interface_types import InterfaceIndex, TypeName, interface_index
+from nodl.interface_types.resolve import parse_type_name
 
 VENV = str(Path(sys.prefix))
 SOURCE = FIXTURES / 'interface_types' / 'types_pkg'
@@ -67,7 +67,7 @@ def test_source_package_shadows_and_lists_its_types(index: InterfaceIndex) -> No
 
 
 def test_one_index_per_run_inside_a_snapshot() -> None:
-    from nodl_schema.index.ament import snapshot
+    from nodl.index.ament import snapshot
 
     with snapshot():
         assert interface_index(prefixes=[VENV]) is interface_index(prefixes=[VENV])

@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema.interface_types import InterfaceIndex
-from nodl_schema.interface_types.tree import (ActionType, InterfaceFileError, MessageType, ServiceType,
+from nodl.interface_types import InterfaceIndex
+from nodl.interface_types.tree import (ActionType, InterfaceFileError, MessageType, ServiceType,
                                               UnknownTypeError, load_type)
 
 VENV = str(Path(sys.prefix))
@@ -132,7 +132,7 @@ def test_an_installed_plain_file_reads_as_its_generated_idl(name: str, monkeypat
     generated .idl gives (fields, bounds, defaults and their Python types, constants, comments,
     units, the empty message's placeholder member, the service event and action feedback
     messages rosidl adds)."""
-    from nodl_schema.interface_types import tree
+    from nodl.interface_types import tree
 
     fast = load_type(InterfaceIndex([VENV]), name)
     monkeypatch.setattr(tree, '_plain_spec', lambda *args: None)  # every type through its .idl
@@ -144,7 +144,7 @@ def test_installed_plain_files_are_not_parsed_as_idl(monkeypatch: pytest.MonkeyP
     .action, and each file is read once per index however many types and pages use it."""
     import rosidl_parser.parser
 
-    from nodl_schema.interface_types import tree
+    from nodl.interface_types import tree
 
     def refuse(*args: object) -> None:
         raise AssertionError('parsed as IDL')

@@ -1,4 +1,4 @@
-"""The launch walk (nodl_schema.launch.evaluate): launch files read as ros2 launch would, a
+"""The launch walk (nodl.launch.evaluate): launch files read as ros2 launch would, a
 table of semantics cases, one system in three formats, includes (chains, cycles, required
 arguments) and hostile input (bounded, coded, no traceback)."""
 
@@ -16,7 +16,7 @@ import pytest
 import yaml
 
 from conftest import FIXTURES, REPO
-from nodl_schema.launch import load_launch
+from nodl.launch import load_launch
 
 CASES = sorted((FIXTURES / 'launch' / 'cases').glob('*.yaml'))
 SAME = FIXTURES / 'launch' / 'same_system'
@@ -131,7 +131,7 @@ def test_include_cycle_shows_the_chain(tmp_path: Path) -> None:
 
 _HOSTILE_RUNNER = '''
 import json, resource, sys, time
-from nodl_schema.launch import load_launch
+from nodl.launch import load_launch
 start = time.perf_counter()
 result = load_launch(sys.argv[1], {})
 print(json.dumps({"codes": sorted({d.code for d in result.diagnostics}),
@@ -216,7 +216,7 @@ def test_a_configuration_known_only_at_run_time_keeps_the_nodes_that_use_it(tmp_
     argument from $(command): the nodes that use them stay, the value is unchecked; the
     let's warning is at the let (its use a related place), the others' at the use; a
     condition on such a value says what may be missing."""
-    from nodl_schema.launch.params import RuntimeValue
+    from nodl.launch.params import RuntimeValue
 
     main = _write(tmp_path, {
         'main.launch.xml': textwrap.dedent('''\

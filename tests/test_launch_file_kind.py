@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.launch.file_kind import not_a_launch_file
+from nodl.launch.file_kind import not_a_launch_file
 
 FIXTURES = Path(__file__).parent / 'fixtures'
 OTHER = FIXTURES / 'launch' / 'not_launch'

@@ -1,4 +1,4 @@
-"""The XML and YAML launch frontends (nodl_schema.launch.frontend, xml_frontend,
+"""The XML and YAML launch frontends (nodl.launch.frontend, xml_frontend,
 yaml_frontend): strictness with "did you mean" at FILE:LINE:COL, and parameters typed as
 launch types them (YAML rules, value-sep, type)."""
 
@@ -9,7 +9,7 @@ from typing import Any
 
 import pytest
 
-from nodl_schema.launch import load_launch
+from nodl.launch import load_launch
 
 
 def _diagnostics(tmp_path: Path, name: str, text: str) -> list[Any]:

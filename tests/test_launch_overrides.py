@@ -1,4 +1,4 @@
-"""Parameter precedence and typing (nodl_schema.launch.overrides) against REAL rclpy nodes.
+"""Parameter precedence and typing (nodl.launch.overrides) against REAL rclpy nodes.
 
 Every case of tests/fixtures/launch/parameter_precedence.yaml is resolved twice: by a real
 rclpy node (in this process, one context per case) given the command line launch_ros
@@ -18,9 +18,9 @@ import pytest
 import yaml
 
 from conftest import FIXTURES
-from nodl_schema.launch import load_launch
-from nodl_schema.launch.model import ParameterSource, SourceLocation
-from nodl_schema.launch.overrides import (composable_overrides, match_composable_parameter_keys,
+from nodl.launch import load_launch
+from nodl.launch.model import ParameterSource, SourceLocation
+from nodl.launch.overrides import (composable_overrides, match_composable_parameter_keys,
                                           match_parameter_file_nodes, parameter_overrides,
                                           rcl_scalar, rcl_yaml_value)
 
@@ -250,7 +250,7 @@ def test_a_long_text_is_typed_as_its_yaml_dump_is_read_without_dumping_it() -> N
     import random
     import time
 
-    from nodl_schema.launch.overrides import as_rcl_reads_dump, rcl_yaml_value
+    from nodl.launch.overrides import as_rcl_reads_dump, rcl_yaml_value
 
     rng = random.Random(15)
     alphabet = 'ab01 .:-#\'"\n\té\\[]{}xXeE+_'

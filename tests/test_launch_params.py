@@ -1,5 +1,5 @@
 """Parameter values as launch types them and parameter files read with positions
-(nodl_schema.launch.params)."""
+(nodl.launch.params)."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ from typing import Any
 
 import pytest
 
-from nodl_schema.launch.errors import LaunchProblem
-from nodl_schema.launch.params import coerce_to_type, get_typed_value, load_parameter_file, yaml_value
+from nodl.launch.errors import LaunchProblem
+from nodl.launch.params import coerce_to_type, get_typed_value, load_parameter_file, yaml_value
 
 
 @pytest.mark.parametrize('text, data_type, value', [

@@ -1,4 +1,4 @@
-"""Python launch files (nodl_schema.launch.python_frontend): generate_launch_description()
+"""Python launch files (nodl.launch.python_frontend): generate_launch_description()
 evaluated against the stand-in launch/launch_ros API; what it cannot evaluate is a finding."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import textwrap
 from pathlib import Path
 from typing import Any
 
-from nodl_schema.launch import load_launch
+from nodl.launch import load_launch
 
 
 def _write(tmp_path: Path, files: dict[str, str]) -> Path:
@@ -79,8 +79,8 @@ def test_a_stack_style_launch_file_with_installed_helpers_is_read_faithfully(tmp
     and run against the stand-ins (launch.utilities, context.launch_configurations), names used
     only by main() or in hints import, submodule imports give the same classes,
     PathSubstitution joins, FindPackageShare.find works; a $(command) parameter keeps its node."""
-    from nodl_schema.launch import parameter_overrides
-    from nodl_schema.launch.params import RuntimeValue
+    from nodl.launch import parameter_overrides
+    from nodl.launch.params import RuntimeValue
 
     path_before, modules_before = list(sys.path), set(sys.modules)
     result = _rover(tmp_path, REAL_WORLD / 'prefix')

@@ -1,5 +1,5 @@
 """Modules a Python launch file imports that are not installed here
-(nodl_schema.launch.python_missing): placeholders, one warning per module, and the analysis
+(nodl.launch.python_missing): placeholders, one warning per module, and the analysis
 goes on; what only the running launch knows stays a run-time value."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import sys
 import textwrap
 from pathlib import Path
 
-from nodl_schema.launch import load_launch
+from nodl.launch import load_launch
 
 
 def _write(tmp_path: Path, files: dict[str, str]) -> Path:
@@ -26,9 +26,9 @@ def test_modules_not_installed_here_are_placeholders_and_the_analysis_goes_on() 
     the robot_description from xacro a run-time value, the registered node analysed."""
     import importlib.util
 
-    from nodl_schema.analysis import analyse_launch
-    from nodl_schema.launch import parameter_overrides
-    from nodl_schema.launch.params import RuntimeValue
+    from nodl.analysis import analyse_launch
+    from nodl.launch import parameter_overrides
+    from nodl.launch.params import RuntimeValue
 
     path_before, finders_before = list(sys.path), list(sys.meta_path)
     result = load_launch(MISSING / 'robot.launch.py', {}, prefixes=[str(ANALYSIS_PREFIX)])
@@ -264,8 +264,8 @@ def test_placeholders_unpacked_into_parameters_or_iterated_are_said_not_dropped(
     a module not installed here: the node stays, one NODL513 at its parameters entry, the names
     written out checked and none reported missing; nodes made in a loop over such a value: one
     NODL512 at the loop (once however often it runs)."""
-    from nodl_schema.analysis import analyse_launch
-    from nodl_schema.analysis.report import analysis_to_dict
+    from nodl.analysis import analyse_launch
+    from nodl.analysis.report import analysis_to_dict
 
     analysis = analyse_launch(MISSING / 'unpack.launch.py', prefixes=[str(ANALYSIS_PREFIX)])
     said = [(f.code, f.diagnostic.line, f.diagnostic.column) for f in analysis.findings

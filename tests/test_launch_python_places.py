@@ -1,12 +1,12 @@
-"""Where things are written in a Python launch file (nodl_schema.launch.python_places)."""
+"""Where things are written in a Python launch file (nodl.launch.python_places)."""
 
 from __future__ import annotations
 
 import sys
 from pathlib import Path
 
-from nodl_schema.launch.model import SourceLocation
-from nodl_schema.launch.python_places import frame_location, keyword_places
+from nodl.launch.model import SourceLocation
+from nodl.launch.python_places import frame_location, keyword_places
 
 
 def test_keyword_places_point_at_each_item_of_a_literal_list(tmp_path: Path) -> None:

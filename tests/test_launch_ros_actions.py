@@ -1,4 +1,4 @@
-"""The launch_ros actions (nodl_schema.launch.ros_actions): parameter files read with
+"""The launch_ros actions (nodl.launch.ros_actions): parameter files read with
 allow_substs, and findings about a node's parameters placed where they are written."""
 
 from __future__ import annotations
@@ -8,8 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.analysis import analyse_launch, report
-from nodl_schema.launch import load_launch
+from nodl.analysis import analyse_launch, report
+from nodl.launch import load_launch
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
 PREFIX = [str(FIXTURES / 'prefix')]

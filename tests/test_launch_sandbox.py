@@ -1,4 +1,4 @@
-"""The launch's Python code in a forked child under limits (nodl_schema.launch.sandbox).
+"""The launch's Python code in a forked child under limits (nodl.launch.sandbox).
 
 The hostile launch files (tests/fixtures/launch/sandbox) end, crash, loop, allocate and
 recurse in the child; the test process itself (the parent) must live through each and get
@@ -15,10 +15,10 @@ from typing import Any
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema.diagnostics import Severity
-from nodl_schema.launch import load_launch
-from nodl_schema.launch import sandbox
-from nodl_schema.launch.sandbox import LaunchLimits
+from nodl.diagnostics import Severity
+from nodl.launch import load_launch
+from nodl.launch import sandbox
+from nodl.launch.sandbox import LaunchLimits
 
 SANDBOX = FIXTURES / 'launch' / 'sandbox'
 #: Short limits: a hostile case costs at most about a second.
@@ -235,6 +235,6 @@ def test_no_exec_leaves_eval_values_unknown_and_the_nodes_analysed() -> None:
     assert found == [('NODL526', Severity.WARNING, 4), ('NODL526', Severity.WARNING, 6)]
     assert 'its value is unknown here' in result.diagnostics[0].message
     assert [n.name for n in result.nodes] == ['talker']  # the listener's name is unknown
-    from nodl_schema.launch.params import RuntimeValue
+    from nodl.launch.params import RuntimeValue
 
     assert isinstance(result.nodes[0].parameters[0].values['rate'], RuntimeValue)  # set, unchecked

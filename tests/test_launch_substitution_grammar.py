@@ -1,5 +1,5 @@
 """The $(...) grammar of the launch frontends: structure, quoting, escapes, nesting, and
-coded errors with the character position (nodl_schema.launch.substitution_grammar)."""
+coded errors with the character position (nodl.launch.substitution_grammar)."""
 
 from __future__ import annotations
 
@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.launch import load_launch
-from nodl_schema.launch.errors import LaunchProblem
-from nodl_schema.launch.substitution_grammar import SUBSTITUTIONS, parse_substitution
-from nodl_schema.launch.substitutions import (EnvironmentVariable, LaunchConfiguration, PythonExpression,
+from nodl.launch import load_launch
+from nodl.launch.errors import LaunchProblem
+from nodl.launch.substitution_grammar import SUBSTITUTIONS, parse_substitution
+from nodl.launch.substitutions import (EnvironmentVariable, LaunchConfiguration, PythonExpression,
                                               TextSubstitution, ThisLaunchFileDir)
 
 

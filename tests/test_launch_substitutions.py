@@ -1,4 +1,4 @@
-"""Launch substitutions (nodl_schema.launch.substitutions): the 16 MiB limit on what a
+"""Launch substitutions (nodl.launch.substitutions): the 16 MiB limit on what a
 substitution makes, in XML, YAML and Python launch files.
 
 Each hostile case (``tests/fixtures/launch/hostile``) runs in a child process limited to
@@ -17,9 +17,9 @@ import pytest
 
 from bounded_child import run_bounded
 from conftest import FIXTURES
-from nodl_schema.launch import load_launch
-from nodl_schema.launch.errors import MAX_SUBSTITUTION_CHARS
-from nodl_schema.launch.substitutions import (LaunchConfiguration, PathJoinSubstitution, TextSubstitution,
+from nodl.launch import load_launch
+from nodl.launch.errors import MAX_SUBSTITUTION_CHARS
+from nodl.launch.substitutions import (LaunchConfiguration, PathJoinSubstitution, TextSubstitution,
                                               check_joined_size, perform)
 
 HOSTILE = FIXTURES / 'launch' / 'hostile'
@@ -30,7 +30,7 @@ MAX_PEAK_MB = 400  # measured: 40-110 MB (a 16 MiB value is held, and its parts)
 
 def _analyse_bounded(path: Path) -> dict[str, Any]:
     return run_bounded(
-        'from nodl_schema.launch import load_launch',
+        'from nodl.launch import load_launch',
         f'''
         result = load_launch({str(path)!r})
         out = {{'diagnostics': [[d.code, d.file, d.line, d.column, d.message] for d in result.diagnostics],
@@ -104,7 +104,7 @@ def test_the_limit_is_checked_before_the_text_is_made() -> None:
             return self.text
 
     big = 'x' * (MAX_SUBSTITUTION_CHARS // 2 + 1)
-    from nodl_schema.launch.errors import SubstitutionTooLarge
+    from nodl.launch.errors import SubstitutionTooLarge
 
     with pytest.raises(SubstitutionTooLarge):
         perform(None, [Counted(big), Counted(big), Counted(big)])  # type: ignore[arg-type]
@@ -115,9 +115,9 @@ def test_the_limit_is_checked_before_the_text_is_made() -> None:
 
 
 def test_a_path_join_is_bounded_before_it_is_joined(tmp_path: Path) -> None:
-    from nodl_schema.launch.context import LaunchContext
-    from nodl_schema.launch.errors import SubstitutionTooLarge
-    from nodl_schema.launch.model import LaunchResult
+    from nodl.launch.context import LaunchContext
+    from nodl.launch.errors import SubstitutionTooLarge
+    from nodl.launch.model import LaunchResult
 
     context = LaunchContext(LaunchResult(str(tmp_path / 'x.launch.py')), {}, [])
     half = 'p' * (MAX_SUBSTITUTION_CHARS // 2)
@@ -135,7 +135,7 @@ def test_nodl_analyse_reports_it_at_the_let_with_exit_1(tmp_path: Path) -> None:
 
     from conftest import REPO
 
-    done = subprocess.run([sys.executable, '-m', 'nodl_schema', 'analyse', str(HOSTILE / 'let_chain.launch.xml'),
+    done = subprocess.run([sys.executable, '-m', 'nodl', 'analyse', str(HOSTILE / 'let_chain.launch.xml'),
                            '--format', 'json'], cwd=REPO, capture_output=True, text=True, timeout=60)
     assert done.returncode == 1, done.stderr
     assert 'Traceback' not in done.stderr

@@ -1,5 +1,5 @@
 """Control characters and Trojan Source bidi controls in what a launch file gives its nodes
-(nodl_schema.launch.text_checks): NODL221 and NODL222 at the character, in XML, YAML and
+(nodl.launch.text_checks): NODL221 and NODL222 at the character, in XML, YAML and
 Python launch files; names leave their node out, rules are left out, values are kept."""
 
 from __future__ import annotations
@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.analysis import analyse_launch
-from nodl_schema.launch import load_launch
-from nodl_schema.launch.model import SourceLocation
-from nodl_schema.launch.text_checks import place_character, unsafe_diagnostic
+from nodl.analysis import analyse_launch
+from nodl.launch import load_launch
+from nodl.launch.model import SourceLocation
+from nodl.launch.text_checks import place_character, unsafe_diagnostic
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'launch' / 'text_safety'
 

@@ -8,14 +8,14 @@ from typing import Any
 
 import pytest
 
-import nodl_schema
+import nodl
 from conftest import FIXTURES, REPO
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.frontends.legacy_xml import parse_legacy_xml
-from nodl_schema.legacy import (
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.frontends.legacy_xml import parse_legacy_xml
+from nodl.legacy import (
     Converted, convert_file, convert_files, convert_legacy, render_converted, seconds_to_ns)
-from nodl_schema.reporting import format_text
-from nodl_schema.writing import WriteError, marker_state, unmark
+from nodl.reporting import format_text
+from nodl.writing import WriteError, marker_state, unmark
 
 LEGACY = FIXTURES / 'legacy'
 EXPECTED = LEGACY / 'expected'
@@ -66,8 +66,8 @@ def test_shared_fixture_converts_to_the_expected_files(fixture: str, golden, tmp
 @pytest.mark.parametrize('fixture', SHARED)
 def test_expected_files_are_valid_node_definitions(fixture: str) -> None:
     for path in sorted((EXPECTED / fixture).glob('*.nodl.yaml')):
-        node = nodl_schema.load_node(path)
-        assert node.base == nodl_schema.Base.NODE
+        node = nodl.load_node(path)
+        assert node.base == nodl.Base.NODE
 
 
 @pytest.mark.parametrize('fixture', SHARED + ['role_both', 'qos_full', 'warnings'])
@@ -79,7 +79,7 @@ def test_converted_output_validates_with_load_node(fixture: str, tmp_path: Path)
         text = path.read_text(encoding='utf-8')
         assert marker_state(text) == 'valid'  # the marker first, then the header
         assert unmark(text).startswith(f'# Converted from {LEGACY / fixture}.nodl.xml by `nodl convert`\n')
-        node = nodl_schema.load_node(path)
+        node = nodl.load_node(path)
         assert node.nodl_version == 2 and node.main.nodl_version == 2
 
 
@@ -88,7 +88,7 @@ def test_every_converted_dict_passes_validate_node() -> None:
                  'role_both.nodl.xml', 'qos_full.nodl.xml', 'warnings.nodl.xml'):
         for converted in convert(name):
             assert converted.ok, format_text(converted.diagnostics)
-            nodl_schema.validate_node(converted.data)  # raises if invalid
+            nodl.validate_node(converted.data)  # raises if invalid
 
 
 # --------------------------------------------------------------------------
@@ -348,7 +348,7 @@ def test_package_xml_converts_every_exported_file(tmp_path: Path) -> None:
     assert {d.file for d in diagnostics} == {
         str(LEGACY / 'package' / 'interfaces' / 'talker.nodl.xml'),
         str(LEGACY / 'package' / 'interfaces' / 'listener.nodl.xml')}
-    talker = nodl_schema.load_node(tmp_path / 'talker.nodl.yaml')
+    talker = nodl.load_node(tmp_path / 'talker.nodl.yaml')
     assert talker.main.publishers[0].qos.depth == 10  # type: ignore[index]
     header = unmark((tmp_path / 'listener.nodl.yaml').read_text(encoding='utf-8')).splitlines()[0]
     assert header == (f'# Converted from {LEGACY / "package" / "interfaces" / "listener.nodl.xml"}'
@@ -399,12 +399,12 @@ def test_render_converted_has_a_header() -> None:
     assert text.splitlines()[:2] == [
         f'# Converted from {LEGACY / "role_attributes.nodl.xml"} by `nodl convert`',
         "# (legacy NoDL XML: node 'node_2', executable 'second', line 7)."]
-    assert nodl_schema.load_node(text).main.action_servers[0].name == '/example_action'  # type: ignore[index]
+    assert nodl.load_node(text).main.action_servers[0].name == '/example_action'  # type: ignore[index]
     # Legacy files have no descriptions: the header silences that warning, even with strict,
     # but not the warnings that remain (a file without the directive has them).
     assert text.splitlines()[2].startswith('# nodl: ignore=NODL216 ')
-    assert nodl_schema.check_source(text).diagnostics == []
-    assert any(d.code == 'NODL216' for d in nodl_schema.check_source(
+    assert nodl.check_source(text).diagnostics == []
+    assert any(d.code == 'NODL216' for d in nodl.check_source(
         text.replace('# nodl: ignore=NODL216', '# no directive')).diagnostics)
 
 
@@ -443,9 +443,9 @@ def test_convert_file_raises_the_documented_write_error_when_it_cannot_write(tmp
 
 
 def test_a_valid_conversion_is_written_from_the_typed_model() -> None:
-    from nodl_schema.frontends.legacy_xml import parse_legacy_xml
-    from nodl_schema.legacy.convert import convert_legacy
-    from nodl_schema.model import Node
+    from nodl.frontends.legacy_xml import parse_legacy_xml
+    from nodl.legacy.convert import convert_legacy
+    from nodl.model import Node
 
     checked = 0
     for path in sorted((FIXTURES / 'legacy').rglob('*.xml')):

@@ -1,11 +1,11 @@
-"""A converted legacy node carries its source map (nodl_schema.legacy.converted)."""
+"""A converted legacy node carries its source map (nodl.legacy.converted)."""
 
 from __future__ import annotations
 
 from conftest import FIXTURES
-from nodl_schema.frontends.legacy_xml import parse_legacy_xml
-from nodl_schema.legacy import Converted, convert_legacy
-from nodl_schema.legacy.converted import origin_of
+from nodl.frontends.legacy_xml import parse_legacy_xml
+from nodl.legacy import Converted, convert_legacy
+from nodl.legacy.converted import origin_of
 
 LEGACY_PKG = FIXTURES / 'index' / 'legacy' / 'share' / 'legacy_pkg' / 'legacy_pkg.nodl.xml'
 

@@ -1,14 +1,14 @@
-"""A converted legacy node checked as v2, placed in its XML file (nodl_schema.legacy.placement)."""
+"""A converted legacy node checked as v2, placed in its XML file (nodl.legacy.placement)."""
 
 from __future__ import annotations
 
 from conftest import FIXTURES
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.frontends.legacy_xml import parse_legacy_xml
-from nodl_schema.legacy import Converted, convert_legacy
-from nodl_schema.legacy.placement import ConvertedDocument, converted_report
-from nodl_schema.loading import check_source, dump_nodl
-from nodl_schema.validation.kinds import Kind
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.frontends.legacy_xml import parse_legacy_xml
+from nodl.legacy import Converted, convert_legacy
+from nodl.legacy.placement import ConvertedDocument, converted_report
+from nodl.loading import check_source, dump_nodl
+from nodl.validation.kinds import Kind
 
 LEGACY_PKG = FIXTURES / 'index' / 'legacy' / 'share' / 'legacy_pkg' / 'legacy_pkg.nodl.xml'
 

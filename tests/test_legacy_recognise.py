@@ -1,4 +1,4 @@
-"""An XML file read where NoDL v2 is expected says what it is (nodl_schema.legacy.recognise).
+"""An XML file read where NoDL v2 is expected says what it is (nodl.legacy.recognise).
 
 Before, YAML read the XML text as one string: "document is a string, not a mapping".
 """
@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema import ValidationError, check_source, load_nodl
-from nodl_schema.legacy.recognise import looks_like_xml, xml_diagnostics
+from nodl import ValidationError, check_source, load_nodl
+from nodl.legacy.recognise import looks_like_xml, xml_diagnostics
 
 LEGACY = FIXTURES / 'legacy'
 
@@ -56,7 +56,7 @@ def test_other_xml(text: str, words: str) -> None:
 
 def test_validate_on_a_legacy_file_and_a_directory_of_legacy_files(tmp_path: Path) -> None:
     legacy = LEGACY / 'role_attributes.nodl.xml'
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', str(legacy)],
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', str(legacy)],
                             cwd=REPO, text=True, capture_output=True, timeout=60)
     assert result.returncode == 1
     assert result.stdout.startswith(f'{legacy}:1:1: error: this is a legacy NoDL XML file')

@@ -21,11 +21,11 @@ from typing import Any, Iterator
 import pytest
 
 from conftest import FIXTURES, NodeProcess
-from nodl_schema import ValidationError, dump_nodl
-from nodl_schema.live.check import CheckResult, check_node, load_definition
-from nodl_schema.live.describe import describe_node, render_description
-from nodl_schema.live.report import format_check_json, format_check_junit, format_check_text
-from nodl_schema.live.session import NodeNotFound
+from nodl import ValidationError, dump_nodl
+from nodl.live.check import CheckResult, check_node, load_definition
+from nodl.live.describe import describe_node, render_description
+from nodl.live.report import format_check_json, format_check_junit, format_check_text
+from nodl.live.session import NodeNotFound
 
 
 @pytest.fixture(scope='module')
@@ -349,7 +349,7 @@ def test_the_rclcpp_base_is_checked_when_asked_for(full: NodeProcess, described)
 
 
 def test_load_definition_returns_the_resolved_node(described) -> None:
-    from nodl_schema.system import EntityKind, Provider, ResolvedNode
+    from nodl.system import EntityKind, Provider, ResolvedNode
 
     path, _ = described
     resolved = load_definition(path)
@@ -371,7 +371,7 @@ def _line_of(path: Path, text: str) -> int:
 
 
 def test_drift_diagnostics_point_at_the_declarations(edited: CheckResult) -> None:
-    from nodl_schema.diagnostics import Severity
+    from nodl.diagnostics import Severity
 
     path = Path(edited.definition)
     by_kind = {d.kind: edited.diagnostic(d) for d in edited.differences
@@ -416,7 +416,7 @@ def test_drift_in_a_mixin_and_an_override_are_located_in_their_layers(full: Node
 
 
 def test_overrides_decide_conformance(edited: CheckResult) -> None:
-    from nodl_schema.overrides import Overrides
+    from nodl.overrides import Overrides
 
     drift_codes = ['NODL401', 'NODL402', 'NODL403', 'NODL404', 'NODL405', 'NODL406']
     quiet = edited.with_overrides(Overrides(ignore=drift_codes))
@@ -438,7 +438,7 @@ def test_overrides_decide_conformance(edited: CheckResult) -> None:
 
 
 def test_unverifiable_fails_only_when_promoted(full: NodeProcess, described) -> None:
-    from nodl_schema.overrides import Overrides
+    from nodl.overrides import Overrides
 
     path, _ = described
     result = check_node(full.fqn, path, timeout=15, overrides=Overrides(error=['NODL408']))

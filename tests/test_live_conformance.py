@@ -15,9 +15,9 @@ from typing import Any
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema.live.check import load_definition
-from nodl_schema.live.conformance import DRIFT_KINDS, Difference, compare, conforms, parse_remaps
-from nodl_schema.live.observe import ObservedEndpoint, ObservedNode, ObservedParameter
+from nodl.live.check import load_definition
+from nodl.live.conformance import DRIFT_KINDS, Difference, compare, conforms, parse_remaps
+from nodl.live.observe import ObservedEndpoint, ObservedNode, ObservedParameter
 
 LIVE = FIXTURES / 'live'
 NAME, NAMESPACE = 'drive', '/base'
@@ -438,7 +438,7 @@ def test_parse_remaps_agrees_with_rcl(rules: list[str]) -> None:
     """rcl (a real rclpy node started with the same --ros-args) is the reference."""
     import rclpy
 
-    from nodl_schema.naming import expand
+    from nodl.naming import expand
 
     args = ['--ros-args', '--disable-rosout-logs']
     for rule in rules:
@@ -529,8 +529,8 @@ def test_compare_does_not_modify_its_inputs(composed) -> None:
 def test_junit_attributes_differences_to_declared_entities(composed) -> None:
     import xml.etree.ElementTree as ET
 
-    from nodl_schema.live.check import CheckResult
-    from nodl_schema.live.report import format_check_junit
+    from nodl.live.check import CheckResult
+    from nodl.live.report import format_check_junit
 
     observed = conforming()
     # '/{node}/heartbeat' goes missing; cmd_vel is remapped to cmd_in and has the wrong type
@@ -567,8 +567,8 @@ def test_junit_attributes_differences_to_declared_entities(composed) -> None:
 def test_junit_failure_comes_before_the_notes_of_the_same_entity(composed) -> None:
     import xml.etree.ElementTree as ET
 
-    from nodl_schema.live.check import CheckResult
-    from nodl_schema.live.report import format_check_junit
+    from nodl.live.check import CheckResult
+    from nodl.live.report import format_check_junit
 
     observed = conforming()
     odom = _endpoint(observed, 'publishers', '/base/drive/odom')
@@ -584,8 +584,8 @@ def test_junit_failure_comes_before_the_notes_of_the_same_entity(composed) -> No
 
 
 def test_reports_of_a_synthetic_check_match_golden(composed, golden) -> None:
-    from nodl_schema.live.check import CheckResult
-    from nodl_schema.live.report import format_check_json, format_check_junit, format_check_text
+    from nodl.live.check import CheckResult
+    from nodl.live.report import format_check_json, format_check_junit, format_check_text
 
     observed = conforming()
     observed.publishers = [e for e in observed.publishers if e.name != '/base/status']
@@ -606,11 +606,11 @@ def test_reports_of_a_synthetic_check_match_golden(composed, golden) -> None:
     # differences point at their declarations: the base's file in the package, mixins by path
     import os
 
-    import nodl_schema
+    import nodl
 
-    package = os.path.dirname(nodl_schema.__file__) + os.sep
+    package = os.path.dirname(nodl.__file__) + os.sep
     here = str(LIVE) + os.sep
-    golden.check(format_check_json(result).replace(package, '<nodl_schema>/').replace(
+    golden.check(format_check_json(result).replace(package, '<nodl>/').replace(
         here, '<live>/'), expected / 'drive_check.json')
     golden.check(format_check_junit(result), expected / 'drive_check.junit.xml')
 
@@ -627,7 +627,7 @@ def test_parse_remaps_node_rules_are_not_topic_remaps() -> None:
 
 
 def test_compare_with_node_names_keeps_topic_and_service_rules_apart(composed) -> None:
-    from nodl_schema.naming import NodeNames, parse_remap_rules
+    from nodl.naming import NodeNames, parse_remap_rules
 
     observed = conforming()
     _endpoint(observed, 'service_servers', '/base/drive/reset_odometry').name = '/base/reset'

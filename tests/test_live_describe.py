@@ -11,13 +11,13 @@ from typing import Iterator
 import pytest
 
 from conftest import FIXTURES, NodeProcess
-from nodl_schema import ValidationError, load_node, validate_node
-from nodl_schema.composition.bases import base_layer
-from nodl_schema.live.describe import (
+from nodl import ValidationError, load_node, validate_node
+from nodl.composition.bases import base_layer
+from nodl.live.describe import (
     Description, deduce_base, describe_node, describe_observed, render_description)
-from nodl_schema.live.observe import ObservedEndpoint, ObservedNode, ObservedParameter
-from nodl_schema.live.session import ros_session
-from nodl_schema.naming import expand
+from nodl.live.observe import ObservedEndpoint, ObservedNode, ObservedParameter
+from nodl.live.session import ros_session
+from nodl.naming import expand
 
 EXPECTED = FIXTURES / 'live' / 'expected'
 SECTIONS = ('publishers', 'subscriptions', 'service_servers', 'service_clients', 'action_servers',
@@ -234,7 +234,7 @@ def test_a_shared_name_is_a_warning_line_not_an_unobservable_note() -> None:
 
 
 def test_file_names_of_describe_all() -> None:
-    from nodl_schema.live.describe_all import file_name_for
+    from nodl.live.describe_all import file_name_for
 
     assert file_name_for('/robot/driver') == 'robot.driver.nodl.yaml'
     assert file_name_for('/talker', 'json') == 'talker.nodl.json'
@@ -344,7 +344,7 @@ def _rclcpp_like(observed: ObservedNode) -> ObservedNode:
 
 
 def test_the_client_library_is_deduced_and_its_base_left_out() -> None:
-    from nodl_schema.live.describe import deduce_client_library
+    from nodl.live.describe import deduce_client_library
 
     plain = synthetic_lifecycle_camera()
     assert deduce_client_library(plain).name == 'rclpy'
@@ -371,7 +371,7 @@ def test_a_requested_client_library_wins() -> None:
 
 
 def test_the_description_is_built_as_a_typed_node() -> None:
-    from nodl_schema.model import Node, TopicEndpoint
+    from nodl.model import Node, TopicEndpoint
 
     description = describe_observed(synthetic_lifecycle_camera())
     assert isinstance(description.node, Node)

@@ -20,17 +20,17 @@ import pytest
 import yaml
 
 from conftest import FIXTURES, REPO, NodeProcess
-from nodl_schema import load_node
-from nodl_schema.analysis import analyse_launch
-from nodl_schema.writing import unmark
+from nodl import load_node
+from nodl.analysis import analyse_launch
+from nodl.writing import unmark
 
 HERE = FIXTURES / 'describe_launch'
 SYSTEM = HERE / 'system.launch.xml'
 
 
 def nodl(*args: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
-    """Run `python -m nodl_schema` (it inherits ROS_DOMAIN_ID and the loopback-only discovery)."""
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, text=True,
+    """Run `python -m nodl` (it inherits ROS_DOMAIN_ID and the loopback-only discovery)."""
+    result = subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, text=True,
                             capture_output=True, timeout=timeout)
     assert 'Traceback' not in result.stdout + result.stderr, result.stderr
     return result
@@ -154,7 +154,7 @@ def test_composable_nodes_are_recorded_in_nodes_yaml(described) -> None:
 
 
 def test_the_overlay_is_a_valid_definitions_folder(described) -> None:
-    from nodl_schema.targets.overlay import read_folder
+    from nodl.targets.overlay import read_folder
 
     out, _ = described
     folder = read_folder(str(out))
@@ -252,8 +252,8 @@ def test_usage_errors(args: list[str], message: str) -> None:
 
 def _live_endpoints(fqns: list[str]) -> dict[str, set[tuple[str, str]]]:
     """What the live graph shows of each node: ``(section, final name)`` of its own endpoints."""
-    from nodl_schema.live.observe import observe_settled, settle_nodes
-    from nodl_schema.live.session import ros_session
+    from nodl.live.observe import observe_settled, settle_nodes
+    from nodl.live.session import ros_session
 
     with ros_session() as session:
         raw, _ = settle_nodes(session, {fqn: 1 for fqn in fqns}, 15)
@@ -267,7 +267,7 @@ def _live_endpoints(fqns: list[str]) -> dict[str, set[tuple[str, str]]]:
 
 
 def test_round_trip_the_overlay_serves_the_analysis_of_the_same_system(described) -> None:
-    from nodl_schema.targets.overlay import read_folders, using
+    from nodl.targets.overlay import read_folders, using
 
     out, _ = described
     result = nodl('analyse', str(SYSTEM), 'rate:=5', '--definitions', str(out), '--format', 'json')

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import time
 
-from nodl_schema.live.graph_events import POLL_PERIOD, follower, graph_signature
-from nodl_schema.live.observe import list_nodes
-from nodl_schema.live.session import ros_session
+from nodl.live.graph_events import POLL_PERIOD, follower, graph_signature
+from nodl.live.observe import list_nodes
+from nodl.live.session import ros_session
 
 _FLAPPING_NODE = '''
 import sys

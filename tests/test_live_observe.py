@@ -14,9 +14,9 @@ from typing import Iterator
 import pytest
 
 from conftest import NodeProcess
-from nodl_schema.live.observe import (ACTION_INFIX, DISCOVERY_WINDOW, ObservedNode, list_nodes,
+from nodl.live.observe import (ACTION_INFIX, DISCOVERY_WINDOW, ObservedNode, list_nodes,
                                      observe_node, wait_for_node)
-from nodl_schema.live.session import LiveError, NodeNotFound, ros_session
+from nodl.live.session import LiveError, NodeNotFound, ros_session
 
 SECTIONS = ('publishers', 'subscriptions', 'service_servers', 'service_clients', 'action_servers',
             'action_clients')
@@ -377,7 +377,7 @@ def test_node_that_never_answers_parameter_requests(ros_node, tmp_path) -> None:
     ({}, False),
 ])
 def test_only_writers_or_only_readers_is_lopsided(sections: dict, lopsided: bool) -> None:
-    from nodl_schema.live.observe import _lopsided
+    from nodl.live.observe import _lopsided
 
     raw = {s: [(n, ['t']) for n in sections.get(s, [])]
            for s in ('publishers', 'subscriptions', 'service_servers', 'service_clients')}

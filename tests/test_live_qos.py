@@ -7,8 +7,8 @@ from rclpy.duration import Duration, Infinite
 from rclpy.qos import (DurabilityPolicy, HistoryPolicy, LivelinessPolicy, QoSProfile,
                        ReliabilityPolicy, qos_profile_sensor_data, qos_profile_system_default)
 
-from nodl_schema.live.qos import INFINITE_NS, qos_from_rclpy
-from nodl_schema.model import QOS_POLICIES
+from nodl.live.qos import INFINITE_NS, qos_from_rclpy
+from nodl.model import QOS_POLICIES
 
 
 def test_keep_last_reports_history_and_depth() -> None:

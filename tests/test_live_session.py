@@ -16,8 +16,8 @@ import time
 from pathlib import Path
 
 from conftest import NodeProcess
-from nodl_schema.live.observe import count_nodes, list_nodes
-from nodl_schema.live.session import (OBSERVER_PREFIX, is_hidden_node, is_toolkit_node,
+from nodl.live.observe import count_nodes, list_nodes
+from nodl.live.session import (OBSERVER_PREFIX, is_hidden_node, is_toolkit_node,
                                       ros_session, without_toolkit_nodes)
 
 
@@ -62,7 +62,7 @@ def test_another_session_is_neither_listed_nor_a_namesake() -> None:
 
 
 def nodl(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], capture_output=True,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], capture_output=True,
                           text=True, timeout=60)
 
 

@@ -1,4 +1,4 @@
-"""Version skew (nodl_schema.live.type_skew): a real node built against one definition of
+"""Version skew (nodl.live.type_skew): a real node built against one definition of
 std_msgs/msg/String, checked while the index reads another (a modified copy installed in a
 private prefix in front of the environment's)."""
 
@@ -12,8 +12,8 @@ import pytest
 from conftest import NodeProcess
 from skewed_prefix import (FIBONACCI_WITH_PROGRESS, STRING_WITH_REVISION, TRIGGER_WITH_ATTEMPT,
                            VENV, skewed_prefix)
-from nodl_schema.live.check import check_node
-from nodl_schema.live.describe import describe_node, render_description
+from nodl.live.check import check_node
+from nodl.live.describe import describe_node, render_description
 
 
 @pytest.fixture(scope='module')
@@ -98,7 +98,7 @@ def test_without_hashes_for_services_the_node_s_type_descriptions_decide(
         typed: NodeProcess, definition: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """On a middleware that reports no hash beneath services, ~/get_type_description is asked
     for the service type under the installed hash: it knows only the types the node uses."""
-    import nodl_schema.live.type_skew as type_skew
+    import nodl.live.type_skew as type_skew
 
     monkeypatch.setattr(type_skew, 'SERVICE_TOPIC_MIDDLEWARES', ())
     monkeypatch.setenv('AMENT_PREFIX_PATH', str(VENV))
@@ -118,7 +118,7 @@ def test_services_that_cannot_be_compared_are_said_once(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """A node that serves no ~/get_type_description, on a middleware without hashes for
     services: one info for the node, naming what is unchecked; its topics are still checked."""
-    import nodl_schema.live.type_skew as type_skew
+    import nodl.live.type_skew as type_skew
 
     monkeypatch.setattr(type_skew, 'SERVICE_TOPIC_MIDDLEWARES', ())
     node = NodeProcess('typed_node.py', 'mute', '/skew', '--ros-args', '-p',

@@ -1,4 +1,4 @@
-"""The public load/validate/dump API: nodl_schema.loading.
+"""The public load/validate/dump API: nodl.loading.
 
 Includes the golden diagnostics of every invalid fixture: for
 ``tests/fixtures/invalid/NAME.nodl.yaml`` (or ``.nodl.json``) the expected
@@ -16,14 +16,14 @@ from typing import Any
 import pytest
 import yaml
 
-import nodl_schema
-from nodl_schema import ValidationError
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.loading import (
+import nodl
+from nodl import ValidationError
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.loading import (
     Report, check_source, dump_nodl, load_interface, load_node, load_nodl, load_parameter,
     model_from_data, validate_interface, validate_node, validate_parameter)
-from nodl_schema.model import Base, Interface, Node, ParameterDefinition
-from nodl_schema.validation import Kind
+from nodl.model import Base, Interface, Node, ParameterDefinition
+from nodl.validation import Kind
 
 FIXTURES = Path(__file__).parent / 'fixtures'
 REPO = Path(__file__).resolve().parent.parent
@@ -497,14 +497,14 @@ def test_dump_unknown_format(fmt: str) -> None:
 # -- the package namespace ----------------------------------------------------------------
 
 def test_public_names() -> None:
-    assert nodl_schema.load_nodl is load_nodl
-    assert nodl_schema.ValidationError is ValidationError
-    assert nodl_schema.Diagnostic is Diagnostic
-    assert nodl_schema.Kind is Kind
-    for name in nodl_schema.__all__:
-        assert getattr(nodl_schema, name) is not None
+    assert nodl.load_nodl is load_nodl
+    assert nodl.ValidationError is ValidationError
+    assert nodl.Diagnostic is Diagnostic
+    assert nodl.Kind is Kind
+    for name in nodl.__all__:
+        assert getattr(nodl, name) is not None
     with pytest.raises(AttributeError):
-        nodl_schema.no_such_name  # noqa: B018
+        nodl.no_such_name  # noqa: B018
 
 
 def test_dump_refuses_an_invalid_document() -> None:
@@ -580,7 +580,7 @@ def test_the_reference_rejects_for_the_same_reason(name: str, code: str, where: 
 @pytest.mark.parametrize('text', ['line\u2028separator', 'para\u2029graph', '\u2028', 'a \u2028 b\u2029',
                                   'x' * 95 + ' \u2028 ' + 'y' * 30, 'nel\x85x', 'rlo\u202ex é'])
 def test_line_separators_and_unsafe_characters_survive_a_dump_and_load(text: str) -> None:
-    from nodl_schema.text_safety import first_unsafe
+    from nodl.text_safety import first_unsafe
 
     for format in ('yaml', 'json'):
         dumped = dump_nodl({'type': 'string', 'description': text}, format, validate=False)

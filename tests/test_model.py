@@ -1,4 +1,4 @@
-"""The typed document model: nodl_schema.model."""
+"""The typed document model: nodl.model."""
 
 from __future__ import annotations
 
@@ -8,12 +8,12 @@ from typing import Any
 
 import pytest
 
-from nodl_schema.loading import (
+from nodl.loading import (
     check_source, dump_nodl, load_interface, load_node, load_nodl, validate_interface, validate_node)
-from nodl_schema.model import (
+from nodl.model import (
     ENDPOINT_SECTIONS, QOS_POLICIES, ActionEndpoint, Base, Interface, Node, ParameterDefinition,
     QoSProfile, ServiceEndpoint, TopicEndpoint)
-from nodl_schema.model.parameter_types import (
+from nodl.model.parameter_types import (
     ALL_TYPE_WORDS, ARRAY_TYPES, FIXED_BASES, SCALAR_TYPES, TypeSpec, element_fits, parse_type,
     value_fits)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import yaml
 
-from nodl_schema.monitor.aggregator import analyzer_config, format_config, tree_paths
+from nodl.monitor.aggregator import analyzer_config, format_config, tree_paths
 
 #: The parameters diagnostic_aggregator documents for its two analyzers.
 GENERIC = {'type', 'path', 'contains', 'startswith', 'name', 'expected', 'regex',

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from conftest import FIXTURES
 
-from nodl_schema.monitor.expected import expected_from_definitions
-from nodl_schema.targets.placement import Definition
+from nodl.monitor.expected import expected_from_definitions
+from nodl.targets.placement import Definition
 
 SENSOR = str(FIXTURES / 'monitor' / 'sensor.nodl.yaml')
 

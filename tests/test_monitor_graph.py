@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 
-from nodl_schema.monitor.graph import Snapshot, TopicEndpoint, observed_node
+from nodl.monitor.graph import Snapshot, TopicEndpoint, observed_node
 
 
 def test_observed_node_from_a_snapshot() -> None:
@@ -58,7 +58,7 @@ class _Graph:
 
 
 def test_an_endpoint_is_converted_again_once_its_node_is_known() -> None:
-    from nodl_schema.monitor.graph import GraphView
+    from nodl.monitor.graph import GraphView
 
     graph = _Graph()
     view = GraphView(graph)
@@ -78,7 +78,7 @@ def test_the_raw_infos_and_rclpy_s_own_methods_give_one_snapshot(monkeypatch) ->
     import std_msgs.msg
     from rclpy.qos import QoSProfile, ReliabilityPolicy
 
-    from nodl_schema.monitor.graph import GraphView
+    from nodl.monitor.graph import GraphView
 
     context = rclpy.Context()
     rclpy.init(context=context)

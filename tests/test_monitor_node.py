@@ -50,7 +50,7 @@ class Processes:
         return process
 
     def monitor(self, *arguments: str) -> subprocess.Popen[str]:
-        process = subprocess.Popen([sys.executable, '-m', 'nodl_schema', 'monitor', *arguments],
+        process = subprocess.Popen([sys.executable, '-m', 'nodl', 'monitor', *arguments],
                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                    cwd=REPO)
         self.started.append(process)
@@ -165,7 +165,7 @@ def level(status: Any) -> int:
 
 def once(*arguments: str, wait: float = 6.0) -> tuple[int, dict[str, Any]]:
     """``nodl monitor --once --format json``: exit status and the statuses by name."""
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'monitor', *arguments, '--once',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'monitor', *arguments, '--once',
                              '--wait', str(wait), '--format', 'json', *FAST],
                             capture_output=True, text=True, cwd=REPO, timeout=wait + 30)
     assert result.stdout, result.stderr

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import json
 
-from nodl_schema.monitor.checks import Finding
-from nodl_schema.monitor.status import Status, format_junit, format_text, jsonl_line, to_message
+from nodl.monitor.checks import Finding
+from nodl.monitor.status import Status, format_junit, format_text, jsonl_line, to_message
 
 
 def status() -> Status:

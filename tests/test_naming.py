@@ -6,7 +6,7 @@ import itertools
 
 import pytest
 
-from nodl_schema.naming import expand, fully_qualified, relativize
+from nodl.naming import expand, fully_qualified, relativize
 
 
 @pytest.mark.parametrize('namespace, name, fqn', [
@@ -109,7 +109,7 @@ def test_relativize_then_expand_gives_the_name_back(name: str, namespace: str) -
 
 # -- expand_name: rcl's expansion with rcl's validation --------------------------------------
 
-from nodl_schema.naming import (  # noqa: E402
+from nodl.naming import (  # noqa: E402
     InvalidNameError, InvalidRemapRuleError, NodeNames, RemapRule, expand_name, full_name_error,
     join_name, namespace_error, node_fqn, node_name_after_remaps, node_name_error,
     node_namespace_after_remaps, parse_remap_rule, parse_remap_rules, resolve_name, split_name,
@@ -346,31 +346,31 @@ _HAND_JOIN = r"""(\+\s*['"]/['"]|['"]/['"]\s*\+|rstrip\(['"]/['"]\)\s*\+|f['"][^
 #: Lines that join with '/' but do not compute a ROS name the way rcl does, and why.
 _NOT_ROS_NAMES = {
     # interface types (package/msg/Name) and the C++ header of one
-    ('nodl_schema/system/entities.py', "return f'{self.package}/{self.namespace}/{self.name}'"),
-    ('nodl_schema/generate/cpp/text.py', "return f'{package}/{namespace}/{rosidl_file_stem(name)}.hpp'"),
+    ('nodl/system/entities.py', "return f'{self.package}/{self.namespace}/{self.name}'"),
+    ('nodl/generate/cpp/text.py', "return f'{package}/{namespace}/{rosidl_file_stem(name)}.hpp'"),
     # a parameter file's node key as rcl_yaml_param_parser normalizes it (a pattern, not a name)
-    ('nodl_schema/launch/overrides.py', "name = key if key.startswith('/') else '/' + key"),
+    ('nodl/launch/overrides.py', "name = key if key.startswith('/') else '/' + key"),
     # launch_ros's prefix_namespace: a pushed namespace may stay relative until the node is made
-    ('nodl_schema/launch/ros_actions.py', "combined = ('' if base == '/' else base) + '/' + namespace"),
+    ('nodl/launch/ros_actions.py', "combined = ('' if base == '/' else base) + '/' + namespace"),
     # SROS 2's own resolution of the names written in a policy profile (its XSL templates)
-    ('nodl_schema/policy/names.py', "return namespace if namespace.endswith('/') else namespace + '/'"),
-    ('nodl_schema/policy/names.py', "own = _delimited(namespace) + node + '/'"),
+    ('nodl/policy/names.py', "return namespace if namespace.endswith('/') else namespace + '/'"),
+    ('nodl/policy/names.py', "own = _delimited(namespace) + node + '/'"),
     # type names (pkg/msg/T), file paths in messages, a node's own prefix to test names against,
     # the diagnostic aggregator's status paths: not ROS graph names being built
-    ('nodl_schema/analysis/checks/definitions.py', "f'as DIR/{node.match.package}/{node.match.key}.nodl.yaml and give --definitions DIR)',"),
-    ('nodl_schema/analysis/checks/names.py', "return expanded.startswith(names.fqn.rstrip('/') + '/') or expanded in _CONTAINER_GLOBALS"),
-    ('nodl_schema/extract/targets.py', 'Severity.INFO, f"component {node.plugin} is not recorded in {node.package}/{NODES_FILE}: a "'),
-    ('nodl_schema/interface_types/resolve.py', "return f'{self.package}/{self.namespace}/{self.name}'"),
-    ('nodl_schema/interface_types/resolve.py', "return sorted(f'{self.name}/{ns}/{name}' for ns, name in self.types"),
-    ('nodl_schema/interface_types/resolve.py', "files += [f'{namespace}/{e.name}' for e in entries if e.is_file()]"),
-    ('nodl_schema/interface_types/resolve.py', "tuple(f'{package_name}/{namespace}/{c}' for c in close), package)"),
-    ('nodl_schema/interface_types/tree.py', "raise UnknownTypeError(f'{package}/{namespace}/{name}')"),
-    ('nodl_schema/interface_types/tree.py', "raise InterfaceFileError(f'does not define {package}/{namespace}/{name}', path)"),
-    ('nodl_schema/interface_types/tree.py', "data = {'pkg_name': package, 'relative_input_file': f'{namespace}/{os.path.basename(path)}',"),
-    ('nodl_schema/interface_types/tree.py', 'file = index.file(f\'{package}/{namespace}/{type_name.split("_", 1)[0]}\') or \'\''),
-    ('nodl_schema/interface_types/tree.py', "prefix = f'{package}/{namespace}/{base}'"),
-    ('nodl_schema/live/type_skew.py', "own = observed.fully_qualified_name + '/'  # the base's services (parameters...) last"),
-    ('nodl_schema/monitor/aggregator.py', "prefix = PREFIX + namespace.rstrip('/') + '/'"),
+    ('nodl/analysis/checks/definitions.py', "f'as DIR/{node.match.package}/{node.match.key}.nodl.yaml and give --definitions DIR)',"),
+    ('nodl/analysis/checks/names.py', "return expanded.startswith(names.fqn.rstrip('/') + '/') or expanded in _CONTAINER_GLOBALS"),
+    ('nodl/extract/targets.py', 'Severity.INFO, f"component {node.plugin} is not recorded in {node.package}/{NODES_FILE}: a "'),
+    ('nodl/interface_types/resolve.py', "return f'{self.package}/{self.namespace}/{self.name}'"),
+    ('nodl/interface_types/resolve.py', "return sorted(f'{self.name}/{ns}/{name}' for ns, name in self.types"),
+    ('nodl/interface_types/resolve.py', "files += [f'{namespace}/{e.name}' for e in entries if e.is_file()]"),
+    ('nodl/interface_types/resolve.py', "tuple(f'{package_name}/{namespace}/{c}' for c in close), package)"),
+    ('nodl/interface_types/tree.py', "raise UnknownTypeError(f'{package}/{namespace}/{name}')"),
+    ('nodl/interface_types/tree.py', "raise InterfaceFileError(f'does not define {package}/{namespace}/{name}', path)"),
+    ('nodl/interface_types/tree.py', "data = {'pkg_name': package, 'relative_input_file': f'{namespace}/{os.path.basename(path)}',"),
+    ('nodl/interface_types/tree.py', 'file = index.file(f\'{package}/{namespace}/{type_name.split("_", 1)[0]}\') or \'\''),
+    ('nodl/interface_types/tree.py', "prefix = f'{package}/{namespace}/{base}'"),
+    ('nodl/live/type_skew.py', "own = observed.fully_qualified_name + '/'  # the base's services (parameters...) last"),
+    ('nodl/monitor/aggregator.py', "prefix = PREFIX + namespace.rstrip('/') + '/'"),
 }
 
 
@@ -381,16 +381,16 @@ def test_no_module_outside_naming_joins_ros_names_by_hand() -> None:
     root = Path(__file__).resolve().parent.parent
     join = re.compile(_HAND_JOIN)
     found = []
-    for path in sorted((root / 'nodl_schema').rglob('*.py')):
+    for path in sorted((root / 'nodl').rglob('*.py')):
         relative = path.relative_to(root).as_posix()
-        if relative.startswith('nodl_schema/naming/'):
+        if relative.startswith('nodl/naming/'):
             continue
         for number, line in enumerate(path.read_text(encoding='utf-8').splitlines(), 1):
             code = line.strip()
             if join.search(code) and re.search(r'namespace|node|\bns\b|name', code) \
                     and (relative, code) not in _NOT_ROS_NAMES:
                 found.append(f'{relative}:{number}: {code}')
-    assert not found, 'use nodl_schema.naming (join_name, expand_name, resolve_name, node_fqn):\n' \
+    assert not found, 'use nodl.naming (join_name, expand_name, resolve_name, node_fqn):\n' \
         + '\n'.join(found)
 
 
@@ -419,7 +419,7 @@ def test_no_module_outside_naming_joins_ros_names_by_hand() -> None:
 def test_declared_names_resolve_back_to_the_final_name(final: str, node: str, namespace: str,
                                                        rules: list[str], service: bool,
                                                        expected: list[str]) -> None:
-    from nodl_schema.naming import NodeNames, declared_names
+    from nodl.naming import NodeNames, declared_names
 
     names = NodeNames.create(node, namespace, rules)
     found = declared_names(final, names, service=service)

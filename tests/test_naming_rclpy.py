@@ -2,7 +2,7 @@
 
 Every case creates a real node with the same arguments (one context per case,
 all in this process) and compares what rcl resolves with what
-:mod:`nodl_schema.naming` computes, name for name, topic and service.
+:mod:`nodl.naming` computes, name for name, topic and service.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from typing import Any
 import pytest
 import yaml
 
-from nodl_schema.naming import (InvalidNameError, InvalidRemapRuleError, node_fqn,
+from nodl.naming import (InvalidNameError, InvalidRemapRuleError, node_fqn,
                                 parse_remap_rules, resolve_name)
 
 TABLE = yaml.safe_load((Path(__file__).parent / 'fixtures' / 'naming' / 'rclpy_cases.yaml')

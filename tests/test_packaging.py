@@ -1,4 +1,4 @@
-"""Registration from Python packages (nodl_schema.packaging), with real pip installs."""
+"""Registration from Python packages (nodl.packaging), with real pip installs."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema.packaging import (INTERFACE_RESOURCE, NODE_RESOURCE, NodlBuildError, nodl_data_files,
+from nodl.packaging import (INTERFACE_RESOURCE, NODE_RESOURCE, NodlBuildError, nodl_data_files,
                                    relative_mixins)
 
 PACKAGES = FIXTURES / 'python_packages'
@@ -27,7 +27,7 @@ def pip_install(source: Path, prefix: Path) -> subprocess.CompletedProcess[str]:
 
 
 def nodl(prefix: Path, *args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO,
                           env=dict(os.environ, AMENT_PREFIX_PATH=str(prefix)), text=True,
                           capture_output=True, timeout=60)
 
@@ -313,12 +313,12 @@ def test_warnings_of_a_valid_build_are_logged_not_printed(
         pkg: Path, capsys: pytest.CaptureFixture[str], caplog: pytest.LogCaptureFixture) -> None:
     chatter = pkg / 'nodl' / 'chatter.nodl.yaml'
     chatter.write_text(chatter.read_text().replace('    description: Greetings.\n', ''))
-    with caplog.at_level('WARNING', logger='nodl_schema.packaging'):
+    with caplog.at_level('WARNING', logger='nodl.packaging'):
         nodl_data_files('py_talker', nodes={'talker': 'nodl/talker.nodl.yaml'},
                         interfaces={'chatter': 'nodl/chatter.nodl.yaml'})
     assert capsys.readouterr() == ('', '')
     [record] = caplog.records
-    assert record.levelname == 'WARNING' and record.name == 'nodl_schema.packaging'
+    assert record.levelname == 'WARNING' and record.name == 'nodl.packaging'
     assert record.getMessage().startswith('nodl/chatter.nodl.yaml:4:5: warning: ')
 
 
@@ -340,7 +340,7 @@ def test_a_removed_interface_does_not_linger_in_the_staging_index(
 
 
 def test_package_dependencies_never_lists_a_path_outside_the_package() -> None:
-    from nodl_schema.packaging import package_dependencies
+    from nodl.packaging import package_dependencies
 
     deps = Path(__file__).parent / 'fixtures' / 'deps'
     paths, problems = package_dependencies(deps / 'escaping_pkg' / 'nodl' / 'node.nodl.yaml')

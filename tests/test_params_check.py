@@ -8,8 +8,8 @@ from pathlib import Path
 
 import yaml
 
-from nodl_schema.generate.definition import resolve_target
-from nodl_schema.params import check_parameter_files, defaults_yaml
+from nodl.generate.definition import resolve_target
+from nodl.params import check_parameter_files, defaults_yaml
 
 FIXTURES = Path(__file__).parent / 'fixtures'
 EVERYTHING = str(FIXTURES / 'generate' / 'everything.nodl.yaml')
@@ -73,23 +73,23 @@ def test_defaults_file_round_trips_through_the_check(tmp_path: Path) -> None:
 
 def test_cli(tmp_path: Path) -> None:
     out = tmp_path / 'p.yaml'
-    run = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', EVERYTHING, '--name', '/a/b',
+    run = subprocess.run([sys.executable, '-m', 'nodl', 'params', EVERYTHING, '--name', '/a/b',
                           '-o', str(out)], capture_output=True, text=True, timeout=60, cwd=REPO)
     assert run.returncode == 0, run.stderr
     assert '/a/b' in yaml.safe_load(out.read_text())
-    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check',
+    check = subprocess.run([sys.executable, '-m', 'nodl', 'params', 'check',
                             str(FIXTURES / 'params' / 'bad.params.yaml'), '--definition', EVERYTHING],
                            capture_output=True, text=True, timeout=60, cwd=REPO)
     assert check.returncode == 1
     assert f'{FIXTURES / "params" / "bad.params.yaml"}:8:5: error: ' in check.stdout
     assert '[NODL702]' in check.stdout and 'Traceback' not in check.stderr
-    usage = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(out)],
+    usage = subprocess.run([sys.executable, '-m', 'nodl', 'params', 'check', str(out)],
                            capture_output=True, text=True, timeout=60, cwd=REPO)
     assert usage.returncode == 2 and 'exactly one of --definition and --launch' in usage.stderr
 
 
 def test_launch_nodes_get_the_files_under_their_final_names(tmp_path: Path) -> None:
-    from nodl_schema.params import check_launch_parameters
+    from nodl.params import check_launch_parameters
 
     launch = FIXTURES / 'analysis' / 'launch' / 'system.launch.xml'
     prefixes = [str(FIXTURES / 'analysis' / 'prefix')]
@@ -112,7 +112,7 @@ def test_cli_launch_and_a_file_no_key_of_which_applies(tmp_path: Path) -> None:
     params = tmp_path / 'robot.yaml'
     params.write_text('/rover/imu:\n  ros__parameters:\n    gain: 1\n    gian: 0.5\n')
     env = {**os.environ, 'AMENT_PREFIX_PATH': str(FIXTURES / 'analysis' / 'prefix')}
-    launch = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(params), '--launch',
+    launch = subprocess.run([sys.executable, '-m', 'nodl', 'params', 'check', str(params), '--launch',
                              str(FIXTURES / 'analysis' / 'launch' / 'system.launch.xml')],
                             capture_output=True, text=True, timeout=120, cwd=REPO, env=env)
     assert launch.returncode == 1, launch.stdout + launch.stderr
@@ -121,7 +121,7 @@ def test_cli_launch_and_a_file_no_key_of_which_applies(tmp_path: Path) -> None:
     other = tmp_path / 'other.yaml'
     other.write_text('/other:\n  ros__parameters:\n    count: 3\n')
     talker = str(FIXTURES / 'generate' / 'talker.nodl.yaml')
-    unmatched = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(other),
+    unmatched = subprocess.run([sys.executable, '-m', 'nodl', 'params', 'check', str(other),
                                 '--definition', talker, '--name', '/talker'],
                                capture_output=True, text=True, timeout=60, cwd=REPO)
     assert unmatched.returncode == 0  # a warning: the file may be meant for other nodes
@@ -141,8 +141,8 @@ def test_an_empty_list_leaves_a_statically_typed_array_unset(tmp_path: Path) -> 
 
 
 def test_no_exec_reads_no_python_launch_file(tmp_path: Path) -> None:
-    from nodl_schema.launch.sandbox import LaunchLimits
-    from nodl_schema.params import check_launch_parameters
+    from nodl.launch.sandbox import LaunchLimits
+    from nodl.params import check_launch_parameters
 
     launch = Path(__file__).parent / 'fixtures' / 'launch' / 'sandbox' / 'good.launch.py'
     params = tmp_path / 'p.yaml'
@@ -215,7 +215,7 @@ def test_a_merge_key_is_an_error_as_rcl_reads_it_as_a_name() -> None:
 
 def test_cli_an_alias_fails_the_check(tmp_path: Path) -> None:
     path = FIXTURES / 'params' / 'aliases.params.yaml'
-    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(path),
+    check = subprocess.run([sys.executable, '-m', 'nodl', 'params', 'check', str(path),
                             '--definition', EVERYTHING], capture_output=True, text=True,
                            timeout=60, cwd=REPO)
     assert check.returncode == 1, check.stdout + check.stderr
@@ -228,7 +228,7 @@ ARM = str(FIXED / 'prefix' / 'share' / 'robot' / 'nodl' / 'arm.nodl.yaml')
 
 
 def _check_cli(*args: str) -> subprocess.CompletedProcess[str]:
-    done = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', *args],
+    done = subprocess.run([sys.executable, '-m', 'nodl', 'params', 'check', *args],
                           capture_output=True, text=True, timeout=60, cwd=REPO)
     assert 'Traceback' not in done.stderr and '[Errno' not in done.stdout + done.stderr
     return done
@@ -267,7 +267,7 @@ def test_cli_unsafe_text_fails_the_check() -> None:
     """nodl params check: control and bidi characters in a parameter file are errors at the
     character (exit 1), shown as escapes on the terminal."""
     hostile = FIXTURES / 'launch' / 'text_safety' / 'hostile.params.yaml'
-    check = subprocess.run([sys.executable, '-m', 'nodl_schema', 'params', 'check', str(hostile),
+    check = subprocess.run([sys.executable, '-m', 'nodl', 'params', 'check', str(hostile),
                             '--definition', EVERYTHING, '--name', '/listener'],
                            capture_output=True, text=True, timeout=60, cwd=REPO)
     assert check.returncode == 1, check.stderr

@@ -1,4 +1,4 @@
-"""Entry-point discovery and fault-tolerant plugin loading (nodl_schema.plugins)."""
+"""Entry-point discovery and fault-tolerant plugin loading (nodl.plugins)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema import plugins
+from nodl import plugins
 
 SITE = FIXTURES / 'plugins' / 'site'
 
@@ -28,7 +28,7 @@ def test_builtin_verbs_are_found_like_importlib_metadata_finds_them() -> None:
     ours = {(e.name, e.value) for e in plugins.iter_entry_points('nodl.verbs')}
     theirs = {(e.name, e.value) for e in importlib.metadata.entry_points(group='nodl.verbs')}
     assert ours == theirs
-    assert ('validate', 'nodl_schema.cli.verbs.validate:ValidateVerb') in ours
+    assert ('validate', 'nodl.cli.verbs.validate:ValidateVerb') in ours
 
 
 def test_all_groups_agree_with_importlib_metadata() -> None:
@@ -58,7 +58,7 @@ def test_other_groups_are_separate(fake_site: None) -> None:
 
 def _nodl(*args: str) -> subprocess.CompletedProcess[str]:
     env = dict(os.environ, PYTHONPATH=str(SITE))
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, env=env,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, env=env,
                           text=True, capture_output=True, timeout=60)
 
 
@@ -152,7 +152,7 @@ def test_instances_know_their_group_and_name(versioned: Path) -> None:
 
 
 def test_a_third_party_resolver_extension_is_used_by_compose(versioned: Path) -> None:
-    from nodl_schema import compose
+    from nodl import compose
 
     composed = compose('nodl_version: 2\nmixins: [echo://hello]\nmain: {nodl_version: 2}\n')
     assert composed.interface is not None
@@ -176,7 +176,7 @@ def test_blocklist_leaves_out_one_extension_or_a_group(versioned: Path,
 def _nodl_with(site: Path, *args: str, **env: str) -> subprocess.CompletedProcess[str]:
     environment = {k: v for k, v in os.environ.items() if k != plugins.BLOCKLIST_VARIABLE}
     environment.update(PYTHONPATH=str(site), **env)
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=REPO, env=environment,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=REPO, env=environment,
                           text=True, capture_output=True, timeout=60)
 
 
@@ -261,7 +261,7 @@ def test_readme_documents_every_extension_point() -> None:
     for group, spec in plugins.EXTENSION_POINTS.items():
         assert f'`{group}`' in readme, group
         # the base class the README names for the group is the one extensions must subclass
-        base = (spec.base or 'nodl_schema.plugins:ExtensionPoint').replace(':', '.')
+        base = (spec.base or 'nodl.plugins:ExtensionPoint').replace(':', '.')
         rows = [line for line in readme.splitlines() if line.startswith('| ') and f'`{group}`' in line]
         assert len(rows) == 1 and f'`{base}`' in rows[0], (group, base, rows)
 

@@ -4,12 +4,12 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.policy.check import check_parsed_policy, check_policy_file
-from nodl_schema.policy.enclaves import EnclaveMapping
-from nodl_schema.policy.generate import policy_for_instances
-from nodl_schema.policy.schema_check import read_policy
-from nodl_schema.policy.targets import Definition, instances_from_definitions
-from nodl_schema.policy.writer import write_policy
+from nodl.policy.check import check_parsed_policy, check_policy_file
+from nodl.policy.enclaves import EnclaveMapping
+from nodl.policy.generate import policy_for_instances
+from nodl.policy.schema_check import read_policy
+from nodl.policy.targets import Definition, instances_from_definitions
+from nodl.policy.writer import write_policy
 
 POLICY = Path(__file__).parent / 'fixtures' / 'policy'
 

@@ -2,7 +2,7 @@
 
 from pathlib import Path
 
-from nodl_schema.policy.enclaves import assign_enclaves, enclave_path_error, load_enclave_mapping
+from nodl.policy.enclaves import assign_enclaves, enclave_path_error, load_enclave_mapping
 
 POLICY = Path(__file__).parent / 'fixtures' / 'policy'
 NODES = ['/robot/camera', '/robot/talker', '/robot/listener', '/lidar']

@@ -4,14 +4,14 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.policy.check import granted_names
-from nodl_schema.policy.enclaves import load_enclave_mapping
-from nodl_schema.policy.generate import MissingNode, policy_for_instances
-from nodl_schema.policy.model import ACCESS_OF_KIND
-from nodl_schema.policy.schema_check import read_policy
-from nodl_schema.policy.targets import Definition, instances_from_definitions
-from nodl_schema.policy.writer import write_policy
-from nodl_schema.system.entities import Location
+from nodl.policy.check import granted_names
+from nodl.policy.enclaves import load_enclave_mapping
+from nodl.policy.generate import MissingNode, policy_for_instances
+from nodl.policy.model import ACCESS_OF_KIND
+from nodl.policy.schema_check import read_policy
+from nodl.policy.targets import Definition, instances_from_definitions
+from nodl.policy.writer import write_policy
+from nodl.system.entities import Location
 
 REPO = Path(__file__).parent.parent
 POLICY = Path('tests/fixtures/policy')

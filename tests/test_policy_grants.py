@@ -5,8 +5,8 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.policy.grants import profile_for_instance, use_sim_time_can_be_true
-from nodl_schema.system import NodeInstance, resolve_node
+from nodl.policy.grants import profile_for_instance, use_sim_time_can_be_true
+from nodl.system import NodeInstance, resolve_node
 
 POLICY = Path(__file__).parent / 'fixtures' / 'policy'
 

@@ -4,9 +4,9 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.analysis import analyse_launch
-from nodl_schema.policy.launched import launch_policy
-from nodl_schema.policy.writer import write_policy
+from nodl.analysis import analyse_launch
+from nodl.policy.launched import launch_policy
+from nodl.policy.writer import write_policy
 from test_policy_generate import round_trip
 
 REPO = Path(__file__).parent.parent

@@ -8,8 +8,8 @@ import sys
 import pytest
 
 from conftest import REPO, NodeProcess
-from nodl_schema.policy.live import live_policy
-from nodl_schema.policy.writer import write_policy
+from nodl.policy.live import live_policy
+from nodl.policy.writer import write_policy
 
 
 @pytest.fixture(scope='module')
@@ -50,7 +50,7 @@ def test_live_policy_of_real_nodes(graph):
 
 def test_live_cli_writes_the_policy(graph, tmp_path):
     out = tmp_path / 'live.xml'
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', '--live', '--timeout', '15', '--settle', '8',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'policy', '--live', '--timeout', '15', '--settle', '8',
                              '-o', str(out)], cwd=REPO, text=True, capture_output=True, timeout=120)
     assert result.returncode == 0, result.stderr
     assert '<profile ns="/live_p" node="fib_client">' in out.read_text()

@@ -2,9 +2,9 @@
 
 import pytest
 
-from nodl_schema.policy.model import (ACCESS_OF_KIND, PERMISSIONS, Grant, Policy, Profile, Source,
+from nodl.policy.model import (ACCESS_OF_KIND, PERMISSIONS, Grant, Policy, Profile, Source,
                                       permission_list)
-from nodl_schema.system.entities import EntityKind
+from nodl.system.entities import EntityKind
 
 
 def test_every_endpoint_kind_has_its_access():

@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.policy.check import granted_names
-from nodl_schema.policy.names import (dds_topics, has_wildcard, resolve_policy_name, written_name,
+from nodl.policy.check import granted_names
+from nodl.policy.names import (dds_topics, has_wildcard, resolve_policy_name, written_name,
                                       written_name_error)
-from nodl_schema.policy.schema_check import read_policy
+from nodl.policy.schema_check import read_policy
 
 ORACLE = Path(__file__).parent / 'fixtures' / 'policy' / 'sros2_oracle'
 

@@ -2,7 +2,7 @@
 
 import pytest
 
-from nodl_schema.policy.schema_check import check_policy_text
+from nodl.policy.schema_check import check_policy_text
 
 GOOD = '''<?xml version="1.0" encoding="UTF-8"?>
 <policy version="0.2.0" xmlns:xi="http://www.w3.org/2001/XInclude">

@@ -2,10 +2,10 @@
 
 import pytest
 
-from nodl_schema.policy.model import Policy, Profile, Source
-from nodl_schema.policy.schema_check import check_policy_text
-from nodl_schema.policy.writer import PolicyNotWritable, write_policy, xml_comment
-from nodl_schema.text_safety import one_line
+from nodl.policy.model import Policy, Profile, Source
+from nodl.policy.schema_check import check_policy_text
+from nodl.policy.writer import PolicyNotWritable, write_policy, xml_comment
+from nodl.text_safety import one_line
 
 
 def _policy(*grants, namespace='/robot', node='driver'):

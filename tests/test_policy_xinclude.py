@@ -6,11 +6,11 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.policy.check import check_policy_file, granted_names
-from nodl_schema.policy.generate import policy_for_instances
-from nodl_schema.policy.names import dds_topics
-from nodl_schema.policy.schema_check import check_policy_structure, read_policy
-from nodl_schema.policy.targets import Definition, instances_from_definitions
+from nodl.policy.check import check_policy_file, granted_names
+from nodl.policy.generate import policy_for_instances
+from nodl.policy.names import dds_topics
+from nodl.policy.schema_check import check_policy_structure, read_policy
+from nodl.policy.targets import Definition, instances_from_definitions
 
 POLICY = Path(__file__).parent / 'fixtures' / 'policy'
 INCLUDING = POLICY / 'xinclude' / 'talker_listener.policy.xml'
@@ -89,7 +89,7 @@ def _structure_in_bounded_child(path: Path) -> dict:
     from bounded_child import run_bounded
 
     return run_bounded(
-        'from pathlib import Path\nfrom nodl_schema.policy.schema_check import check_policy_structure, read_policy',
+        'from pathlib import Path\nfrom nodl.policy.schema_check import check_policy_structure, read_policy',
         f'''
         found = check_policy_structure(read_policy(Path({str(path)!r})))
         out = [[d.code, d.file, d.line, d.column, d.message] for d in found]
@@ -99,7 +99,7 @@ def _structure_in_bounded_child(path: Path) -> dict:
 def test_an_include_bomb_stops_at_1000_includes_with_one_located_error():
     """10 levels of files each including the next 10 times (10^10 leaves): one NODL614 at the
     1,001st include, in bounded time and memory (a child limited to 1 GiB)."""
-    from nodl_schema.policy.xinclude import MAX_INCLUDES
+    from nodl.policy.xinclude import MAX_INCLUDES
 
     got = _structure_in_bounded_child(BOMB)
     assert MAX_INCLUDES == 1000
@@ -131,7 +131,7 @@ def test_included_text_is_bounded_to_10_mb_in_all(tmp_path, monkeypatch):
     """Each include counts its whole file, every time: past the total, one NODL615 at the
     include that passes it.  (Checked here with the limit lowered to 10,000 characters: 10 MB
     of policy XML takes seconds to read, as a 10 MB policy file itself does.)"""
-    from nodl_schema.policy import xinclude
+    from nodl.policy import xinclude
 
     assert xinclude.MAX_INCLUDED_BYTES == 10 * 1024 * 1024
     monkeypatch.setattr(xinclude, 'MAX_INCLUDED_BYTES', 10_000)

@@ -97,7 +97,7 @@ def run(venv: Path, *args: str) -> subprocess.CompletedProcess[str]:
 def test_the_environment_is_the_wanted_python_without_ros(venv: Path) -> None:
     probe = run(venv, str(venv / 'bin' / 'python'), '-I', '-c',
                 'import sys, importlib.util as u; print("%d.%d" % sys.version_info[:2]); '
-                'print(u.find_spec("rclpy") is None); import nodl_schema; print(nodl_schema.__file__)')
+                'print(u.find_spec("rclpy") is None); import nodl; print(nodl.__file__)')
     assert probe.returncode == 0, probe.stderr
     version, no_rclpy, module = probe.stdout.splitlines()
     assert version in VERSIONS and no_rclpy == 'True'
@@ -144,15 +144,15 @@ def test_every_module_imports(venv: Path) -> None:
     # A module may need an optional package (rclpy for the live features, pytest for the
     # plugin); it may not use what this Python's standard library or syntax lacks.
     code = '''
-import importlib, pkgutil, sys, nodl_schema
-for info in pkgutil.walk_packages(nodl_schema.__path__, 'nodl_schema.'):
+import importlib, pkgutil, sys, nodl
+for info in pkgutil.walk_packages(nodl.__path__, 'nodl.'):
     if info.name.endswith('__main__'):
         continue  # runs the command
     try:
         importlib.import_module(info.name)
     except ModuleNotFoundError as exc:
         top = (exc.name or '').partition('.')[0]
-        if top in sys.stdlib_module_names or top in ('nodl_schema', 'yaml'):
+        if top in sys.stdlib_module_names or top in ('nodl', 'yaml'):
             print(info.name, repr(exc))
     except Exception as exc:
         print(info.name, repr(exc))

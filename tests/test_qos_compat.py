@@ -13,9 +13,9 @@ from typing import Any
 
 import pytest
 
-from nodl_schema.model import QoSProfile
-from nodl_schema.qos_compat import VERDICTS, check_qos_compatible
-from nodl_schema.vocabulary import QOS_ENUMS
+from nodl.model import QoSProfile
+from nodl.qos_compat import VERDICTS, check_qos_compatible
+from nodl.vocabulary import QOS_ENUMS
 
 ENUM_POLICIES = ('reliability', 'durability', 'liveliness')
 #: Every value NoDL allows, and what rmw reports for a policy it cannot name.

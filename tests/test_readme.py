@@ -16,7 +16,7 @@ def test_quoted_validate_output_matches_the_tool() -> None:
     block = re.search(r'```text\n\$ nodl validate (\S+)\n(.*?)```', README, re.S)
     assert block, 'README lost its `nodl validate` example'
     path, quoted = block.group(1), block.group(2)
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', path], cwd=REPO,
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', path], cwd=REPO,
                             text=True, capture_output=True, timeout=60)
     for line in quoted.splitlines():
         if line and line != '...':
@@ -33,7 +33,7 @@ def test_quoted_policy_example_is_what_the_tool_writes(tmp_path) -> None:  # typ
     assert block, 'README lost its `nodl policy` example'
     arguments = block.group(1).split()[2:]
     fixtures = REPO / 'tests' / 'fixtures' / 'policy'
-    written = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', *arguments],
+    written = subprocess.run([sys.executable, '-m', 'nodl', 'policy', *arguments],
                              cwd=fixtures, env={**os.environ, 'PYTHONPATH': str(REPO)},
                              text=True, capture_output=True, timeout=60)
     assert written.returncode == 0, written.stderr
@@ -45,7 +45,7 @@ def test_quoted_policy_example_is_what_the_tool_writes(tmp_path) -> None:  # typ
     (tmp_path / 'talker.nodl.yaml').write_text((fixtures / 'talker.nodl.yaml').read_text())
     (tmp_path / 'policy.xml').write_text(written.stdout.replace(
         '<topic>chatter</topic>', '<topic>chatter</topic>\n            <topic>cmd_vel</topic>', 1))
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'policy', '--check', 'policy.xml',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'policy', '--check', 'policy.xml',
                              'talker.nodl.yaml', 'use_sim_time:=true', '--name', '/robot/talker'],
                             cwd=tmp_path, env={**os.environ, 'PYTHONPATH': str(REPO)},
                             text=True, capture_output=True, timeout=60)
@@ -125,7 +125,7 @@ def test_python_api_examples_run_and_give_the_results_they_show(tmp_path) -> Non
 def test_quoted_extract_example_is_what_the_tool_prints() -> None:
     block = re.search(r'```text\n\$ nodl extract (\S+)\n(.*?)```', README, re.S)
     assert block, 'README lost its `nodl extract` example'
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'extract', block.group(1)], cwd=REPO,
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'extract', block.group(1)], cwd=REPO,
                             text=True, capture_output=True, timeout=60)
     assert result.returncode == 0, result.stderr
     printed = result.stdout.splitlines()
@@ -140,7 +140,7 @@ def test_quoted_overlay_analysis_matches_the_tool() -> None:
     arguments = block.group(1).split()[1:]
     env = {**os.environ, 'PYTHONPATH': str(REPO), 'AMENT_PREFIX_PATH': 'tests/fixtures/analysis/prefix'}
     env.pop('NODL_PATH', None)
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', *arguments], cwd=REPO, env=env,
+    result = subprocess.run([sys.executable, '-m', 'nodl', *arguments], cwd=REPO, env=env,
                             text=True, capture_output=True, timeout=60)
     assert result.returncode == 0, result.stderr
     quoted = [line for line in block.group(2).splitlines() if line and line != '...']
@@ -154,7 +154,7 @@ def test_quoted_monitor_aggregator_config_is_what_the_tool_writes(tmp_path) -> N
     arguments = block.group(1).split()[2:]
     (tmp_path / 'sensor.nodl.yaml').write_text(
         (REPO / 'tests' / 'fixtures' / 'monitor' / 'sensor.nodl.yaml').read_text())
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'monitor', *arguments],
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'monitor', *arguments],
                             cwd=tmp_path, env={**os.environ, 'PYTHONPATH': str(REPO)},
                             text=True, capture_output=True, timeout=60)
     assert result.returncode == 0, result.stderr
@@ -164,12 +164,12 @@ def test_quoted_monitor_aggregator_config_is_what_the_tool_writes(tmp_path) -> N
 def test_quoted_doc_example_is_what_the_tool_writes(tmp_path) -> None:  # type: ignore[no-untyped-def]
     block = re.search(r'```text\n\$ nodl doc (\S+) -o site\n(.*?)```', README, re.S)
     assert block, 'README lost its `nodl doc` example'
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'doc', block.group(1), '-o',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'doc', block.group(1), '-o',
                              str(tmp_path / 'site')], cwd=REPO, text=True, capture_output=True,
                             timeout=60, env={**os.environ, 'AMENT_PREFIX_PATH': sys.prefix})
     assert result.returncode == 0, result.stderr
     assert result.stdout.replace(str(tmp_path) + os.sep, '') == block.group(2)
-    checked = subprocess.run([sys.executable, '-m', 'nodl_schema', 'doc', block.group(1), '-o',
+    checked = subprocess.run([sys.executable, '-m', 'nodl', 'doc', block.group(1), '-o',
                               str(tmp_path / 'site'), '--check'], cwd=REPO, text=True,
                              capture_output=True, timeout=60,
                              env={**os.environ, 'AMENT_PREFIX_PATH': sys.prefix})
@@ -184,7 +184,7 @@ def test_the_integrators_flow_names_what_the_tools_write(tmp_path) -> None:  # t
     section = README[README.index('### From a launch file to a fully covered system'):]
     section = section[:section.index('\n### ', 1)]
     fixture = REPO / 'tests' / 'fixtures' / 'integration_definitions'
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'extract',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'extract',
                              str(fixture / 'src' / 'cart_autonomy'), '-o', str(tmp_path / 'extracted')],
                             cwd=REPO, text=True, capture_output=True, timeout=60)
     assert result.returncode == 0, result.stderr

@@ -1,11 +1,11 @@
-"""Rendering diagnostics (nodl_schema.reporting)."""
+"""Rendering diagnostics (nodl.reporting)."""
 
 from __future__ import annotations
 
 import json
 
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.reporting import Tally, format_json, format_text, summary_line
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.reporting import Tally, format_json, format_text, summary_line
 
 D1 = Diagnostic(Severity.ERROR, 'bad type', ('main', 'publishers', 0, 'type'), 'a.yaml', 4, 11)
 D2 = Diagnostic(Severity.WARNING, 'no description', ('parameters', 'pid.kp'), 'a.yaml', 2, 3, 'key')
@@ -32,8 +32,8 @@ def test_summary_counts_and_plurals() -> None:
 
 
 def test_sarif_is_a_2_1_0_log_with_one_rule_per_code(tmp_path, monkeypatch) -> None:
-    from nodl_schema.codes import CODES
-    from nodl_schema.reporting.sarif import sarif_log
+    from nodl.codes import CODES
+    from nodl.reporting.sarif import sarif_log
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / 'a b.yaml').write_text('x: 1\n', encoding='utf-8')
@@ -75,7 +75,7 @@ def test_sarif_from_the_command_line_is_json_with_a_summary_on_stderr() -> None:
     from pathlib import Path
 
     repo = Path(__file__).resolve().parent.parent
-    result = subprocess.run([sys.executable, '-m', 'nodl_schema', 'validate', '--format', 'sarif',
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--format', 'sarif',
                              'examples/mistakes/typos.yaml'], cwd=repo, capture_output=True,
                             text=True, timeout=60)
     assert result.returncode == 1
@@ -97,7 +97,7 @@ def test_sarif_of_validate_has_the_shape_sarif_2_1_0_defines(tmp_path) -> None:
     repo = Path(__file__).resolve().parent.parent
     overrides = repo / 'tests' / 'fixtures' / 'composition' / 'overrides'
     result = subprocess.run(
-        [sys.executable, '-m', 'nodl_schema', 'validate', '--resolve', '--format', 'sarif',
+        [sys.executable, '-m', 'nodl', 'validate', '--resolve', '--format', 'sarif',
          'examples/mistakes/', str(overrides / 'base_redefined.nodl.yaml'),
          str(tmp_path / 'missing.nodl.yaml'), '-'],
         cwd=repo, capture_output=True, text=True, timeout=60, input='nodl_version: 2\nx: 1\n')
@@ -118,7 +118,7 @@ def test_the_sarif_shape_check_rejects_what_the_standard_rejects() -> None:
     import pytest
     from sarif_shape import assert_sarif_2_1_0
 
-    from nodl_schema.reporting.sarif import sarif_log
+    from nodl.reporting.sarif import sarif_log
 
     from typing import Any
 
@@ -144,7 +144,7 @@ def test_the_sarif_shape_check_rejects_what_the_standard_rejects() -> None:
 def test_junit_escapes_what_documents_hold() -> None:
     import xml.etree.ElementTree as ElementTree
 
-    from nodl_schema.reporting.junit import JUnitCase, format_junit
+    from nodl.reporting.junit import JUnitCase, format_junit
 
     hostile = Diagnostic(Severity.ERROR, 'bad <key> & "quote"\x01\x1b[31m', (), 'a&b.yaml', 1, 2,
                          code='NODL101')
@@ -164,8 +164,8 @@ def test_junit_escapes_what_documents_hold() -> None:
 def test_junit_and_sarif_show_control_and_bidi_characters() -> None:
     import xml.etree.ElementTree as ET
 
-    from nodl_schema.reporting.junit import _attribute, _text
-    from nodl_schema.reporting.sarif import format_sarif
+    from nodl.reporting.junit import _attribute, _text
+    from nodl.reporting.sarif import format_sarif
 
     hostile = 'evil \u202e \x1b[2J \x00 end'
     element = ET.fromstring(f'<f m={_attribute(hostile)}>{_text(hostile)}</f>')

@@ -59,10 +59,12 @@ def test_example_and_fixture_packages_are_hidden_from_colcon(folder: str) -> Non
     assert list((REPO / folder).rglob('package.xml'))  # there is something to hide
 
 
-def test_the_library_package_links_the_library() -> None:
-    link = ROS / 'nodl_toolkit' / 'nodl_schema'
+@pytest.mark.parametrize('package', ['nodl', 'nodl_schema'])
+def test_the_library_package_links_the_library(package: str) -> None:
+    # the toolkit and the reference-compatible package built on it
+    link = ROS / 'nodl_toolkit' / package
     assert link.is_symlink()
-    assert link.resolve() == (REPO / 'nodl_schema').resolve()
+    assert link.resolve() == (REPO / package).resolve()
 
 
 def test_the_colcon_setup_reads_pyproject_like_tomllib() -> None:
@@ -84,7 +86,7 @@ def test_the_colcon_setup_derives_everything_from_pyproject() -> None:
         if group != 'ros2cli.command':  # registered by ros2nodl
             expected[group] = sorted(f'{k} = {v}' for k, v in entries.items())
     assert {g: sorted(e) for g, e in arguments['entry_points'].items()} == expected
-    assert 'nodl_schema' in arguments['packages']
+    assert 'nodl' in arguments['packages'] and 'nodl_schema' in arguments['packages']
 
 
 def test_ros2nodl_registers_the_same_ros2cli_command_as_pyproject(monkeypatch: pytest.MonkeyPatch) -> None:

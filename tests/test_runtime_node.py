@@ -1,4 +1,4 @@
-"""nodl_schema.runtime: nodes built from definitions at run time, checked with real processes.
+"""nodl.runtime: nodes built from definitions at run time, checked with real processes.
 
 The same scenarios as the generated code (tests/test_generate_python.py): a node built by
 tests/nodes/runtime_node.py conforms (nodl check), enforces every validator through a real
@@ -16,7 +16,7 @@ from typing import Any, Iterator
 import pytest
 from ros_client import Client
 
-from nodl_schema.runtime import RuntimeDefinitionError, callback
+from nodl.runtime import RuntimeDefinitionError, callback
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'generate'
 NODES = Path(__file__).parent / 'nodes'
@@ -36,8 +36,8 @@ def _start(ros_node: Any, kind: str, name: str, *ros_args: str) -> Any:
 
 
 def _conforms(fqn: str, kind: str) -> None:
-    from nodl_schema.live.check import check_node
-    from nodl_schema.live.report import format_check_text
+    from nodl.live.check import check_node
+    from nodl.live.report import format_check_text
 
     result = check_node(fqn, FIXTURES / f'{kind}.nodl.yaml', timeout=15)
     assert result.conforms, format_check_text(result, verbose=True)
@@ -47,14 +47,14 @@ def _conforms(fqn: str, kind: str) -> None:
 
 
 def test_importing_the_runtime_does_not_import_rclpy() -> None:
-    code = 'import sys, nodl_schema.runtime; print("rclpy" in sys.modules)'
+    code = 'import sys, nodl.runtime; print("rclpy" in sys.modules)'
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, timeout=60,
                          cwd=Path(__file__).resolve().parent.parent)
     assert out.stdout.strip() == 'False', out.stderr
 
 
 def test_a_missing_callback_is_an_error() -> None:
-    from nodl_schema.runtime import NodlNode
+    from nodl.runtime import NodlNode
 
     with pytest.raises(RuntimeDefinitionError) as raised:
         NodlNode(FIXTURES / 'talker.nodl.yaml')
@@ -62,7 +62,7 @@ def test_a_missing_callback_is_an_error() -> None:
 
 
 def test_a_callback_for_an_undeclared_entity_is_an_error() -> None:
-    from nodl_schema.runtime import NodlNode
+    from nodl.runtime import NodlNode
 
     with pytest.raises(RuntimeDefinitionError) as raised:
         NodlNode(FIXTURES / 'talker.nodl.yaml', callbacks={'~/command': print, '~/comand': print})
@@ -70,7 +70,7 @@ def test_a_callback_for_an_undeclared_entity_is_an_error() -> None:
 
 
 def test_a_type_that_is_not_installed_is_named_before_the_node_is_created() -> None:
-    from nodl_schema.runtime import NodlNode
+    from nodl.runtime import NodlNode
 
     with pytest.raises(RuntimeDefinitionError) as raised:
         NodlNode(FIXTURES.parent / 'runtime' / 'missing_type.nodl.yaml')
@@ -80,7 +80,7 @@ def test_a_type_that_is_not_installed_is_named_before_the_node_is_created() -> N
 
 
 def test_custom_validators_and_base_are_required() -> None:
-    from nodl_schema.runtime import NodlNode
+    from nodl.runtime import NodlNode
 
     class Everything(NodlNode):
         @callback('~/in')
@@ -208,7 +208,7 @@ def test_runtime_every_kind_of_callback(ros_node: Any, client: Client) -> None:
 
 
 def test_a_name_two_kinds_share_needs_its_kind() -> None:
-    from nodl_schema.runtime import NodlNode
+    from nodl.runtime import NodlNode
 
     shared = FIXTURES.parent / 'runtime' / 'shared_name.nodl.yaml'
     with pytest.raises(RuntimeDefinitionError) as ambiguous:
@@ -231,7 +231,7 @@ def test_callbacks_keyed_by_kind_and_local_set_parameters_give_the_validators_wo
     import std_srvs.srv
     from rclpy.parameter import Parameter
 
-    from nodl_schema.runtime import NodlNode
+    from nodl.runtime import NodlNode
 
     shared = FIXTURES.parent / 'runtime' / 'shared_name.nodl.yaml'
     messages: list[str] = []
@@ -283,7 +283,7 @@ def test_callbacks_keyed_by_kind_and_local_set_parameters_give_the_validators_wo
 
 
 def test_a_missing_definition_file_is_named_in_words(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    from nodl_schema.runtime import NodlNode
+    from nodl.runtime import NodlNode
 
     missing = tmp_path / 'absent.nodl.yaml'
     with pytest.raises(RuntimeDefinitionError) as raised:

@@ -16,8 +16,8 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema.scaffold import ScaffoldError, load_nodes, plan_package, write_package
-from nodl_schema.writing import WriteError, mark, marker_state
+from nodl.scaffold import ScaffoldError, load_nodes, plan_package, write_package
+from nodl.writing import WriteError, mark, marker_state
 
 GENERATE = FIXTURES / 'generate'
 GOLDEN = FIXTURES / 'scaffold' / 'cmake'
@@ -305,7 +305,7 @@ def ament_copyright_accepts(text: str, template: str) -> tuple[str, str] | None:
 def test_license_and_maintainer_go_into_package_xml_and_headers_ament_copyright_accepts(
         spdx: str) -> None:
     from catkin_pkg.package import parse_package_string
-    from nodl_schema.scaffold import authorship
+    from nodl.scaffold import authorship
 
     template = (TEMPLATES / f'{SPDX_TEMPLATES[spdx]}_header.txt').read_text(encoding='utf-8')
     author = authorship(spdx.lower(), AUTHOR, year=2025)  # any case of the SPDX id
@@ -353,7 +353,7 @@ def test_without_a_license_the_copyright_test_says_how_to_get_one() -> None:
 def test_unknown_licenses_and_bad_maintainers_are_refused(license: str | None,
                                                           maintainer: tuple[str, str] | None,
                                                           message: str) -> None:
-    from nodl_schema.scaffold import authorship
+    from nodl.scaffold import authorship
 
     with pytest.raises(ScaffoldError, match=message):
         authorship(license, maintainer)
@@ -400,7 +400,7 @@ def test_python_packages_pass_ament_flake8_and_ament_pep257(license: str | None,
     """The real ament_flake8 (its ament_flake8.ini, every flake8 plugin it expects) and
     ament_pep257 (pydocstyle) pass on every file of a created package, the generated bases
     included; a parameter named like a builtin (``id``, ``list``, ``type``) included."""
-    from nodl_schema.scaffold import authorship
+    from nodl.scaffold import authorship
 
     plugins = subprocess.run([str(VENV / 'bin' / 'flake8'), '--version'], capture_output=True,
                              text=True, timeout=60).stdout.replace('-\n', '-')
@@ -428,10 +428,10 @@ def test_python_packages_pass_ament_flake8_and_ament_pep257(license: str | None,
 def _hostile_nodes(build_type: str) -> list:  # type: ignore[type-arg]
     """tests/fixtures/scaffold/hostile_text.nodl.yaml resolved with its validation bypassed (its
     NODL219/NODL220 errors dropped), as a running node's descriptors give such text."""
-    from nodl_schema.loading import Report, check_source
-    from nodl_schema.scaffold import BUILD_TYPES, NodeSource
-    from nodl_schema.system.resolved import resolve_report
-    from nodl_schema.validation.kinds import Kind
+    from nodl.loading import Report, check_source
+    from nodl.scaffold import BUILD_TYPES, NodeSource
+    from nodl.system.resolved import resolve_report
+    from nodl.validation.kinds import Kind
 
     path = str(FIXTURES / 'scaffold' / 'hostile_text.nodl.yaml')
     report = check_source(Path(path), kind=Kind.NODE, file=path)
@@ -454,7 +454,7 @@ def test_hostile_descriptions_reach_no_written_file_raw(build_type: str) -> None
 
     import yaml
 
-    from nodl_schema.text_safety import UNSAFE
+    from nodl.text_safety import UNSAFE
 
     files = {f.path: f.text for f in plan_package('hostile_pkg', _hostile_nodes(build_type),
                                                     build_type).files}
@@ -488,7 +488,7 @@ def test_hostile_descriptions_reach_no_written_file_raw(build_type: str) -> None
 def test_cmake_strings_escape_what_cmake_reads() -> None:
     """CMake quoted arguments: backslash, quote, $ (a variable) and line breaks escaped; a control
     or bidi character CMake has no escape for is refused (no name nodl new writes holds one)."""
-    from nodl_schema.scaffold.cmake_package import _cmake_string
+    from nodl.scaffold.cmake_package import _cmake_string
 
     assert _cmake_string('a"b${X}c\\d\te\nf') == '"a\\"b\\${X}c\\\\d\\te\\nf"'
     for bad in ('x\u202e', 'x\x1b', 'x\x85'):

@@ -1,4 +1,4 @@
-"""The shipped JSON Schemas: nodl_schema.schemas."""
+"""The shipped JSON Schemas: nodl.schemas."""
 
 from __future__ import annotations
 
@@ -9,10 +9,10 @@ from typing import Any, Iterator
 import jsonschema
 import pytest
 
-from nodl_schema.loading import check_source
-from nodl_schema.schemas import KINDS, bundled_schema, load_schema, schema_path
-from nodl_schema.validation.engine import FORMATS
-from nodl_schema.validation.parameters import BUILTIN_VALIDATORS
+from nodl.loading import check_source
+from nodl.schemas import KINDS, bundled_schema, load_schema, schema_path
+from nodl.validation.engine import FORMATS
+from nodl.validation.parameters import BUILTIN_VALIDATORS
 
 FIXTURES = Path(__file__).parent / 'fixtures'
 

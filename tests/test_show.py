@@ -1,4 +1,4 @@
-"""`show`: a node's whole interface, resolved (nodl_schema.show)."""
+"""`show`: a node's whole interface, resolved (nodl.show)."""
 
 from __future__ import annotations
 
@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl_schema import dump_nodl, load_interface
-from nodl_schema.diagnostics import Severity
-from nodl_schema.model import Interface
-from nodl_schema.show import Shown, render, show_file, show_registered
+from nodl import dump_nodl, load_interface
+from nodl.diagnostics import Severity
+from nodl.model import Interface
+from nodl.show import Shown, render, show_file, show_registered
 
 EXAMPLES = REPO / 'examples'
 GOLDEN = FIXTURES / 'show'
@@ -232,7 +232,7 @@ def test_show_refuses_a_node_that_redefines_its_base() -> None:
 
 
 def test_a_statement_cannot_break_out_of_its_comment() -> None:
-    from nodl_schema.composition.client_library import ClientLibraryChoice
+    from nodl.composition.client_library import ClientLibraryChoice
 
     text = render(Interface(nodl_version=2), 'yaml',
                   client_library=ClientLibraryChoice('rclpy', "package 'x\nnodl_version: 3' ..."))

@@ -1,13 +1,13 @@
-"""Entity kinds, providers, interface types and locations (nodl_schema.system.entities)."""
+"""Entity kinds, providers, interface types and locations (nodl.system.entities)."""
 
 from __future__ import annotations
 
 import pytest
 
-from nodl_schema.model.parameter_types import TypeSpec
-from nodl_schema.system.entities import (
+from nodl.model.parameter_types import TypeSpec
+from nodl.system.entities import (
     PROVIDER_OF_ROLE, EntityKind, InterfaceType, Location, Provider, parse_entity_type)
-from nodl_schema.vocabulary import SECTIONS
+from nodl.vocabulary import SECTIONS
 
 
 def test_every_section_has_a_kind_and_back() -> None:

@@ -1,4 +1,4 @@
-"""Node instances (nodl_schema.system.instance): final names, remaps, parameters.
+"""Node instances (nodl.system.instance): final names, remaps, parameters.
 
 The final names are compared with what a real rclpy node, started with the
 same name, namespace and remapping rules, shows in the ROS graph.
@@ -9,9 +9,9 @@ from __future__ import annotations
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema.live.observe import observe_node
-from nodl_schema.naming import InvalidRemapRuleError
-from nodl_schema.system import EntityKind, NodeInstance, resolve_node
+from nodl.live.observe import observe_node
+from nodl.naming import InvalidRemapRuleError
+from nodl.system import EntityKind, NodeInstance, resolve_node
 
 SYSTEM = FIXTURES / 'system'
 
@@ -56,7 +56,7 @@ def test_remap_rules_and_node_renames(talker) -> None:  # type: ignore[no-untype
 
 
 def test_an_instance_given_its_names_resolves_as_one_that_makes_them(talker) -> None:  # type: ignore[no-untyped-def]
-    from nodl_schema.naming import NodeNames, parse_remap_rules
+    from nodl.naming import NodeNames, parse_remap_rules
 
     rules = parse_remap_rules(['~/chatter:=/chat', '__ns:=/team', 'reset:=/r'])
     made = NodeInstance(talker, 'talker', '/robot', rules)

@@ -1,4 +1,4 @@
-"""The resolved node (nodl_schema.system.resolved): entities, providers, layers, locations."""
+"""The resolved node (nodl.system.resolved): entities, providers, layers, locations."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES
-from nodl_schema import ValidationError, compose
-from nodl_schema.composition.bases import base_file
-from nodl_schema.system import (
+from nodl import ValidationError, compose
+from nodl.composition.bases import base_file
+from nodl.system import (
     EntityKind, InterfaceType, Location, Provider, ResolvedNode, resolve_node, resolve_registered)
 
 SYSTEM = FIXTURES / 'system'
@@ -157,7 +157,7 @@ def test_nodes_resolved_in_one_run_share_their_base(tmp_path: Path) -> None:
     # Inside an index snapshot (one analysis) every node of a base shares its layer and the
     # entities only the base declares; what a node declares or refines stays its own, and
     # outside a snapshot nothing is shared.
-    from nodl_schema.index import ament
+    from nodl.index import ament
 
     files = []
     for i, refine in enumerate(('', '  parameters:\n    use_sim_time: {type: bool, default_value: false,'

@@ -1,11 +1,11 @@
-"""Definitions folders (nodl_schema.targets.overlay): layout, checks, precedence, look-ups."""
+"""Definitions folders (nodl.targets.overlay): layout, checks, precedence, look-ups."""
 
 from __future__ import annotations
 
 from conftest import FIXTURES
 
-from nodl_schema.index import node_info, registry
-from nodl_schema.targets.overlay import Definitions, active, read_folder, read_folders, using
+from nodl.index import node_info, registry
+from nodl.targets.overlay import Definitions, active, read_folder, read_folders, using
 
 OVERLAYS = FIXTURES / 'overlays'
 DEFS = str(OVERLAYS / 'defs')

@@ -1,4 +1,4 @@
-"""The one target resolution (nodl_schema.targets.resolve): precedence, provenance, coverage."""
+"""The one target resolution (nodl.targets.resolve): precedence, provenance, coverage."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import os
 import pytest
 from conftest import FIXTURES
 
-from nodl_schema.config import ConfigError
-from nodl_schema.targets.resolve import (
+from nodl.config import ConfigError
+from nodl.targets.resolve import (
     Provenance, coverage_line, gather_definitions, made_by, resolve_reference, resolve_target)
 
 OVERLAYS = FIXTURES / 'overlays'

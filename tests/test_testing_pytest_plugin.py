@@ -21,9 +21,9 @@ import rclpy.executors  # noqa: F401
 from rcl_interfaces.srv import DescribeParameters  # noqa: F401
 
 from conftest import FIXTURES, NodeProcess
-from nodl_schema import dump_nodl, load_nodl
-from nodl_schema.live.check import CheckResult
-from nodl_schema.testing import NodeDrift, assert_conforms
+from nodl import dump_nodl, load_nodl
+from nodl.live.check import CheckResult
+from nodl.testing import NodeDrift, assert_conforms
 
 pytest_plugins = ['pytester']
 
@@ -54,12 +54,12 @@ def drifting(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 def test_plugin_is_registered_as_a_pytest11_entry_point() -> None:
     plugins = {e.name: e.value for e in entry_points(group='pytest11')}
-    assert plugins.get('nodl') == 'nodl_schema.testing.pytest_plugin'
+    assert plugins.get('nodl') == 'nodl.testing.pytest_plugin'
 
 
 def test_fixture_passes_for_a_conforming_node(pytester: pytest.Pytester, full: NodeProcess) -> None:
     pytester.makepyfile(test_inner=f'''
-        from nodl_schema.live.check import CheckResult
+        from nodl.live.check import CheckResult
 
 
         def test_node_conforms(nodl_conformance):

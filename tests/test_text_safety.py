@@ -1,4 +1,4 @@
-"""Unsafe characters and their per-format spellings: nodl_schema.text_safety."""
+"""Unsafe characters and their per-format spellings: nodl.text_safety."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from nodl_schema.text_safety import (
+from nodl.text_safety import (
     describe_character, first_unsafe, line_column, locate_unsafe, offset_of, python_escapes,
     visible, xml_escape)
 

@@ -37,21 +37,21 @@ def test_the_configuration_is_strict() -> None:
 
     config = tomllib.loads((REPO / 'pyproject.toml').read_text())
     assert config['tool']['mypy']['strict'] is True
-    assert config['tool']['mypy']['packages'] == ['nodl_schema']
+    assert config['tool']['mypy']['packages'] == ['nodl', 'nodl_schema']
     assert any(r.lower().startswith('types-pyyaml')
                for r in config['project']['optional-dependencies']['test'])
 
 
 def test_mypy_strict_accepts_the_library_and_a_consumer_script(mypy_cache: Path) -> None:
     # One run for both: the consumer is checked against the library as installed in the tree.
-    result = _mypy(mypy_cache, '--strict', 'nodl_schema', str(CONSUMER))
+    result = _mypy(mypy_cache, '--strict', 'nodl', 'nodl_schema', str(CONSUMER))
     assert result.returncode == 0, result.stdout + result.stderr
 
 
 def test_mypy_strict_catches_a_misuse_of_the_public_api(tmp_path: Path, mypy_cache: Path) -> None:
     """The consumer check can fail: a wrong use of a public name is an error."""
     script = tmp_path / 'misuse.py'
-    script.write_text('from nodl_schema import load_node\n\n'
+    script.write_text('from nodl import load_node\n\n'
                       'def name(path: str) -> int:\n'
                       '    return load_node(path).main\n')
     result = _mypy(mypy_cache, '--strict', str(script))
@@ -70,7 +70,7 @@ def _literal_all(path: Path) -> list[str]:
     raise AssertionError(f'{path} has no __all__')
 
 
-@pytest.mark.parametrize('package', ['nodl_schema', 'nodl_schema.model', 'nodl_schema.system'])
+@pytest.mark.parametrize('package', ['nodl', 'nodl.model', 'nodl.system'])
 def test_all_is_a_literal_list_equal_to_the_lazy_exports(package: str) -> None:
     import importlib
 
@@ -85,29 +85,29 @@ def test_all_is_a_literal_list_equal_to_the_lazy_exports(package: str) -> None:
 
 
 def test_the_public_names_are_imported_for_type_checkers() -> None:
-    """Every name of ``nodl_schema.__all__`` is imported under TYPE_CHECKING (so mypy knows it)."""
-    tree = ast.parse((REPO / 'nodl_schema' / '__init__.py').read_text())
+    """Every name of ``nodl.__all__`` is imported under TYPE_CHECKING (so mypy knows it)."""
+    tree = ast.parse((REPO / 'nodl' / '__init__.py').read_text())
     imported: set[str] = set()
     for node in ast.walk(tree):
         if isinstance(node, ast.If) and isinstance(node.test, ast.Name) and node.test.id == 'TYPE_CHECKING':
             for child in ast.walk(node):
                 if isinstance(child, ast.ImportFrom):
                     imported.update(alias.asname or alias.name for alias in child.names)
-    assert set(_literal_all(REPO / 'nodl_schema' / '__init__.py')) <= imported
+    assert set(_literal_all(REPO / 'nodl' / '__init__.py')) <= imported
 
 
 def test_the_package_is_marked_typed() -> None:
-    assert (REPO / 'nodl_schema' / 'py.typed').is_file()
+    assert (REPO / 'nodl' / 'py.typed').is_file()
 
 
 def test_the_consumer_script_imports_every_public_name() -> None:
-    """A name added to nodl_schema.__all__ is type-checked as a user would use it."""
+    """A name added to nodl.__all__ is type-checked as a user would use it."""
     import ast
 
-    import nodl_schema
+    import nodl
 
     tree = ast.parse(CONSUMER.read_text(encoding='utf-8'))
     imported = {alias.asname or alias.name for node in ast.walk(tree)
-                if isinstance(node, ast.ImportFrom) and node.module == 'nodl_schema'
+                if isinstance(node, ast.ImportFrom) and node.module == 'nodl'
                 for alias in node.names}
-    assert sorted(set(nodl_schema.__all__) - imported) == []
+    assert sorted(set(nodl.__all__) - imported) == []

@@ -1,4 +1,4 @@
-"""Control characters and bidi controls in names and descriptions: nodl_schema.validation.characters."""
+"""Control characters and bidi controls in names and descriptions: nodl.validation.characters."""
 
 from __future__ import annotations
 
@@ -6,9 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from nodl_schema.diagnostics import Severity
-from nodl_schema.loading import check_source
-from nodl_schema.validation import Kind, validate_data
+from nodl.diagnostics import Severity
+from nodl.loading import check_source
+from nodl.validation import Kind, validate_data
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'text_safety'
 HOSTILE = FIXTURES / 'hostile.nodl.yaml'

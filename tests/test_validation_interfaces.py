@@ -1,4 +1,4 @@
-"""Checks across one interface definition: nodl_schema.validation.interfaces."""
+"""Checks across one interface definition: nodl.validation.interfaces."""
 
 from __future__ import annotations
 
@@ -6,10 +6,10 @@ from typing import Any
 
 import pytest
 
-from nodl_schema import load_schema
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.validation import Kind, validate_data
-from nodl_schema.validation.interfaces import SECTIONS, check_interface
+from nodl import load_schema
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.validation import Kind, validate_data
+from nodl.validation.interfaces import SECTIONS, check_interface
 
 QOS = {'history': 'KEEP_ALL', 'reliability': 'RELIABLE'}
 TYPES = {'publishers': 'std_msgs/msg/String', 'subscriptions': 'std_msgs/msg/String',

@@ -1,4 +1,4 @@
-"""Detecting the kind of a document: nodl_schema.validation.kinds."""
+"""Detecting the kind of a document: nodl.validation.kinds."""
 
 from __future__ import annotations
 
@@ -6,9 +6,9 @@ from typing import Any
 
 import pytest
 
-from nodl_schema import load_schema
-from nodl_schema.loading import check_source
-from nodl_schema.validation.kinds import INTERFACE_KEYS, NODE_KEYS, Kind, detect_kind
+from nodl import load_schema
+from nodl.loading import check_source
+from nodl.validation.kinds import INTERFACE_KEYS, NODE_KEYS, Kind, detect_kind
 
 
 @pytest.mark.parametrize(('data', 'kind'), [

@@ -1,4 +1,4 @@
-"""ROS 2 names (topics, services, actions) and parameter names: nodl_schema.validation.names."""
+"""ROS 2 names (topics, services, actions) and parameter names: nodl.validation.names."""
 
 from __future__ import annotations
 
@@ -6,9 +6,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nodl_schema.diagnostics import Severity
-from nodl_schema.validation import Kind, validate_data
-from nodl_schema.validation.names import (
+from nodl.diagnostics import Severity
+from nodl.validation import Kind, validate_data
+from nodl.validation.names import (
     SUBSTITUTIONS, check_parameter_name, check_ros_name, parameter_name_problem,
     ros_name_problem)
 
@@ -248,14 +248,14 @@ def test_parameter_names_are_checked_in_interfaces() -> None:
     assert [(d.path, d.anchor) for d in errors] == [(('parameters', '1gain'), 'key')]
 
 
-# -- the definition rules against rcl's (nodl_schema.naming) ------------------------------------
+# -- the definition rules against rcl's (nodl.naming) ------------------------------------
 # Two checks of one fact: what a definition may write is at least as strict as what rcl accepts.
 
 _name_pieces = st.sampled_from(list('ab1_/~{}') + ['node', 'ns', 'namespace', 'x'])
 
 
 def _rcl_refuses(name: str) -> str | None:
-    from nodl_schema.naming import InvalidNameError, resolve_name, topic_name_error
+    from nodl.naming import InvalidNameError, resolve_name, topic_name_error
 
     problem = topic_name_error(name)
     if problem is None:
@@ -273,7 +273,7 @@ def test_property_definition_names_are_names_rcl_accepts(name: str) -> None:
     if ours is None and '{' not in name:  # a substitution's value is only known at run time
         assert rcl is None, (name, rcl)
     if ours is None:
-        from nodl_schema.naming import topic_name_error
+        from nodl.naming import topic_name_error
 
         assert topic_name_error(name) is None, name
     if rcl is None and ours is not None:
@@ -283,8 +283,8 @@ def test_property_definition_names_are_names_rcl_accepts(name: str) -> None:
 
 
 def test_substitutions_are_the_ones_the_naming_module_expands() -> None:
-    from nodl_schema.naming import expand_name
-    from nodl_schema.vocabulary import NAME_SUBSTITUTIONS
+    from nodl.naming import expand_name
+    from nodl.vocabulary import NAME_SUBSTITUTIONS
 
     assert SUBSTITUTIONS is NAME_SUBSTITUTIONS
     expanded = {word: expand_name('{' + word + '}/x', 'n', '/ns') for word in SUBSTITUTIONS}

@@ -1,4 +1,4 @@
-"""Parameter semantics: nodl_schema.validation.parameters.
+"""Parameter semantics: nodl.validation.parameters.
 
 Types and their defaults, fixed sizes, validator names, validators against
 types, conflicting validators, validator arguments and defaults against
@@ -14,10 +14,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.model.parameter_types import ARRAY_TYPES, FIXED_BASES, SCALAR_TYPES
-from nodl_schema.validation import Kind, validate_data
-from nodl_schema.validation.parameters import (
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.model.parameter_types import ARRAY_TYPES, FIXED_BASES, SCALAR_TYPES
+from nodl.validation import Kind, validate_data
+from nodl.validation.parameters import (
     BUILTIN_VALIDATORS, check_parameter, check_parameter_type, check_validator_name)
 
 
@@ -662,14 +662,14 @@ def test_all_problems_of_a_parameter_are_reported_at_once() -> None:
     {'type': 'int_array', 'default_value': [0, 2**63]},
 ])
 def test_int_defaults_outside_int64_are_errors(param: dict) -> None:
-    from nodl_schema.validation import Kind, validate_data
+    from nodl.validation import Kind, validate_data
 
     errors = [d for d in validate_data(param, Kind.PARAMETER) if d.severity == 'error']
     assert len(errors) == 1 and 'int64' in errors[0].message
 
 
 def test_int64_limits_are_accepted() -> None:
-    from nodl_schema.validation import Kind, validate_data
+    from nodl.validation import Kind, validate_data
 
     for value in (2**63 - 1, -2**63):
         assert not validate_data({'type': 'int', 'default_value': value}, Kind.PARAMETER)

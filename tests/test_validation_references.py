@@ -1,4 +1,4 @@
-"""Mixin references: nodl_schema.validation.references."""
+"""Mixin references: nodl.validation.references."""
 
 from __future__ import annotations
 
@@ -6,9 +6,9 @@ from typing import Any
 
 import pytest
 
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.validation import Kind, validate_data
-from nodl_schema.validation.references import (
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.validation import Kind, validate_data
+from nodl.validation.references import (
     NODL_SCHEME, check_reference, parse_nodl_uri, reference_problem)
 
 

@@ -1,4 +1,4 @@
-"""The structural check: nodl_schema.validation.structure, an interpreter of the shipped schemas.
+"""The structural check: nodl.validation.structure, an interpreter of the shipped schemas.
 
 Messages (did you mean, enums, anyOf, required keys, key hints, the KEEP_LAST
 rule), the interpreter's keywords on small inline schemas, and agreement
@@ -16,12 +16,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from nodl_schema import bundled_schema
-from nodl_schema.diagnostics import Diagnostic, Severity
-from nodl_schema.loading import check_source
-from nodl_schema.validation import Kind, validate_data
-from nodl_schema.validation.engine import FORMATS
-from nodl_schema.validation.structure import SchemaCompiler
+from nodl import bundled_schema
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.loading import check_source
+from nodl.validation import Kind, validate_data
+from nodl.validation.engine import FORMATS
+from nodl.validation.structure import SchemaCompiler
 
 FIXTURES = Path(__file__).parent / 'fixtures'
 QOS = {'history': 'KEEP_LAST', 'depth': 10, 'reliability': 'RELIABLE'}

@@ -1,12 +1,12 @@
-"""Interface type names (pkg/msg/Type, ...): nodl_schema.validation.types."""
+"""Interface type names (pkg/msg/Type, ...): nodl.validation.types."""
 
 from __future__ import annotations
 
 import pytest
 
-from nodl_schema.diagnostics import Severity
-from nodl_schema.validation import Kind, validate_data
-from nodl_schema.validation.types import (
+from nodl.diagnostics import Severity
+from nodl.validation import Kind, validate_data
+from nodl.validation.types import (
     NAMESPACE_WORDS, check_action_type, check_msg_type, check_srv_type, split_type, type_problem)
 
 CHECKS = {'msg': check_msg_type, 'srv': check_srv_type, 'action': check_action_type}

@@ -9,16 +9,16 @@ from typing import Any
 import pytest
 import yaml
 
-from nodl_schema.model.parameter_types import parse_type
-from nodl_schema.validation.parameters import check_parameter
-from nodl_schema.validation.validators import (
+from nodl.model.parameter_types import parse_type
+from nodl.validation.parameters import check_parameter
+from nodl.validation.validators import (
     APPLICABILITY, ARGUMENT_SHAPES, BUILTIN_NAMES, VALIDATORS, applicable_types, bare_name, lookup,
     value_problems)
 
 ROOT = Path(__file__).resolve().parent.parent
 CASES: dict[str, Any] = yaml.safe_load(
     (Path(__file__).parent / 'fixtures' / 'validators' / 'cases.yaml').read_text())
-SCHEMA = json.loads((ROOT / 'nodl_schema' / 'schemas' / 'parameter.schema.json').read_text())
+SCHEMA = json.loads((ROOT / 'nodl' / 'schemas' / 'parameter.schema.json').read_text())
 
 
 def test_every_validator_has_a_case() -> None:

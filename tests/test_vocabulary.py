@@ -10,10 +10,10 @@ from typing import Any
 
 import pytest
 
-from nodl_schema import vocabulary as v
+from nodl import vocabulary as v
 
 ROOT = Path(__file__).resolve().parent.parent
-SCHEMAS = ROOT / 'nodl_schema' / 'schemas'
+SCHEMAS = ROOT / 'nodl' / 'schemas'
 CMAKE = ROOT / 'ros' / 'ament_nodl' / 'cmake' / 'ament_nodl_register.cmake'
 
 
@@ -49,8 +49,8 @@ def test_section_table_is_consistent() -> None:
 
 
 def test_legacy_roles_are_those_of_the_legacy_frontend() -> None:
-    from nodl_schema.frontends import legacy_xml
-    from nodl_schema.legacy import convert
+    from nodl.frontends import legacy_xml
+    from nodl.legacy import convert
 
     assert legacy_xml.TOPIC_ROLES == ('publisher', 'subscription')
     assert legacy_xml.SERVICE_ROLES == legacy_xml.ACTION_ROLES == ('server', 'client')
@@ -58,9 +58,9 @@ def test_legacy_roles_are_those_of_the_legacy_frontend() -> None:
 
 
 def test_model_and_consumers_derive_their_sections() -> None:
-    from nodl_schema.live.observe import ObservedNode
-    from nodl_schema.model import ENDPOINT_SECTIONS, Interface
-    from nodl_schema.validation.interfaces import SECTIONS
+    from nodl.live.observe import ObservedNode
+    from nodl.model import ENDPOINT_SECTIONS, Interface
+    from nodl.validation.interfaces import SECTIONS
 
     assert tuple(ENDPOINT_SECTIONS) == v.SECTION_KEYS
     assert SECTIONS == v.SECTION_WORDS
@@ -76,7 +76,7 @@ def test_every_kind_has_a_schema(kind: v.Kind) -> None:
 
 
 def test_document_keys_match_the_schemas() -> None:
-    from nodl_schema.validation.kinds import INTERFACE_KEYS, NODE_KEYS, Kind
+    from nodl.validation.kinds import INTERFACE_KEYS, NODE_KEYS, Kind
 
     assert Kind is v.Kind and INTERFACE_KEYS is v.INTERFACE_KEYS and NODE_KEYS is v.NODE_KEYS
     interface = _schema('interface')['definitions']['interface']['properties']
@@ -94,7 +94,7 @@ def test_parameter_types_match_the_schema() -> None:
 
 
 def test_qos_keys_match_the_schema_and_the_model() -> None:
-    from nodl_schema.model import QOS_POLICIES, QoSProfile
+    from nodl.model import QOS_POLICIES, QoSProfile
 
     qos = _schema('interface')['definitions']['qos_profile']
     assert set(v.QOS_KEYS) == set(qos['properties'])
@@ -107,7 +107,7 @@ def test_qos_keys_match_the_schema_and_the_model() -> None:
 
 
 def test_legacy_qos_values_are_the_v2_values_and_the_legacy_extras() -> None:
-    from nodl_schema.frontends.legacy_xml import LEGACY_ONLY_QOS_VALUES, QOS_VALUES
+    from nodl.frontends.legacy_xml import LEGACY_ONLY_QOS_VALUES, QOS_VALUES
 
     for policy, values in v.QOS_ENUMS.items():
         extras = LEGACY_ONLY_QOS_VALUES.get(policy, ())
@@ -123,14 +123,14 @@ def test_cmake_registers_under_the_python_resource_types() -> None:
     # every resource type the CMake functions register is one of the vocabulary's
     literal = set(re.findall(r'ament_index_register_resource\((\w+)', text)) - {'resource_type'}
     assert literal == {v.NODE_INFO_RESOURCE}
-    from nodl_schema.index import node_info
+    from nodl.index import node_info
 
     assert node_info.NODE_INFO_RESOURCE is v.NODE_INFO_RESOURCE
 
 
 def test_python_consumers_use_the_resource_types() -> None:
-    from nodl_schema import packaging
-    from nodl_schema.composition import ament_resolver
+    from nodl import packaging
+    from nodl.composition import ament_resolver
 
     assert packaging.NODE_RESOURCE == ament_resolver.NODE_RESOURCE == v.NODE_RESOURCE
     assert packaging.INTERFACE_RESOURCE == ament_resolver.INTERFACE_RESOURCE == v.INTERFACE_RESOURCE
@@ -141,21 +141,21 @@ def test_vocabulary_imports_nothing_heavy() -> None:
     import subprocess
     import sys
 
-    code = ('import sys, nodl_schema.vocabulary; '
-            'print(sorted(m for m in sys.modules if m.startswith("nodl_schema")))')
+    code = ('import sys, nodl.vocabulary; '
+            'print(sorted(m for m in sys.modules if m.startswith("nodl")))')
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True,
                          cwd=ROOT, timeout=60, check=True).stdout
-    assert out.strip() == "['nodl_schema', 'nodl_schema.vocabulary']"
+    assert out.strip() == "['nodl', 'nodl.vocabulary']"
 
 
 def test_every_table_keyed_by_parameter_type_covers_the_vocabulary() -> None:
     """Per-language and per-ROS tables keyed by parameter type: none missing, none extra."""
     from rcl_interfaces.msg import ParameterType
 
-    from nodl_schema.generate.cpp.text import CPP_TYPES
-    from nodl_schema.generate.parameters import ROS_TYPES
-    from nodl_schema.generate.python import _PY_TYPES
-    from nodl_schema.live.observe import _PARAMETER_TYPES
+    from nodl.generate.cpp.text import CPP_TYPES
+    from nodl.generate.parameters import ROS_TYPES
+    from nodl.generate.python import _PY_TYPES
+    from nodl.live.observe import _PARAMETER_TYPES
 
     assert set(ROS_TYPES) == set(_PY_TYPES) == set(v.PARAMETER_TYPES)
     # a C++ field of type none is an rclcpp::ParameterValue (generate/cpp/parameters.py)
@@ -165,9 +165,9 @@ def test_every_table_keyed_by_parameter_type_covers_the_vocabulary() -> None:
 
 
 def test_tables_beside_the_validator_table_name_its_rows() -> None:
-    from nodl_schema.generate.parameters import _RANGE_VALIDATORS
-    from nodl_schema.validation.parameters import _CONFLICTS
-    from nodl_schema.validation.validators import VALIDATORS
+    from nodl.generate.parameters import _RANGE_VALIDATORS
+    from nodl.validation.parameters import _CONFLICTS
+    from nodl.validation.validators import VALIDATORS
 
     named = set(_RANGE_VALIDATORS) | {name for pair in _CONFLICTS for name in (pair[0], *pair[1])}
     assert named <= set(VALIDATORS), named - set(VALIDATORS)

@@ -1,4 +1,4 @@
-"""nodl_schema.writing: atomic writes, links, modes, the content marker, outputs that are inputs.
+"""nodl.writing: atomic writes, links, modes, the content marker, outputs that are inputs.
 
 The data-loss tests write for real in a child process whose file size limit
 (``RLIMIT_FSIZE``) is lower than the new content, with SIGXFSZ ignored so that
@@ -18,7 +18,7 @@ import pytest
 import yaml
 from conftest import FIXTURES, REPO
 
-from nodl_schema.writing import (
+from nodl.writing import (
     WriteError, check_replaceable, mark, marker_state, output_is_input, same_file, unmark, write_file,
     write_marked)
 
@@ -27,7 +27,7 @@ LIMITED = textwrap.dedent('''
     signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
     resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))
     sys.argv = ['nodl'] + sys.argv[1:]
-    from nodl_schema.cli.main import main
+    from nodl.cli.main import main
     sys.exit(main(sys.argv[1:]))
 ''')
 
@@ -41,7 +41,7 @@ def limited_nodl(*args: str, cwd: Path) -> subprocess.CompletedProcess[str]:
 
 def nodl(*args: str, cwd: Path = REPO) -> subprocess.CompletedProcess[str]:
     env = dict(os.environ, PYTHONPATH=str(REPO))
-    return subprocess.run([sys.executable, '-m', 'nodl_schema', *args], cwd=cwd, env=env, text=True,
+    return subprocess.run([sys.executable, '-m', 'nodl', *args], cwd=cwd, env=env, text=True,
                           capture_output=True, timeout=60)
 
 
@@ -55,7 +55,7 @@ def test_a_failed_write_keeps_the_old_file_and_leaves_no_temporary(tmp_path: Pat
         import resource, signal, sys
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
         resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))
-        from nodl_schema.writing import WriteError, write_file
+        from nodl.writing import WriteError, write_file
         try:
             write_file({str(target)!r}, 'x' * 100000)
         except WriteError as exc:
@@ -184,7 +184,7 @@ def test_marker_states_and_hash() -> None:
 
 
 def test_marked_formats_still_load(tmp_path: Path) -> None:
-    from nodl_schema import load_node
+    from nodl import load_node
 
     definition = (REPO / 'examples' / 'laser_driver.nodl.yaml').read_text(encoding='utf-8')
     marked = mark(definition, '#')
@@ -433,7 +433,7 @@ def test_convert_never_writes_over_an_exported_legacy_file(tmp_path: Path) -> No
 
 
 def test_check_within(tmp_path: Path) -> None:
-    from nodl_schema.writing import check_within
+    from nodl.writing import check_within
 
     out, elsewhere = tmp_path / 'out', tmp_path / 'elsewhere'
     (out / 'real').mkdir(parents=True)

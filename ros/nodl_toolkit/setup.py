@@ -8,7 +8,7 @@ It only adds what a ROS package installs (the index marker and package.xml)
 and leaves out the ``ros2cli.command`` entry point, which the ros2nodl package
 registers.
 
-``nodl_schema`` here is a symbolic link to the library at the repository root.
+``nodl`` here is a symbolic link to the library at the repository root.
 This script runs with setuptools 59 and Python 3.10 (ROS 2 Humble) as well as
 with newer ones: no pyproject-based metadata, and a small reader for the few
 tables of pyproject.toml it needs where ``tomllib`` is missing.
@@ -124,7 +124,7 @@ def setup_arguments(pyproject):
         if group not in LEFT_TO_OTHER_PACKAGES:
             entry_points[group] = [f'{k} = {v}' for k, v in entries.items()]
     setuptools_config = pyproject.get('tool', {}).get('setuptools', {})
-    include = setuptools_config.get('packages', {}).get('find', {}).get('include', ['nodl_schema*'])
+    include = setuptools_config.get('packages', {}).get('find', {}).get('include', ['nodl', 'nodl.*'])
     return {
         'name': PACKAGE,
         'version': project['version'],

@@ -1,6 +1,6 @@
 """ros2nodl: registers `ros2 nodl` with ros2cli.
 
-The command itself lives in the nodl_toolkit package (nodl_schema.cli.ros2cli),
+The command itself lives in the nodl_toolkit package (nodl.cli.ros2cli),
 so that `nodl` and `ros2 nodl` share one set of verbs; this package only adds
 the entry point (and, in package.xml, the dependency on ros2cli).
 """
@@ -25,6 +25,6 @@ setup(
     license='Apache-2.0',
     entry_points={
         # the same entry point as in the toolkit's pyproject.toml (a test keeps them equal)
-        'ros2cli.command': ['nodl = nodl_schema.cli.ros2cli:NodlCommand'],
+        'ros2cli.command': ['nodl = nodl.cli.ros2cli:NodlCommand'],
     },
 )

@@ -1,4 +1,4 @@
-"""A node built at run time from a definition (nodl_schema.runtime) for nodl monitor's tests.
+"""A node built at run time from a definition (nodl.runtime) for nodl monitor's tests.
 
 Usage: monitored_node.py --name NAME [--namespace NS] --definition FILE [--rate HZ] [--lax]
 [--more N --more-definition FILE] [--publishers N] [--storm N] [--churn HZ] [--ros-args ...].
@@ -47,8 +47,8 @@ def main() -> None:
     from rcl_interfaces.msg import SetParametersResult
     from rclpy.qos import QoSProfile, ReliabilityPolicy
 
-    from nodl_schema.runtime import NodlNode
-    from nodl_schema.system import EntityKind
+    from nodl.runtime import NodlNode
+    from nodl.system import EntityKind
 
     class Monitored(NodlNode):
         def _nodl_validate(self, parameters):  # type: ignore[no-untyped-def]

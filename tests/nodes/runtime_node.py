@@ -1,4 +1,4 @@
-"""A node built at run time from a definition (nodl_schema.runtime), no generated code.
+"""A node built at run time from a definition (nodl.runtime), no generated code.
 
 Usage: runtime_node.py --name NAME [--namespace NS] --definition FILE --kind
 talker|managed_camera|everything [--ros-args ...].  talker binds callbacks by mapping,
@@ -23,7 +23,7 @@ def build(kind: str, definition: str, name: str, namespace: str):  # type: ignor
     import std_msgs.msg
     from rclpy.action import CancelResponse, GoalResponse
 
-    from nodl_schema.runtime import NodlLifecycleNode, NodlNode, callback
+    from nodl.runtime import NodlLifecycleNode, NodlNode, callback
 
     if kind == 'talker':
         holder: dict[str, object] = {}
@@ -111,7 +111,7 @@ def main() -> None:
     args = parser.parse_args()
     import rclpy
 
-    from nodl_schema.runtime import RuntimeDefinitionError
+    from nodl.runtime import RuntimeDefinitionError
 
     rclpy.init(args=['node', '--ros-args', *args.ros_args])
     try:

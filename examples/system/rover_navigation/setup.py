@@ -1,6 +1,6 @@
 from setuptools import setup
 
-from nodl_schema.packaging import nodl_data_files
+from nodl.packaging import nodl_data_files
 
 package_name = 'rover_navigation'
 

@@ -1,0 +1,78 @@
+"""What every check is given: the analysed nodes, the system, the settings, and indexes.
+
+Everything a check asks is indexed once (by final node name, by instance),
+so that checks stay linear in the size of the system.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+from dataclasses import dataclass, field
+from typing import Iterable
+
+from nodl.analysis.instances import AnalysedNode
+from nodl.system.graph import System
+from nodl.system.instance import NodeInstance
+
+__all__ = ['AnalysisSettings', 'AnalysisContext', 'SETTINGS_KEYS']
+
+#: The keys of the ``[analyse]`` table of ``nodl.toml`` (``[tool.nodl.analyse]`` in
+#: ``pyproject.toml``) and what each holds.
+SETTINGS_KEYS = {
+    'multiple_publishers_allow': 'a list of topics (fnmatch patterns such as "/tf" or '
+                                 '"/diagnostics*") that several nodes may publish',
+}
+
+
+@dataclass(frozen=True)
+class AnalysisSettings:
+    """Settings of the checks (from the configuration, see :data:`SETTINGS_KEYS`)."""
+
+    #: Topics several nodes may publish without a ``multiple-publishers`` finding.
+    multiple_publishers_allow: tuple[str, ...] = ()
+
+    def publishers_allowed(self, topic: str) -> bool:
+        """True if ``topic`` is on the allow list."""
+        return any(fnmatch.fnmatchcase(topic, pattern) for pattern in self.multiple_publishers_allow)
+
+
+@dataclass
+class AnalysisContext:
+    """The launched system as the checks see it."""
+
+    #: Every launched node, in launch order.
+    nodes: list[AnalysedNode]
+    settings: AnalysisSettings = field(default_factory=AnalysisSettings)
+    #: The ament prefixes definitions were looked up in (None: ``AMENT_PREFIX_PATH``).
+    prefixes: list[str] | None = None
+
+    def __post_init__(self) -> None:
+        self._by_instance = {id(n.instance): n for n in self.nodes if n.instance is not None}
+        #: The system of the nodes that have a definition.
+        self.system = System([n.instance for n in self.nodes if n.instance is not None])
+        self._by_fqn: dict[str, list[AnalysedNode]] | None = None
+
+    @property
+    def by_fqn(self) -> dict[str, list[AnalysedNode]]:
+        """Final name -> the nodes launched under it (more than one is a duplicate); made on
+        first use (a list per launched node is a lot for the collector to keep walking)."""
+        by_fqn = self._by_fqn
+        if by_fqn is None:
+            by_fqn = self._by_fqn = {}
+            for node in self.nodes:
+                by_fqn.setdefault(node.fqn, []).append(node)
+        return by_fqn
+
+    def node_of(self, instance: NodeInstance) -> AnalysedNode:
+        """The analysed node of an instance."""
+        return self._by_instance[id(instance)]
+
+    @property
+    def undefined(self) -> list[AnalysedNode]:
+        """The nodes without a usable definition (their endpoints are unknown), containers
+        of composable nodes left out."""
+        return [n for n in self.nodes if n.instance is None and n.entry.role != 'container']
+
+    def analysed(self) -> Iterable[AnalysedNode]:
+        """The nodes with an instance."""
+        return (n for n in self.nodes if n.instance is not None)

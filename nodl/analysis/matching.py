@@ -1,0 +1,87 @@
+"""Matching launched nodes to their registered definitions (through the ament index).
+
+An executable is matched by ``nodl_nodes/<package>__<executable>`` (legacy
+XML files included, as ``nodl show`` finds them).  A composable node is
+matched by its plugin: the registration of the plugin's package that records
+that plugin class (``ament_nodl_register_node(KEY FILE f PLUGIN pkg::Class)``),
+otherwise the key that is the class name in snake case
+(``rover_sensors::CameraDriver`` -> ``rover_sensors`` ``camera_driver``).
+
+Each definition is found and resolved once per analysis, however many nodes
+launch it.  Definitions folders in force (:mod:`nodl.targets.overlay`)
+are looked in before the index; :attr:`Match.origin` says which served.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from nodl.analysis.entries import LaunchEntry
+from nodl.diagnostics import Diagnostic
+from nodl.index import ament, node_info, registry
+from nodl.system.resolved import ResolvedNode, resolve_registered
+
+# Imported here, not in the functions: an import statement costs a few microseconds each
+# time it runs, for every launched node.  The index functions are called through their
+# modules, so that timing wrappers put on the modules' functions see these calls too.
+
+__all__ = ['Match', 'DefinitionMatcher']
+
+
+@dataclass
+class Match:
+    """The definition a launch entry runs, and what its registration records."""
+
+    package: str
+    #: The registration key (the executable, or the plugin's key).
+    key: str
+    #: The registration's file (None: nothing registered).
+    file: str | None
+    #: The resolved node (None: not registered, or it does not resolve).
+    resolved: ResolvedNode | None
+    #: The name the executable gives its node (from the registration), if recorded.
+    node_name: str | None = None
+    #: How the definition was found (``executable``, ``plugin``, ``class name``).
+    how: str = 'executable'
+    #: Why resolving failed (errors of the definition), if it did.
+    problems: list[Diagnostic] = field(default_factory=list)
+    #: Where the definition was found: ``index``, ``overlay DIR`` (a definitions folder)
+    #: or ``file`` (given by path).
+    origin: str = 'index'
+
+
+class DefinitionMatcher:
+    """Finds and resolves definitions for launch entries, each once."""
+
+    def __init__(self, client_library: str | None = None,
+                 prefixes: list[str] | None = None) -> None:
+        self.client_library = client_library
+        self.prefixes = prefixes if prefixes is not None else ament.prefix_paths()
+        self._cache: dict[tuple[str, str, str], Match] = {}
+
+    def match(self, entry: LaunchEntry) -> Match:
+        """The match of one launch entry (cached per package and key)."""
+        how = 'executable'
+        if entry.plugin is not None:
+            info = node_info.find_plugin(entry.package, entry.plugin, self.prefixes)
+            key, how = (info.key, 'plugin') if info is not None \
+                else (node_info.plugin_key(entry.plugin), 'class name')
+        else:
+            key = entry.executable or ''
+        cache_key = (entry.package, key, how)
+        found = self._cache.get(cache_key)
+        if found is None:
+            found = self._find(entry.package, key, how)
+            self._cache[cache_key] = found
+        return found
+
+    def _find(self, package: str, key: str, how: str) -> Match:
+        registration = registry.find_node(package, key, self.prefixes)
+        if registration is None:
+            return Match(package, key, None, None, how=how)
+        node_name = node_info.read_node_info(package, key, self.prefixes).node_name
+        resolved, diagnostics, source = resolve_registered(
+            package, key, client_library=self.client_library, prefixes=self.prefixes)
+        problems = [d for d in diagnostics if d.severity.value == 'error']
+        return Match(package, key, source or registration.file, resolved, node_name, how, problems,
+                     registration.origin)

@@ -1,0 +1,187 @@
+"""An analysis as JSON, text, SARIF and JUnit.
+
+The JSON shape (``--format json``)::
+
+    {"nodes": [{"name": "/robot/camera", "package": "...", "executable": "...",
+                "definition": "/path/camera.nodl.yaml" | null,
+                "definition_source": "index" | "overlay" | "file" | null,
+                "definition_folder": "my_defs" | null,    # the definitions folder (overlay)
+                "definition_provenance": "extracted" | "described" | null,
+                "source": {"file": "robot.launch.xml", "line": 12},
+                "remaps": [["from", "to"], ...],          # in the order rcl applies them
+                "remaps_complete": true,                  # false: more rules come at run time
+                "parameters": {"fps": 30.0, ...},         # the final values it receives
+                "parameters_complete": true,              # false: more values come at run time
+                "run_time": [{"part": "parameter", "parameter": "robot_description",
+                              "file": "...", "line": 7, "column": 5}],   # what only it knows
+                "endpoints": {"publishers": [["~/image", "/robot/camera/image"], ...], ...}}],
+     "findings": [{"code": "NODL553", "kind": "qos-incompatible", "severity": "error",
+                   "message": "...", "file": "...", "line": 12, "column": 5,
+                   "nodes": ["/lidar", "/planner"], "endpoint": "/scan"}]}
+
+``definition_source`` says which served the definition: the ament index, a definitions
+folder (``definition_folder``; ``--definitions``, ``NODL_PATH``, ``nodl.toml``), or a
+file given by path (``nodl analyse DEFINITION...``); ``definition_provenance`` whether
+``nodl extract`` or ``nodl describe`` wrote that file (its header says so).  The text
+report says, before its summary line, how many nodes each source served
+(:func:`coverage`).
+
+A composable node's ``executable`` is its plugin class.  ``parameters_complete`` /
+``remaps_complete`` are false when the launch gives the node parameters or remapping
+rules only the running launch knows (a parameter file whose path is a run-time value,
+``remappings=``/``arguments=`` computed by a module not installed here: a NODL513
+warning): ``parameters`` and ``remaps`` are then the known ones.  A parameter whose value
+only the running launch knows is ``null`` in ``parameters`` (and ``parameters_complete`` is
+false).  ``run_time`` lists each such part, with where it is written: ``parameter`` (one
+value, named), ``parameters`` (a source of values), ``remaps`` or ``arguments``.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from nodl.analysis.instances import AnalysedNode
+from nodl.analysis.system import Analysis
+from nodl.diagnostics import Severity
+from nodl.launch.params import RuntimeValue
+
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from nodl.targets.resolve import Provenance
+
+__all__ = ['node_to_dict', 'analysis_to_dict', 'format_json', 'format_text', 'format_sarif',
+           'format_junit', 'summary', 'node_provenance', 'coverage']
+
+
+def node_provenance(node: AnalysedNode) -> Provenance:
+    """Where the definition of ``node`` came from (``none`` without one)."""
+    from nodl.targets.resolve import Provenance
+
+    return Provenance.of(node.match.origin, node.match.file)
+
+
+def coverage(analysis: Analysis) -> str:
+    """``16 nodes: 9 registered, 6 overlay (2 extracted), 1 without definition``."""
+    from nodl.targets.resolve import coverage_line
+
+    return coverage_line(node_provenance(node) for node in analysis.nodes)
+
+
+def node_to_dict(node: AnalysedNode) -> dict[str, Any]:
+    """One node of the JSON report."""
+    endpoints: dict[str, list[list[str]]] = {}
+    if node.instance is not None:
+        for bound in node.instance.endpoints:
+            endpoints.setdefault(bound.entity.section, []).append([bound.entity.name, bound.name])
+    entry = node.entry
+    parameters: dict[str, Any] = {}
+    unknown: list[dict[str, Any]] = [
+        {'part': part, 'file': where.file, 'line': where.line, 'column': where.column}
+        for part, where in entry.run_time]
+    for name, setting in node.parameters.items():
+        if isinstance(setting.value, RuntimeValue):  # no value, and no text standing for one
+            parameters[name] = None
+            where = setting.location
+            unknown.append({'part': 'parameter', 'parameter': name, 'file': where.file,
+                            'line': where.line, 'column': where.column})
+        else:
+            parameters[name] = setting.value
+    complete = not entry.run_time or entry.parameters_complete
+    provenance = node_provenance(node)
+    return {
+        'name': node.fqn,
+        'package': entry.package,
+        'executable': entry.executable if entry.executable is not None else entry.plugin,
+        'definition': node.match.file,
+        'definition_source': provenance.source if provenance.source != 'none' else None,
+        'definition_folder': provenance.folder,
+        'definition_provenance': provenance.made_by,
+        'source': {'file': entry.location.file, 'line': entry.location.line},
+        'remaps': [[source, target] for source, target in entry.remaps],
+        'remaps_complete': not entry.run_time or entry.remaps_complete,
+        'parameters': parameters,
+        'parameters_complete': complete and len(unknown) == len(entry.run_time),
+        'run_time': unknown,
+        'endpoints': endpoints,
+    }
+
+
+def analysis_to_dict(analysis: Analysis) -> dict[str, Any]:
+    """``{"nodes": [...], "findings": [...]}``."""
+    return {'nodes': [node_to_dict(n) for n in analysis.nodes],
+            'findings': [f.to_dict() for f in analysis.findings]}
+
+
+def format_json(analysis: Analysis) -> str:
+    """The JSON report (one object)."""
+    return json.dumps(analysis_to_dict(analysis), indent=2, default=str) + '\n'
+
+
+def summary(analysis: Analysis) -> str:
+    """``N nodes, N errors, N warnings`` (and infos when there are some)."""
+    from nodl.reporting import plural
+
+    counts = analysis.counts()
+    parts = [plural(len(analysis.nodes), 'node'), plural(counts['error'], 'error'),
+             plural(counts['warning'], 'warning')]
+    if counts['info']:
+        parts.append(f"{counts['info']} info")
+    return ', '.join(parts)
+
+
+def format_text(analysis: Analysis, verbose: bool = False) -> str:
+    """One ``FILE:LINE:COL: severity: message [CODE]`` line per finding (info with
+    ``verbose``), then the summary line."""
+    from nodl.text_safety import visible
+
+    lines = [visible(str(f), one_line=True) for f in analysis.findings
+             if verbose or f.severity is not Severity.INFO]
+    if verbose:  # which file served each node, and from where
+        for node in analysis.nodes:
+            if node.match.file is not None:
+                lines.append(visible(f'{node.fqn}: {node.match.file} ({node_provenance(node)})',
+                                     one_line=True))
+    lines.append(coverage(analysis))
+    lines.append(summary(analysis))
+    return '\n'.join(lines) + '\n'
+
+
+def format_sarif(analysis: Analysis) -> str:
+    """SARIF 2.1.0 (one result per finding)."""
+    from nodl.reporting.sarif import format_sarif as sarif
+
+    return sarif([f.diagnostic for f in analysis.findings])
+
+
+def format_junit(analysis: Analysis) -> str:
+    """JUnit XML: one test case per kind of finding (failed when it has errors), the
+    findings as failure text and their warnings as the case's output."""
+    # (control and bidi characters shown as escapes: nodl.text_safety)
+    from nodl.text_safety import xml_report_attribute as quoteattr, xml_report_text as escape
+
+    from nodl.analysis.findings import KINDS
+    from nodl.analysis.system import LAUNCH_KIND
+
+    by_kind: dict[str, list[Any]] = {kind: [] for kind in (LAUNCH_KIND, *KINDS)}
+    for finding in analysis.findings:
+        by_kind.setdefault(finding.kind, []).append(finding)
+    suite = analysis.launch_file or 'launch'
+    cases = []
+    failures = 0
+    for kind, found in by_kind.items():
+        errors = [f for f in found if f.severity is Severity.ERROR]
+        others = [f for f in found if f.severity is not Severity.ERROR]
+        body = ''
+        if errors:
+            failures += 1
+            text = '\n'.join(str(f) for f in errors)
+            body += (f'<failure message={quoteattr(f"{len(errors)} error(s)")} '
+                     f'type={quoteattr(kind)}>{escape(text)}</failure>')
+        if others:
+            body += f'<system-out>{escape(chr(10).join(str(f) for f in others))}</system-out>'
+        cases.append(f'  <testcase classname={quoteattr("nodl.analyse." + suite)} '
+                     f'name={quoteattr(kind)}>{body}</testcase>')
+    return ('<?xml version="1.0" encoding="UTF-8"?>\n'
+            f'<testsuite name={quoteattr("nodl analyse " + suite)} tests="{len(cases)}" '
+            f'failures="{failures}" errors="0">\n' + '\n'.join(cases) + '\n</testsuite>\n')

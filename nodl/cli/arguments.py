@@ -1,0 +1,190 @@
+"""Argument types and checks shared by verbs: rejected at once, before any ROS start-up."""
+
+from __future__ import annotations
+
+import argparse
+import os
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Callable
+
+    from nodl.launch.sandbox import LaunchLimits
+    from nodl.targets.overlay import Definitions
+
+__all__ = ['seconds', 'node_name', 'definition_problem', 'add_client_library_argument',
+           'positive_seconds', 'mebibytes', 'add_launch_code_arguments', 'launch_limits',
+           'LAUNCH_CODE_HELP', 'add_definitions_argument', 'load_definitions',
+           'definitions_failed', 'run_with_definitions']
+
+
+def seconds(text: str) -> float:
+    """An ``argparse`` type: a number of seconds, zero or more."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
+    if not value >= 0 or value == float('inf'):  # also rejects nan
+        raise argparse.ArgumentTypeError(f"'{text}': expected a number of seconds, 0 or more")
+    return value
+
+
+def node_name(text: str) -> str:
+    """An ``argparse`` type: a node name (``/namespace/name``, or ``name`` in ``/``)."""
+    from nodl.live.session import node_name_problem
+
+    problem = node_name_problem(text)
+    if problem is not None:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a node name: {problem}")
+    return text
+
+
+def _looks_like_a_path(text: str) -> bool:
+    # A package name is letters, digits and '_': anything with a dot or a slash is a path.
+    return any(c in text for c in './\\') or os.path.exists(text)
+
+
+def definition_problem(targets: list[str]) -> str | None:
+    """Why ``targets`` is not ``FILE`` or ``PACKAGE EXECUTABLE``, or None."""
+    if len(targets) > 2:
+        return f'expected FILE or PACKAGE EXECUTABLE, got {len(targets)} arguments'
+    if len(targets) == 2 and _looks_like_a_path(targets[0]):
+        return (f"'{targets[0]}' is a file, so one is expected: give FILE, or PACKAGE EXECUTABLE "
+                '(a package name and one of its executables, looked up in the ament index)')
+    return None
+
+
+def add_client_library_argument(parser: argparse.ArgumentParser, default: str | None = None) -> None:
+    """``--client-library``: whose base a node inherits (show, check, describe).
+
+    ``default`` says, for the help, what happens without the option.
+    """
+    from nodl.vocabulary import CLIENT_LIBRARIES
+
+    default = default or ("from the package's build type for a registered node, ament_python -> "
+                          f'rclpy, ament_cmake -> rclcpp; else {CLIENT_LIBRARIES[0]}')
+    parser.add_argument('--client-library', choices=CLIENT_LIBRARIES, default=None,
+                        help=f'the client library whose base the node inherits (default: {default})')
+
+
+def positive_seconds(text: str) -> float:
+    """An ``argparse`` type: a number of seconds greater than 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
+    if not value > 0 or value == float('inf'):  # also rejects nan
+        raise argparse.ArgumentTypeError(f"'{text}': expected a number of seconds greater than 0")
+    return value
+
+
+def mebibytes(text: str) -> float:
+    """An ``argparse`` type: a number of MiB greater than 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number of MiB") from None
+    if not value > 0 or value == float('inf'):  # also rejects nan
+        raise argparse.ArgumentTypeError(f"'{text}': expected a number of MiB greater than 0")
+    return value
+
+
+#: What reading a launch file runs, for the verbs' help (their description's last paragraph).
+LAUNCH_CODE_HELP = (
+    'Reading a Python launch file runs its code, and $(eval ...) runs Python, as ros2 launch '
+    'does: that code runs in a child process forked for it, limited by --launch-timeout and '
+    '--launch-memory; $(command ...) is never run. --no-exec runs no launch-file code at all '
+    '(for CI on untrusted changes): a Python launch file is then an error where it is '
+    'included, and $(eval ...) a value unknown here.')
+
+
+def add_launch_code_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--no-exec``, ``--launch-timeout`` and ``--launch-memory``: whether and how the Python
+    code of a launch file (Python launch files, ``$(eval)``) runs (see :func:`launch_limits`)."""
+    from nodl.launch.sandbox import DEFAULT_MEMORY_MIB, DEFAULT_TIMEOUT
+
+    group = parser.add_argument_group('launch-file code', LAUNCH_CODE_HELP)
+    group.add_argument('--no-exec', action='store_true',
+                       help='run no code of the launch files: a Python launch file is not read '
+                            '(an error where it is included), $(eval ...) is a value unknown here')
+    group.add_argument('--launch-timeout', type=positive_seconds, default=DEFAULT_TIMEOUT,
+                       metavar='SECONDS',
+                       help="wall-clock seconds the launch's Python code may take in all, in its "
+                            f'child process (default: {DEFAULT_TIMEOUT:g})')
+    group.add_argument('--launch-memory', type=mebibytes, default=DEFAULT_MEMORY_MIB, metavar='MIB',
+                       help="MiB of memory the launch's Python code may allocate in its child "
+                            f'process (default: {DEFAULT_MEMORY_MIB:g})')
+
+
+def launch_limits(args: argparse.Namespace) -> 'LaunchLimits':
+    """The :class:`~nodl.launch.sandbox.LaunchLimits` the options of
+    :func:`add_launch_code_arguments` give."""
+    from nodl.launch.sandbox import LaunchLimits
+
+    return LaunchLimits(execute=not args.no_exec, timeout=args.launch_timeout,
+                        memory_mib=args.launch_memory)
+
+
+def add_definitions_argument(parser: argparse.ArgumentParser) -> None:
+    """``--definitions DIR`` (repeatable): definitions folders (overlays) looked in before the
+    ament index, after which come ``NODL_PATH`` and ``nodl.toml``'s ``definitions``."""
+    parser.add_argument('--definitions', action='append', default=[], metavar='DIR',
+                        help='a definitions folder (DIR/<package>/<executable>.nodl.yaml, '
+                             'DIR/<package>/interfaces/<name>.nodl.yaml, DIR/<package>/nodes.yaml) '
+                             'looked in before NODL_PATH, nodl.toml\'s definitions and the ament '
+                             'index; repeat it for more (the first that has a definition wins)')
+
+
+def load_definitions(args: argparse.Namespace, prog: str, start: str | None = None,
+                     report: bool = True) -> Definitions | int:
+    """The definitions folders of a run (:func:`nodl.targets.resolve.gather_definitions`:
+    ``--definitions``, ``NODL_PATH``, the configuration that applies to the folder ``start``,
+    default the current one).  A ``--definitions`` folder that does not exist, or a
+    configuration that cannot be used, is printed and gives exit status 2 (returned instead).
+    With ``report``, what is wrong with the folders' layouts is printed on standard error
+    (:func:`definitions_failed` says whether that is an error)."""
+    import sys
+
+    from nodl.cli.verb import EXIT_USAGE
+    from nodl.config import ConfigError
+    from nodl.targets.resolve import gather_definitions
+
+    given: list[str] = getattr(args, 'definitions', None) or []
+    for folder in given:
+        if not os.path.isdir(folder):
+            why = 'not a folder' if os.path.exists(folder) else 'no such folder'
+            print(f'{prog}: error: --definitions {folder}: {why} [NODL246]', file=sys.stderr)
+            return EXIT_USAGE
+    try:
+        definitions = gather_definitions(given, start=start)
+    except ConfigError as exc:
+        print(exc, file=sys.stderr)
+        return EXIT_USAGE
+    if report and definitions.diagnostics:
+        from nodl.reporting import format_text
+
+        sys.stderr.write(format_text(definitions.diagnostics))
+    return definitions
+
+
+def definitions_failed(definitions: Definitions) -> bool:
+    """True when a definitions folder's layout has errors (the verb then exits 1 at least)."""
+    from nodl.diagnostics import Severity
+
+    return any(d.severity is Severity.ERROR for d in definitions.diagnostics)
+
+
+def run_with_definitions(args: argparse.Namespace, prog: str, run: Callable[[], int],
+                         start: str | None = None) -> int:
+    """``run()`` with the definitions folders of :func:`load_definitions` in force (every
+    look-up of a registered definition consults them first): its exit status, made 1 at
+    least when a folder's layout has errors."""
+    from nodl.cli.verb import EXIT_FAILURE, EXIT_OK
+    from nodl.targets.overlay import using
+
+    definitions = load_definitions(args, prog, start)
+    if isinstance(definitions, int):
+        return definitions
+    with using(definitions):
+        status = run()
+    return EXIT_FAILURE if status == EXIT_OK and definitions_failed(definitions) else status

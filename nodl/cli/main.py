@@ -1,0 +1,41 @@
+# PYTHON_ARGCOMPLETE_OK
+"""The ``nodl`` command (shell completion: see :mod:`nodl.cli.completion`)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from nodl.cli.runner import HelpFormatter, add_verbs, run_verb
+
+__all__ = ['main', 'build_parser']
+
+
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The ``nodl`` argument parser (with only the verb ``argv`` names, if it names one)."""
+    parser = argparse.ArgumentParser(
+        prog='nodl', formatter_class=HelpFormatter,
+        description='NoDL toolkit: validate, compose and inspect ROS 2 node definitions.')
+    from nodl import __version__
+    parser.add_argument('--version', action='version', version=f'%(prog)s {__version__}')
+    add_verbs(parser, argv=argv)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``nodl``; returns the exit code."""
+    if argv is None:
+        argv = sys.argv[1:]
+        import os
+
+        if os.environ.get('_ARGCOMPLETE'):  # a shell asks for completions (argcomplete)
+            from nodl.cli.completion import autocomplete
+
+            autocomplete(build_parser)
+    parser = build_parser(argv)
+    args = parser.parse_args(argv)
+    return run_verb(parser, args)
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,182 @@
+"""``nodl params``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+
+
+class ParamsVerb(Verb):
+    """Write a node's parameter defaults as a parameter file, or check parameter files without ROS."""
+
+    failure = 'the definition is invalid, or (check) a parameter file has an error'
+
+    def add_arguments(self, parser: argparse.ArgumentParser) -> None:
+        parser.usage = ('%(prog)s DEFINITION [--name /NS/NODE] [-o FILE]\n'
+                        '       %(prog)s check PARAMS_FILE... (--definition DEFINITION [--name /NS/NODE] '
+                        '| --launch LAUNCH_FILE)')
+        parser.add_argument('args', nargs='+', metavar='DEFINITION | check PARAMS_FILE...',
+                            help='a node definition (FILE or PACKAGE EXECUTABLE) to write the defaults '
+                                 'of, or "check" and parameter files')
+        parser.add_argument('--name', metavar='/NS/NODE',
+                            help='the fully qualified node name (default: /NODE, the node name '
+                                 'derived from the executable or file name)')
+        parser.add_argument('-o', '--output', metavar='FILE', help='write the defaults here (default: stdout)')
+        parser.add_argument('--force', action='store_true',
+                            help='-o: replace the file even if nodl did not write it or it was '
+                                 'edited since')
+        parser.add_argument('--definition', nargs='+', metavar='DEFINITION',
+                            help='check: the node definition (FILE or PACKAGE EXECUTABLE)')
+        from nodl.cli.arguments import add_definitions_argument
+
+        add_definitions_argument(parser)
+        parser.add_argument('--launch', metavar='LAUNCH_FILE',
+                            help='check: the launch file whose nodes the files are for (the files the '
+                                 'launch file itself gives are checked too)')
+        parser.add_argument('--launch-argument', action='append', default=[], metavar='NAME:=VALUE',
+                            help='check: a launch argument (repeatable)')
+        from nodl.cli.arguments import add_launch_code_arguments
+
+        add_launch_code_arguments(parser)
+        parser.epilog = ('Node keys match as rcl matches them (/** any number of name tokens, /* one); '
+                         'values are typed as rcl types them and checked as strictly as a node does: '
+                         'the type exactly, every validator; required parameters must be set.')
+
+    def main(self, args: argparse.Namespace) -> int:
+        from nodl.cli.arguments import run_with_definitions
+
+        # registered definitions (and nodl:// mixins) are looked up in the definitions folders first
+        return run_with_definitions(args, 'nodl params', lambda: self._main(args))
+
+    def _main(self, args: argparse.Namespace) -> int:
+        if args.args[0] == 'check':
+            return self._check(args)
+        return self._defaults(args)
+
+    @staticmethod
+    def _resolve(target: list[str]) -> tuple[object, int]:
+        from nodl.generate.definition import resolve_target
+        from nodl.reporting import format_text, without_info
+
+        if len(target) > 2:
+            print('nodl params: error: give a definition FILE or PACKAGE EXECUTABLE', file=sys.stderr)
+            return None, EXIT_USAGE
+        try:
+            node, diagnostics, _ = resolve_target(target)
+        except (OSError, ValueError) as exc:
+            from nodl.files import describe_os_error
+
+            why = str(exc)
+            if isinstance(exc, OSError):
+                why, name = describe_os_error(exc), exc.filename or target[0]
+                why = why if why.startswith(f'{name}:') else f'{name}: {why}'  # the path once
+            print(f'nodl params: error: {why}', file=sys.stderr)
+            return None, EXIT_USAGE
+        shown = without_info(diagnostics)
+        if shown:
+            sys.stderr.write(format_text(shown))
+        return node, EXIT_OK if node is not None else EXIT_FAILURE
+
+    @staticmethod
+    def _fqn(args: argparse.Namespace, target: list[str]) -> str | None:
+        from nodl.generate import default_node_name
+        from nodl.generate.definition import target_name
+
+        if args.name is None:
+            from nodl.naming import join_name
+
+            return join_name('/', default_node_name(target_name(target)))
+        name: str = args.name
+        from nodl.naming.validation import full_name_error
+
+        problem = full_name_error(name)
+        if problem is not None:
+            problem = problem.replace('topic name', 'a node name')
+            print(f'nodl params: error: --name {name}: {problem}', file=sys.stderr)
+            return None
+        return name
+
+    def _defaults(self, args: argparse.Namespace) -> int:
+        from nodl.params import defaults_yaml
+
+        if args.definition or args.launch:
+            print('nodl params: error: --definition and --launch belong to "nodl params check"',
+                  file=sys.stderr)
+            return EXIT_USAGE
+        node, status = self._resolve(args.args)
+        if node is None:
+            return status
+        fqn = self._fqn(args, args.args)
+        if fqn is None:
+            return EXIT_USAGE
+        text = defaults_yaml(node, fqn)  # type: ignore[arg-type]
+        if args.output is None or args.output == '-':
+            sys.stdout.write(text)
+            return EXIT_OK
+        from nodl.writing import output_is_input, write_marked
+
+        # the definition and its mixins (a parameter file must overwrite none of them)
+        inputs = list(getattr(node, 'files', [])) + (args.args if len(args.args) == 1 else [])
+        clash = output_is_input(args.output, inputs)
+        if clash is not None:
+            print(clash, file=sys.stderr)
+            return EXIT_USAGE
+        # marked, atomic; a user's or an edited file needs --force (the runner prints the refusal)
+        write_marked(args.output, text, force=args.force)
+        return EXIT_OK
+
+    def _check(self, args: argparse.Namespace) -> int:
+        from nodl.diagnostics import Severity
+        from nodl.params import check_launch_parameters, check_parameter_files
+        from nodl.reporting import format_text
+
+        files = args.args[1:]
+        import os
+
+        for path in files:  # a file that is not there is a usage error, said once
+            if not os.path.isfile(path):
+                why = 'is a directory, not a file' if os.path.isdir(path) else 'no such file'
+                print(f'{path}: error: cannot read the parameter file: {why} [NODL020]',
+                      file=sys.stderr)
+                return EXIT_USAGE
+        if (args.definition is None) == (args.launch is None):
+            print('nodl params check: error: give exactly one of --definition and --launch',
+                  file=sys.stderr)
+            return EXIT_USAGE
+        if args.definition is not None:
+            if not files:
+                print('nodl params check: error: give at least one PARAMS_FILE', file=sys.stderr)
+                return EXIT_USAGE
+            node, status = self._resolve(args.definition)
+            if node is None:
+                return status
+            fqn = self._fqn(args, args.definition)
+            if fqn is None:
+                return EXIT_USAGE
+            diagnostics = check_parameter_files(files, node, fqn)  # type: ignore[arg-type]
+        else:
+            arguments = {}
+            for item in args.launch_argument:
+                name, sep, value = item.partition(':=')
+                if not sep:
+                    print(f'nodl params check: error: --launch-argument {item}: expected NAME:=VALUE',
+                          file=sys.stderr)
+                    return EXIT_USAGE
+                arguments[name] = value
+            from nodl.cli.arguments import launch_limits
+
+            diagnostics = check_launch_parameters(args.launch, files, arguments,
+                                                  limits=launch_limits(args))
+        if diagnostics:
+            sys.stdout.write(format_text(diagnostics))
+        errors = sum(1 for d in diagnostics if d.severity is Severity.ERROR)
+        if not errors:  # success says so, in one line
+            from nodl.reporting import plural
+
+            warnings = sum(1 for d in diagnostics if d.severity is Severity.WARNING)
+            checked = plural(len(files), 'parameter file') if files else 'the parameter files'
+            print(f'nodl params check: {checked} checked: no errors'
+                  + (f', {plural(warnings, "warning")}' if warnings else ''))
+        return EXIT_FAILURE if errors else EXIT_OK

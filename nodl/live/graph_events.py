@@ -1,0 +1,240 @@
+"""Following the local graph cache: the one primitive every live wait is made of.
+
+rclpy exposes no graph guard condition, so the graph is followed by reading the local
+graph cache (what the session's participant has discovered; reading it sends nothing)
+between short spins of the session's executor, every :data:`POLL_PERIOD` seconds: a
+change is seen within that period plus one spin (under 100 ms).  Every wait has a
+deadline.
+
+A session (:func:`~nodl.live.session.ros_session`) carries one
+:class:`GraphFollower`; every wait of the live layer spins through it
+(:func:`spin_once`), so what it knows of the graph (how many nodes hold each name) stays
+current while parameters and lifecycle states are read.  Namesakes are therefore watched
+for as long as the work lasts, and :attr:`GraphFollower.watched` says how long that was.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Callable, Iterable, Iterator
+
+from nodl.naming import join_name
+
+__all__ = ['POLL_PERIOD', 'ANSWERS', 'GraphFollower', 'follower', 'graph_signature', 'spin_once']
+
+#: Seconds between two reads of the local graph cache while waiting.
+POLL_PERIOD = 0.05
+#: Seconds after a session starts by which the participants that answer its first
+#: announcements are usually discovered (measured on one machine with Fast DDS: within
+#: 0.03-0.3 s).  One that misses them is discovered only at its own next periodic
+#: announcement (Fast DDS: every 3 s), which is what a longer watch waits for.
+ANSWERS = 0.3
+
+
+def _node_names(node: Any) -> list[tuple[str, str]]:
+    return sorted(node.get_node_names_and_namespaces())
+
+
+def graph_signature(node: Any, nodes: Iterable[str] = ()) -> tuple[Any, ...]:
+    """A value that changes when the local graph cache does: node names (each as often as
+    the graph holds it), topic and service names and types, and the endpoints of each of
+    ``nodes`` (fully qualified names) that is present."""
+    from nodl.live.session import split_node_name
+
+    names = _node_names(node)
+    present = {join_name(ns, n) for n, ns in names}
+    endpoints: list[tuple[str, Any]] = []
+    for fqn in sorted(set(nodes) & present):
+        namespace, name = split_node_name(fqn)
+        try:
+            endpoints.append((fqn, tuple(
+                (section, tuple((n, tuple(t)) for n, t in sorted(read(name, namespace))))
+                for section, read in (
+                    ('publishers', node.get_publisher_names_and_types_by_node),
+                    ('subscriptions', node.get_subscriber_names_and_types_by_node),
+                    ('service_servers', node.get_service_names_and_types_by_node),
+                    ('service_clients', node.get_client_names_and_types_by_node)))))
+        except Exception:  # noqa: BLE001 - it vanished between two calls: the next poll sees it
+            endpoints.append((fqn, None))
+    return (tuple(names),
+            tuple((n, tuple(t)) for n, t in node.get_topic_names_and_types()),
+            tuple((n, tuple(t)) for n, t in node.get_service_names_and_types()),
+            tuple(endpoints))
+
+
+class GraphFollower:
+    """The graph as one session's observer ``node`` follows it.
+
+    :meth:`poll` reads the local graph cache (at most every ``period`` seconds) and notes
+    when it last changed; :meth:`spin_once` spins the session's executor briefly, then
+    polls; :meth:`changes` and :meth:`settle` wait on those changes until a deadline.
+    ``started`` is when the session's discovery started (its participant's creation).
+    """
+
+    def __init__(self, node: Any, *, started: float | None = None,
+                 period: float = POLL_PERIOD) -> None:
+        self.node = node
+        self.period = period
+        self._started = time.monotonic() if started is None else started
+        #: The nodes whose endpoints are part of the signature (see :meth:`follow`).
+        self.followed: set[str] = set()
+        self.signature: Any = None
+        #: When the signature last changed, and when it was last read.
+        self.changed_at = self.started
+        self.polled_at = float('-inf')
+        #: When each part last changed: ``nodes`` (the node names), ``topics``, ``services``
+        #: and each followed node's endpoints (by its fully qualified name).
+        self.part_changed_at: dict[str, float] = {}
+        self._parts: dict[str, Any] = {}
+        #: How many nodes of each fully qualified name the graph held at the last poll
+        #: (the toolkit's own observers left out).
+        self.counts: dict[str, int] = {}
+        #: How many polls found a change (a test's and a curious user's figure).
+        self.changes_seen = 0
+
+    @property
+    def started(self) -> float:
+        """When discovery started (``time.monotonic()``): the session's ``nodl_started``
+        when it has one (see :func:`~nodl.live.session.ros_session`)."""
+        return float(getattr(self.node, 'nodl_started', self._started))
+
+    # -- reading ---------------------------------------------------------------------------
+
+    def follow(self, fqns: Iterable[str]) -> None:
+        """Make the endpoints of ``fqns`` part of what a change is."""
+        new = set(fqns) - self.followed
+        if new:
+            self.followed |= new
+            self.poll(force=True)
+
+    def poll(self, *, force: bool = False) -> bool:
+        """Read the local graph cache unless it was read less than ``period`` seconds ago
+        (``force``: read it anyway); True if it changed since the last read."""
+        from nodl.live.session import is_toolkit_node
+
+        now = time.monotonic()
+        if not force and now - self.polled_at < self.period:
+            return False
+        signature = graph_signature(self.node, self.followed)
+        self.polled_at = time.monotonic()
+        counts: dict[str, int] = {}
+        for name, namespace in signature[0]:
+            fqn = join_name(namespace, name)
+            if not is_toolkit_node(fqn):
+                counts[fqn] = counts.get(fqn, 0) + 1
+        self.counts = counts
+        parts = {'nodes': signature[0], 'topics': signature[1], 'services': signature[2],
+                 **dict(signature[3])}
+        for key in self.followed:
+            parts.setdefault(key, None)  # followed, not in the graph
+        for key, value in parts.items():
+            if key not in self._parts or self._parts[key] != value:
+                # a part seen empty from the first poll on has been quiet since the start
+                self.part_changed_at[key] = (self.polled_at if value or key in self._parts
+                                             else self.started)
+        self._parts = parts
+        if signature == self.signature:
+            return False
+        first = self.signature is None
+        self.signature = signature
+        if not first or signature[0]:
+            self.changed_at = self.polled_at
+            self.changes_seen += 1
+        return True
+
+    def part(self, key: str) -> Any:
+        """One part of the last poll's signature (see :attr:`part_changed_at`): the node
+        names, or a followed node's endpoints as ``((section, ((name, types)...))...)``
+        (None while it is not in the graph)."""
+        return self._parts.get(key)
+
+    def quiet_on(self, keys: Iterable[str] | None = None) -> float:
+        """Seconds since any of the parts ``keys`` (by default, anything) last changed."""
+        if self.signature is None:
+            return 0.0
+        if keys is None:
+            return self.polled_at - self.changed_at
+        times = [self.part_changed_at.get(k, self.polled_at) for k in keys]
+        return self.polled_at - max(times, default=self.started)
+
+    @property
+    def quiet(self) -> float:
+        """Seconds since the graph last changed (as of the last poll)."""
+        return self.polled_at - self.changed_at if self.signature is not None else 0.0
+
+    @property
+    def watched(self) -> float:
+        """Seconds of discovery the last poll covers (from the session's start)."""
+        return max(0.0, self.polled_at - self.started)
+
+    # -- waiting ---------------------------------------------------------------------------
+
+    def spin_once(self, timeout: float) -> None:
+        """Spin the session's executor for up to ``timeout`` seconds (one callback, or
+        none), then poll the graph if its period has passed."""
+        remaining = self.polled_at + self.period - time.monotonic()
+        self.node.nodl_executor.spin_once(
+            timeout_sec=max(0.0, min(timeout, remaining if remaining > 0 else self.period)))
+        self.poll()
+
+    def changes(self, deadline: float) -> Iterator[float]:
+        """Yield ``time.monotonic()`` now (the graph as it is), then each time the graph
+        changes, until ``deadline``.  The caller may stop at any point."""
+        self.poll(force=True)
+        yield time.monotonic()
+        seen = self.changes_seen
+        while time.monotonic() < deadline:
+            self.spin_once(deadline - time.monotonic())
+            if self.changes_seen != seen:
+                seen = self.changes_seen
+                yield time.monotonic()
+
+    def wait(self, until: Callable[[], bool], deadline: float) -> bool:
+        """Spin until ``until()`` (asked after each poll) is true or ``deadline`` passes;
+        whether it came true."""
+        self.poll(force=True)
+        while True:
+            if until():
+                return True
+            now = time.monotonic()
+            if now >= deadline:
+                return False
+            self.spin_once(deadline - now)
+
+    def settle(self, quiet: float | Callable[[], float], deadline: float, *,
+               on: Iterable[str] | None = None, ready: Callable[[], bool] = lambda: True,
+               watched: float = 0.0) -> bool:
+        """Spin until what is waited for (the parts ``on``, see :attr:`part_changed_at`;
+        by default the whole graph) has not changed for ``quiet`` seconds (a number, or
+        a function asked after each poll), ``ready()`` holds and discovery has run for
+        ``watched`` seconds, or until ``deadline``.  True if settled, False at the
+        deadline (the graph is then taken as it is)."""
+        keys = None if on is None else list(on)
+
+        def settled() -> bool:
+            needed = quiet() if callable(quiet) else quiet
+            return self.quiet_on(keys) >= needed and self.watched >= watched and ready()
+
+        return self.wait(settled, deadline)
+
+    def watch_until(self, watched: float, deadline: float) -> None:
+        """Keep following the graph until discovery has run ``watched`` seconds (not past
+        ``deadline``): namesakes found late are counted."""
+        self.wait(lambda: self.watched >= watched, min(deadline, self.started + watched))
+        self.poll(force=True)
+
+
+def follower(node: Any) -> GraphFollower:
+    """The :class:`GraphFollower` of a session's observer ``node`` (made on first use)."""
+    existing = getattr(node, 'nodl_graph', None)
+    if isinstance(existing, GraphFollower):
+        return existing
+    made = GraphFollower(node)
+    node.nodl_graph = made
+    return made
+
+
+def spin_once(node: Any, timeout: float) -> None:
+    """Spin a session for up to ``timeout`` seconds, following its graph (see
+    :meth:`GraphFollower.spin_once`)."""
+    follower(node).spin_once(timeout)

@@ -1,0 +1,142 @@
+"""An rclpy session of our own: a private context, an observer node, an executor."""
+
+from __future__ import annotations
+
+import itertools
+import os
+import time
+from typing import Any, Iterable, Iterator
+from contextlib import contextmanager
+
+__all__ = ['LiveError', 'NodeNotFound', 'DuplicateNode', 'require_rclpy', 'ros_session',
+           'split_node_name', 'node_name_problem', 'did_you_mean', 'OBSERVER_PREFIX',
+           'HIDDEN_NODE_PREFIX', 'is_hidden_node', 'is_toolkit_node', 'without_toolkit_nodes',
+           'MONITOR_NODE_NAME']
+
+#: A node whose name starts with this is hidden, as ROS hides nodes (``ros2 node list``
+#: leaves them out without ``--all``): tools and daemons.
+HIDDEN_NODE_PREFIX = '_'
+#: The toolkit's own observer nodes are named ``_nodl_observer_<pid>_<n>``: hidden, and
+#: unique per process and per session, so that two sessions (in one process or in two)
+#: are never namesakes of each other.
+OBSERVER_PREFIX = '_nodl_observer_'
+#: The name of ``nodl monitor``'s node: hidden, and left out by every live verb as the
+#: observers are (any node whose name starts with it).
+MONITOR_NODE_NAME = '_nodl_monitor'
+_TOOLKIT_PREFIXES = (OBSERVER_PREFIX, MONITOR_NODE_NAME)
+_SESSIONS = itertools.count(1)
+
+
+def is_hidden_node(fqn: str) -> bool:
+    """Whether the node ``/namespace/name`` is hidden (its name starts with ``_``)."""
+    return fqn.rpartition('/')[2].startswith(HIDDEN_NODE_PREFIX)
+
+
+def is_toolkit_node(fqn: str) -> bool:
+    """Whether ``/namespace/name`` is one of the toolkit's own observer nodes (any process's),
+    or a ``nodl monitor`` node."""
+    return fqn.rpartition('/')[2].startswith(_TOOLKIT_PREFIXES)
+
+
+def without_toolkit_nodes(infos: Iterable[Any]) -> list[Any]:
+    """Topic endpoint infos (``get_publishers_info_by_topic``...) less the toolkit's own.
+
+    Every observer node publishes ``/parameter_events`` and serves
+    ``~/get_type_description``, as every rclpy node does; they are not the user's.
+    """
+    return [i for i in infos
+            if not i.node_name.startswith(_TOOLKIT_PREFIXES)]
+
+
+class LiveError(Exception):
+    """A live feature cannot run (no ROS, node gone, ...); the message says why."""
+
+
+class NodeNotFound(LiveError):
+    """The node did not appear in the graph within the timeout."""
+
+
+class DuplicateNode(LiveError):
+    """Several nodes in the graph share the name; which one is meant cannot be told."""
+
+
+def node_name_problem(name: str) -> str | None:
+    """Why ``name`` is not a node name (``/namespace/name`` or ``name``), or None.
+
+    The ROS name rules apply (:func:`~nodl.validation.names.ros_name_problem`),
+    without the ``~`` and ``{}`` substitutions, which a running node's name never holds.
+    """
+    from nodl.validation.names import ros_name_problem
+
+    if not name.strip():
+        return 'a node name must not be empty'
+    if name == '/':
+        return "'/' is a namespace, not a node name"
+    if any(c in name for c in '~{}'):
+        return "a running node's name holds no '~' or '{}' substitutions; write /namespace/name"
+    return ros_name_problem(name)
+
+
+def did_you_mean(name: str, candidates: list[str]) -> str:
+    """`` (did you mean '/a'?)`` with the closest of ``candidates``, or ``''``."""
+    import difflib
+
+    by_base = [c for c in candidates if c.rpartition('/')[2] == name.rpartition('/')[2]]
+    close = by_base or difflib.get_close_matches(name, candidates, n=3, cutoff=0.6)
+    if not close:
+        return ''
+    return ' (did you mean ' + ' or '.join(f"'{c}'" for c in close[:3]) + '?)'
+
+
+def require_rclpy() -> Any:
+    """Import rclpy, or explain how to get it.
+
+    Discovery settings (``ROS_AUTOMATIC_DISCOVERY_RANGE``, ``ROS_DOMAIN_ID``)
+    are the user's: the toolkit observes whatever graph their environment
+    reaches.  Our tests, demo and benchmarks confine themselves to loopback.
+    """
+    try:
+        import rclpy
+    except ImportError as exc:
+        raise LiveError(f'this needs ROS 2 (rclpy could not be imported: {exc}); install the '
+                        "toolkit's ros extra: pip install 'nodl-toolkit[ros]'") from None
+    return rclpy
+
+
+def split_node_name(name: str) -> tuple[str, str]:
+    """``/ns/sub/name`` -> ``('/ns/sub', 'name')``; a bare name is in ``/``."""
+    from nodl.naming import split_name
+
+    return split_name(name)
+
+
+@contextmanager
+def ros_session() -> Iterator[Any]:
+    """Yield an observer node in a private rclpy context; everything is shut down after.
+
+    The node is hidden and unique (see :data:`OBSERVER_PREFIX`); the live features
+    leave it, and every other session's, out of what they report.
+    """
+    rclpy = require_rclpy()
+    from rclpy.executors import SingleThreadedExecutor
+
+    context = rclpy.Context()
+    rclpy.init(context=context, args=['--ros-args', '--disable-rosout-logs',
+                                      '--log-level', 'fatal'])
+    node = None
+    try:
+        node = rclpy.create_node(f'{OBSERVER_PREFIX}{os.getpid()}_{next(_SESSIONS)}',
+                                 context=context,
+                                 start_parameter_services=False,
+                                 enable_rosout=False)
+        executor = SingleThreadedExecutor(context=context)
+        executor.add_node(node)
+        node.nodl_executor = executor
+        #: When its discovery started (see nodl.live.observe.DISCOVERY_WINDOW).
+        node.nodl_started = time.monotonic()
+        yield node
+    finally:
+        if node is not None:
+            node.destroy_node()
+        if context.ok():
+            rclpy.shutdown(context=context)

@@ -1,0 +1,914 @@
+"""The monitor's rclpy node and its event loop.
+
+The node (``_nodl_monitor``: hidden, and left out by the other live verbs) publishes
+``diagnostic_msgs/DiagnosticArray`` on ``/diagnostics`` every ``1/publish_rate`` seconds,
+and at once when a status changes level (or gains or loses a finding).  It subscribes to
+``/parameter_events`` (every change checked as it arrives) and, best effort, to every
+topic whose definition declares a deadline (its rate measured).  It follows the graph
+(:mod:`nodl.monitor.graph`) and calls each node's ``~/get_parameters`` service
+every ``liveness_period`` seconds (one node of a process in turn, all of them once one is
+silent): a node that stops answering for ``liveness_timeout`` seconds is ERROR long
+before its participant lease ends.  The rate subscriptions and liveness clients belong to
+a second hidden node that nothing waits on (taken from at each tick).  Bad input is kept
+up with or said in ``nodl: system``: a parameter event storm is coalesced (NODL441),
+events lost are said and the parameters read again (NODL442), a graph that does not
+settle is said (NODL443), scans spaced out for the budget are said (NODL439).
+
+Its parameters: ``publish_rate`` (Hz, 1.0), ``grace_period`` (s, 5.0: how long an
+expected node may take to appear), ``rate_window`` (s, 2.0) and ``rate_tolerance`` (0.2:
+a rate below ``(1 - tolerance) / deadline`` is WARN), ``liveness_period`` (s, 1.0),
+``liveness_timeout`` (s, 2.0), ``scan_period`` (s, 2.0: the full scan when nothing
+changed), ``restart_window`` (s, 30.0: how long two nodes of one name are "restarting",
+the old one's lease, before they are namesakes) and ``scan_budget`` (0.1: the share of
+one core graph scans may take; beyond it scans are spaced out and the system status says
+it is shedding).
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import time
+from collections import deque
+from dataclasses import dataclass, field
+from typing import Any, Callable, Sequence
+
+from nodl.live.observe import ObservedNode, ObservedParameter
+from nodl.live.session import LiveError, MONITOR_NODE_NAME, is_hidden_node, require_rclpy
+from nodl.monitor.checks import (Finding, connection_findings, endpoint_findings,
+                                        parameter_event_findings, rate_finding)
+from nodl.monitor.expected import DeadlineTopic, ExpectedNode, ExpectedSystem
+from nodl.monitor.graph import GraphView, Snapshot, observed_node
+from nodl.monitor.status import SYSTEM, Status, status_name, to_message
+
+__all__ = ['MonitorSettings', 'Monitor', 'DEFAULT_IGNORED', 'POLL_PERIOD']
+
+#: Nodes never reported as unexpected (besides hidden ones): launch_ros's own node and
+#: tf2's transform listener nodes.
+DEFAULT_IGNORED = ('launch_ros_*', 'transform_listener_impl_*')
+#: How often the graph's signature is polled (10 Hz): node names each time, topic names
+#: every TOPIC_POLLS-th time.
+POLL_PERIOD = 0.1
+TOPIC_POLLS = 3
+#: How often timers (grace, liveness, rates) are evaluated (at a poll's wake-up; a scan
+#: that saw a change, and a parameter event, refresh the statuses at once).
+TICK = 0.5
+#: The largest history a rate subscription keeps between two drains.
+_MAX_RATE_DEPTH = 10000
+#: A node's status is refreshed for its parameter events at most this often: the first
+#: event after a quiet spell is checked and published at once, a storm's are coalesced.
+EVENT_GAP = 0.02
+#: Parameter events a second from one node beyond which they are a storm (NODL441).
+STORM_RATE = 50
+#: Seconds a storm is still reported after its last second above STORM_RATE.
+STORM_HOLD = 2.0
+#: The graph does not settle (NODL443) when it changed at least CHURN_CHANGES times in the
+#: last CHURN_WINDOW seconds.
+CHURN_WINDOW = 10.0
+CHURN_CHANGES = 10
+_PARAMETER_TYPES = {0: 'none', 1: 'bool', 2: 'int', 3: 'double', 4: 'string', 5: 'byte_array',
+                    6: 'bool_array', 7: 'int_array', 8: 'double_array', 9: 'string_array'}
+
+
+@dataclass
+class MonitorSettings:
+    """The monitor's parameters (see the module docstring)."""
+
+    publish_rate: float = 1.0
+    grace_period: float = 5.0
+    rate_window: float = 2.0
+    rate_tolerance: float = 0.2
+    liveness_period: float = 1.0
+    liveness_timeout: float = 2.0
+    scan_period: float = 2.0
+    restart_window: float = 30.0
+    scan_budget: float = 0.1
+    #: Node name patterns (fnmatch, on the fully qualified name or the base name) never
+    #: reported as unexpected, besides :data:`DEFAULT_IGNORED` and hidden nodes.
+    ignore: list[str] = field(default_factory=list)
+
+    def problems(self) -> list[str]:
+        """What is wrong with the values (each must be positive; the tolerance below 1)."""
+        out = [f'{name} must be greater than 0 (got {getattr(self, name)!r})'
+               for name in ('publish_rate', 'grace_period', 'rate_window', 'liveness_period',
+                            'liveness_timeout', 'scan_period', 'restart_window', 'scan_budget')
+               if not getattr(self, name) > 0]
+        if not 0 <= self.rate_tolerance < 1:
+            out.append(f'rate_tolerance must be at least 0 and below 1 (got {self.rate_tolerance!r})')
+        return out
+
+
+_NUMERIC = ('publish_rate', 'grace_period', 'rate_window', 'rate_tolerance', 'liveness_period',
+            'liveness_timeout', 'scan_period', 'restart_window', 'scan_budget')
+
+
+@dataclass
+class _NodeState:
+    """What the monitor knows of one expected node."""
+
+    expected: ExpectedNode
+    count: int = 0
+    seen_at: float | None = None
+    ever_seen: bool = False
+    gone_at: float | None = None
+    second_at: float | None = None
+    namesake_at_start: bool = False
+    restarts: int = 0
+    observed: ObservedNode | None = None
+    parameters: dict[str, ObservedParameter] | None = None
+    params_state: str = 'unread'  # unread, reading, read, none
+    params_buffer: list[tuple[str, str, Any, bool]] = field(default_factory=list)
+    event_findings: dict[str, list[Finding]] = field(default_factory=dict)
+    endpoint_findings: list[Finding] = field(default_factory=list)
+    clients: dict[str, Any] = field(default_factory=dict)
+    #: The parameter read's clients are no longer needed (destroyed at the next tick).
+    release_clients: bool = False
+    #: The liveness client (``~/get_parameters``, on the probe node: polled, not waited on).
+    liveness: Any = None
+    #: The sequence number of the liveness request awaiting its answer.
+    ping: int | None = None
+    ping_sent: float = 0.0
+    not_answering_since: float | None = None
+    last_answer: float | None = None
+    read_started: float = 0.0
+    #: When its parameter events arrived in the last second (storm detection).
+    event_times: deque[float] = field(default_factory=deque)
+    #: The most events it sent in one second during the current storm, and when the storm
+    #: was last above STORM_RATE.
+    storm_peak: int = 0
+    storm_at: float | None = None
+    #: Parameter events of it that never reached the monitor (sequence gaps).
+    events_lost: int = 0
+    lost_at: float | None = None
+    #: When scans found its endpoints changed (the last CHURN_WINDOW seconds).
+    churn: deque[float] = field(default_factory=deque)
+    #: Its DDS participant (the GUID prefix its endpoints' GIDs share), None if unknown.
+    participant: str | None = None
+    #: The endpoint findings' inputs when last computed (the raw endpoints, the parameters'
+    #: version): they are computed again only when these change.
+    compared: Any = None
+    params_version: int = 0
+
+
+class Monitor:
+    """Monitors a running system against ``expected`` (see the module docstring).
+
+    ``ros_args``: the monitor node's ``--ros-args`` (remaps, parameters, log level);
+    ``on_change(status, wall_time)``: called for every change of a status's level (and
+    its first level).  :meth:`start`, then :meth:`run` until ``stop()`` is true or, with
+    ``once``, until every expected node was seen and read.  Raises
+    :class:`~nodl.live.session.LiveError` when ROS cannot be started.
+    """
+
+    def __init__(self, expected: ExpectedSystem, settings: MonitorSettings | None = None, *,
+                 ros_args: Sequence[str] = (),
+                 on_change: Callable[[Status, float], None] | None = None) -> None:
+        self.expected = expected
+        self.settings = settings or MonitorSettings()
+        self.ros_args = list(ros_args)
+        self.on_change = on_change
+        self.states = {fqn: _NodeState(node) for fqn, node in expected.nodes.items()}
+        self.node: Any = None
+        self.context: Any = None
+        self.executor: Any = None
+        self.view: GraphView | None = None
+        self.snapshot: Snapshot | None = None
+        self.connections: dict[str, list[Finding]] = {}
+        self.arrivals: dict[str, deque[float]] = {}
+        self.subscribed_at: dict[str, float] = {}
+        self.started = 0.0
+        self.statuses: dict[str, Status] = {}
+        self._published: dict[str, tuple[Any, ...]] = {}
+        self._levels: dict[str, int] = {}
+        self._signature: Any = None
+        self._topics_signature: Any = None
+        self._polls = 0
+        #: When polls found the graph changed (the last CHURN_WINDOW seconds).
+        self._changes: deque[float] = deque()
+        self._next_scan = 0.0
+        self._min_scan_gap = 0.0
+        self._scan_wanted = False
+        self._stable_since = 0.0
+        self._shedding: list[str] = []
+        self._events = 0
+        #: Nodes whose status awaits a coalesced refresh for their parameter events.
+        self._pending_events: set[str] = set()
+        self._event_refreshed: dict[str, float] = {}
+        #: The last sequence number of each /parameter_events publisher (by GID).
+        self._event_sequences: dict[bytes, int] = {}
+        self._unverifiable_rates: list[Finding] = []
+        self._rate_subscriptions: list[tuple[Any, deque[float]]] = []
+        self.publisher: Any = None
+        #: A second node, never waited on: the rate subscriptions and liveness clients,
+        #: drained and polled at each tick (an executor rebuilds its wait set of every
+        #: entity at every wake-up: with them there, 50 nodes cost a core's tenth).
+        self.probe: Any = None
+
+    # -- life cycle ------------------------------------------------------------------------
+
+    def start(self) -> None:
+        """Start rclpy (a private context), the node, its publisher and subscriptions."""
+        rclpy = require_rclpy()
+        from rclpy.executors import SingleThreadedExecutor
+        from rclpy.signals import SignalHandlerOptions
+
+        try:
+            from diagnostic_msgs.msg import DiagnosticArray  # type: ignore[import-untyped]
+            from rcl_interfaces.msg import ParameterEvent
+        except ImportError as exc:
+            raise LiveError(f'nodl monitor needs diagnostic_msgs ({exc}); install it '
+                            '(pip install ros-diagnostic-msgs, or from your ROS distribution)'
+                            ) from None
+        self.context = rclpy.Context()
+        try:
+            rclpy.init(context=self.context, args=['nodl_monitor', '--ros-args', *self.ros_args],
+                       signal_handler_options=SignalHandlerOptions.NO)
+        except Exception as exc:  # noqa: BLE001 - rcl's words for bad --ros-args
+            raise LiveError(f'cannot start the monitor node: {exc}') from None
+        from rclpy.qos import QoSProfile, qos_profile_parameter_events
+
+        self.node = rclpy.create_node(MONITOR_NODE_NAME, context=self.context,
+                                      start_parameter_services=True, enable_rosout=False)
+        self._declare_parameters()
+        self.probe = rclpy.create_node(MONITOR_NODE_NAME + '_probe', context=self.context,
+                                       start_parameter_services=False, enable_rosout=False)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+        self.view = GraphView(self.node, [self.node.get_fully_qualified_name(),
+                                          self.probe.get_fully_qualified_name()])
+        self.publisher = self.node.create_publisher(DiagnosticArray, '/diagnostics',
+                                                    QoSProfile(depth=10))
+        self.node.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
+                                      qos_profile_parameter_events)
+        self.started = time.monotonic()
+        self._subscribe_rates()
+
+    def close(self) -> None:
+        """Destroy the node and shut its context down (safe to call twice)."""
+        import rclpy
+
+        if self.probe is not None:
+            self.probe.destroy_node()
+            self.probe = None
+        if self.node is not None:
+            self.node.destroy_node()
+            self.node = None
+        if self.context is not None and self.context.ok():
+            rclpy.shutdown(context=self.context)
+
+    def _declare_parameters(self) -> None:
+        from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
+
+        node = self.node
+        for name in _NUMERIC:
+            node.declare_parameter(name, float(getattr(self.settings, name)),
+                                   ParameterDescriptor(description=f'nodl monitor: {name}'))
+        values = {name: node.get_parameter(name).value for name in _NUMERIC}
+        candidate = MonitorSettings(**{k: float(v) for k, v in values.items()},
+                                    ignore=list(self.settings.ignore))
+        problems = candidate.problems()
+        if problems:
+            raise LiveError('invalid monitor parameter: ' + '; '.join(problems))
+        self.settings = candidate
+
+        def on_set(parameters: list[Any]) -> Any:
+            changed = {p.name: p.value for p in parameters if p.name in _NUMERIC}
+            try:
+                trial = MonitorSettings(**{**{k: getattr(self.settings, k) for k in _NUMERIC},
+                                           **{k: float(v) for k, v in changed.items()}},
+                                        ignore=list(self.settings.ignore))
+            except (TypeError, ValueError) as exc:
+                return SetParametersResult(successful=False, reason=str(exc))
+            problems = trial.problems()
+            if problems:
+                return SetParametersResult(successful=False, reason='; '.join(problems))
+            self.settings = trial
+            return SetParametersResult(successful=True)
+
+        node.add_on_set_parameters_callback(on_set)
+
+    def _subscribe_rates(self) -> None:
+        import importlib
+
+        from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+
+        topics: dict[str, DeadlineTopic] = {}
+        for state in self.states.values():
+            for deadline in state.expected.deadlines:
+                topics.setdefault(deadline.topic, deadline)
+        for topic, deadline in sorted(topics.items()):
+            package, _, name = deadline.type.partition('/msg/')
+            try:
+                kind = getattr(importlib.import_module(f'{package}.msg'), name)
+            except (ImportError, AttributeError, ValueError):
+                self._unverifiable_rates.append(Finding(
+                    'NODL408', 'info', f'rate {topic}', f"the rate of '{topic}' cannot be "
+                    f'measured: its type {deadline.type} is not installed', deadline.location))
+                continue
+            arrivals: deque[float] = deque(maxlen=100000)
+            self.arrivals[topic] = arrivals
+            self.subscribed_at[topic] = time.monotonic()
+            # drained every TICK: room for four times the declared rate between two drains
+            depth = min(_MAX_RATE_DEPTH, max(16, int(4 * TICK * deadline.expected_rate) + 1))
+            qos = QoSProfile(depth=depth, reliability=ReliabilityPolicy.BEST_EFFORT,
+                             durability=DurabilityPolicy.VOLATILE)
+            subscription = self.probe.create_subscription(kind, topic, lambda _m: None, qos,
+                                                          raw=True)
+            self._rate_subscriptions.append((subscription, arrivals))
+
+    def _drain_rates(self) -> None:
+        """Take every message the rate subscriptions hold, recording when each arrived."""
+        for subscription, arrivals in self._rate_subscriptions:
+            offset = time.monotonic() - time.time()
+            with subscription.handle:
+                while True:
+                    taken = subscription.handle.take_message(subscription.msg_type, True)
+                    if taken is None:
+                        break
+                    received = taken[1].get('received_timestamp') if len(taken) > 1 else None
+                    arrivals.append(received / 1e9 + offset if received else time.monotonic())
+
+    # -- the loop --------------------------------------------------------------------------
+
+    def run(self, stop: Callable[[], bool], *, once: bool = False, wait: float = 10.0) -> list[Status]:
+        """Run until ``stop()`` is true (checked at least every 0.1 s) or, with ``once``,
+        until every expected node was seen and read (or ``wait`` seconds passed).  Returns
+        the last statuses (published before returning)."""
+        assert self.node is not None and self.view is not None
+        deadline = time.monotonic() + wait if once else float('inf')
+        next_poll = next_tick = time.monotonic()
+        next_publish = time.monotonic()
+        while not stop():
+            now = time.monotonic()
+            if now >= deadline:
+                break
+            # ticks ride on polls' wake-ups: every wake-up rebuilds the executor's wait set
+            self.executor.spin_once(timeout_sec=max(0.0, min(next_poll, next_publish, deadline,
+                                                             self._next_flush()) - now))
+            now = time.monotonic()
+            self._flush_events(now)
+            if now >= next_poll:
+                next_poll = now + POLL_PERIOD
+                self._poll(now)
+            if now >= next_tick - POLL_PERIOD / 2:  # on the poll's wake-up
+                next_tick = now + TICK
+                self._tick(now)
+                self._refresh(now)
+                if once and self._complete(now):
+                    break
+            if now >= next_publish:
+                self._publish(now)
+                next_publish = now + 1.0 / max(self.settings.publish_rate, 1e-3)
+        now = time.monotonic()
+        self._refresh(now, publish_changes=False)
+        self._publish(now)
+        return self.ordered_statuses()
+
+    def ordered_statuses(self) -> list[Status]:
+        """The statuses: the system's first, then the nodes' by name."""
+        return [self.statuses[k] for k in sorted(self.statuses, key=lambda n: (n != SYSTEM, n))]
+
+    def _poll(self, now: float) -> None:
+        assert self.view is not None
+        self._polls += 1
+        topics = self._polls % TOPIC_POLLS == 1 or self._signature is None
+        nodes, listed = self.view.signature(topics)
+        changed = nodes != self._signature
+        self._signature = nodes
+        if topics:
+            changed = changed or listed != self._topics_signature
+            self._topics_signature = listed
+        if changed:
+            self._stable_since = now
+            self._scan_wanted = True
+            self._changes.append(now)
+        if now >= self._next_scan and (self._scan_wanted or self.snapshot is None
+                                       or now - self.snapshot.time >= self.settings.scan_period):
+            self._scan(now)
+            self._refresh(now)  # a change is published within a poll, not a tick
+        elif self._scan_wanted and self._min_scan_gap > 1.0:
+            self._shed('graph scans spaced out to every %.1f s to stay within the CPU budget'
+                       % self._min_scan_gap)
+
+    def _shed(self, why: str) -> None:
+        if why not in self._shedding:
+            self._shedding = [w for w in self._shedding if w.split()[0] != why.split()[0]] + [why]
+
+    def _scan(self, now: float) -> None:
+        assert self.view is not None
+        previous = self.snapshot
+        snapshot = self.view.scan([fqn for fqn, s in self.states.items()
+                                   if s.expected.resolved is not None])
+        self.snapshot = snapshot
+        self._scan_wanted = False
+        self._min_scan_gap = snapshot.cost / self.settings.scan_budget
+        self._next_scan = now + self._min_scan_gap
+        if self._min_scan_gap <= 1.0:
+            self._shedding = [w for w in self._shedding if not w.startswith('graph')]
+        for fqn, state in self.states.items():
+            self._update_presence(state, snapshot.counts.get(fqn, 0), now)
+            raw = snapshot.endpoints.get(fqn)
+            if raw is None:
+                continue
+            prefixes = {e.gid[:24] for e in snapshot.of_node(fqn) if len(e.gid) == 32}
+            state.participant = prefixes.pop() if len(prefixes) == 1 else None
+            old = previous.endpoints.get(fqn) if previous else None
+            if old != raw or state.observed is None:
+                self._stable_since = now
+                if old is not None:
+                    state.churn.append(now)
+                state.observed = observed_node(fqn, snapshot)
+            elif previous is None or previous.of_node(fqn) != snapshot.of_node(fqn):
+                # an endpoint recreated (another GID): compared again if its QoS changed
+                observed = observed_node(fqn, snapshot)
+                if observed is not None and _qos_of(state.observed) != _qos_of(observed):
+                    state.observed = observed
+        self.connections = connection_findings(snapshot.topics)
+
+    def _update_presence(self, state: _NodeState, count: int, now: float) -> None:
+        before = state.count
+        state.count = count
+        if count and not before:
+            if not state.ever_seen and count > 1:
+                state.namesake_at_start = True
+            state.ever_seen = True
+            state.seen_at = now
+            state.gone_at = None
+            self._new_instance(state)
+        elif before and not count:
+            state.gone_at = now
+            state.second_at = None
+            state.observed = None
+            self._drop_clients(state)
+        if count > 1 and before == 1:
+            state.second_at = now
+            state.restarts += 1
+        if count == 1 and before > 1:
+            state.second_at = None
+            state.namesake_at_start = False
+            self._new_instance(state)
+
+    def _new_instance(self, state: _NodeState) -> None:
+        """A (new) process holds the name: read its parameters again."""
+        state.parameters = None
+        state.params_state = 'unread'
+        state.event_findings.clear()
+        state.not_answering_since = None
+
+    def _drop_clients(self, state: _NodeState) -> None:
+        self._release_clients(state)
+        if state.liveness is not None:
+            self.probe.destroy_client(state.liveness)
+            state.liveness = None
+        state.ping = None
+        state.last_answer = None
+        state.params_state = 'unread'
+        state.parameters = None
+
+    # -- parameters and liveness -----------------------------------------------------------
+
+    def _serves_parameters(self, state: _NodeState) -> bool:
+        observed = state.observed
+        fqn = state.expected.fqn
+        return observed is not None and any(e.name == f'{fqn}/get_parameters'
+                                            for e in observed.service_servers)
+
+    def _release_clients(self, state: _NodeState) -> None:
+        """Destroy the parameter read's clients (the executor waits on each of them)."""
+        for client in state.clients.values():
+            self.node.destroy_client(client)
+        state.clients.clear()
+        state.release_clients = False
+
+    def _client(self, state: _NodeState, kind: Any, service: str) -> Any:
+        client = state.clients.get(service)
+        if client is None:
+            client = self.node.create_client(kind, f'{state.expected.fqn}/{service}')
+            state.clients[service] = client
+        return client
+
+    def _tick(self, now: float) -> None:
+        due = self._liveness_due(now)
+        for state in self.states.values():
+            if state.storm_at is not None and now - state.storm_at > STORM_HOLD:
+                state.storm_at, state.storm_peak = None, 0
+            if state.lost_at is not None and state.params_state == 'read' \
+                    and now - state.lost_at > STORM_HOLD:
+                state.lost_at = None
+            if state.release_clients:
+                self._release_clients(state)
+            if not state.count or state.expected.resolved is None:
+                continue
+            if state.observed is None:
+                continue
+            if not self._serves_parameters(state):
+                if state.params_state == 'unread':
+                    state.params_state = 'none'
+                continue
+            if state.params_state == 'none':
+                state.params_state = 'unread'
+            if state.params_state == 'unread':
+                self._read_parameters(state, now)
+            elif state.params_state == 'reading' and now - state.read_started > 5.0:
+                state.params_state = 'unread'  # no answer: ask again
+            self._liveness(state, now, state.expected.fqn in due)
+
+    def _liveness_due(self, now: float) -> set[str]:
+        """The nodes to call this period.  The nodes of one process share its DDS
+        participant (their endpoints' GIDs share one GUID prefix), and a process killed
+        takes them all: each period one of them is called, in turn (a component container
+        of 20 nodes costs one call a period, not 20), and all of them as soon as one has
+        stopped answering.  A node whose participant is not known is called every period."""
+        groups: dict[str, list[str]] = {}
+        due: set[str] = set()
+        for fqn, state in self.states.items():
+            if state.participant is None:
+                due.add(fqn)
+            else:
+                groups.setdefault(state.participant, []).append(fqn)
+        turn = int(now / self.settings.liveness_period)
+        for members in groups.values():
+            if len(members) == 1 or any(self.states[f].not_answering_since is not None
+                                        for f in members):
+                due.update(members)
+            else:
+                due.add(sorted(members)[turn % len(members)])
+        return due
+
+    def _liveness(self, state: _NodeState, now: float, due: bool = True) -> None:
+        """Poll the node's answer to the last ``~/get_parameters`` call; call again (when
+        ``due``) every ``liveness_period`` seconds.  The client is on the probe node: nothing
+        waits on it."""
+        from rcl_interfaces.srv import GetParameters
+
+        if state.liveness is None:
+            state.liveness = self.probe.create_client(GetParameters,
+                                                      f'{state.expected.fqn}/get_parameters')
+        client = state.liveness
+        with client.handle:
+            while state.ping is not None:
+                header, _response = client.handle.take_response(GetParameters.Response)
+                if header is None:
+                    break
+                if header.request_id.sequence_number == state.ping:
+                    state.ping = None
+                    state.last_answer = now
+                    state.not_answering_since = None
+            if state.ping is not None and now - state.ping_sent > self.settings.liveness_timeout:
+                if state.not_answering_since is None:
+                    state.not_answering_since = state.ping_sent
+                state.ping = None
+            if due and state.ping is None and now - state.ping_sent >= self.settings.liveness_period \
+                    and (state.last_answer is not None or client.service_is_ready()):
+                state.ping = client.handle.send_request(GetParameters.Request(names=[]))
+                state.ping_sent = now
+
+    def _read_parameters(self, state: _NodeState, now: float) -> None:
+        from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
+
+        from nodl.live.observe import _parameter_table
+
+        lister = self._client(state, ListParameters, 'list_parameters')
+        getter = self._client(state, GetParameters, 'get_parameters')
+        describer = self._client(state, DescribeParameters, 'describe_parameters')
+        if not (lister.service_is_ready() and getter.service_is_ready()
+                and describer.service_is_ready()):
+            return
+        state.params_state = 'reading'
+        state.read_started = now
+
+        def listed(future: Any) -> None:
+            result = future.result()
+            if result is None or state.params_state != 'reading':
+                return
+            names = sorted(result.result.names)
+            values = getter.call_async(GetParameters.Request(names=names))
+            descriptors = describer.call_async(DescribeParameters.Request(names=names))
+
+            def both(_: Any) -> None:
+                if not (values.done() and descriptors.done()) or state.params_state != 'reading':
+                    return
+                if values.result() is None or descriptors.result() is None:
+                    return
+                state.parameters = _parameter_table(names, values.result(), descriptors.result())
+                state.params_state = 'read'
+                for name, type_name, value, changed in state.params_buffer:
+                    self._apply_parameter(state, name, type_name, value, changed)
+                state.params_buffer.clear()
+                state.release_clients = True
+                self._refresh(time.monotonic())
+
+            values.add_done_callback(both)
+            descriptors.add_done_callback(both)
+
+        lister.call_async(ListParameters.Request()).add_done_callback(listed)
+
+    def _on_parameter_event(self, event: Any, info: Any) -> None:
+        """Check one parameter event as it arrives (the callback takes the message info:
+        a gap in a publisher's sequence numbers is events lost)."""
+        from nodl.live.observe import _value
+
+        state = self.states.get(event.node)
+        if state is None:
+            return
+        self._events += 1
+        now = time.monotonic()
+        self._count_event(state, info, now)
+        touched = False
+        for items, changed in ((event.new_parameters, False), (event.changed_parameters, True)):
+            for parameter in items:
+                type_name = _PARAMETER_TYPES.get(parameter.value.type, 'none')
+                value = _value(parameter.value)
+                if state.params_state != 'read':
+                    state.params_buffer.append((parameter.name, type_name, value, changed))
+                self._apply_parameter(state, parameter.name, type_name, value, changed)
+                touched = True
+        for parameter in event.deleted_parameters:
+            if state.parameters is not None:
+                state.parameters.pop(parameter.name, None)
+                state.params_version += 1
+                touched = True
+        if touched:
+            self._pending_events.add(event.node)
+            self._flush_events(now)
+
+    def _count_event(self, state: _NodeState, info: Any, now: float) -> None:
+        """Storm detection (events in the last second) and lost events (sequence gaps:
+        the node's parameters are read again)."""
+        times = state.event_times
+        times.append(now)
+        while times and times[0] < now - 1.0:
+            times.popleft()
+        if len(times) > STORM_RATE:
+            first = state.storm_at is None
+            state.storm_peak = max(state.storm_peak, len(times))
+            state.storm_at = now
+            if first:
+                self._refresh(now)  # NODL441 published at once
+        gid = (info or {}).get('publisher_gid') or {}
+        sequence = (info or {}).get('publication_sequence_number')
+        if not isinstance(gid, dict) or not isinstance(sequence, int) or sequence <= 0:
+            return
+        key = bytes(gid.get('data') or b'')
+        last = self._event_sequences.get(key)
+        self._event_sequences[key] = sequence
+        if last is not None and sequence > last + 1:
+            state.events_lost += sequence - last - 1
+            state.lost_at = now
+            if state.params_state == 'read':
+                state.params_state = 'unread'  # read again: the values lost are not known
+
+    def _flush_events(self, now: float) -> None:
+        """Refresh (and publish, if changed) the statuses of the nodes whose parameter
+        events arrived, each at most every EVENT_GAP seconds."""
+        for fqn in sorted(self._pending_events):
+            if now - self._event_refreshed.get(fqn, -1.0) >= EVENT_GAP:
+                self._pending_events.discard(fqn)
+                self._event_refreshed[fqn] = now
+                self._refresh(now, only=fqn)
+
+    def _next_flush(self) -> float:
+        """When the next coalesced refresh is due (infinity when none is pending)."""
+        return min((self._event_refreshed.get(f, 0.0) + EVENT_GAP for f in self._pending_events),
+                   default=float('inf'))
+
+    def _apply_parameter(self, state: _NodeState, name: str, type_name: str, value: Any,
+                         changed: bool) -> None:
+        findings = parameter_event_findings(state.expected, name, type_name, value, changed)
+        if findings:
+            state.event_findings[name] = findings
+        state.params_version += 1
+        if state.parameters is None:
+            return
+        old = state.parameters.get(name)
+        if old is None:
+            state.parameters[name] = ObservedParameter(name, type_name, value)
+        else:
+            old.type, old.value = type_name, value
+
+    # -- statuses ----------------------------------------------------------------------------
+
+    def _node_status(self, state: _NodeState, now: float) -> Status:
+        from nodl.live.conformance import compare
+
+        expected = state.expected
+        status = Status(status_name(expected.fqn), expected.hardware_id,
+                        location=expected.location)
+        if expected.definition_file:
+            status.facts.append(('definition', expected.definition_file))
+        else:
+            status.findings.append(Finding('NODL433', 'info', 'definition',
+                                           f'{expected.no_definition}', expected.location))
+        settings = self.settings
+        if not state.count:
+            if state.ever_seen:
+                status.findings.append(Finding(
+                    'NODL430', 'error', 'node', f'{expected.fqn} is not running: gone from the '
+                    f'graph {now - (state.gone_at or now):.1f} s ago', expected.location))
+                status.facts.append(('state', 'gone'))
+            elif now - self.started >= settings.grace_period:
+                status.findings.append(Finding(
+                    'NODL430', 'error', 'node', f'{expected.fqn} is not running: not seen within '
+                    f'the grace period of {settings.grace_period:g} s', expected.location))
+                status.facts.append(('state', 'missing'))
+            else:
+                status.ok_message = 'waiting for it to appear (grace period)'
+                status.facts.append(('state', 'waiting'))
+            return status
+        status.facts.append(('state', 'running'))
+        status.facts.append(('instances', str(state.count)))
+        if state.restarts:
+            status.facts.append(('restarts', str(state.restarts)))
+        if state.count > 1:
+            since = state.second_at if state.second_at is not None else self.started
+            if state.namesake_at_start or now - since >= settings.restart_window:
+                status.findings.append(Finding(
+                    'NODL550', 'error', 'node', f'duplicate-node: {state.count} nodes in the graph '
+                    f'are named {expected.fqn} (namesakes): their endpoints cannot be told apart; '
+                    'give each a unique name', expected.location))
+            else:
+                status.findings.append(Finding(
+                    'NODL432', 'warning', 'node', f'{expected.fqn} is restarting: a new node of '
+                    f'this name appeared {now - since:.1f} s ago while the old one is still in the '
+                    f'graph (until its participant lease ends; namesakes after '
+                    f'{settings.restart_window:g} s)', expected.location))
+        if state.not_answering_since is not None:
+            status.findings.append(Finding(
+                'NODL434', 'error', 'node', f'{expected.fqn} stopped answering its parameter '
+                f'services {now - state.not_answering_since:.1f} s ago (killed or hung?)',
+                expected.location))
+        if expected.resolved is not None and state.observed is not None and state.count == 1:
+            key = (id(state.observed), state.params_state, state.params_version)
+            if key != state.compared:
+                observed = state.observed
+                # read, or being read again (events were lost): the values known so far
+                known = state.params_state == 'read' or (state.params_state == 'reading'
+                                                         and state.parameters is not None)
+                observed.parameters = state.parameters if known else None
+                differences = compare(expected.resolved, observed, expected.names)
+                if not known:
+                    differences = [d for d in differences if d.section != 'parameters']
+                state.endpoint_findings = endpoint_findings(differences)
+                state.compared = key
+            status.findings.extend(state.endpoint_findings)
+        for findings in state.event_findings.values():
+            status.findings.extend(findings)
+        status.findings.extend(self.connections.get(expected.fqn, []))
+        for finding in self._unverifiable_rates:
+            if any(finding.subject == f'rate {d.topic}' for d in expected.deadlines):
+                status.findings.append(finding)
+        for deadline in expected.deadlines:
+            arrivals = self.arrivals.get(deadline.topic)
+            if arrivals is None:
+                continue
+            window = settings.rate_window
+            since = max(self.subscribed_at[deadline.topic], state.seen_at or now)
+            if now - since < window:
+                continue
+            while arrivals and arrivals[0] < now - window:
+                arrivals.popleft()
+            count = len(arrivals)
+            status.facts.append((f'rate {deadline.topic}', f'{count / window:.3g} Hz '
+                                 f'(deadline {deadline.deadline_ns / 1e6:g} ms: '
+                                 f'{deadline.expected_rate:g} Hz)'))
+            slow = rate_finding(deadline, count, window, settings.rate_tolerance)
+            if slow is not None:
+                status.findings.append(slow)
+        status.ok_message = 'running as defined' if expected.resolved is not None else 'running'
+        return status
+
+    def _system_status(self, now: float) -> Status:
+        status = Status(SYSTEM, 'nodl', ok_message=f'{len(self.states)} expected nodes')
+        counts = self.snapshot.counts if self.snapshot is not None else {}
+        patterns = list(DEFAULT_IGNORED) + list(self.settings.ignore)
+        unexpected = []
+        for fqn, count in sorted(counts.items()):
+            if fqn in self.states or is_hidden_node(fqn):
+                continue
+            base = fqn.rpartition('/')[2]
+            if any(fnmatch.fnmatchcase(fqn, p) or fnmatch.fnmatchcase(base, p) for p in patterns):
+                continue
+            unexpected.append(fqn)
+            status.findings.append(Finding('NODL431', 'warning', f'node {fqn}',
+                                           f'{fqn} is running but the expected system does not '
+                                           'have it'))
+            if count > 1:
+                status.findings.append(Finding(
+                    'NODL550', 'error', f'node {fqn}', f'duplicate-node: {count} nodes in the '
+                    f'graph are named {fqn} (namesakes)'))
+        for diagnostic in self.expected.diagnostics:
+            if diagnostic.code == 'NODL440':
+                status.findings.append(Finding('NODL440', 'warning', f'entry {diagnostic.line}',
+                                               diagnostic.message,
+                                               _location(diagnostic)))
+        for why in self._shedding:
+            status.findings.append(Finding('NODL439', 'warning', 'shedding ' + why.split()[0],
+                                           f'shedding: {why}'))
+        churn = self._churn(now)
+        if churn is not None:
+            status.findings.append(churn)
+        lost = 0
+        for fqn, state in sorted(self.states.items()):
+            lost += state.events_lost
+            if state.storm_at is not None:
+                status.findings.append(Finding(
+                    'NODL441', 'warning', f'parameter events {fqn}',
+                    f'shedding: a parameter event storm from {fqn} (up to {state.storm_peak} '
+                    f'events a second): every event is checked, its status refreshed and '
+                    f'published at most every {EVENT_GAP * 1000:g} ms'))
+            if state.lost_at is not None:
+                status.findings.append(Finding(
+                    'NODL442', 'warning', f'parameter events lost {fqn}',
+                    f'{state.events_lost} parameter events of {fqn} never reached the monitor '
+                    f'(it fell behind, or the network dropped them): its parameters are read '
+                    f'again'))
+        presence = [s.expected.fqn for s in self.states.values() if s.expected.resolved is None]
+        if presence:
+            status.facts.append(('presence only', ', '.join(presence)))
+        status.facts.append(('expected', str(len(self.states))))
+        status.facts.append(('running', str(sum(1 for s in self.states.values() if s.count))))
+        status.facts.append(('unexpected', str(len(unexpected))))
+        status.facts.append(('parameter events', str(self._events)))
+        if lost:
+            status.facts.append(('parameter events lost', str(lost)))
+        return status
+
+    def _churn(self, now: float) -> Finding | None:
+        """NODL443 when the graph changed CHURN_CHANGES times in CHURN_WINDOW seconds,
+        naming the expected nodes whose endpoints kept changing."""
+        for times in [self._changes] + [s.churn for s in self.states.values()]:
+            while times and times[0] < now - CHURN_WINDOW:
+                times.popleft()
+        if len(self._changes) < CHURN_CHANGES:
+            return None
+        busy = sorted(((len(s.churn), fqn) for fqn, s in self.states.items() if s.churn),
+                      key=lambda item: (-item[0], item[1]))
+        named = ', '.join(f'{fqn} ({n} times)' for n, fqn in busy[:5])
+        more = f' and {len(busy) - 5} more' if len(busy) > 5 else ''
+        where = f'; endpoints keep changing on {named}{more}' if busy else ''
+        return Finding('NODL443', 'warning', 'graph',
+                       f'the graph does not settle: it changed {len(self._changes)} times in the '
+                       f'last {CHURN_WINDOW:g} s (nodes, topics or endpoints keep coming and '
+                       f'going){where}; endpoint findings follow the last scan')
+
+    def _refresh(self, now: float, *, only: str | None = None, publish_changes: bool = True) -> None:
+        """Recompute the statuses (one node's with ``only``); publish at once if one changed."""
+        if self.node is None:
+            return
+        self._drain_rates()  # the rates counted up to now
+        if only is not None:
+            state = self.states[only]
+            fresh = {status_name(only): self._node_status(state, now)}
+        else:
+            fresh = {status_name(fqn): self._node_status(s, now) for fqn, s in self.states.items()}
+            fresh[SYSTEM] = self._system_status(now)
+        self.statuses.update(fresh)
+        changed = [s for name, s in fresh.items() if self._published.get(name) != s.signature()]
+        if not changed:
+            return
+        for status in changed:
+            if self._levels.get(status.name) != status.level and self.on_change is not None:
+                self.on_change(status, time.time())
+            self._levels[status.name] = status.level
+        if publish_changes:
+            self._publish(now)
+
+    def _publish(self, now: float) -> None:
+        from diagnostic_msgs.msg import DiagnosticArray
+
+        if self.node is None or not self.statuses:
+            return
+        message = DiagnosticArray()
+        message.header.stamp = self.node.get_clock().now().to_msg()
+        statuses = self.ordered_statuses()
+        message.status = [to_message(s) for s in statuses]
+        self.publisher.publish(message)
+        self._published = {s.name: s.signature() for s in statuses}
+
+    def _complete(self, now: float) -> bool:
+        """``--once``: every expected node seen, scanned, its parameters read, and its
+        deadline topics measured over a whole window; the graph unchanged for 0.3 s."""
+        if self.snapshot is None or now - self._stable_since < 0.3:
+            return False
+        for state in self.states.values():
+            if not state.count:
+                return False
+            if state.expected.resolved is None:
+                continue
+            if state.observed is None or state.params_state in ('unread', 'reading'):
+                return False
+            for deadline in state.expected.deadlines:
+                if deadline.topic in self.arrivals and now - max(
+                        self.subscribed_at[deadline.topic], state.seen_at or now) < \
+                        self.settings.rate_window:
+                    return False
+        return True
+
+
+def _qos_of(observed: ObservedNode) -> list[Any]:
+    return [(e.name, e.qos, e.unobserved) for e in observed.publishers + observed.subscriptions]
+
+
+def _location(diagnostic: Any) -> Any:
+    from nodl.system.entities import Location
+
+    return Location(diagnostic.file, diagnostic.line, diagnostic.column)
