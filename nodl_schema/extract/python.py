@@ -278,6 +278,8 @@ class _Module:
         self._node_words: str | None = None
         #: Its node classes (see ``PythonExtractor._node_classes``), once asked for by another module.
         self.kinds: dict[str, str] | None = None
+        #: The module's own scope (module-level code), made once.
+        self.top = _Scope(self)
 
     def _collect_imports(self, body: list[ast.stmt], top: bool) -> None:
         """The imports of ``body`` (``top``: the module's, its blocks', its functions' and its
@@ -295,7 +297,7 @@ class _Module:
                         imports[first] = first
             elif kind is ast.ImportFrom:
                 assert isinstance(stmt, ast.ImportFrom)
-                base = _absolute(stmt.module, stmt.level, self._package)
+                base = _absolute(stmt.module, stmt.level, self._package) if stmt.level else stmt.module or ''
                 for alias in stmt.names:
                     imports[alias.asname or alias.name] = f'{base}.{alias.name}' if base else alias.name
             elif self._imports_at_top or not isinstance(stmt, _HOLDERS) or not self.may_hold(_IMPORT_WORD, stmt):
@@ -591,7 +593,7 @@ class _Resolver:
         """The class of the package's other modules that a class's base names, with its module."""
         if self.sources is None:
             return None
-        value = self.value(base, _Scope(module))
+        value = self.value(base, module.top)
         if not isinstance(value, _Symbol) or value.dotted in _NODE_CLASSES:
             return None
         found = self.package_class(value.dotted)
@@ -1222,7 +1224,7 @@ class PythonExtractor:
                         out[name] = out[base.id]
                         changed = True
                         break
-                    value = self.resolver.value(base, _Scope(module))
+                    value = self.resolver.value(base, module.top)
                     if isinstance(value, _Symbol) and value.dotted in _NODE_CLASSES:
                         out[name] = _NODE_CLASSES[value.dotted]
                         changed = True
@@ -1956,12 +1958,13 @@ def _generated(text: str) -> int:
     return 0
 
 
+_READ_FLAGS = os.O_RDONLY | getattr(os, 'O_BINARY', 0)
+
+
 def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
     """The text of a source file, or the NODL907 diagnostic of why it cannot be read."""
-    from nodl_schema.files import describe_os_error
-
     try:
-        handle = os.open(path, os.O_RDONLY | getattr(os, 'O_BINARY', 0))
+        handle = os.open(path, _READ_FLAGS)
         try:
             size = os.fstat(handle).st_size
             raw = b''
@@ -1981,6 +1984,8 @@ def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
                                     'nodl extract; extract from the files that make nodes', file=path,
                                     code='NODL907')
     except OSError as exc:
+        from nodl_schema.files import describe_os_error
+
         return None, Diagnostic(Severity.ERROR, f'cannot read the file: {describe_os_error(exc)}', file=path,
                                 code='NODL907')
     if raw.startswith(b'\xef\xbb\xbf'):  # a byte order mark: not part of the text
