@@ -199,13 +199,20 @@ def _assigned_names(body: Iterable[ast.stmt]) -> dict[str, list[ast.expr]]:
     return out
 
 
+#: Statements that assign no name and hold no statement that does (functions and classes are
+#: scopes of their own).
+_NO_ASSIGNMENT = frozenset({ast.Expr, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.Return, ast.Import,
+                            ast.ImportFrom, ast.Pass, ast.Raise, ast.Assert, ast.Delete, ast.Global, ast.Nonlocal,
+                            ast.Break, ast.Continue})
+
+
 def _assigned_in(stmts: Iterable[ast.stmt], out: dict[str, list[ast.expr]]) -> None:
     for stmt in stmts:
         kind = stmt.__class__
         if kind is ast.Assign:
             for target in stmt.targets:  # type: ignore[attr-defined]
                 _record(target, stmt.value, out)  # type: ignore[attr-defined]
-        elif kind is ast.Expr or kind is ast.FunctionDef or kind is ast.ClassDef or kind is ast.Return:
+        elif kind in _NO_ASSIGNMENT:
             continue
         elif isinstance(stmt, ast.AnnAssign) and stmt.value is not None:
             _record(stmt.target, stmt.value, out)
@@ -265,6 +272,7 @@ class _Module:
         self._imports_at_top = text is not None and text.count('import') == sum(
             1 for s in tree.body if s.__class__ is ast.Import or s.__class__ is ast.ImportFrom)
         self._params: dict[int, set[str]] = {}
+        self._bases: dict[int, Any] = {}
         self._collect_imports(tree.body, True)
         for stmt in tree.body:
             if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
@@ -318,6 +326,13 @@ class _Module:
                         self._collect_imports(inner, top)
                 for handler in getattr(stmt, 'handlers', None) or []:
                     self._collect_imports(handler.body, top)
+
+    def base_value(self, base: ast.expr, resolver: _Resolver) -> Any:
+        """What a class's base (an expression of module-level code) stands for, resolved once."""
+        found = self._bases.get(id(base), self)
+        if found is self:
+            found = self._bases[id(base)] = resolver.value(base, self.top)
+        return found
 
     def params_of(self, function: ast.FunctionDef | ast.AsyncFunctionDef) -> set[str]:
         """The parameters of ``function`` (found once per function)."""
@@ -593,7 +608,7 @@ class _Resolver:
         """The class of the package's other modules that a class's base names, with its module."""
         if self.sources is None:
             return None
-        value = self.value(base, module.top)
+        value = module.base_value(base, self)
         if not isinstance(value, _Symbol) or value.dotted in _NODE_CLASSES:
             return None
         found = self.package_class(value.dotted)
@@ -1142,10 +1157,13 @@ class PythonExtractor:
             return []
         found: list[ExtractedNode] = []
         owners: list[tuple[ast.ClassDef, ast.FunctionDef | ast.AsyncFunctionDef | None]] = []
+        # a class in a function says 'class' where no module-level class statement does
+        nested = module.lines is None or module.lines.text.count('class') != len(module.classes)
         for stmt in module.tree.body:
             if isinstance(stmt, ast.ClassDef) and stmt.name not in kinds:
                 owners.append((stmt, None))
-            elif isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)) and module.may_hold(_CLASS_WORD, stmt):
+            elif nested and isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)) and \
+                    module.may_hold(_CLASS_WORD, stmt):
                 owners += [(c, stmt) for c in _walk(stmt) if isinstance(c, ast.ClassDef)]
         for cls, function in owners:
             scope = _Scope(module, None, function)
@@ -1224,7 +1242,7 @@ class PythonExtractor:
                         out[name] = out[base.id]
                         changed = True
                         break
-                    value = self.resolver.value(base, module.top)
+                    value = module.base_value(base, self.resolver)
                     if isinstance(value, _Symbol) and value.dotted in _NODE_CLASSES:
                         out[name] = _NODE_CLASSES[value.dotted]
                         changed = True
@@ -1795,22 +1813,6 @@ def _fields(cls: type) -> tuple[str, ...]:
     return fields
 
 
-def _children(node: ast.AST) -> list[ast.AST]:
-    """The child nodes of ``node`` (what ``ast.iter_child_nodes`` gives, without its generators),
-    the leaves of :data:`_LEAF_FIELDS` left out."""
-    out: list[ast.AST] = []
-    fields = _FIELDS.get(node.__class__)
-    if fields is None:
-        fields = _fields(node.__class__)
-    for name in fields:
-        value = getattr(node, name, None)
-        if value.__class__ is list:
-            out += [item for item in value if isinstance(item, ast.AST)]
-        elif isinstance(value, ast.AST):
-            out.append(value)
-    return out
-
-
 def _walk(*nodes: ast.AST) -> list[ast.AST]:
     """Every node of ``nodes`` (siblings, in order) in ``ast.walk``'s order (breadth first),
     gathered in one pass.  The list may hold ``None`` and names where a list field of a node
@@ -1826,7 +1828,7 @@ def _walk(*nodes: ast.AST) -> list[ast.AST]:
             value = getattr(node, name, None)
             if value.__class__ is list:
                 found += value
-            elif isinstance(value, ast.AST):
+            elif value is not None:  # a node (or a constant of a pattern: no fields)
                 found.append(value)
     return found
 
@@ -1849,7 +1851,7 @@ def _calls(stmt: ast.AST) -> list[ast.Call]:
             value = getattr(current, name, None)
             if value.__class__ is list:
                 stack += [child for child in value if child.__class__ is not class_def]
-            elif isinstance(value, ast.AST) and value.__class__ is not class_def:
+            elif value is not None and value.__class__ is not class_def:
                 stack.append(value)
     found.sort(key=_POSITION)
     return found
@@ -1933,7 +1935,7 @@ def _starts(tree: ast.Module, wanted: Iterable[str] | None = None, top: bool = F
                 value = getattr(node, field_name, None)
                 if value.__class__ is list:
                     found += value
-                elif isinstance(value, ast.AST):
+                elif value is not None:  # a node (or a constant of a pattern: no fields)
                     found.append(value)
         if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
             out[stmt.name] = names
