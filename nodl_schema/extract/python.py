@@ -515,6 +515,8 @@ class PackageSources:
 class _Scope:
     """Where an expression is read: its module, class, function bindings and helper arguments."""
 
+    __slots__ = ('module', 'cls', 'function', 'arguments', 'depth', 'owner', '_local', '_params')
+
     def __init__(self, module: _Module, cls: ast.ClassDef | None = None,
                  function: ast.FunctionDef | ast.AsyncFunctionDef | None = None,
                  arguments: dict[str, Any] | None = None, depth: int = 0,
@@ -1070,6 +1072,8 @@ def _arguments(call: ast.Call, names: tuple[str, ...], skip: int = 0) -> dict[st
 class _NodeBuilder:
     """Collects the entities of one node while its code is walked."""
 
+    __slots__ = ('extractor', 'node', 'visited')
+
     def __init__(self, extractor: 'PythonExtractor', node: ExtractedNode) -> None:
         self.extractor = extractor
         self.node = node
@@ -1415,6 +1419,8 @@ class PythonExtractor:
             elif method == 'declare_parameters':
                 self._parameters(builder, scope, call)
             return
+        if not call.args and not call.keywords:
+            return  # given no node
         node_args = [i for i, a in enumerate(call.args) if self._is_receiver(a, receivers)]
         node_kwargs: list[str | None] = [k.arg for k in call.keywords
                                          if k.arg and self._is_receiver(k.value, receivers)]
