@@ -510,3 +510,17 @@ def test_a_killed_process_of_three_nodes_makes_each_error(processes: Processes,
         when, status = diagnostics.wait_status(f'nodl: {name}', lambda s: 'NODL434' in codes(s), 10)
         assert level(status) == 2
         assert when - killed < 5.0, f'{name}: {when - killed:.1f} s'
+
+
+def test_the_readme_lists_every_parameter_with_its_default() -> None:
+    import re
+
+    from nodl_schema.monitor.node import _NUMERIC, MonitorSettings
+
+    readme = (REPO / 'README.md').read_text(encoding='utf-8')
+    start = readme.index('### Health monitoring')
+    section = readme[start:readme.index('\n### ', start)]
+    rows = dict(re.findall(r'^\| `(\w+)` \| ([0-9.]+) \|', section, re.M))
+    defaults = MonitorSettings()
+    assert {name: float(rows[name]) for name in _NUMERIC} == {
+        name: getattr(defaults, name) for name in _NUMERIC}
