@@ -10,7 +10,14 @@ or at module level) and every call that gives it an entity is read: ``create_pub
 
 Values are resolved when the source fixes them: literals, module and class constants, instance
 attributes set once from constants, f-strings and ``+`` of constants, module functions whose
-body returns an expression of their arguments.  Anything else is a :class:`Gap`, located.
+body returns an expression of their arguments.  Anything else is a :class:`Gap`, located.  A
+node class's base defined in another module of the package (:class:`PackageSources`) gives the
+class its entities, at their own place.
+
+Speed: a module's text is searched before its tree is walked (:class:`_Lines`): only the
+statements that call an entity method or pass a node as an argument are walked for entities,
+only functions that name ``Node``/``create_node`` are looked into for nodes made by calls, and
+each module is walked in one pass per question, its constants resolved once.
 """
 
 from __future__ import annotations
@@ -143,10 +150,6 @@ class _Lines:
                 found.append(line)
         self._found[words] = found
         return found
-
-    def within(self, words: str, node: ast.AST) -> bool:
-        """Whether any of ``words`` occurs on a line of ``node``."""
-        return _on_lines(self.lines(words), node)
 
 
 def _in_range(lines: list[int], first: int, last: int) -> bool:
