@@ -597,7 +597,8 @@ class Monitor:
                 if state.not_answering_since is None:
                     state.not_answering_since = state.ping_sent
                 state.ping = None
-            if due and state.ping is None and now - state.ping_sent >= self.settings.liveness_period \
+            period = self.settings.liveness_period
+            if due and state.ping is None and now - state.ping_sent >= period \
                     and (state.last_answer is not None or client.service_is_ready()):
                 state.ping = client.handle.send_request(GetParameters.Request(names=[]))
                 state.ping_sent = now
