@@ -1828,17 +1828,15 @@ def _walk(*nodes: ast.AST) -> list[ast.AST]:
     holds them (``Dict.keys``, ``arguments.kw_defaults``): look for nodes by their class."""
     found: list[Any] = list(nodes)
     fields_of = _FIELDS
-    index = 0
-    while index < len(found):
-        node = found[index]
-        index += 1
+    append = found.append
+    for node in found:  # (a list iterated while it grows: each node once, in the order added)
         fields = fields_of.get(node.__class__)
         for name in _fields(node.__class__) if fields is None else fields:
             value = getattr(node, name, None)
             if value.__class__ is list:
                 found += value
             elif value is not None:  # a node (or a constant of a pattern: no fields)
-                found.append(value)
+                append(value)
     return found
 
 
@@ -1928,10 +1926,8 @@ def _starts(tree: ast.Module, wanted: Iterable[str] | None = None, top: bool = F
             continue
         names = out[''] if not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)) else []
         found: list[Any] = [stmt]  # breadth first, as ast.walk
-        index = 0
-        while index < len(found):
-            node = found[index]
-            index += 1
+        append = found.append
+        for node in found:  # (grows while iterated)
             kind = node.__class__
             if kind is ast.Call:
                 func = node.func
@@ -1945,7 +1941,7 @@ def _starts(tree: ast.Module, wanted: Iterable[str] | None = None, top: bool = F
                 if value.__class__ is list:
                     found += value
                 elif value is not None:  # a node (or a constant of a pattern: no fields)
-                    found.append(value)
+                    append(value)
         if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
             out[stmt.name] = names
     return out
