@@ -419,6 +419,11 @@ def test_a_graph_that_never_settles_is_said(processes: Processes,
     diagnostics.spin(3.0)
     assert budget.share() < CPU_BUDGET, f'{budget.share():.1%} of a core'
     assert budget.longest_gap() < 1.0 + LATE
+    # --once waits for a settled graph: it takes the whole --wait, and says why
+    started = time.monotonic()
+    _, report = once(str(SENSOR), '--name', '/churner', wait=8.0)
+    assert time.monotonic() - started >= 8.0
+    assert 'NODL443' in report['nodl: system']['codes']
 
 
 def test_ctrl_c_stops_within_a_second_after_a_complete_last_publication(
