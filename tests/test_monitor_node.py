@@ -529,3 +529,24 @@ def test_the_readme_lists_every_parameter_with_its_default() -> None:
     defaults = MonitorSettings()
     assert {name: float(rows[name]) for name in _NUMERIC} == {
         name: getattr(defaults, name) for name in _NUMERIC}
+
+
+def test_a_process_s_turn_falls_only_on_nodes_that_can_be_called() -> None:
+    from nodl_schema.live.observe import ObservedEndpoint, ObservedNode
+    from nodl_schema.monitor.expected import expected_from_definitions
+    from nodl_schema.monitor.node import Monitor
+    from nodl_schema.targets.placement import Definition
+
+    names = ['/p/a', '/p/b', '/p/c', '/q/alone']
+    monitor = Monitor(expected_from_definitions([Definition(file=str(SENSOR))] * 4, names))
+    for fqn, state in monitor.states.items():
+        state.count, state.participant = 1, ('q' if fqn == '/q/alone' else 'p') * 24
+        state.observed = ObservedNode(fqn.rpartition('/')[2], fqn.rpartition('/')[0])
+        state.observed.service_servers = [ObservedEndpoint(f'{fqn}/get_parameters', 'x')]
+    monitor.states['/p/b'].count = 0  # gone from its process: never its turn
+    period = monitor.settings.liveness_period
+    turns = [monitor._liveness_due(k * period + period / 2) for k in range(4)]
+    assert all(len(due) == 2 and '/q/alone' in due for due in turns)
+    assert {fqn for due in turns for fqn in due} == {'/p/a', '/p/c', '/q/alone'}
+    monitor.states['/p/c'].not_answering_since = 0.0  # silent: all of its process called
+    assert monitor._liveness_due(0.5) == {'/p/a', '/p/c', '/q/alone'}

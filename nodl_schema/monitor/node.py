@@ -561,6 +561,9 @@ class Monitor:
         groups: dict[str, list[str]] = {}
         due: set[str] = set()
         for fqn, state in self.states.items():
+            if not state.count or state.expected.resolved is None or state.observed is None \
+                    or not self._serves_parameters(state):
+                continue  # not called (see _tick): never a process's turn
             if state.participant is None:
                 due.add(fqn)
             else:
