@@ -289,8 +289,6 @@ class _Module:
         self._node_words: str | None = None
         #: Its node classes (see ``PythonExtractor._node_classes``), once asked for by another module.
         self.kinds: dict[str, str] | None = None
-        #: The module's own scope (module-level code), made once.
-        self.top = _Scope(self)
 
     def _collect_imports(self, body: list[ast.stmt], top: bool) -> None:
         """The imports of ``body`` (``top``: the module's, its blocks', its functions' and its
@@ -334,7 +332,9 @@ class _Module:
         """What a class's base (an expression of module-level code) stands for, resolved once."""
         found = self._bases.get(id(base), self)
         if found is self:
-            found = self._bases[id(base)] = resolver.value(base, self.top)
+            found = resolver.value(base, _Scope(self))
+            if not isinstance(found, _CallValue):  # (it holds its scope: the module would hold itself)
+                self._bases[id(base)] = found
         return found
 
     def params_of(self, function: ast.FunctionDef | ast.AsyncFunctionDef) -> set[str]:
