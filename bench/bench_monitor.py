@@ -132,15 +132,17 @@ def kill_latency() -> dict[str, float]:
         node = processes.node('bench_killed')
         monitor = Lines(processes.monitor(str(SENSOR), '--name', '/bench_killed', '--format',
                                           'jsonl'))
-        monitor.wait(lambda line: _jsonl(line).get('status') == 'nodl: /bench_killed'
-                     and _jsonl(line).get('level') == 'OK', 30)
+        monitor.wait(lambda line: _jsonl(line).get('status') == 'nodl: /bench_killed', 30)
         floor = Lines(processes.start([sys.executable, '-c', FLOOR, '/bench_killed']))
         floor.wait(lambda line: line == 'seen', 30)
-        time.sleep(3.0)  # the monitor has pinged it a few times
+        time.sleep(3.0)  # the monitor has seen it (10 Hz) and called it a few times
         killed = time.monotonic()
         node.send_signal(signal.SIGKILL)
+        # its ERROR for the kill: not answering (NODL434) or gone (not: never seen)
         error_at, _ = monitor.wait(lambda line: _jsonl(line).get('status') == 'nodl: /bench_killed'
-                                   and _jsonl(line).get('level') == 'ERROR', 90)
+                                   and _jsonl(line).get('level') == 'ERROR'
+                                   and ('NODL434' in _jsonl(line).get('codes', [])
+                                        or 'gone from the graph' in _jsonl(line)['message']), 90)
         _, gone = floor.wait(lambda line: line.startswith('gone '), 90)
         gone_at = float(gone.split()[1])
     finally:
@@ -174,8 +176,12 @@ def parameter_latency(changes: int = 10) -> dict[str, float]:
         node.create_subscription(ParameterEvent, '/parameter_events',
                                  lambda m: events.append((time.monotonic(), time.time(), m)),
                                  qos_profile_parameter_events)
-        monitor.wait(lambda line: _jsonl(line).get('status') == 'nodl: /bench_param'
-                     and _jsonl(line).get('level') == 'OK', 30)
+        end = time.monotonic() + 30  # running (its first status is OK: waiting for it)
+        while time.monotonic() < end and not any(
+                kv.key == 'state' and kv.value == 'running' for _, array in arrays
+                for status in array.status if status.name == 'nodl: /bench_param'
+                for kv in status.values):
+            executor.spin_once(timeout_sec=0.02)
         client = node.create_client(SetParameters, '/bench_param/set_parameters')
         assert client.wait_for_service(timeout_sec=10)
         end = time.monotonic() + 2.0  # its parameters read
@@ -203,6 +209,8 @@ def parameter_latency(changes: int = 10) -> dict[str, float]:
             event = [e for e in events if e[2].node == '/bench_param'][-1]
             received, wall, message = event
             latencies.append(found - received)
+            if os.environ.get('BENCH_VERBOSE'):
+                print(f'  change {i}: {found - received:.4f} s', flush=True)
             stamp = message.stamp.sec + message.stamp.nanosec / 1e9
             deliveries.append(max(wall - stamp, 1e-6))
             time.sleep(0.3)
@@ -210,6 +218,8 @@ def parameter_latency(changes: int = 10) -> dict[str, float]:
     finally:
         rclpy.shutdown(context=context)
         processes.stop()
+        if os.environ.get('BENCH_VERBOSE'):
+            print('\n'.join(line for _, line in monitor.lines))
     median = statistics.median(latencies)
     return {'median_s': median, 'max_s': max(latencies),
             'delivery_s': statistics.median(deliveries),

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import time
 
+import pytest
+
 from nodl.monitor.graph import Snapshot, TopicEndpoint, observed_node
 
 
@@ -73,7 +75,8 @@ def test_an_endpoint_is_converted_again_once_its_node_is_known() -> None:
     assert observed is not None and observed.publishers[0].unobserved == ['history', 'depth']
 
 
-def test_the_raw_infos_and_rclpy_s_own_methods_give_one_snapshot(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+def test_the_raw_infos_and_rclpy_s_own_methods_give_one_snapshot(
+        monkeypatch: pytest.MonkeyPatch) -> None:
     import rclpy
     import std_msgs.msg
     from rclpy.qos import QoSProfile, ReliabilityPolicy

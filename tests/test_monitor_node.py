@@ -419,6 +419,11 @@ def test_a_graph_that_never_settles_is_said(processes: Processes,
     diagnostics.spin(3.0)
     assert budget.share() < CPU_BUDGET, f'{budget.share():.1%} of a core'
     assert budget.longest_gap() < 1.0 + LATE
+    # --once waits for a settled graph: it takes the whole --wait, and says why
+    started = time.monotonic()
+    _, report = once(str(SENSOR), '--name', '/churner', wait=8.0)
+    assert time.monotonic() - started >= 8.0
+    assert 'NODL443' in report['nodl: system']['codes']
 
 
 def test_ctrl_c_stops_within_a_second_after_a_complete_last_publication(
@@ -510,3 +515,38 @@ def test_a_killed_process_of_three_nodes_makes_each_error(processes: Processes,
         when, status = diagnostics.wait_status(f'nodl: {name}', lambda s: 'NODL434' in codes(s), 10)
         assert level(status) == 2
         assert when - killed < 5.0, f'{name}: {when - killed:.1f} s'
+
+
+def test_the_readme_lists_every_parameter_with_its_default() -> None:
+    import re
+
+    from nodl.monitor.node import _NUMERIC, MonitorSettings
+
+    readme = (REPO / 'README.md').read_text(encoding='utf-8')
+    start = readme.index('### Health monitoring')
+    section = readme[start:readme.index('\n### ', start)]
+    rows = dict(re.findall(r'^\| `(\w+)` \| ([0-9.]+) \|', section, re.M))
+    defaults = MonitorSettings()
+    assert {name: float(rows[name]) for name in _NUMERIC} == {
+        name: getattr(defaults, name) for name in _NUMERIC}
+
+
+def test_a_process_s_turn_falls_only_on_nodes_that_can_be_called() -> None:
+    from nodl.live.observe import ObservedEndpoint, ObservedNode
+    from nodl.monitor.expected import expected_from_definitions
+    from nodl.monitor.node import Monitor
+    from nodl.targets.placement import Definition
+
+    names = ['/p/a', '/p/b', '/p/c', '/q/alone']
+    monitor = Monitor(expected_from_definitions([Definition(file=str(SENSOR))] * 4, names))
+    for fqn, state in monitor.states.items():
+        state.count, state.participant = 1, ('q' if fqn == '/q/alone' else 'p') * 24
+        state.observed = ObservedNode(fqn.rpartition('/')[2], fqn.rpartition('/')[0])
+        state.observed.service_servers = [ObservedEndpoint(f'{fqn}/get_parameters', 'x')]
+    monitor.states['/p/b'].count = 0  # gone from its process: never its turn
+    period = monitor.settings.liveness_period
+    turns = [monitor._liveness_due(k * period + period / 2) for k in range(4)]
+    assert all(len(due) == 2 and '/q/alone' in due for due in turns)
+    assert {fqn for due in turns for fqn in due} == {'/p/a', '/p/c', '/q/alone'}
+    monitor.states['/p/c'].not_answering_since = 0.0  # silent: all of its process called
+    assert monitor._liveness_due(0.5) == {'/p/a', '/p/c', '/q/alone'}

@@ -10,7 +10,14 @@ or at module level) and every call that gives it an entity is read: ``create_pub
 
 Values are resolved when the source fixes them: literals, module and class constants, instance
 attributes set once from constants, f-strings and ``+`` of constants, module functions whose
-body returns an expression of their arguments.  Anything else is a :class:`Gap`, located.
+body returns an expression of their arguments.  Anything else is a :class:`Gap`, located.  A
+node class's base defined in another module of the package (:class:`PackageSources`) gives the
+class its entities, at their own place.
+
+Speed: a module's text is searched before its tree is walked (:class:`_Lines`): only the
+statements that call an entity method or pass a node as an argument are walked for entities,
+only functions that name ``Node``/``create_node`` are looked into for nodes made by calls, and
+each module is walked in one pass per question, its constants resolved once.
 """
 
 from __future__ import annotations
@@ -144,10 +151,6 @@ class _Lines:
         self._found[words] = found
         return found
 
-    def within(self, words: str, node: ast.AST) -> bool:
-        """Whether any of ``words`` occurs on a line of ``node``."""
-        return _on_lines(self.lines(words), node)
-
 
 def _in_range(lines: list[int], first: int, last: int) -> bool:
     """Whether one of ``lines`` (ascending) is between ``first`` and ``last``."""
@@ -199,13 +202,20 @@ def _assigned_names(body: Iterable[ast.stmt]) -> dict[str, list[ast.expr]]:
     return out
 
 
+#: Statements that assign no name and hold no statement that does (functions and classes are
+#: scopes of their own).
+_NO_ASSIGNMENT = frozenset({ast.Expr, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.Return, ast.Import,
+                            ast.ImportFrom, ast.Pass, ast.Raise, ast.Assert, ast.Delete, ast.Global, ast.Nonlocal,
+                            ast.Break, ast.Continue})
+
+
 def _assigned_in(stmts: Iterable[ast.stmt], out: dict[str, list[ast.expr]]) -> None:
     for stmt in stmts:
         kind = stmt.__class__
         if kind is ast.Assign:
             for target in stmt.targets:  # type: ignore[attr-defined]
                 _record(target, stmt.value, out)  # type: ignore[attr-defined]
-        elif kind is ast.Expr or kind is ast.FunctionDef or kind is ast.ClassDef or kind is ast.Return:
+        elif kind in _NO_ASSIGNMENT:
             continue
         elif isinstance(stmt, ast.AnnAssign) and stmt.value is not None:
             _record(stmt.target, stmt.value, out)
@@ -265,6 +275,7 @@ class _Module:
         self._imports_at_top = text is not None and text.count('import') == sum(
             1 for s in tree.body if s.__class__ is ast.Import or s.__class__ is ast.ImportFrom)
         self._params: dict[int, set[str]] = {}
+        self._bases: dict[int, Any] = {}
         self._collect_imports(tree.body, True)
         for stmt in tree.body:
             if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
@@ -295,7 +306,7 @@ class _Module:
                         imports[first] = first
             elif kind is ast.ImportFrom:
                 assert isinstance(stmt, ast.ImportFrom)
-                base = _absolute(stmt.module, stmt.level, self._package)
+                base = _absolute(stmt.module, stmt.level, self._package) if stmt.level else stmt.module or ''
                 for alias in stmt.names:
                     imports[alias.asname or alias.name] = f'{base}.{alias.name}' if base else alias.name
             elif self._imports_at_top or not isinstance(stmt, _HOLDERS) or not self.may_hold(_IMPORT_WORD, stmt):
@@ -316,6 +327,15 @@ class _Module:
                         self._collect_imports(inner, top)
                 for handler in getattr(stmt, 'handlers', None) or []:
                     self._collect_imports(handler.body, top)
+
+    def base_value(self, base: ast.expr, resolver: _Resolver) -> Any:
+        """What a class's base (an expression of module-level code) stands for, resolved once."""
+        found = self._bases.get(id(base), self)
+        if found is self:
+            found = resolver.value(base, _Scope(self))
+            if not isinstance(found, _CallValue):  # (it holds its scope: the module would hold itself)
+                self._bases[id(base)] = found
+        return found
 
     def params_of(self, function: ast.FunctionDef | ast.AsyncFunctionDef) -> set[str]:
         """The parameters of ``function`` (found once per function)."""
@@ -498,6 +518,8 @@ class PackageSources:
 class _Scope:
     """Where an expression is read: its module, class, function bindings and helper arguments."""
 
+    __slots__ = ('module', 'cls', 'function', 'arguments', 'depth', 'owner', '_local', '_params')
+
     def __init__(self, module: _Module, cls: ast.ClassDef | None = None,
                  function: ast.FunctionDef | ast.AsyncFunctionDef | None = None,
                  arguments: dict[str, Any] | None = None, depth: int = 0,
@@ -591,7 +613,7 @@ class _Resolver:
         """The class of the package's other modules that a class's base names, with its module."""
         if self.sources is None:
             return None
-        value = self.value(base, _Scope(module))
+        value = module.base_value(base, self)
         if not isinstance(value, _Symbol) or value.dotted in _NODE_CLASSES:
             return None
         found = self.package_class(value.dotted)
@@ -1053,6 +1075,8 @@ def _arguments(call: ast.Call, names: tuple[str, ...], skip: int = 0) -> dict[st
 class _NodeBuilder:
     """Collects the entities of one node while its code is walked."""
 
+    __slots__ = ('extractor', 'node', 'visited')
+
     def __init__(self, extractor: 'PythonExtractor', node: ExtractedNode) -> None:
         self.extractor = extractor
         self.node = node
@@ -1140,10 +1164,13 @@ class PythonExtractor:
             return []
         found: list[ExtractedNode] = []
         owners: list[tuple[ast.ClassDef, ast.FunctionDef | ast.AsyncFunctionDef | None]] = []
+        # a class in a function says 'class' where no module-level class statement does
+        nested = module.lines is None or module.lines.text.count('class') != len(module.classes)
         for stmt in module.tree.body:
             if isinstance(stmt, ast.ClassDef) and stmt.name not in kinds:
                 owners.append((stmt, None))
-            elif isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)) and module.may_hold(_CLASS_WORD, stmt):
+            elif nested and isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)) and \
+                    module.may_hold(_CLASS_WORD, stmt):
                 owners += [(c, stmt) for c in _walk(stmt) if isinstance(c, ast.ClassDef)]
         for cls, function in owners:
             scope = _Scope(module, None, function)
@@ -1222,7 +1249,7 @@ class PythonExtractor:
                         out[name] = out[base.id]
                         changed = True
                         break
-                    value = self.resolver.value(base, _Scope(module))
+                    value = module.base_value(base, self.resolver)
                     if isinstance(value, _Symbol) and value.dotted in _NODE_CLASSES:
                         out[name] = _NODE_CLASSES[value.dotted]
                         changed = True
@@ -1395,6 +1422,8 @@ class PythonExtractor:
             elif method == 'declare_parameters':
                 self._parameters(builder, scope, call)
             return
+        if not call.args and not call.keywords:
+            return  # given no node
         node_args = [i for i, a in enumerate(call.args) if self._is_receiver(a, receivers)]
         node_kwargs: list[str | None] = [k.arg for k in call.keywords
                                          if k.arg and self._is_receiver(k.value, receivers)]
@@ -1793,39 +1822,21 @@ def _fields(cls: type) -> tuple[str, ...]:
     return fields
 
 
-def _children(node: ast.AST) -> list[ast.AST]:
-    """The child nodes of ``node`` (what ``ast.iter_child_nodes`` gives, without its generators),
-    the leaves of :data:`_LEAF_FIELDS` left out."""
-    out: list[ast.AST] = []
-    fields = _FIELDS.get(node.__class__)
-    if fields is None:
-        fields = _fields(node.__class__)
-    for name in fields:
-        value = getattr(node, name, None)
-        if value.__class__ is list:
-            out += [item for item in value if isinstance(item, ast.AST)]
-        elif isinstance(value, ast.AST):
-            out.append(value)
-    return out
-
-
 def _walk(*nodes: ast.AST) -> list[ast.AST]:
     """Every node of ``nodes`` (siblings, in order) in ``ast.walk``'s order (breadth first),
     gathered in one pass.  The list may hold ``None`` and names where a list field of a node
     holds them (``Dict.keys``, ``arguments.kw_defaults``): look for nodes by their class."""
     found: list[Any] = list(nodes)
     fields_of = _FIELDS
-    index = 0
-    while index < len(found):
-        node = found[index]
-        index += 1
+    append = found.append
+    for node in found:  # (a list iterated while it grows: each node once, in the order added)
         fields = fields_of.get(node.__class__)
         for name in _fields(node.__class__) if fields is None else fields:
             value = getattr(node, name, None)
             if value.__class__ is list:
                 found += value
-            elif isinstance(value, ast.AST):
-                found.append(value)
+            elif value is not None:  # a node (or a constant of a pattern: no fields)
+                append(value)
     return found
 
 
@@ -1847,7 +1858,7 @@ def _calls(stmt: ast.AST) -> list[ast.Call]:
             value = getattr(current, name, None)
             if value.__class__ is list:
                 stack += [child for child in value if child.__class__ is not class_def]
-            elif isinstance(value, ast.AST) and value.__class__ is not class_def:
+            elif value is not None and value.__class__ is not class_def:
                 stack.append(value)
     found.sort(key=_POSITION)
     return found
@@ -1915,10 +1926,8 @@ def _starts(tree: ast.Module, wanted: Iterable[str] | None = None, top: bool = F
             continue
         names = out[''] if not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)) else []
         found: list[Any] = [stmt]  # breadth first, as ast.walk
-        index = 0
-        while index < len(found):
-            node = found[index]
-            index += 1
+        append = found.append
+        for node in found:  # (grows while iterated)
             kind = node.__class__
             if kind is ast.Call:
                 func = node.func
@@ -1931,8 +1940,8 @@ def _starts(tree: ast.Module, wanted: Iterable[str] | None = None, top: bool = F
                 value = getattr(node, field_name, None)
                 if value.__class__ is list:
                     found += value
-                elif isinstance(value, ast.AST):
-                    found.append(value)
+                elif value is not None:  # a node (or a constant of a pattern: no fields)
+                    append(value)
         if isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef)):
             out[stmt.name] = names
     return out
@@ -1956,12 +1965,13 @@ def _generated(text: str) -> int:
     return 0
 
 
+_READ_FLAGS = os.O_RDONLY | getattr(os, 'O_BINARY', 0)
+
+
 def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
     """The text of a source file, or the NODL907 diagnostic of why it cannot be read."""
-    from nodl.files import describe_os_error
-
     try:
-        handle = os.open(path, os.O_RDONLY | getattr(os, 'O_BINARY', 0))
+        handle = os.open(path, _READ_FLAGS)
         try:
             size = os.fstat(handle).st_size
             raw = b''
@@ -1981,6 +1991,8 @@ def read_source(path: str) -> tuple[str | None, Diagnostic | None]:
                                     'nodl extract; extract from the files that make nodes', file=path,
                                     code='NODL907')
     except OSError as exc:
+        from nodl.files import describe_os_error
+
         return None, Diagnostic(Severity.ERROR, f'cannot read the file: {describe_os_error(exc)}', file=path,
                                 code='NODL907')
     if raw.startswith(b'\xef\xbb\xbf'):  # a byte order mark: not part of the text

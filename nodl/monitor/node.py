@@ -9,7 +9,8 @@ topic whose definition declares a deadline (its rate measured).  It follows the 
 every ``liveness_period`` seconds (one node of a process in turn, all of them once one is
 silent): a node that stops answering for ``liveness_timeout`` seconds is ERROR long
 before its participant lease ends.  The rate subscriptions and liveness clients belong to
-a second hidden node that nothing waits on (taken from at each tick).  Bad input is kept
+a second hidden node that nothing waits on (taken from at each tick); the graph is polled
+by a thread that wakes the loop only on a change.  Bad input is kept
 up with or said in ``nodl: system``: a parameter event storm is coalesced (NODL441),
 events lost are said and the parameters read again (NODL442), a graph that does not
 settle is said (NODL443), scans spaced out for the budget are said (NODL439).
@@ -17,7 +18,7 @@ settle is said (NODL443), scans spaced out for the budget are said (NODL439).
 Its parameters: ``publish_rate`` (Hz, 1.0), ``grace_period`` (s, 5.0: how long an
 expected node may take to appear), ``rate_window`` (s, 2.0) and ``rate_tolerance`` (0.2:
 a rate below ``(1 - tolerance) / deadline`` is WARN), ``liveness_period`` (s, 1.0),
-``liveness_timeout`` (s, 2.0), ``scan_period`` (s, 2.0: the full scan when nothing
+``liveness_timeout`` (s, 2.0), ``scan_period`` (s, 3.0: the full scan when nothing
 changed), ``restart_window`` (s, 30.0: how long two nodes of one name are "restarting",
 the old one's lease, before they are namesakes) and ``scan_budget`` (0.1: the share of
 one core graph scans may take; beyond it scans are spaced out and the system status says
@@ -27,6 +28,7 @@ it is shedding).
 from __future__ import annotations
 
 import fnmatch
+import threading
 import time
 from collections import deque
 from dataclasses import dataclass, field
@@ -45,12 +47,12 @@ __all__ = ['MonitorSettings', 'Monitor', 'DEFAULT_IGNORED', 'POLL_PERIOD']
 #: Nodes never reported as unexpected (besides hidden ones): launch_ros's own node and
 #: tf2's transform listener nodes.
 DEFAULT_IGNORED = ('launch_ros_*', 'transform_listener_impl_*')
-#: How often the graph's signature is polled (10 Hz): node names each time, topic names
-#: every TOPIC_POLLS-th time.
+#: How often the graph's signature is polled (10 Hz, by a thread): node names each time,
+#: topic names every TOPIC_POLLS-th time.
 POLL_PERIOD = 0.1
 TOPIC_POLLS = 3
-#: How often timers (grace, liveness, rates) are evaluated (at a poll's wake-up; a scan
-#: that saw a change, and a parameter event, refresh the statuses at once).
+#: How often timers (grace, liveness, rates) are evaluated (a scan and a parameter event
+#: refresh the statuses at once).
 TICK = 0.5
 #: The largest history a rate subscription keeps between two drains.
 _MAX_RATE_DEPTH = 10000
@@ -79,7 +81,7 @@ class MonitorSettings:
     rate_tolerance: float = 0.2
     liveness_period: float = 1.0
     liveness_timeout: float = 2.0
-    scan_period: float = 2.0
+    scan_period: float = 3.0
     restart_window: float = 30.0
     scan_budget: float = 0.1
     #: Node name patterns (fnmatch, on the fully qualified name or the base name) never
@@ -179,9 +181,8 @@ class Monitor:
         self.statuses: dict[str, Status] = {}
         self._published: dict[str, tuple[Any, ...]] = {}
         self._levels: dict[str, int] = {}
-        self._signature: Any = None
-        self._topics_signature: Any = None
-        self._polls = 0
+        #: Graph changes the poller thread found, oldest first (the loop takes them).
+        self._graph_changes: deque[float] = deque()
         #: When polls found the graph changed (the last CHURN_WINDOW seconds).
         self._changes: deque[float] = deque()
         self._next_scan = 0.0
@@ -335,52 +336,91 @@ class Monitor:
         the last statuses (published before returning)."""
         assert self.node is not None and self.view is not None
         deadline = time.monotonic() + wait if once else float('inf')
-        next_poll = next_tick = time.monotonic()
-        next_publish = time.monotonic()
-        while not stop():
-            now = time.monotonic()
-            if now >= deadline:
-                break
-            # ticks ride on polls' wake-ups: every wake-up rebuilds the executor's wait set
-            self.executor.spin_once(timeout_sec=max(0.0, min(next_poll, next_publish, deadline,
-                                                             self._next_flush()) - now))
-            now = time.monotonic()
-            self._flush_events(now)
-            if now >= next_poll:
-                next_poll = now + POLL_PERIOD
-                self._poll(now)
-            if now >= next_tick - POLL_PERIOD / 2:  # on the poll's wake-up
-                next_tick = now + TICK
-                self._tick(now)
-                self._refresh(now)
-                if once and self._complete(now):
+        next_tick = next_publish = time.monotonic()
+        # the graph is polled by a thread that wakes the executor only when it changed (or
+        # ``stop()`` became true): every wake-up of an executor rebuilds its wait set
+        wake = self.node.create_guard_condition(lambda: None)
+        halt = threading.Event()
+        watcher = threading.Thread(target=self._watch, args=(wake, halt, stop),
+                                   name='nodl-monitor-graph', daemon=True)
+        watcher.start()
+        try:
+            while not stop():
+                now = time.monotonic()
+                if now >= deadline:
                     break
-            if now >= next_publish:
-                self._publish(now)
-                next_publish = now + 1.0 / max(self.settings.publish_rate, 1e-3)
+                self.executor.spin_once(timeout_sec=max(0.0, min(
+                    next_tick, next_publish, deadline, self._next_flush(), self._scan_due()) - now))
+                now = time.monotonic()
+                self._flush_events(now)
+                self._follow(now)
+                if now >= next_tick:
+                    next_tick = now + TICK
+                    self._tick(now)
+                    self._refresh(now)
+                    if once and self._complete(now):
+                        break
+                if now >= next_publish:
+                    self._publish(now)
+                    next_publish = now + 1.0 / max(self.settings.publish_rate, 1e-3)
+        finally:
+            halt.set()
+            watcher.join(timeout=2 * POLL_PERIOD + 1.0)
+            self.node.destroy_guard_condition(wake)
         now = time.monotonic()
         self._refresh(now, publish_changes=False)
         self._publish(now)
         return self.ordered_statuses()
 
+    def _watch(self, wake: Any, halt: threading.Event, stop: Callable[[], bool]) -> None:
+        """The graph poller (a thread): node names every POLL_PERIOD, topic names every
+        TOPIC_POLLS-th time; a change is queued with its time and wakes the loop."""
+        assert self.view is not None
+        polls = 0
+        nodes_before: Any = None
+        topics_before: Any = None
+        while True:
+            polls += 1
+            topics = polls % TOPIC_POLLS == 1
+            try:
+                nodes, listed = self.view.signature(topics)
+            except Exception:  # noqa: BLE001 - the context is shutting down: stop polling
+                return
+            changed = nodes != nodes_before
+            nodes_before = nodes
+            if topics:
+                changed = changed or listed != topics_before
+                topics_before = listed
+            if changed:
+                self._graph_changes.append(time.monotonic())
+            if changed or stop():
+                wake.trigger()
+            if halt.wait(POLL_PERIOD):
+                return
+
     def ordered_statuses(self) -> list[Status]:
         """The statuses: the system's first, then the nodes' by name."""
         return [self.statuses[k] for k in sorted(self.statuses, key=lambda n: (n != SYSTEM, n))]
 
-    def _poll(self, now: float) -> None:
-        assert self.view is not None
-        self._polls += 1
-        topics = self._polls % TOPIC_POLLS == 1 or self._signature is None
-        nodes, listed = self.view.signature(topics)
-        changed = nodes != self._signature
-        self._signature = nodes
-        if topics:
-            changed = changed or listed != self._topics_signature
-            self._topics_signature = listed
+    def _scan_due(self) -> float:
+        """When the next scan may run: at once for a first one, as soon as the budget
+        allows for a change, else every ``scan_period``."""
+        if self.snapshot is None:
+            return 0.0
+        if self._scan_wanted:
+            return self._next_scan
+        return max(self._next_scan, self.snapshot.time + self.settings.scan_period)
+
+    def _follow(self, now: float) -> None:
+        """Take the graph changes the poller queued; scan when one is wanted and due."""
+        changed = False
+        while self._graph_changes:
+            when = self._graph_changes.popleft()
+            self._changes.append(when)
+            self._stable_since = max(self._stable_since, when)
+            changed = True
         if changed:
-            self._stable_since = now
             self._scan_wanted = True
-            self._changes.append(now)
         if now >= self._next_scan and (self._scan_wanted or self.snapshot is None
                                        or now - self.snapshot.time >= self.settings.scan_period):
             self._scan(now)
@@ -521,6 +561,9 @@ class Monitor:
         groups: dict[str, list[str]] = {}
         due: set[str] = set()
         for fqn, state in self.states.items():
+            if not state.count or state.expected.resolved is None or state.observed is None \
+                    or not self._serves_parameters(state):
+                continue  # not called (see _tick): never a process's turn
             if state.participant is None:
                 due.add(fqn)
             else:
@@ -557,7 +600,8 @@ class Monitor:
                 if state.not_answering_since is None:
                     state.not_answering_since = state.ping_sent
                 state.ping = None
-            if due and state.ping is None and now - state.ping_sent >= self.settings.liveness_period \
+            period = self.settings.liveness_period
+            if due and state.ping is None and now - state.ping_sent >= period \
                     and (state.last_answer is not None or client.service_is_ready()):
                 state.ping = client.handle.send_request(GetParameters.Request(names=[]))
                 state.ping_sent = now
