@@ -169,3 +169,22 @@ def test_an_action_name_resolves_as_a_topic_name(rules: list[str], expected: str
     names = _with_node(node_name, '/ns', _argv(rules), served)
     assert {n.partition('/_action/')[0] for n in names} == {expected}
     assert resolve_name('plan', node_name, '/ns', rules) == expected
+
+
+#: Names a definition may write, where the two former rule sets disagreed ('~x', 'a//b',
+#: '{foo}') and around them: declared_name_error must refuse exactly what rclpy refuses.
+DECLARED_NAMES = ['~x', '~', '~/x', '~xy', 'a//b', '//a', '{foo}', '{foo}/x', '{}', '{1a}',
+                  '{node}', '{ns}/x', '/{ns}/x', 'a/{namespace}', '{node}/{ns}', 'x/', '1a',
+                  'a/1b', 'a b', 'a}{b', '{node', '{{node}}', '/', '', 'scan', '/scan']
+
+
+def test_declared_name_error_refuses_what_rclpy_refuses() -> None:
+    from nodl.naming import declared_name_error
+
+    def ask(node: Any) -> dict[str, bool]:
+        return {name: _outcome(lambda: node.resolve_topic_name(name)).startswith('ERROR')
+                for name in DECLARED_NAMES}
+
+    refused = _with_node('n', '/ns', [], ask)
+    assert {name: declared_name_error(name) is not None for name in DECLARED_NAMES} == refused
+    assert refused['a//b'] and refused['{foo}'] and not refused['~x']

@@ -6,6 +6,8 @@ real node uses.  It follows rcl (``rcl/expand_topic_name.c``, ``remap.c``,
 ``arguments.c``, ``node.c``) and the rmw validators, and its tests compare it
 with real rclpy nodes.
 
+* :func:`declared_name_error` -- the one check of a topic, service or action name a
+  definition writes (rcl's rules; ``nodl validate``'s NODL201 words its reason).
 * :func:`expand_name` -- ``~``, ``~/x``, ``{node}``, ``{ns}``/``{namespace}``,
   relative and absolute names, as ``rclpy.expand_topic_name`` does.
 * :func:`parse_remap_rules` -- ``from:=to``, ``node:from:=to``,
@@ -34,7 +36,7 @@ from __future__ import annotations
 
 from nodl.naming.remap_rules import (RULE_KINDS, InvalidRemapRuleError, RemapArgs, RemapRule,
                                             parse_remap_rule, parse_remap_rules)
-from nodl.naming.resolution import (NodeNames, declared_names, expand, expand_name,
+from nodl.naming.resolution import (NodeNames, declared_name_error, declared_names, expand, expand_name,
                                            fully_qualified,
                                            join_name, node_fqn, node_name_after_remaps,
                                            node_namespace_after_remaps, relativize, resolve_name,
@@ -44,7 +46,7 @@ from nodl.naming.validation import (InvalidNameError, full_name_error, namespace
 
 __all__ = [
     'InvalidNameError', 'InvalidRemapRuleError', 'RemapRule', 'RemapArgs', 'RULE_KINDS',
-    'NodeNames', 'topic_name_error', 'full_name_error', 'namespace_error', 'node_name_error',
+    'NodeNames', 'declared_name_error', 'topic_name_error', 'full_name_error', 'namespace_error', 'node_name_error',
     'normalize_namespace', 'expand_name', 'parse_remap_rule', 'parse_remap_rules',
     'node_name_after_remaps', 'node_namespace_after_remaps', 'node_fqn', 'resolve_name',
     'join_name', 'split_name', 'expand', 'relativize', 'fully_qualified', 'declared_names',

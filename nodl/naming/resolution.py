@@ -12,7 +12,7 @@ from nodl.naming.validation import (_VALID_FULL_NAME, TOPIC_MAX_LENGTH, InvalidN
                                            normalize_namespace, topic_name_error)
 from nodl.vocabulary import NAME_SUBSTITUTIONS
 
-__all__ = ['expand_name', 'node_name_after_remaps', 'node_namespace_after_remaps', 'NodeNames',
+__all__ = ['declared_name_error', 'expand_name', 'node_name_after_remaps', 'node_namespace_after_remaps', 'NodeNames',
            'node_fqn', 'resolve_name', 'join_name', 'split_name', 'expand', 'relativize',
            'fully_qualified', 'declared_names']
 
@@ -56,6 +56,27 @@ def expand_name(name: str, node_name: str, namespace: str) -> str:
         raise InvalidNameError('topic name', name, problem)
     namespace = checked_namespace(node_name, namespace)
     return _expand(name, node_name, namespace)
+
+
+@lru_cache(maxsize=4096)  # definitions declare the same few names again and again
+def declared_name_error(name: str) -> str | None:
+    """Why rcl refuses ``name`` as a topic, service or action name a node declares, or ``None``.
+
+    The one check of a name written in a definition: rcl's check before expansion
+    (:func:`topic_name_error`), its expansion (only ``{node}``, ``{ns}`` and
+    ``{namespace}`` are known), then rmw's check of the fully qualified result (no
+    repeated ``/``), for a node ``n`` in ``/ns``.  The reason is rcl's (or rmw's)
+    wording.  A name valid there is valid for every node, except a substitution that
+    expands to the root namespace (``{ns}//x``), which only an instance can tell.
+    """
+    problem = topic_name_error(name)
+    if problem is not None:
+        return problem
+    try:
+        expanded = _expand(name, 'n', '/ns')
+    except InvalidNameError as exc:
+        return exc.reason
+    return full_name_error(expanded)
 
 
 # -- applying rules (rcl remap.c, node.c, node_resolve_name.c) ---------------------------------

@@ -1,15 +1,10 @@
-"""ROS 2 names: topics, services and actions, and parameter names.
+"""ROS 2 names in definitions: topics, services and actions, and parameter names.
 
-Topic/service/action names follow the rules of the ROS 2 "Topic and
-Service name mapping" design, as rcl applies them to names before
-expansion:
-
-* not empty; only letters, digits, ``_`` and ``/``, plus ``~`` and ``{}``;
-* ``~`` only as the first character, alone or followed by ``/`` (``~/scan``);
-* no token (the text between slashes) starts with a digit;
-* no repeated ``/`` and no trailing ``/``;
-* ``{...}`` substitutions balanced, not nested, naming ``node``, ``ns`` or
-  ``namespace``.
+A topic, service or action name follows rcl's rules, which live in one place,
+:func:`nodl.naming.declared_name_error` (tested against real rclpy).  This module
+words rcl's reason for a definition's author, naming the character, token or
+substitution at fault and what to write instead.  Parameter names follow the
+NoDL rule: words of letters, digits, ``_`` and ``/`` separated by ``.``.
 """
 
 from __future__ import annotations
@@ -21,6 +16,7 @@ if TYPE_CHECKING:
     from typing import Any
 
 from nodl.diagnostics import Diagnostic, DocPath, Severity
+from nodl.naming.resolution import declared_name_error
 from nodl.validation.characters import check_text
 from nodl.validation.messages import described, show, subject
 from nodl.vocabulary import NAME_SUBSTITUTIONS
@@ -31,41 +27,76 @@ __all__ = ['SUBSTITUTIONS', 'ros_name_problem', 'parameter_name_problem',
 #: Substitutions rcl expands in names (the vocabulary's table).
 SUBSTITUTIONS = NAME_SUBSTITUTIONS
 
-_ALLOWED = re.compile(r'[A-Za-z0-9_/~{}]*')
+_ALLOWED = re.compile(r'[A-Za-z0-9_/~{}]')
 _SUBSTITUTION = re.compile(r'\{([^{}]*)\}')
 _IDENTIFIER = re.compile(r'[A-Za-z_][A-Za-z0-9_]*')
 _PARAMETER_NAME = re.compile(r'[A-Za-z_][A-Za-z0-9_/]*(\.[A-Za-z_][A-Za-z0-9_/]*)*')
 
+_TILDE = "'~' may only start a name, followed by '/' (write '~/name')"
+
 
 def ros_name_problem(name: str) -> str | None:
-    """Which rule ``name`` breaks, or ``None`` if it is a valid ROS 2 name."""
+    """Which rule ``name`` breaks, or ``None`` if rcl accepts it as a topic/service/action name.
+
+    The rules are rcl's (:func:`nodl.naming.declared_name_error`); the wording says
+    what is at fault and what to write.
+    """
+    reason = declared_name_error(name)
+    return None if reason is None else _worded(name, reason)
+
+
+def _worded(name: str, reason: str) -> str:
+    """rcl's ``reason`` for refusing ``name``, as a definition's author reads it."""
     if not name:
         return 'a name must not be empty'
-    bad = _ALLOWED.fullmatch(name) is None
-    if bad:
+    if name == '/':
+        return "'/' alone is not a topic or service name"
+    if 'characters other than alphanumerics' in reason and 'substitution' not in reason:
         char = next(c for c in name if not _ALLOWED.fullmatch(c))
         return (f"contains {char!r}, which is not allowed in a ROS name; use letters, digits, "
                 "'_' and '/' ('~' only as a '~/' prefix, '{}' around a substitution)")
-    if '~' in name[1:] or (name.startswith('~') and name != '~' and not name.startswith('~/')):
-        return "'~' may only start a name, followed by '/' (write '~/name')"
-    if '//' in name:
-        return "contains a repeated '/'"
-    if len(name) > 1 and name.endswith('/'):
-        return "must not end with '/'"
-    if name == '/':
-        return "'/' alone is not a topic or service name"
-    depth = 0
-    for char in name:
-        if char == '{':
-            depth += 1
-            if depth > 1:
-                return "substitutions cannot be nested ('{' inside '{...}')"
-        elif char == '}':
-            depth -= 1
+    if 'tilde' in reason:
+        return _TILDE
+    if 'unbalanced' in reason:
+        depth = 0
+        for char in name:
+            depth += (char == '{') - (char == '}')
             if depth < 0:
                 return "has a '}' without a matching '{'"
-    if depth:
         return "has a '{' without a matching '}'"
+    if reason.startswith('substitution name'):
+        if name.count('{') > name.count('}') or _nested(name):
+            return "substitutions cannot be nested ('{' inside '{...}')"
+        return _substitution_wording(name)
+    if reason.startswith('unknown substitution'):
+        return _substitution_wording(name)
+    if 'repeated' in reason:
+        if '//' in name:
+            return "contains a repeated '/'"
+        return ("gives a repeated '/' once expanded: '{ns}' and '{namespace}' expand to an "
+                "absolute namespace (/ns), so only the start of a name may hold them; write "
+                "'{ns}/x', not '/{ns}/x' or 'a/{ns}/x'")
+    if 'end with' in reason:
+        return "must not end with '/'"
+    if 'start with a number' in reason or 'starts with a number' in reason:
+        body = name[2:] if name.startswith('~/') else name
+        token = next(t for t in body.split('/') if t[:1].isdigit())
+        return f"token '{token}' starts with a digit; name tokens must start with a letter or '_'"
+    return reason
+
+
+def _nested(name: str) -> bool:
+    """Whether a ``{`` opens inside a substitution."""
+    depth = 0
+    for char in name:
+        depth += (char == '{') - (char == '}')
+        if depth > 1:
+            return True
+    return False
+
+
+def _substitution_wording(name: str) -> str:
+    """The first substitution of ``name`` that is not a known word, worded."""
     for match in _SUBSTITUTION.finditer(name):
         inner = match.group(1)
         if not _IDENTIFIER.fullmatch(inner):
@@ -73,11 +104,7 @@ def ros_name_problem(name: str) -> str | None:
         if inner not in SUBSTITUTIONS:
             known = ', '.join('{' + s + '}' for s in SUBSTITUTIONS)
             return f'unknown substitution {match.group(0)!r}; ROS expands {known}'
-    body = name[2:] if name.startswith('~/') else name.lstrip('~')
-    for token in body.split('/'):
-        if token[:1].isdigit():
-            return f"token '{token}' starts with a digit; name tokens must start with a letter or '_'"
-    return None
+    return "substitutions cannot be nested ('{' inside '{...}')"
 
 
 def parameter_name_problem(name: str) -> str | None:
