@@ -5,6 +5,14 @@ package keeps programs written against the toolkit's former paths working for on
 release: ``nodl_schema.X`` is :mod:`nodl.X`, with a :class:`DeprecationWarning` saying so.
 The reference implementation's own module names are not redirected: they belong to the
 reference's API (see README, "The nodl_schema compatibility package").
+
+The package is also the reference implementation's Python API, built on :mod:`nodl`:
+the names of its ``__all__`` below, and its modules ``composition``, ``loader``,
+``validation``, ``models``, ``ament_resolver``, ``local_resolver`` and ``rewrite``.
+One difference: where the reference raises jsonschema's ``ValidationError``, this package
+raises :class:`nodl_schema.ValidationError`, a :class:`ValueError` carrying the toolkit's
+diagnostics.  The models (and so the loader) need pydantic, ``rewrite_references``
+ruamel.yaml: ``pip install 'nodl-toolkit[reference]'``.
 """
 
 from __future__ import annotations
@@ -19,6 +27,34 @@ import warnings
 from typing import Any, Sequence
 
 import nodl
+from nodl_schema.ament_resolver import AmentIndexResolver
+from nodl_schema.composition import (
+    ResolutionError, Resolver, get_resolvers, register_resolver, resolver_registered,
+    unregister_resolver)
+from nodl_schema.local_resolver import LocalResolver
+from nodl_schema.validation import ValidationError, load_schema, validate
+
+TYPE_CHECKING = False  # the loader needs pydantic: imported on first use (see __getattr__)
+if TYPE_CHECKING:
+    from nodl_schema.loader import (
+        dump_nodl, load_nodl, load_nodl_with_doc_tree, parse_nodl, resolve_document)
+    from nodl_schema.rewrite import rewrite_references
+
+#: The reference implementation's ``__all__``, and :class:`ValidationError`.
+__all__ = [
+    'AmentIndexResolver', 'ResolutionError', 'Resolver', 'dump_nodl', 'load_nodl',
+    'load_nodl_with_doc_tree', 'load_schema', 'get_resolvers', 'parse_nodl', 'register_resolver',
+    'resolve_document', 'resolver_registered', 'rewrite_references', 'unregister_resolver',
+    'validate', 'ValidationError',
+]
+
+#: Names of the reference's API defined in a module that needs an optional dependency.
+_LAZY = {'dump_nodl': 'loader', 'load_nodl': 'loader', 'load_nodl_with_doc_tree': 'loader',
+         'parse_nodl': 'loader', 'resolve_document': 'loader', 'rewrite_references': 'rewrite'}
+
+# The built-in schemes, as in the reference (a later registration shadows them).
+register_resolver(AmentIndexResolver())
+register_resolver(LocalResolver())
 
 #: Submodules of the reference implementation's ``nodl_schema``: never redirected to ``nodl``.
 REFERENCE_MODULES = frozenset({'ament_resolver', 'composition', 'loader', 'local_resolver',
@@ -69,6 +105,10 @@ def __getattr__(name: str) -> Any:
     """``nodl_schema.X`` for a name of :mod:`nodl` (deprecated: use ``nodl.X``)."""
     if name.startswith('__'):
         raise AttributeError(name)
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f'{__name__}.{_LAZY[name]}'), name)
+        globals()[name] = value
+        return value
     try:
         value = getattr(nodl, name)
     except AttributeError:
