@@ -63,7 +63,7 @@ def rewrite_references(source: Path, rewrites: dict[str, str]) -> str:
     text = source.read_text(encoding='utf-8')
     check_text(text, str(source))
     yaml = YAML()
-    yaml.width = 4096  # type: ignore[assignment]  # no wrapping of long values
+    yaml.width = 4096  # no wrapping of long values
     yaml.indent(mapping=2, sequence=4, offset=2)
     data = yaml.load(text)
     rules = {_canonical(old, source): new for old, new in rewrites.items()}
