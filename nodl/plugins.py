@@ -91,7 +91,8 @@ EXTENSION_POINTS: dict[str, ExtensionPointSpec] = {p.group: p for p in (
                        'checks of `nodl analyse` over a launched system'),
     ExtensionPointSpec('nodl.generators', '1.0', 'nodl.generate:GeneratorExtension',
                        'code generators, one per language (the entry point name)'),
-    ExtensionPointSpec('nodl.reporters', '1.0', None, 'output formats of diagnostics'),
+    ExtensionPointSpec('nodl.reporters', '1.0', 'nodl.reporting.reporters:ReporterExtension',
+                       "output formats of every verb's report (`--format NAME`)"),
 )}
 
 

@@ -48,10 +48,13 @@ from nodl.launch.params import RuntimeValue
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
+    from nodl.reporting.junit import JUnitCase
+    from nodl.reporting.reporters import Report
     from nodl.targets.resolve import Provenance
 
 __all__ = ['node_to_dict', 'analysis_to_dict', 'format_json', 'format_text', 'format_sarif',
-           'format_junit', 'summary', 'node_provenance', 'coverage']
+           'format_junit', 'junit_cases', 'analysis_report', 'summary', 'node_provenance',
+           'coverage']
 
 
 def node_provenance(node: AnalysedNode) -> Provenance:
@@ -149,39 +152,47 @@ def format_text(analysis: Analysis, verbose: bool = False) -> str:
 
 def format_sarif(analysis: Analysis) -> str:
     """SARIF 2.1.0 (one result per finding)."""
-    from nodl.reporting.sarif import format_sarif as sarif
+    from nodl.reporting.reporters import SarifReporter
 
-    return sarif([f.diagnostic for f in analysis.findings])
+    return SarifReporter().report(analysis_report(analysis))
 
 
-def format_junit(analysis: Analysis) -> str:
-    """JUnit XML: one test case per kind of finding (failed when it has errors), the
-    findings as failure text and their warnings as the case's output."""
-    # (control and bidi characters shown as escapes: nodl.text_safety)
-    from nodl.text_safety import xml_report_attribute as quoteattr, xml_report_text as escape
-
+def junit_cases(analysis: Analysis) -> list[JUnitCase]:
+    """One JUnit test case per kind of finding (failed when it has errors), the errors as
+    its failure and the other findings as its output."""
     from nodl.analysis.findings import KINDS
     from nodl.analysis.system import LAUNCH_KIND
+    from nodl.reporting.junit import JUnitCase, JUnitFailure
 
     by_kind: dict[str, list[Any]] = {kind: [] for kind in (LAUNCH_KIND, *KINDS)}
     for finding in analysis.findings:
         by_kind.setdefault(finding.kind, []).append(finding)
-    suite = analysis.launch_file or 'launch'
+    classname = 'nodl.analyse.' + (analysis.launch_file or 'launch')
     cases = []
-    failures = 0
     for kind, found in by_kind.items():
         errors = [f for f in found if f.severity is Severity.ERROR]
-        others = [f for f in found if f.severity is not Severity.ERROR]
-        body = ''
-        if errors:
-            failures += 1
-            text = '\n'.join(str(f) for f in errors)
-            body += (f'<failure message={quoteattr(f"{len(errors)} error(s)")} '
-                     f'type={quoteattr(kind)}>{escape(text)}</failure>')
-        if others:
-            body += f'<system-out>{escape(chr(10).join(str(f) for f in others))}</system-out>'
-        cases.append(f'  <testcase classname={quoteattr("nodl.analyse." + suite)} '
-                     f'name={quoteattr(kind)}>{body}</testcase>')
-    return ('<?xml version="1.0" encoding="UTF-8"?>\n'
-            f'<testsuite name={quoteattr("nodl analyse " + suite)} tests="{len(cases)}" '
-            f'failures="{failures}" errors="0">\n' + '\n'.join(cases) + '\n</testsuite>\n')
+        failures = [JUnitFailure(kind, f'{len(errors)} error(s)', '\n'.join(str(f) for f in errors))
+                    ] if errors else []
+        cases.append(JUnitCase(kind, [f.diagnostic for f in found], bool(errors), classname=classname,
+                               failures=failures,
+                               output=[str(f) for f in found if f.severity is not Severity.ERROR]))
+    return cases
+
+
+def format_junit(analysis: Analysis) -> str:
+    """JUnit XML: one test case per kind of finding (:func:`junit_cases`)."""
+    from nodl.reporting.reporters import JUnitReporter
+
+    return JUnitReporter().report(analysis_report(analysis))
+
+
+def analysis_report(analysis: Analysis, verbose: bool = False) -> Report:
+    """The analysis as every reporter reads it: its findings, the nodes as the JSON payload,
+    a test case per kind of finding, the text report, and the coverage and summary lines."""
+    from nodl.reporting.reporters import Report
+
+    return Report(f'nodl analyse {analysis.launch_file or "launch"}',
+                  [f.diagnostic for f in analysis.findings],
+                  summary=f'{coverage(analysis)}\n{summary(analysis)}',
+                  text=format_text(analysis, verbose), payload=analysis_to_dict(analysis),
+                  cases=junit_cases(analysis))

@@ -42,8 +42,9 @@ class AnalyseVerb(Verb):
                              help='a remapping rule given to every node (NODE:FROM:=TO: to one)')
         add_client_library_argument(parser)
         add_launch_code_arguments(parser)
-        parser.add_argument('--format', choices=('text', 'json', 'sarif', 'junit'), default='text',
-                            help='how to print the report (default: text)')
+        from nodl.cli.report_options import add_format_argument
+
+        add_format_argument(parser, 'how to print the report: a registered reporter')
         parser.add_argument('-o', '--output', metavar='FILE',
                             help='write the report to FILE instead of standard output')
         parser.add_argument('--log', metavar='FILE',
@@ -246,14 +247,13 @@ class AnalyseVerb(Verb):
         except PolicyError as exc:
             print(exc, file=sys.stderr)
             return EXIT_USAGE
-        if args.format == 'json':
-            text = report.format_json(analysis)
-        elif args.format == 'sarif':
-            text = report.format_sarif(analysis)
-        elif args.format == 'junit':
-            text = report.format_junit(analysis)
-        else:
-            text = report.format_text(analysis, args.verbose)
+        from nodl.cli.report_options import reporter_for
+
+        reporter = reporter_for(args, prog)
+        if reporter is None:
+            return EXIT_USAGE
+        result = report.analysis_report(analysis, args.verbose)
+        text = reporter.report(result)
         if args.log:
             from nodl.analysis.log import format_log
 
@@ -268,14 +268,10 @@ class AnalyseVerb(Verb):
                 return EXIT_USAGE
         if args.output:
             write_file(args.output, text)
-            if args.format != 'text':
-                print(report.coverage(analysis), file=sys.stderr)
-                print(report.summary(analysis), file=sys.stderr)
         else:
             sys.stdout.write(text)
-            if args.format != 'text':
-                print(report.coverage(analysis), file=sys.stderr)
-                print(report.summary(analysis), file=sys.stderr)
+        if not reporter.FOR_PEOPLE:  # the verdict for a person, apart
+            print(result.summary, file=sys.stderr)
         if analysis.unreadable:
             return EXIT_USAGE
         return EXIT_FAILURE if analysis.errors else EXIT_OK

@@ -25,10 +25,11 @@ class ValidateVerb(Verb):
 
         parser.add_argument('--kind', choices=[kind.value for kind in Kind],
                             help='require this kind of document (default: detect it)')
-        parser.add_argument('--format', choices=('text', 'json', 'sarif', 'junit'), default='text',
-                            help='how to print diagnostics (default: text; sarif: SARIF 2.1.0 '
-                                 'for code scanning; junit: JUnit XML for CI, one test case '
-                                 'per file)')
+        from nodl.cli.report_options import add_format_argument
+
+        add_format_argument(parser, 'how to print diagnostics: a registered reporter (sarif: '
+                                    'SARIF 2.1.0 for code scanning; junit: JUnit XML for CI, one '
+                                    'test case per file)')
         parser.add_argument('--strict', action='store_true',
                             help='treat warnings as errors')
         parser.add_argument('--resolve', action='store_true',
@@ -70,7 +71,10 @@ class ValidateVerb(Verb):
         from nodl.cli.diagnostic_options import DiagnosticPolicy, PolicyError
         from nodl.cli.output import Progress
         from nodl.diagnostics import Diagnostic, Severity
-        from nodl.reporting import Tally, format_json, format_text, plural, summary_line, without_info
+        from nodl.cli.report_options import reporter_for, write_report
+        from nodl.reporting import Tally, plural, summary_line, without_info
+        from nodl.reporting.junit import JUnitCase
+        from nodl.reporting.reporters import Report
         from nodl.validation.kinds import Kind
 
         try:
@@ -78,12 +82,15 @@ class ValidateVerb(Verb):
         except PolicyError as exc:
             print(exc, file=sys.stderr)
             return EXIT_USAGE
+        reporter = reporter_for(args, 'nodl validate')
+        if reporter is None:
+            return EXIT_USAGE
         tally = Tally()
         unreadable: list[Diagnostic] = []
-        cases: list[tuple[str, list[Diagnostic], bool, bool]] = []  # for --format junit
+        cases: list[JUnitCase] = []  # one test case per path
         invalid = False
         out = sys.stderr if args.stderr else sys.stdout
-        text = args.format == 'text'
+        text = reporter.FOR_PEOPLE
         progress = Progress('nodl validate')
         for stream in (sys.stdout, sys.stderr):  # the progress line is erased before any output
             if hasattr(stream, 'before_write'):
@@ -109,7 +116,7 @@ class ValidateVerb(Verb):
                 problem = Diagnostic(Severity.ERROR, result.problem or 'cannot be read',
                                      file=result.path, code=UNREADABLE_CODE)
                 unreadable.append(problem)
-                cases.append((result.path, [problem], True, True))
+                cases.append(JUnitCase(result.path, [problem], True, True))
                 print(problem, file=sys.stderr)
                 sys.stderr.flush()
                 continue
@@ -121,37 +128,26 @@ class ValidateVerb(Verb):
                 return EXIT_USAGE
             tally.files += 1
             tally.add(result.diagnostics)
-            cases.append((result.path, without_info(result.diagnostics), failed(result, args.strict),
-                          False))
+            cases.append(JUnitCase(result.path, without_info(result.diagnostics),
+                                   failed(result, args.strict)))
+            header = None
             if failed(result, args.strict):
                 invalid = True
             elif text and not args.quiet and result.report is not None:
-                kind = result.report.kind
-                out.write(f'{result.path}: valid {kind} definition\n')
-            if text:
-                shown = result.diagnostics if args.verbose else without_info(result.diagnostics)
-                out.write(format_text(shown))
+                header = f'{result.path}: valid {result.report.kind} definition'
+            shown = result.diagnostics if args.verbose else without_info(result.diagnostics)
+            out.write(reporter.unit(shown, header))
             out.flush()  # each file's diagnostics as soon as it is checked (Ctrl-C keeps them)
             progress.update(tally.files + len(unreadable))
         progress.clear()
         summary = summary_line(tally)
         if unreadable:
             summary += ', ' + plural(len(unreadable), 'unreadable path')
-        if args.format == 'sarif':
-            from nodl.reporting.sarif import format_sarif
-
-            out.write(format_sarif(tally.diagnostics + unreadable))
-            print(summary, file=sys.stderr)
-        elif args.format == 'junit':
-            from nodl.reporting.junit import JUnitCase, format_junit
-
-            out.write(format_junit([JUnitCase(*case) for case in cases], 'nodl validate'))
-            print(summary, file=sys.stderr)
-        elif not text:
-            out.write(format_json(tally.diagnostics + unreadable))
-            print(summary, file=sys.stderr)
-        elif not (args.quiet and tally.errors + tally.warnings == 0 and not unreadable):
-            out.write(summary + '\n')
+        # the text was shown file by file: only the summary is left (none when quiet and clean)
+        quiet = args.quiet and tally.errors + tally.warnings == 0 and not unreadable
+        write_report(reporter, Report('nodl validate', tally.diagnostics + unreadable,
+                                      summary=summary, cases=cases,
+                                      text='' if quiet else f'{summary}\n'), out)
         if unreadable:
             return EXIT_USAGE
         return EXIT_FAILURE if invalid else EXIT_OK
