@@ -14,8 +14,9 @@ from typing import Any, Callable
 from nodl.live.graph_events import ANSWERS, follower, spin_once
 from nodl.live.qos import qos_from_rclpy
 from nodl.naming import join_name
-from nodl.live.session import (LiveError, NodeNotFound, did_you_mean, is_toolkit_node,
+from nodl.live.session import (LiveError, NodeNotFound, is_toolkit_node,
                                       ros_session, split_node_name, without_toolkit_nodes)
+from nodl.validation.messages import did_you_mean
 from nodl.vocabulary import SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
@@ -129,7 +130,7 @@ def wait_for_node(node: Any, fqn: str, timeout: float) -> None:
     graph = follower(node)
     if graph.wait(lambda: fqn in graph.counts, time.monotonic() + timeout):
         return
-    hint = did_you_mean(fqn, list_nodes(node))
+    hint = did_you_mean(fqn, list_nodes(node), most=3, aside=True)
     raise NodeNotFound(f"node '{fqn}' was not found within {timeout:g} s{hint} (is it "
                        'running, in the same ROS_DOMAIN_ID, with discovery reaching it?)')
 

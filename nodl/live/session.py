@@ -9,7 +9,7 @@ from typing import Any, Iterable, Iterator
 from contextlib import contextmanager
 
 __all__ = ['LiveError', 'NodeNotFound', 'DuplicateNode', 'require_rclpy', 'ros_session',
-           'split_node_name', 'node_name_problem', 'did_you_mean', 'OBSERVER_PREFIX',
+           'split_node_name', 'node_name_problem', 'OBSERVER_PREFIX',
            'HIDDEN_NODE_PREFIX', 'is_hidden_node', 'is_toolkit_node', 'without_toolkit_nodes',
            'MONITOR_NODE_NAME']
 
@@ -75,17 +75,6 @@ def node_name_problem(name: str) -> str | None:
     if any(c in name for c in '~{}'):
         return "a running node's name holds no '~' or '{}' substitutions; write /namespace/name"
     return ros_name_problem(name)
-
-
-def did_you_mean(name: str, candidates: list[str]) -> str:
-    """`` (did you mean '/a'?)`` with the closest of ``candidates``, or ``''``."""
-    import difflib
-
-    by_base = [c for c in candidates if c.rpartition('/')[2] == name.rpartition('/')[2]]
-    close = by_base or difflib.get_close_matches(name, candidates, n=3, cutoff=0.6)
-    if not close:
-        return ''
-    return ' (did you mean ' + ' or '.join(f"'{c}'" for c in close[:3]) + '?)'
 
 
 def require_rclpy() -> Any:

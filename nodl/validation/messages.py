@@ -9,7 +9,7 @@ if TYPE_CHECKING:
 
 from nodl.diagnostics import DocPath
 
-__all__ = ['show', 'kind_of', 'described', 'did_you_mean', 'subject', 'one_of']
+__all__ = ['show', 'kind_of', 'described', 'did_you_mean', 'close_matches', 'subject', 'one_of']
 
 
 def show(value: Any, limit: int = 40) -> str:
@@ -62,18 +62,38 @@ def described(value: Any) -> str:
     return f'{kind_of(value)} ({show(value)})'
 
 
-def did_you_mean(word: Any, candidates: Iterable[str]) -> str:
-    """``"; did you mean 'x'?"`` when a candidate is close to ``word``, else ``''``."""
-    if not isinstance(word, str):
-        return ''
+def close_matches(word: str, candidates: Iterable[str], *, most: int = 1) -> list[str]:
+    """The candidates close to ``word``, best first, at most ``most``.
+
+    The same word in another case first; for a ROS name (holding ``/``), the
+    candidates with its last segment (``/b/scan`` for ``/a/scan``); else
+    difflib's closest (ratio 0.6 or more).
+    """
     options = list(candidates)
     lowered = {c.lower(): c for c in options}
     if word.lower() in lowered:
-        return f"; did you mean '{lowered[word.lower()]}'?"
+        return [lowered[word.lower()]]
+    if '/' in word:
+        last = word.rpartition('/')[2]
+        same_last = [c for c in options if c.rpartition('/')[2] == last]
+        if same_last:
+            return same_last[:most]
     import difflib  # only when a suggestion is needed: it costs start-up time
 
-    close = difflib.get_close_matches(word, options, n=1, cutoff=0.6)
-    return f"; did you mean '{close[0]}'?" if close else ''
+    return difflib.get_close_matches(word, options, n=most, cutoff=0.6)
+
+
+def did_you_mean(word: Any, candidates: Iterable[str], *, most: int = 1,
+                 aside: bool = False) -> str:
+    """``"; did you mean 'x'?"`` when candidates are close to ``word`` (:func:`close_matches`),
+    else ``''``; with ``aside``, ``" (did you mean 'x' or 'y'?)"`` for the middle of a sentence."""
+    if not isinstance(word, str):
+        return ''
+    close = close_matches(word, candidates, most=most)
+    if not close:
+        return ''
+    question = 'did you mean ' + ' or '.join(f"'{c}'" for c in close) + '?'
+    return f' ({question})' if aside else f'; {question}'
 
 
 def one_of(options: Iterable[Any]) -> str:
