@@ -25,7 +25,7 @@ import nodl
 import nodl_schema
 from nodl_schema import ValidationError, dump_nodl, load_nodl, load_schema, parse_nodl, validate
 from nodl_schema.composition import MergeError, merge_documents
-from nodl_schema.models import NodlDocument, from_toolkit, to_toolkit
+from nodl_schema.models import from_toolkit, to_toolkit
 
 SUITE = REPO / 'tests' / 'fixtures' / 'reference_api_suite'
 #: The reference's __all__ (commit noted in the suite's README).
