@@ -39,6 +39,7 @@ __all__ = [
     'RESOURCE_SEPARATOR', 'resource_name',
     # parameter types
     'SCALAR_TYPES', 'ARRAY_TYPES', 'FIXED_BASES', 'PARAMETER_TYPES', 'ALL_TYPE_WORDS',
+    'ROS_PARAMETER_TYPES', 'ROS_PARAMETER_TYPE_NAMES', 'PARAMETER_TYPE_BY_NUMBER',
     # QoS
     'QOS_KEYS', 'QOS_REQUIRED', 'QOS_ENUMS', 'QOS_DURATIONS', 'QOS_DEFAULT_VALUE',
     # client libraries
@@ -191,6 +192,18 @@ FIXED_BASES: tuple[str, ...] = ('string', 'int_array', 'double_array', 'string_a
 PARAMETER_TYPES: tuple[str, ...] = SCALAR_TYPES + ARRAY_TYPES
 #: For messages and suggestions.
 ALL_TYPE_WORDS: tuple[str, ...] = PARAMETER_TYPES + tuple(f'{b}_fixed_N' for b in FIXED_BASES)
+#: Parameter type -> ``rcl_interfaces/msg/ParameterType``: its constant's name and number.
+ROS_PARAMETER_TYPES: dict[str, tuple[str, int]] = {
+    'none': ('PARAMETER_NOT_SET', 0), 'bool': ('PARAMETER_BOOL', 1),
+    'int': ('PARAMETER_INTEGER', 2), 'double': ('PARAMETER_DOUBLE', 3),
+    'string': ('PARAMETER_STRING', 4), 'byte_array': ('PARAMETER_BYTE_ARRAY', 5),
+    'bool_array': ('PARAMETER_BOOL_ARRAY', 6), 'int_array': ('PARAMETER_INTEGER_ARRAY', 7),
+    'double_array': ('PARAMETER_DOUBLE_ARRAY', 8), 'string_array': ('PARAMETER_STRING_ARRAY', 9),
+}
+#: Parameter type -> its ``ParameterType`` constant's name (derived).
+ROS_PARAMETER_TYPE_NAMES: dict[str, str] = {w: n for w, (n, _) in ROS_PARAMETER_TYPES.items()}
+#: ``ParameterType`` number (as a running node reports it) -> parameter type (derived).
+PARAMETER_TYPE_BY_NUMBER: dict[int, str] = {k: w for w, (_, k) in ROS_PARAMETER_TYPES.items()}
 
 
 # --------------------------------------------------------------------------

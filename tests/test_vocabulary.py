@@ -171,3 +171,14 @@ def test_tables_beside_the_validator_table_name_its_rows() -> None:
 
     named = set(_RANGE_VALIDATORS) | {name for pair in _CONFLICTS for name in (pair[0], *pair[1])}
     assert named <= set(VALIDATORS), named - set(VALIDATORS)
+
+
+def test_ros_parameter_types_are_rcl_interfaces_constants() -> None:
+    """One table of ParameterType names and numbers; the by-name and by-number views derive."""
+    from rcl_interfaces.msg import ParameterType
+
+    assert set(v.ROS_PARAMETER_TYPES) == set(v.PARAMETER_TYPES)
+    for word, (name, number) in v.ROS_PARAMETER_TYPES.items():
+        assert getattr(ParameterType, name) == number, word
+    assert v.PARAMETER_TYPE_BY_NUMBER == {n: w for w, (_, n) in v.ROS_PARAMETER_TYPES.items()}
+    assert v.ROS_PARAMETER_TYPE_NAMES == {w: name for w, (name, _) in v.ROS_PARAMETER_TYPES.items()}

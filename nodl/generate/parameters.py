@@ -35,24 +35,15 @@ from typing import Any, Iterable, Sequence, Union
 from nodl.generate.identifiers import PYTHON_KEYWORDS, IdentifierScope
 from nodl.model.parameter_types import TypeSpec, parse_type
 from nodl.validation.validators import ValidatorRule, lookup
+from nodl.vocabulary import ROS_PARAMETER_TYPE_NAMES
 
 __all__ = ['ROS_TYPES', 'INT64_MIN', 'INT64_MAX', 'DOUBLE_MAX', 'ValidatorPlan', 'RangePlan',
            'ParameterPlan', 'StructPlan', 'ParametersPlan', 'plan_parameters', 'plan_parameter',
            'ros_type_of', 'type_problem', 'value_problems']
 
-#: Parameter type base -> the ROS parameter type (``rcl_interfaces/msg/ParameterType`` constant name).
-ROS_TYPES: dict[str, str] = {
-    'none': 'PARAMETER_NOT_SET',
-    'bool': 'PARAMETER_BOOL',
-    'int': 'PARAMETER_INTEGER',
-    'double': 'PARAMETER_DOUBLE',
-    'string': 'PARAMETER_STRING',
-    'byte_array': 'PARAMETER_BYTE_ARRAY',
-    'bool_array': 'PARAMETER_BOOL_ARRAY',
-    'int_array': 'PARAMETER_INTEGER_ARRAY',
-    'double_array': 'PARAMETER_DOUBLE_ARRAY',
-    'string_array': 'PARAMETER_STRING_ARRAY',
-}
+#: Parameter type base -> the ROS parameter type (``rcl_interfaces/msg/ParameterType`` constant
+#: name): the vocabulary's table.
+ROS_TYPES: dict[str, str] = ROS_PARAMETER_TYPE_NAMES
 
 #: The ROS parameter type in words, as messages use it.
 _ROS_TYPE_WORDS: dict[str, str] = {

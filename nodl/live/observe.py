@@ -17,7 +17,7 @@ from nodl.naming import join_name
 from nodl.live.session import (LiveError, NodeNotFound, is_toolkit_node,
                                       ros_session, split_node_name, without_toolkit_nodes)
 from nodl.validation.messages import did_you_mean
-from nodl.vocabulary import SERVICE_SECTIONS, TOPIC_SECTIONS
+from nodl.vocabulary import PARAMETER_TYPE_BY_NUMBER, SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
            'wait_for_node', 'list_nodes', 'count_nodes', 'ACTION_INFIX', 'DISCOVERY_WINDOW',
@@ -35,8 +35,7 @@ DISCOVERY_WINDOW = 3.5
 #: and at least until the answers to the session's first announcements are in
 #: (:data:`~nodl.live.graph_events.ANSWERS`); what it watched is said in its output.
 NAMESAKE_WATCH = ANSWERS
-_PARAMETER_TYPES = {0: 'none', 1: 'bool', 2: 'int', 3: 'double', 4: 'string', 5: 'byte_array',
-                    6: 'bool_array', 7: 'int_array', 8: 'double_array', 9: 'string_array'}
+_PARAMETER_TYPES = PARAMETER_TYPE_BY_NUMBER
 
 
 @dataclass
