@@ -23,7 +23,7 @@ export AMENT_PREFIX_PATH := $(abspath $(VENV))
 export CMAKE_PREFIX_PATH := $(abspath $(VENV))
 export PATH := $(abspath $(BIN)):$(PATH)
 
-.PHONY: demo test bench install lock system-deps clean FORCE
+.PHONY: demo test bench docs install lock system-deps clean FORCE
 
 install: $(STAMP)
 
@@ -91,6 +91,13 @@ lock: $(DEPS)
 
 bench: $(STAMP)
 	$(BIN)/python bench/run.py
+
+# The documentation site (ros/nodl_toolkit/doc, which rosdoc2 also builds for nodl_toolkit),
+# warnings as errors, into build/docs (open build/docs/index.html). Built from a copy in
+# build/docs-src: the build writes the examples' node pages into its source folder.
+docs: $(DEPS)
+	rm -rf build/docs-src && mkdir -p build && cp -R ros/nodl_toolkit/doc build/docs-src
+	$(BIN)/python -m sphinx -W --keep-going -b html build/docs-src build/docs
 
 clean:
 	rm -rf $(VENV) build install log *.egg-info

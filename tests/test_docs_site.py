@@ -1,0 +1,157 @@
+"""The documentation site (ros/nodl_toolkit/doc) builds with sphinx-build -W, and what it
+generates at build time (verbs, file formats, codes, API, the examples' node pages) is the
+toolkit's own: every verb and option, every schema field, every code, every public name."""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from conftest import REPO
+
+SITE = REPO / 'ros' / 'nodl_toolkit' / 'doc'
+sys.path.insert(0, str(SITE / '_ext'))
+
+import nodl_sphinx  # noqa: E402
+
+
+def _text(page: Path) -> str:
+    """The visible text of a built HTML page, whitespace folded."""
+    body = re.sub(r'<script.*?</script>|<style.*?</style>', '', page.read_text(encoding='utf-8'), flags=re.S)
+    return ' '.join(html.unescape(re.sub(r'<[^>]+>', ' ', body)).split())
+
+
+@pytest.fixture(scope='module')
+def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The site built as `make docs` builds it: from a copy of the folder, warnings as errors."""
+    work = tmp_path_factory.mktemp('docs')
+    shutil.copytree(SITE, work / 'src', ignore=shutil.ignore_patterns('__pycache__'))
+    result = subprocess.run([sys.executable, '-m', 'sphinx', '-W', '--keep-going', '-q', '-b', 'html',
+                             str(work / 'src'), str(work / 'html')],
+                            cwd=REPO, text=True, capture_output=True, timeout=180,
+                            env={**os.environ, 'NODL_REPOSITORY': str(REPO),
+                                 'AMENT_PREFIX_PATH': sys.prefix})
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert 'WARNING' not in result.stderr, result.stderr
+    return work / 'html'
+
+
+def test_the_guides_and_references_are_in_the_site(built: Path) -> None:
+    index = _text(built / 'index.html')
+    for page in ('guides/getting-started', 'guides/package-authors', 'guides/system-integrators',
+                 'guides/security-engineers', 'reference/verbs', 'reference/cli', 'reference/formats',
+                 'reference/codes', 'reference/api', 'reference/extending', 'reference/layout',
+                 'reference/benchmarks', 'reference/tests', 'examples/index'):
+        assert (built / f'{page}.html').is_file(), page
+        assert f'{page}.html' in (built / 'index.html').read_text(encoding='utf-8'), page
+    assert 'For package authors' in index
+
+
+def test_every_verb_and_option_is_in_the_verb_reference(built: Path) -> None:
+    import argparse
+
+    from nodl.cli.main import build_parser
+
+    page = _text(built / 'reference' / 'verbs.html')
+    verbs = nodl_sphinx._subcommands(build_parser())
+    assert len(verbs) >= 17
+    for name, parser in verbs.items():
+        assert f'nodl {name}' in page, name
+        for action in parser._actions:
+            if action.help == argparse.SUPPRESS:
+                continue
+            for option in action.option_strings:
+                assert option in page, (name, option)
+            if action.help and '%' not in action.help:
+                assert ' '.join(action.help.split()) in page, (name, action.help)
+
+
+def test_the_verb_reference_is_generated_from_the_parsers(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Not a copy: an option added to a parser is in the page at the next build."""
+    import nodl.cli.main as cli_main
+
+    made = cli_main.build_parser
+
+    def with_an_extra_option(argv: list[str] | None = None):  # type: ignore[no-untyped-def]
+        parser = made(argv)
+        nodl_sphinx._subcommands(parser)['validate'].add_argument(
+            '--brand-new-option', help='an option no page was written for')
+        return parser
+
+    monkeypatch.setattr(cli_main, 'build_parser', with_an_extra_option)
+    text = nodl_sphinx.verbs_markdown()
+    assert '- `--brand-new-option BRAND_NEW_OPTION`: an option no page was written for' in text
+
+
+@pytest.mark.parametrize('kind', ['parameter', 'interface', 'node'])
+def test_every_schema_field_is_in_its_format_page(built: Path, kind: str) -> None:
+    schema = json.loads((REPO / 'nodl' / 'schemas' / f'{kind}.schema.json').read_text(encoding='utf-8'))
+    page = _text(built / 'reference' / f'format-{kind}.html')
+    objects = [schema, *schema.get('definitions', {}).values()]
+    names = list(schema.get('definitions', {}))
+    assert names or schema.get('properties')
+    for name in names:
+        assert name in page, name
+    for shape in objects:
+        for field, spec in shape.get('properties', {}).items():
+            assert field in page, field
+            if spec.get('description'):
+                assert ' '.join(spec['description'].split()) in page, field
+    # a reference between schemas is a link to the definition's section
+    assert 'format-interface.html#schema-interface-' in (
+        built / 'reference' / 'format-node.html').read_text(encoding='utf-8')
+
+
+def test_every_code_is_in_the_codes_page(built: Path) -> None:
+    from nodl.codes import CODES
+
+    page = _text(built / 'reference' / 'codes.html')
+    for code in CODES:
+        assert code in page, code
+
+
+def test_every_public_name_has_its_api_entry(built: Path) -> None:
+    import nodl
+
+    page = (built / 'reference' / 'api.html').read_text(encoding='utf-8')
+    for name in nodl.__all__:
+        assert f'id="nodl.{name}"' in page, name
+
+
+def test_the_examples_node_pages_are_written_by_nodl_doc(built: Path) -> None:
+    for name, summary in (('laser-driver', 'Reads a 2D laser scanner'), ('camera-lifecycle', None)):
+        page = built / 'examples' / 'nodes' / f'{name}.html'
+        assert page.is_file(), name
+        if summary:
+            assert summary in _text(page)
+    assert 'nodes/index.html' in (built / 'examples' / 'index.html').read_text(encoding='utf-8')
+
+
+def test_a_broken_page_fails_the_build(tmp_path: Path) -> None:
+    """-W: a warning (here a link to a page that does not exist) fails the build, and the
+    generator markers must name a known generator."""
+    shutil.copytree(SITE, tmp_path / 'src', ignore=shutil.ignore_patterns('__pycache__'))
+    with open(tmp_path / 'src' / 'reference' / 'layout.md', 'a', encoding='utf-8') as page:
+        page.write('\nSee [nowhere](nowhere.md).\n\n% nodl:generate nonsense\n')
+    result = subprocess.run([sys.executable, '-m', 'sphinx', '-W', '-q', '-b', 'html',
+                             str(tmp_path / 'src'), str(tmp_path / 'html')],
+                            cwd=REPO, text=True, capture_output=True, timeout=180,
+                            env={**os.environ, 'NODL_REPOSITORY': str(REPO),
+                                 'AMENT_PREFIX_PATH': sys.prefix})
+    assert result.returncode != 0
+    assert 'nonsense' in result.stdout + result.stderr or 'nowhere' in result.stdout + result.stderr
+
+
+def test_the_makefile_builds_the_site_with_warnings_as_errors() -> None:
+    makefile = (REPO / 'Makefile').read_text(encoding='utf-8')
+    rule = makefile[makefile.index('\ndocs:'):]
+    rule = rule[:rule.index('\n\n')]
+    assert '-m sphinx -W' in rule and 'build/docs' in rule and 'ros/nodl_toolkit/doc' in rule
