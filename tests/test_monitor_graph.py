@@ -105,3 +105,15 @@ def test_the_raw_infos_and_rclpy_s_own_methods_give_one_snapshot(
         assert '/_graph_me' not in {e.node for infos in raw.topics.values() for e in infos}
     finally:
         rclpy.shutdown(context=context)
+
+
+def test_discovered_waits_for_every_announced_endpoint_s_qos() -> None:
+    from nodl.monitor.graph import discovered
+
+    raw = {'publishers': [('/n/out', ['std_msgs/msg/String'])],
+           'subscriptions': [('/n/in', ['std_msgs/msg/String'])],
+           'service_servers': [], 'service_clients': []}
+    out = TopicEndpoint('/n/out', '/n', 'publisher', 'std_msgs/msg/String', (), (), '', '01')
+    into = TopicEndpoint('/n/in', '/n', 'subscription', 'std_msgs/msg/String', (), (), '', '02')
+    assert not discovered(Snapshot(0.0, {'/n': 1}, {'/n': raw}, {'/n/out': [out]}))
+    assert discovered(Snapshot(0.0, {'/n': 1}, {'/n': raw}, {'/n/out': [out], '/n/in': [into]}))

@@ -215,7 +215,7 @@ def test_unexpected_node(processes: Processes, diagnostics: Diagnostics) -> None
     assert values(status)['NODL431 node /intruder'] == ('/intruder is running but the expected '
                                                         'system does not have it')
     rc, report = once(str(SENSOR), '--name', '/sensor_u')
-    assert rc == 0
+    assert rc == 0, report
     system = report['nodl: system']
     assert system['level'] == 'WARN' and system['codes'] == ['NODL431']
     assert report['nodl: /sensor_u']['level'] == 'OK'
@@ -253,7 +253,7 @@ def test_incompatible_subscription(processes: Processes, diagnostics: Diagnostic
     assert values(status)[key].endswith('durability: the publisher offers volatile but the '
                                         'subscription requests transient local')
     rc, report = once(str(SENSOR), '--name', '/sensor_i')
-    assert rc == 1 and 'NODL553' in report['nodl: /sensor_i']['codes']
+    assert rc == 1 and 'NODL553' in report['nodl: /sensor_i']['codes'], report
 
 
 def test_publishing_too_slowly_for_a_deadline(processes: Processes,

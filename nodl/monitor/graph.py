@@ -23,7 +23,7 @@ from nodl.live.qos import qos_from_rclpy
 from nodl.live.session import is_toolkit_node, split_node_name
 from nodl.naming import join_name
 
-__all__ = ['TopicEndpoint', 'Snapshot', 'GraphView', 'observed_node']
+__all__ = ['TopicEndpoint', 'Snapshot', 'GraphView', 'observed_node', 'discovered']
 
 _SECTIONS = ('publishers', 'subscriptions', 'service_servers', 'service_clients')
 
@@ -112,12 +112,14 @@ class GraphView:
     def _mine(self, fqn: str) -> bool:
         return fqn in self.own or is_toolkit_node(fqn)
 
-    def signature(self, topics: bool = True) -> tuple[Any, ...]:
-        """A cheap value that changes when nodes or (with ``topics``) topics come or go
-        (services are found by the periodic scans)."""
+    def signature(self, topics: bool = True, services: bool = False) -> tuple[Any, ...]:
+        """A cheap value that changes when nodes, (with ``topics``) topics or (with
+        ``services``) services come or go; without, services are found by the periodic
+        scans."""
         node = self.node
         return (sorted(node.get_node_names_and_namespaces()),
-                node.get_topic_names_and_types() if topics else None)
+                node.get_topic_names_and_types() if topics else None,
+                node.get_service_names_and_types() if services else None)
 
     def counts(self) -> dict[str, int]:
         """How many nodes of each fully qualified name the graph holds (less our own)."""
@@ -128,14 +130,14 @@ class GraphView:
                 counts[fqn] = counts.get(fqn, 0) + 1
         return counts
 
-    def scan(self, wanted: Iterable[str]) -> Snapshot:
-        """A full scan: the counts, the endpoints of the ``wanted`` nodes present, every
-        topic's endpoint infos."""
+    def scan(self, wanted: Iterable[str], everyone: bool = False) -> Snapshot:
+        """A full scan: the counts, the endpoints of the ``wanted`` nodes present (with
+        ``everyone``: of every node present), every topic's endpoint infos."""
         start = time.monotonic()
         process = time.process_time()
         node = self.node
         snapshot = Snapshot(start, self.counts())
-        for fqn in wanted:
+        for fqn in sorted(snapshot.counts) if everyone else wanted:
             if snapshot.counts.get(fqn, 0) < 1:
                 continue
             namespace, name = split_node_name(fqn)
@@ -214,6 +216,18 @@ class GraphView:
         return TopicEndpoint(topic, owner, kind, info.topic_type, tuple(sorted(qos.items())),
                              tuple(unobserved), _hash_text(getattr(info, 'topic_type_hash', None)),
                              bytes(info.endpoint_gid).hex())
+
+
+def discovered(snapshot: Snapshot) -> bool:
+    """Whether every publisher and subscription the scanned nodes announce (their
+    endpoint names, from the nodes' announcements) is also known with its QoS (the topic
+    infos, from DDS discovery, which comes later)."""
+    for fqn, raw in snapshot.endpoints.items():
+        known = {(e.kind, e.topic) for e in snapshot.of_node(fqn)}
+        for kind, section in (('publisher', 'publishers'), ('subscription', 'subscriptions')):
+            if any((kind, name) not in known for name, _ in raw.get(section, [])):
+                return False
+    return True
 
 
 def _info_dict(info: Any) -> dict[str, Any]:

@@ -39,7 +39,7 @@ from nodl.live.session import LiveError, MONITOR_NODE_NAME, is_hidden_node, requ
 from nodl.monitor.checks import (Finding, connection_findings, endpoint_findings,
                                         parameter_event_findings, rate_finding)
 from nodl.monitor.expected import DeadlineTopic, ExpectedNode, ExpectedSystem
-from nodl.monitor.graph import GraphView, Snapshot, observed_node
+from nodl.monitor.graph import GraphView, Snapshot, discovered, observed_node
 from nodl.monitor.status import SYSTEM, Status, status_name, to_message
 
 __all__ = ['MonitorSettings', 'Monitor', 'DEFAULT_IGNORED', 'POLL_PERIOD']
@@ -51,6 +51,12 @@ DEFAULT_IGNORED = ('launch_ros_*', 'transform_listener_impl_*')
 #: topic names every TOPIC_POLLS-th time.
 POLL_PERIOD = 0.1
 TOPIC_POLLS = 3
+#: ``--once`` watches at least this long: a participant that missed the middleware's first
+#: announcements is discovered at its next periodic one (every 3 s with Fast DDS).
+ONCE_MIN_WATCH = 3.2
+#: The scan period at most with ``--once`` (its report waits for a scan to confirm the
+#: graph settled).
+ONCE_SCAN_PERIOD = 0.5
 #: How often timers (grace, liveness, rates) are evaluated (a scan and a parameter event
 #: refresh the statuses at once).
 TICK = 0.5
@@ -181,6 +187,7 @@ class Monitor:
         self.statuses: dict[str, Status] = {}
         self._published: dict[str, tuple[Any, ...]] = {}
         self._levels: dict[str, int] = {}
+        self._once = False
         #: Graph changes the poller thread found, oldest first (the loop takes them).
         self._graph_changes: deque[float] = deque()
         #: When polls found the graph changed (the last CHURN_WINDOW seconds).
@@ -336,6 +343,7 @@ class Monitor:
         the last statuses (published before returning)."""
         assert self.node is not None and self.view is not None
         deadline = time.monotonic() + wait if once else float('inf')
+        self._once = once
         next_tick = next_publish = time.monotonic()
         # the graph is polled by a thread that wakes the executor only when it changed (or
         # ``stop()`` became true): every wake-up of an executor rebuilds its wait set
@@ -374,23 +382,25 @@ class Monitor:
 
     def _watch(self, wake: Any, halt: threading.Event, stop: Callable[[], bool]) -> None:
         """The graph poller (a thread): node names every POLL_PERIOD, topic names every
-        TOPIC_POLLS-th time; a change is queued with its time and wakes the loop."""
+        TOPIC_POLLS-th time (with ``--once``, whose report waits for the graph to settle
+        and costs no steady state: topic and service names every time); a change is
+        queued with its time and wakes the loop."""
         assert self.view is not None
         polls = 0
         nodes_before: Any = None
-        topics_before: Any = None
+        names_before: Any = None
         while True:
             polls += 1
-            topics = polls % TOPIC_POLLS == 1
+            names = self._once or polls % TOPIC_POLLS == 1
             try:
-                nodes, listed = self.view.signature(topics)
+                nodes, listed, served = self.view.signature(names, self._once)
             except Exception:  # noqa: BLE001 - the context is shutting down: stop polling
                 return
             changed = nodes != nodes_before
             nodes_before = nodes
-            if topics:
-                changed = changed or listed != topics_before
-                topics_before = listed
+            if names:
+                changed = changed or (listed, served) != names_before
+                names_before = (listed, served)
             if changed:
                 self._graph_changes.append(time.monotonic())
             if changed or stop():
@@ -409,7 +419,10 @@ class Monitor:
             return 0.0
         if self._scan_wanted:
             return self._next_scan
-        return max(self._next_scan, self.snapshot.time + self.settings.scan_period)
+        period = self.settings.scan_period
+        if self._once:
+            period = min(period, ONCE_SCAN_PERIOD)  # a report waits for a confirming scan
+        return max(self._next_scan, self.snapshot.time + period)
 
     def _follow(self, now: float) -> None:
         """Take the graph changes the poller queued; scan when one is wanted and due."""
@@ -421,8 +434,7 @@ class Monitor:
             changed = True
         if changed:
             self._scan_wanted = True
-        if now >= self._next_scan and (self._scan_wanted or self.snapshot is None
-                                       or now - self.snapshot.time >= self.settings.scan_period):
+        if now >= self._next_scan and now >= self._scan_due():
             self._scan(now)
             self._refresh(now)  # a change is published within a poll, not a tick
         elif self._scan_wanted and self._min_scan_gap > 1.0:
@@ -436,8 +448,9 @@ class Monitor:
     def _scan(self, now: float) -> None:
         assert self.view is not None
         previous = self.snapshot
+        # --once reads every node's endpoints: its report waits for their discovery
         snapshot = self.view.scan([fqn for fqn, s in self.states.items()
-                                   if s.expected.resolved is not None])
+                                   if s.expected.resolved is not None], everyone=self._once)
         self.snapshot = snapshot
         self._scan_wanted = False
         self._min_scan_gap = snapshot.cost / self.settings.scan_budget
@@ -463,6 +476,10 @@ class Monitor:
                 if observed is not None and _qos_of(state.observed) != _qos_of(observed):
                     state.observed = observed
         self.connections = connection_findings(snapshot.topics)
+        if previous is None or previous.topics != snapshot.topics:
+            # an endpoint's QoS arrives with DDS discovery, after its node's announcement:
+            # --once waits for the topic infos to settle too
+            self._stable_since = now
 
     def _update_presence(self, state: _NodeState, count: int, now: float) -> None:
         before = state.count
@@ -597,7 +614,11 @@ class Monitor:
                     state.last_answer = now
                     state.not_answering_since = None
             if state.ping is not None and now - state.ping_sent > self.settings.liveness_timeout:
-                if state.not_answering_since is None:
+                # a first call can be lost while the service's reply path is still being
+                # discovered: until it first answered, a node has the grace period
+                first = state.last_answer is None and \
+                    now - (state.seen_at or now) < self.settings.grace_period
+                if state.not_answering_since is None and not first:
                     state.not_answering_since = state.ping_sent
                 state.ping = None
             period = self.settings.liveness_period
@@ -930,8 +951,11 @@ class Monitor:
 
     def _complete(self, now: float) -> bool:
         """``--once``: every expected node seen, scanned, its parameters read, and its
-        deadline topics measured over a whole window; the graph unchanged for 0.3 s."""
-        if self.snapshot is None or now - self._stable_since < 0.3:
+        deadline topics measured over a whole window; the graph unchanged for 0.3 s, as a
+        scan at least 0.3 s after the last change confirms (QoS arrive with DDS discovery,
+        after the nodes' announcements)."""
+        if self.snapshot is None or self.snapshot.time - self._stable_since < 0.3 \
+                or not discovered(self.snapshot) or now - self.started < ONCE_MIN_WATCH:
             return False
         for state in self.states.values():
             if not state.count:
