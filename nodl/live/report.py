@@ -7,15 +7,19 @@ differences are counted, not listed; promoted ones are errors.
 
 from __future__ import annotations
 
-import json
 from typing import Any
 
 from nodl.live.check import CheckResult
 from nodl.live.observe import watched_line
-from nodl.text_safety import xml_report_attribute as quoteattr, xml_report_text as escape
 from nodl.vocabulary import SECTION_KEYS
 
-__all__ = ['format_check_text', 'format_check_json', 'format_check_junit', 'format_check_sarif']
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from nodl.reporting.junit import JUnitCase
+    from nodl.reporting.reporters import Report
+
+__all__ = ['format_check_text', 'format_check_json', 'format_check_junit', 'format_check_sarif',
+           'check_payload', 'check_cases', 'check_report']
 
 
 def format_check_text(result: CheckResult, verbose: bool = False) -> str:
@@ -60,6 +64,13 @@ def _difference_dict(result: CheckResult, difference: Any) -> dict[str, Any]:
 
 
 def format_check_json(result: CheckResult) -> str:
+    """The JSON report (:func:`check_payload`)."""
+    from nodl.reporting.reporters import JsonReporter
+
+    return JsonReporter().report(check_report(result))
+
+
+def check_payload(result: CheckResult) -> dict[str, Any]:
     """``{"node", "definition", "conforms", "ignored", "namesakes_watched", "differences": [...]}``.
 
     Each difference has its kind, code, severity (after the overrides),
@@ -77,22 +88,30 @@ def format_check_json(result: CheckResult) -> str:
                                                   if result.watched is not None else None),
                             'differences': [_difference_dict(result, d)
                                             for d in result.differences]}
-    return json.dumps(data, indent=2, default=str) + '\n'
+    return data
 
 
 def format_check_sarif(result: CheckResult) -> str:
     """A SARIF 2.1.0 log: one rule per code, one result per difference, located at the
     entity's declaration (see :meth:`~nodl.live.check.CheckResult.location_of`); each
     message starts with the node's name."""
-    from nodl.reporting.sarif import format_sarif
+    from nodl.reporting.reporters import SarifReporter
 
-    return format_sarif([d.replace(message=f'{result.fqn}: {d.message}')
-                         for d in result.diagnostics])
+    return SarifReporter().report(check_report(result))
 
 
 def format_check_junit(result: CheckResult) -> str:
-    """A JUnit XML report: one test case per checked entity; drift is a failure."""
+    """A JUnit XML report: one test case per checked entity (:func:`check_cases`)."""
+    from nodl.reporting.reporters import JUnitReporter
+
+    return JUnitReporter().report(check_report(result))
+
+
+def check_cases(result: CheckResult) -> list[JUnitCase]:
+    """One JUnit test case per checked entity, in its section's class: each error difference
+    is a failure of its kind, the others the case's output."""
     from nodl.live.conformance import final_name
+    from nodl.reporting.junit import JUnitCase, JUnitFailure
 
     cases: dict[tuple[str, str], list[Any]] = {}
     # A difference names the entity as observed (expanded, remapped): find its declaration.
@@ -107,20 +126,23 @@ def format_check_junit(result: CheckResult) -> str:
     for d in result.differences:
         key = declared_as.get((d.section, d.name), (d.section, d.name))
         cases.setdefault(key, []).append(d)
-    failures = sum(1 for ds in cases.values() if any(d.severity == 'error' for d in ds))
-    suite = quoteattr(f'nodl check {result.fqn}')
-    out = ['<?xml version="1.0" encoding="UTF-8"?>',
-           f'<testsuite name={suite} tests="{len(cases)}" failures="{failures}" errors="0">']
-    for (section, name), diffs in sorted(cases.items()):
-        out.append(f'  <testcase classname={quoteattr(section)} name={quoteattr(name)}>')
-        # JUnit's schema wants the failures first and at most one system-out
-        for d in diffs:
-            if d.severity == 'error':
-                out.append(f'    <failure type={quoteattr(d.kind)} message={quoteattr(d.message)}>'
-                           f'{escape(str(d))}</failure>')
-        notes = [escape(str(d)) for d in diffs if d.severity != 'error']
-        if notes:
-            out.append('    <system-out>' + '\n'.join(notes) + '</system-out>')
-        out.append('  </testcase>')
-    out.append('</testsuite>')
-    return '\n'.join(out) + '\n'
+    return [JUnitCase(name, [result.diagnostic(d) for d in diffs],
+                      any(d.severity == 'error' for d in diffs), classname=section,
+                      failures=[JUnitFailure(d.kind, d.message, str(d))
+                                for d in diffs if d.severity == 'error'],
+                      output=[str(d) for d in diffs if d.severity != 'error'])
+            for (section, name), diffs in sorted(cases.items())]
+
+
+def check_report(result: CheckResult, verbose: bool = False) -> Report:
+    """The check as every reporter reads it: its differences as diagnostics located at the
+    entity's declaration, each message starting with the node's name (see
+    :meth:`~nodl.live.check.CheckResult.location_of`), the JSON payload, a test case per
+    checked entity, the text report and its verdict line."""
+    from nodl.reporting.reporters import Report
+
+    text = format_check_text(result, verbose)
+    return Report(f'nodl check {result.fqn}',
+                  [d.replace(message=f'{result.fqn}: {d.message}') for d in result.diagnostics],
+                  summary=format_check_text(result).splitlines()[-1], text=text,
+                  payload=check_payload(result), cases=check_cases(result))

@@ -12,15 +12,18 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass, field
-from typing import Any, Iterable
+from typing import TYPE_CHECKING, Any, Iterable
 
 from nodl.diagnostics import Diagnostic
 from nodl.monitor.checks import Finding
 from nodl.system.entities import Location
 
+if TYPE_CHECKING:
+    from nodl.reporting.reporters import Report
+
 __all__ = ['Status', 'SYSTEM', 'PREFIX', 'LEVEL_NAMES', 'status_name', 'to_message',
            'format_text', 'format_json', 'format_junit', 'format_sarif', 'jsonl_line',
-           'diagnostics_of']
+           'diagnostics_of', 'monitor_report']
 
 #: What every status name starts with.
 PREFIX = 'nodl: '
@@ -156,21 +159,34 @@ def format_text(statuses: list[Status], verbose: bool = False, note: str = '') -
 
 def format_json(statuses: list[Status], note: str = '') -> str:
     """The ``--once`` report as JSON: ``{"statuses": [...], "note": ...}``."""
-    return json.dumps({'statuses': [s.to_dict() for s in statuses], 'note': note},
-                      indent=2) + '\n'
+    from nodl.reporting.reporters import JsonReporter
+
+    return JsonReporter().report(monitor_report(statuses, note=note))
 
 
 def format_junit(statuses: list[Status]) -> str:
     """The ``--once`` report as JUnit XML: one test case per status, failed when ERROR."""
-    from nodl.reporting.junit import JUnitCase
-    from nodl.reporting.junit import format_junit as junit
+    from nodl.reporting.reporters import JUnitReporter
 
-    return junit([JUnitCase(s.name, diagnostics_of([s], True), s.level == 2) for s in statuses],
-                 'nodl monitor')
+    return JUnitReporter().report(monitor_report(statuses))
 
 
 def format_sarif(statuses: list[Status]) -> str:
     """The ``--once`` report as SARIF 2.1.0 (every finding a result)."""
-    from nodl.reporting.sarif import format_sarif as sarif
+    from nodl.reporting.reporters import SarifReporter
 
-    return sarif(diagnostics_of(statuses, True))
+    return SarifReporter().report(monitor_report(statuses))
+
+
+def monitor_report(statuses: list[Status], verbose: bool = False, note: str = '') -> Report:
+    """The ``--once`` report as every reporter reads it: every finding as a diagnostic, the
+    statuses as the JSON payload, a test case per status (failed when ERROR), the text
+    report."""
+    from nodl.reporting.junit import JUnitCase
+    from nodl.reporting.reporters import Report
+
+    return Report('nodl monitor', diagnostics_of(statuses, True),
+                  text=format_text(statuses, verbose, note),
+                  payload={'statuses': [s.to_dict() for s in statuses], 'note': note},
+                  cases=[JUnitCase(s.name, diagnostics_of([s], True), s.level == 2)
+                         for s in statuses])

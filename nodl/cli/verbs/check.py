@@ -48,9 +48,11 @@ class CheckVerb(Verb):
         from nodl.cli.arguments import add_definitions_argument
 
         add_definitions_argument(parser)
-        parser.add_argument('--format', choices=('text', 'json', 'junit', 'sarif'), default='text',
-                            help='output format (default: text; junit: JUnit XML; sarif: SARIF '
-                                 '2.1.0 for code scanning, each difference at its declaration)')
+        from nodl.cli.report_options import add_format_argument
+
+        add_format_argument(parser, 'output format: a registered reporter (junit: JUnit XML; '
+                                    'sarif: SARIF 2.1.0 for code scanning, each difference at '
+                                    'its declaration)')
         parser.add_argument('--junit', metavar='FILE', help='also write a JUnit XML report')
         parser.add_argument('-v', '--verbose', action='store_true',
                             help='also list what could not be verified')
@@ -69,14 +71,17 @@ class CheckVerb(Verb):
         from nodl.cli.diagnostic_options import DiagnosticPolicy, PolicyError
         from nodl.diagnostics import ValidationError
         from nodl.live.check import check_node
-        from nodl.live.report import (
-            format_check_json, format_check_junit, format_check_sarif, format_check_text)
+        from nodl.cli.report_options import reporter_for, write_report
+        from nodl.live.report import check_report
         from nodl.live.session import LiveError
         from nodl.reporting import format_text
 
         problem = definition_problem(args.definition)
         if problem is not None:
             print(f'nodl check: error: {problem}', file=sys.stderr)
+            return EXIT_USAGE
+        reporter = reporter_for(args, 'nodl check')
+        if reporter is None:
             return EXIT_USAGE
         definition = args.definition[0] if len(args.definition) == 1 else tuple(args.definition)
         if args.junit and isinstance(definition, str):
@@ -130,18 +135,11 @@ class CheckVerb(Verb):
         except PolicyError as exc:
             print(exc, file=sys.stderr)
             return EXIT_USAGE
-        if args.format == 'json':
-            sys.stdout.write(format_check_json(result))
-        elif args.format == 'junit':
-            sys.stdout.write(format_check_junit(result))
-        elif args.format == 'sarif':
-            sys.stdout.write(format_check_sarif(result))
-        else:
-            sys.stdout.write(format_check_text(result, args.verbose))
-        if args.format in ('json', 'junit', 'sarif'):  # the verdict for a person, apart
-            print(format_check_text(result).splitlines()[-1], file=sys.stderr)
+        write_report(reporter, check_report(result, args.verbose))  # a machine format: the verdict
         if args.junit:  # a report: replaced atomically; a failure is one line, exit status 2
             from nodl.cli.output import write_file
 
-            write_file(args.junit, format_check_junit(result))
+            from nodl.reporting.reporters import JUnitReporter
+
+            write_file(args.junit, JUnitReporter().report(check_report(result)))
         return EXIT_OK if result.conforms else EXIT_FAILURE

@@ -42,11 +42,11 @@ class MonitorVerb(Verb):
                                  'ERROR')
         parser.add_argument('--wait', type=float, default=10.0, metavar='S',
                             help='with --once: seconds to wait at most (default: 10)')
-        parser.add_argument('--format', choices=('text', 'json', 'junit', 'sarif', 'jsonl'),
-                            default='text',
-                            help='--once: how to print the report; jsonl: stream every change of '
-                                 'level as one JSON object per line (default: text, one line per '
-                                 'change)')
+        from nodl.cli.report_options import add_format_argument
+
+        add_format_argument(parser, '--once: how to print the report (a registered reporter); '
+                                    'jsonl: stream every change of level as one JSON object per '
+                                    'line (text: one line per change)', extra=('jsonl',))
         parser.add_argument('-v', '--verbose', action='store_true',
                             help='also list informational findings in the text report')
         parser.add_argument('--ignore-node', action='append', default=[], metavar='PATTERN',
@@ -75,7 +75,14 @@ class MonitorVerb(Verb):
             write_file(args.aggregator_config, format_config(analyzer_config(expected.nodes)))
             print(f'wrote {args.aggregator_config}: {len(expected.nodes)} nodes', file=sys.stderr)
             return EXIT_OK
-        return self._run(args, prog, expected)
+        reporter = None
+        if args.once and args.format != 'jsonl':  # the report's format, loaded before watching
+            from nodl.cli.report_options import reporter_for
+
+            reporter = reporter_for(args, prog)
+            if reporter is None:
+                return EXIT_USAGE
+        return self._run(args, prog, expected, reporter)
 
     @staticmethod
     def _expected(args: argparse.Namespace, prog: str) -> Any:
@@ -157,7 +164,7 @@ class MonitorVerb(Verb):
         return expected
 
     @staticmethod
-    def _run(args: argparse.Namespace, prog: str, expected: Any) -> int:
+    def _run(args: argparse.Namespace, prog: str, expected: Any, reporter: Any) -> int:
         import signal
 
         from nodl.live.session import LiveError
@@ -196,14 +203,8 @@ class MonitorVerb(Verb):
         if not args.once:
             return EXIT_OK
         note = 'interrupted: the report covers what was observed until then' if stopped else ''
-        if args.format == 'json':
-            sys.stdout.write(report.format_json(statuses, note))
-        elif args.format == 'junit':
-            sys.stdout.write(report.format_junit(statuses))
-        elif args.format == 'sarif':
-            sys.stdout.write(report.format_sarif(statuses))
-        elif args.format == 'text':
-            sys.stdout.write(report.format_text(statuses, args.verbose, note))
+        if reporter is not None:
+            sys.stdout.write(reporter.report(report.monitor_report(statuses, args.verbose, note)))
         sys.stdout.flush()
         if stopped and stopped[0] == signal.SIGINT:
             return EXIT_INTERRUPTED
