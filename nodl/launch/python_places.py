@@ -20,6 +20,9 @@ from nodl.launch.model import SourceLocation
 __all__ = ['keyword_places', 'frame_location']
 
 _TREES: dict[tuple[str, float, int], tuple[dict[tuple[int, int], ast.Call], ast.Module]] = {}
+#: What :func:`_scope_of` and :func:`_bound` read from a tree, found once per tree (a launch
+#: file that makes twenty nodes asks twenty times): by ``id`` of the tree, which the entry keeps.
+_FOUND: dict[int, tuple[ast.Module, dict[Any, Any]]] = {}
 
 
 def _parsed(path: str) -> tuple[dict[tuple[int, int], ast.Call], ast.Module]:
@@ -40,8 +43,19 @@ def _parsed(path: str) -> tuple[dict[tuple[int, int], ast.Call], ast.Module]:
         calls = {(n.lineno, n.col_offset + 1): n for n in ast.walk(tree) if isinstance(n, ast.Call)}
         if len(_TREES) > 256:
             _TREES.clear()
+            _FOUND.clear()
         found = _TREES[key] = (calls, tree)
     return found
+
+
+def _memo(tree: ast.Module) -> dict[Any, Any]:
+    """The findings kept for ``tree`` (see :data:`_FOUND`)."""
+    entry = _FOUND.get(id(tree))
+    if entry is None or entry[0] is not tree:
+        if len(_FOUND) > 256:
+            _FOUND.clear()
+        entry = _FOUND[id(tree)] = (tree, {})
+    return entry[1]
 
 
 def _calls(path: str) -> dict[tuple[int, int], ast.Call]:
@@ -53,9 +67,13 @@ _SCOPES = (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)
 
 def _scope_of(tree: ast.Module, line: int) -> ast.AST:
     """The innermost function whose lines hold ``line`` (the module if none does)."""
+    memo = _memo(tree)
+    scopes = memo.get('scopes')
+    if scopes is None:  # (in ast.walk's order, as the choice below depends on it)
+        scopes = memo['scopes'] = [node for node in ast.walk(tree) if isinstance(node, _SCOPES)]
     scope: ast.AST = tree
-    for node in ast.walk(tree):
-        if isinstance(node, _SCOPES) and node.lineno <= line <= (node.end_lineno or node.lineno):
+    for node in scopes:
+        if node.lineno <= line <= (node.end_lineno or node.lineno):
             if scope is tree or node.lineno >= getattr(scope, 'lineno', 0):
                 scope = node
     return scope
@@ -68,19 +86,34 @@ def _bound(tree: ast.Module, scope: ast.AST, name: str) -> ast.expr | None:
             *scope.args.posonlyargs, *scope.args.args, *scope.args.kwonlyargs,
             *(x for x in (scope.args.vararg, scope.args.kwarg) if x is not None))}:
         return None  # a parameter: its value is the caller's
+    memo = _memo(tree)
     for where in (scope, tree) if scope is not tree else (tree,):
-        values: list[ast.expr] = []
-        body = where.body if isinstance(where, (ast.Module, ast.FunctionDef, ast.AsyncFunctionDef)) else []
-        for node in (n for statement in body for n in _own_nodes(statement)):
-            if isinstance(node, ast.Assign) and any(isinstance(t, ast.Name) and t.id == name
-                                                    for t in node.targets):
-                values.append(node.value if len(node.targets) == 1 else ast.Constant(None))
-            elif isinstance(node, (ast.AnnAssign, ast.AugAssign)) and isinstance(node.target, ast.Name) \
-                    and node.target.id == name:
-                values.append(ast.Constant(None))  # annotated or changed: not plain to see
+        assigned = memo.get(id(where))
+        if assigned is None:
+            assigned = memo[id(where)] = _assignments(where)
+        values = assigned.get(name)
         if values:
             return values[0] if len(values) == 1 else None
     return None
+
+
+_UNCLEAR = ast.Constant(None)  # a value that is not plain to see: no places are read from it
+
+
+def _assignments(where: ast.AST) -> dict[str, list[ast.expr]]:
+    """The values each name is bound to by the statements of ``where`` (a function, or the
+    module), outside the functions and classes they define: a name assigned together with
+    another target, annotated or changed is bound to a value that is not plain to see."""
+    out: dict[str, list[ast.expr]] = {}
+    body = where.body if isinstance(where, (ast.Module, ast.FunctionDef, ast.AsyncFunctionDef)) else []
+    for node in (n for statement in body for n in _own_nodes(statement)):
+        if isinstance(node, ast.Assign):
+            value = node.value if len(node.targets) == 1 else _UNCLEAR
+            for name in {t.id for t in node.targets if isinstance(t, ast.Name)}:
+                out.setdefault(name, []).append(value)
+        elif isinstance(node, (ast.AnnAssign, ast.AugAssign)) and isinstance(node.target, ast.Name):
+            out.setdefault(node.target.id, []).append(_UNCLEAR)  # annotated or changed
+    return out
 
 
 def _own_nodes(statement: ast.stmt) -> list[ast.AST]:

@@ -147,6 +147,12 @@ class ParameterFileEntry:
     def __init__(self, param_file: Any, allow_substs: Any = False) -> None:
         self.path = normalize(param_file)
         self.allow_substs = allow_substs
+        #: The file once evaluated, as launch_ros's ``ParameterFile.evaluate`` keeps it: the
+        #: path and, with ``allow_substs``, the substituted text (None: not substituted).  One
+        #: entry given to many nodes (``configured_params = ParameterFile(RewrittenYaml(...))``,
+        #: nav2's bringup) is evaluated by the first node that reads it; the others get what it
+        #: gave, in whatever scope they are, as launch_ros gives them the same file.
+        self.evaluated: tuple[str, str | None] | None = None
 
 
 def _normalize_parameters(parameters: Any) -> list[Any]:
@@ -279,6 +285,11 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
             from nodl.files import tidy_path
 
             where = item.location or location
+            if item.evaluated is not None:  # evaluated once for every node, as launch_ros does
+                source = ParameterSource('file', 'node', where, path=item.evaluated[0])
+                source.text = item.evaluated[1]
+                out.append(source)
+                continue
             try:
                 path = perform(context, item.path)
             except Unevaluable as problem:
@@ -293,6 +304,8 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
             source = ParameterSource('file', 'node', where, path=path)
             if item.allow_substs is not False and _allow_substs(context, item.allow_substs, where):
                 _substitute_file(context, source, record, where)
+            if source.path is not None:  # (a file only the running launch can read: each node says so)
+                item.evaluated = (source.path, source.text)
             out.append(source)
         elif hasattr(item, 'nodl_parameter'):
             name, spec = item.nodl_parameter
