@@ -155,3 +155,83 @@ def test_the_makefile_builds_the_site_with_warnings_as_errors() -> None:
     rule = makefile[makefile.index('\ndocs:'):]
     rule = rule[:rule.index('\n\n')]
     assert '-m sphinx -W' in rule and 'build/docs' in rule and 'ros/nodl_toolkit/doc' in rule
+
+
+# -- every command example of the docs is what the command prints ------------------------------
+
+#: ```text blocks whose first line is `$ nodl ...`; the comment line before one may say how to
+#: run it (<!-- nodl:example cwd=tmp env=NAME=VALUE -->) or why it cannot run here
+#: (<!-- nodl:not-run REASON -->).
+EXAMPLE = re.compile(r'(?:^(<!-- nodl:(example|not-run)([^>]*)-->)\n)?^( *)```text\n *\$ (nodl [^\n]*)\n(.*?)\n *```',
+                     re.S | re.M)
+
+
+def _examples() -> list[tuple[str, str, str, str, list[str]]]:
+    """(page, marker kind, marker text, command, quoted lines) of every example in the docs."""
+    from site_pages import pages
+
+    found = []
+    for name, text in pages().items():
+        for match in EXAMPLE.finditer(text):
+            indent = len(match.group(4))
+            quoted = [line[indent:] for line in match.group(6).splitlines()]
+            found.append((name, match.group(2) or 'example', (match.group(3) or '').strip(),
+                          match.group(5), quoted))
+    return found
+
+
+def _matches(printed: list[str], quoted: list[str]) -> bool:
+    """Every quoted line is a printed one, in the same order (`...` and lines the docs leave
+    out stand for printed lines not quoted)."""
+    at = 0
+    for line in quoted:
+        if line == '...':
+            continue
+        try:
+            at = printed.index(line, at) + 1
+        except ValueError:
+            return False
+    return True
+
+
+def test_the_docs_have_command_examples() -> None:
+    examples = _examples()
+    assert len(examples) >= 8
+    for page, kind, marker, command, quoted in examples:
+        if kind == 'not-run':
+            assert len(marker) > 20, f'{page}: `{command}`: say why it cannot run here'
+
+
+@pytest.mark.parametrize('example', _examples(), ids=lambda e: f'{e[0]}: {e[3][:60]}')
+def test_every_command_example_prints_what_the_docs_quote(example: tuple[str, str, str, str, list[str]],
+                                                         tmp_path: Path) -> None:
+    import shlex
+
+    page, kind, marker, command, quoted = example
+    if kind == 'not-run':
+        return  # the marker says why and which test runs it instead (checked above)
+    options = dict(word.split('=', 1) if '=' in word else (word, '') for word in shlex.split(marker))
+    env = {**os.environ, 'PYTHONPATH': str(REPO), 'AMENT_PREFIX_PATH': sys.prefix}
+    env.pop('NODL_PATH', None)
+    for name, value in options.items():
+        if name == 'env':
+            key, _, setting = value.partition('=')
+            env[key] = setting
+    cwd = REPO
+    if options.get('cwd') == 'tmp':  # an example that writes files runs in a folder of its own
+        cwd = tmp_path
+        for name in ('tests', 'examples'):
+            (tmp_path / name).symlink_to(REPO / name)
+    arguments = shlex.split(command)[1:]
+    result = subprocess.run([sys.executable, '-m', 'nodl', *arguments], cwd=cwd, env=env, text=True,
+                            capture_output=True, timeout=60)
+    printed = (result.stdout + result.stderr).replace(str(tmp_path) + os.sep, '').splitlines()
+    while quoted and not quoted[-1]:
+        quoted = quoted[:-1]
+    assert _matches(printed, quoted), f'{page}: $ {command}\n' + '\n'.join(printed)
+
+
+def test_a_quoted_line_the_command_does_not_print_is_caught() -> None:
+    assert _matches(['a', 'b', 'c'], ['a', '...', 'c'])
+    assert not _matches(['a', 'b'], ['b', 'a'])
+    assert not _matches(['a', 'b'], ['a', 'changed'])

@@ -350,8 +350,10 @@ def _quoted(section: str, command: str) -> list[str] | None:
 
 
 def test_the_readme_quotes_what_the_flow_prints(workspace: Workspace, described) -> None:  # type: ignore[no-untyped-def]
-    readme = (REPO / 'README.md').read_text(encoding='utf-8')
-    section = readme[readme.index('### From a launch file to a fully covered system'):]
+    from site_pages import page
+
+    readme = page('guides/system-integrators')
+    section = readme[readme.index('## From a launch file to a fully covered system'):]
     final = _quoted(section, 'nodl analyse cart.launch.xml --definitions hand --definitions '
                              'extracted --definitions described')
     assert final, "README lost the flow's final analysis"

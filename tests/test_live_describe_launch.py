@@ -299,7 +299,9 @@ def test_the_readme_quotes_what_the_tool_prints(described) -> None:
     import re
 
     out, result = described
-    readme = (REPO / 'README.md').read_text(encoding='utf-8')
+    from site_pages import docs_text
+
+    readme = docs_text()
     block = re.search(r'```text\n\$ nodl describe --all --launch system\.launch\.xml rate:=5 -o '
                       r'overlay\n(.*?)```', readme, re.S)
     assert block, 'README lost its describe --all --launch example'

@@ -522,9 +522,11 @@ def test_the_readme_lists_every_parameter_with_its_default() -> None:
 
     from nodl.monitor.node import _NUMERIC, MonitorSettings
 
-    readme = (REPO / 'README.md').read_text(encoding='utf-8')
-    start = readme.index('### Health monitoring')
-    section = readme[start:readme.index('\n### ', start)]
+    from site_pages import page
+
+    readme = page('guides/system-integrators')
+    start = readme.index('## Health monitoring')
+    section = readme[start:readme.index('\n## ', start)]
     rows = dict(re.findall(r'^\| `(\w+)` \| ([0-9.]+) \|', section, re.M))
     defaults = MonitorSettings()
     assert {name: float(rows[name]) for name in _NUMERIC} == {

@@ -1,4 +1,5 @@
-"""The README stays true: its quoted command output is what the tool prints."""
+"""The docs stay true (README.md and the site, ros/nodl_toolkit/doc): their quoted command output
+is what the tool prints, their Python examples give the results they show."""
 
 from __future__ import annotations
 
@@ -8,8 +9,9 @@ import subprocess
 import sys
 
 from conftest import REPO
+from site_pages import docs_text, page
 
-README = (REPO / 'README.md').read_text(encoding='utf-8')
+README = docs_text()
 
 
 def test_quoted_validate_output_matches_the_tool() -> None:
@@ -24,7 +26,8 @@ def test_quoted_validate_output_matches_the_tool() -> None:
 
 
 def test_readme_names_the_two_commands() -> None:
-    assert 'make demo' in README and 'make test' in README
+    readme = (REPO / 'README.md').read_text(encoding='utf-8')
+    assert 'make demo' in readme and 'make test' in readme
 
 
 def test_quoted_policy_example_is_what_the_tool_writes(tmp_path) -> None:  # type: ignore[no-untyped-def]
@@ -54,7 +57,8 @@ def test_quoted_policy_example_is_what_the_tool_writes(tmp_path) -> None:  # typ
 
 
 def _api_blocks() -> list[str]:
-    section = README[README.index('## The Python API'):README.index('## File formats')]
+    api = page('reference/api')
+    section = api[:api.index('## API reference')]
     return re.findall(r'```python\n(.*?)```', section, re.S)
 
 
@@ -181,8 +185,8 @@ def test_the_integrators_flow_names_what_the_tools_write(tmp_path) -> None:  # t
     names (with the gap it mentions), the hand-written files of step 4 are the fixture's, and
     its commands are the verbs' (the outputs quoted are checked by
     tests/test_integration_definitions.py, which builds and runs the system)."""
-    section = README[README.index('### From a launch file to a fully covered system'):]
-    section = section[:section.index('\n### ', 1)]
+    section = README[README.index('## From a launch file to a fully covered system'):]
+    section = section[:section.index('\n## ', 1)]
     fixture = REPO / 'tests' / 'fixtures' / 'integration_definitions'
     result = subprocess.run([sys.executable, '-m', 'nodl', 'extract',
                              str(fixture / 'src' / 'cart_autonomy'), '-o', str(tmp_path / 'extracted')],
