@@ -12,6 +12,7 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from nodl.diagnostics import Diagnostic
     from nodl.extract.model import Extraction
+    from nodl.reporting.reporters import ReporterExtension
 
 #: Codes that mean the input cannot be read or used as asked (exit status 2).
 _USAGE_CODES = frozenset({'NODL020', 'NODL912', 'NODL913', 'NODL030', 'NODL031', 'NODL032', 'NODL033',
@@ -42,8 +43,9 @@ class ExtractVerb(Verb):
                                  'is a diagnostic (NODL920-926)')
         parser.add_argument('--force', action='store_true',
                             help='replace files nodl did not write, or drafts edited since')
-        parser.add_argument('--format', choices=('text', 'json', 'sarif', 'junit'), default='text',
-                            help='how to print diagnostics (default: text)')
+        from nodl.cli.report_options import add_format_argument
+
+        add_format_argument(parser, 'how to print diagnostics: a registered reporter')
         parser.add_argument('--strict', action='store_true', help='treat warnings (gaps) as errors')
         from nodl.cli.diagnostic_options import add_diagnostic_options
 
@@ -58,6 +60,11 @@ class ExtractVerb(Verb):
             policy = DiagnosticPolicy(args, 'nodl extract')
         except PolicyError as exc:
             print(exc, file=sys.stderr)
+            return EXIT_USAGE
+        from nodl.cli.report_options import reporter_for
+
+        reporter = reporter_for(args, 'nodl extract')
+        if reporter is None:
             return EXIT_USAGE
         extraction = extract_paths(args.paths)
         diagnostics = list(extraction.all_diagnostics)
@@ -95,7 +102,7 @@ class ExtractVerb(Verb):
         except PolicyError as exc:
             print(exc, file=sys.stderr)
             return EXIT_USAGE
-        self._report(args, extraction, diagnostics, written, usage)
+        self._report(args, reporter, extraction, diagnostics, written, usage)
         if usage:
             return EXIT_USAGE
         return EXIT_FAILURE if has_errors(diagnostics, args.strict) else EXIT_OK
@@ -148,9 +155,12 @@ class ExtractVerb(Verb):
             written.append(target)
         return written, notes
 
-    def _report(self, args: argparse.Namespace, extraction: Extraction, diagnostics: list[Diagnostic],
+    def _report(self, args: argparse.Namespace, reporter: ReporterExtension, extraction: Extraction,
+                diagnostics: list[Diagnostic],
                 written: list[str], usage: bool) -> None:
-        from nodl.reporting import Tally, format_json, format_text, plural, summary_line, without_info
+        from nodl.cli.report_options import write_report
+        from nodl.reporting import Tally, format_text, plural, summary_line, without_info
+        from nodl.reporting.reporters import Report, cases_by_file
 
         tally = Tally()
         tally.files = len(extraction.files)
@@ -158,7 +168,7 @@ class ExtractVerb(Verb):
         drafts = [path for path in written if os.path.basename(path) != 'nodes.yaml']
         summary = f'{plural(len(extraction.nodes), "node")} found, {plural(len(drafts), "draft")} written; ' + \
             summary_line(tally)
-        if args.format == 'text':
+        if reporter.FOR_PEOPLE:
             if not args.output and not args.diff and not usage:
                 from nodl.extract.targets import output_paths
                 from nodl.extract.writer import draft_text
@@ -171,24 +181,10 @@ class ExtractVerb(Verb):
                 sys.stdout.flush()
             # the drafts own standard output when they are printed; the diagnostics then go to stderr
             stream = sys.stdout if args.output or args.diff else sys.stderr
-            stream.write(format_text(without_info(diagnostics)))
-            for path in written:
-                stream.write(f'wrote {path}\n')
-            stream.write(summary + '\n')
-            return
-        if args.format == 'sarif':
-            from nodl.reporting.sarif import format_sarif
-
-            sys.stdout.write(format_sarif(without_info(diagnostics)))
-        elif args.format == 'junit':
-            from nodl.reporting.junit import JUnitCase, format_junit
-
-            by_file: dict[str, list[Diagnostic]] = {}
-            for d in without_info(diagnostics):
-                by_file.setdefault(d.file, []).append(d)
-            cases = [JUnitCase(f, ds, any(d.severity.value == 'error' or args.strict for d in ds))
-                     for f, ds in sorted(by_file.items())]
-            sys.stdout.write(format_junit(cases, 'nodl extract'))
         else:
-            sys.stdout.write(format_json(diagnostics))
-        print(summary, file=sys.stderr)
+            stream = sys.stdout
+        shown = without_info(diagnostics)
+        text = format_text(shown) + ''.join(f'wrote {path}\n' for path in written) + summary + '\n'
+        write_report(reporter, Report('nodl extract', shown, summary=summary, text=text,
+                                      payload=[d.to_dict() for d in diagnostics],
+                                      cases=cases_by_file(shown, args.strict)), stream)

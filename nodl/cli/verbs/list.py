@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, Verb
+from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
 
 class ListVerb(Verb):
@@ -15,8 +15,10 @@ class ListVerb(Verb):
 
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
         parser.add_argument('package', nargs='?', help='only this package')
-        parser.add_argument('--format', choices=('text', 'json'), default='text',
-                            help='output format (default: text)')
+        from nodl.cli.report_options import add_format_argument
+
+        add_format_argument(parser, 'output format: a registered reporter that can show a listing',
+                            kind='listing')
         parser.add_argument('--kind', choices=('node', 'interface'),
                             help='only node definitions (legacy ones included) or only interface '
                                  'definitions (default: both)')
@@ -29,14 +31,18 @@ class ListVerb(Verb):
                          "index's of the same package and name.")
 
     def main(self, args: argparse.Namespace) -> int:
-        import json
         import os
 
         from nodl.cli.arguments import definitions_failed, load_definitions
+        from nodl.cli.report_options import reporter_for
+        from nodl.reporting.reporters import Report
         from nodl.index.registry import list_registrations
         from nodl.targets.overlay import using
         from nodl.targets.resolve import Provenance
 
+        reporter = reporter_for(args, 'nodl list', 'listing')
+        if reporter is None:
+            return EXIT_USAGE
         definitions = load_definitions(args, 'nodl list')
         if isinstance(definitions, int):
             return definitions
@@ -44,18 +50,20 @@ class ListVerb(Verb):
             found = list_registrations(args.package, kind=args.kind)
         origins = [Provenance.of(r.origin, r.file) for r in found]
         status = EXIT_FAILURE if definitions_failed(definitions) else EXIT_OK
-        if args.format == 'json':
-            sys.stdout.write(json.dumps([
-                {'package': r.package, 'name': r.name, 'kind': r.kind, 'file': r.file,
-                 'origin': o.source, 'folder': o.folder, 'provenance': o.made_by}
-                for r, o in zip(found, origins)], indent=2) + '\n')
-            return status
         from nodl.text_safety import visible
 
+        lines = []
         for r, o in zip(found, origins):
             origin = o.source + (f'({o.made_by})' if o.made_by else '')
-            sys.stdout.write(visible(f'{r.package:<24} {r.kind:<12} {r.name:<28} {origin:<10} '
-                                     f'{r.file}', one_line=True) + '\n')
+            lines.append(visible(f'{r.package:<24} {r.kind:<12} {r.name:<28} {origin:<10} '
+                                 f'{r.file}', one_line=True) + '\n')
+        entries = [{'package': r.package, 'name': r.name, 'kind': r.kind, 'file': r.file,
+                    'origin': o.source, 'folder': o.folder, 'provenance': o.made_by}
+                   for r, o in zip(found, origins)]
+        sys.stdout.write(reporter.report(Report('nodl list', kind='listing', text=''.join(lines),
+                                                payload=entries)))
+        if not reporter.FOR_PEOPLE:
+            return status
         if not found:
             where = f" for package '{args.package}'" if args.package else ''
             what = f'{args.kind} definitions' if args.kind else 'NoDL definitions'

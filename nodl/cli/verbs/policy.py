@@ -77,8 +77,10 @@ class PolicyVerb(Verb):
         parser.add_argument('--distro', default=None, metavar='DISTRO',
                             help='the ROS 2 distribution whose client libraries create the base '
                                  'entities (humble, iron, jazzy, kilted, rolling; default: kilted)')
-        parser.add_argument('--format', choices=('text', 'json'), default='text',
-                            help='format of the diagnostics (default: text)')
+        from nodl.cli.report_options import add_format_argument
+
+        add_format_argument(parser, "format of --check's report: a registered reporter (the "
+                                    'diagnostics of writing a policy are text on standard error)')
         from nodl.cli.arguments import add_launch_code_arguments
         from nodl.cli.diagnostic_options import add_diagnostic_options
 
@@ -309,8 +311,11 @@ def _usage(message: str) -> int:
 
 
 def _report(diagnostics: list[Diagnostic], args: argparse.Namespace, options: Any,
-            stream: Any = None) -> list[Diagnostic]:
-    from nodl.reporting import format_json, format_text, without_info
+            stream: Any = None, reporter: Any = None) -> list[Diagnostic]:
+    """Show ``diagnostics`` after the overrides, without infos: on standard error as text, or
+    on ``stream`` as ``reporter`` renders them (``--check``'s report)."""
+    from nodl.reporting import format_text, without_info
+    from nodl.reporting.reporters import Report
 
     shown: list[Diagnostic] = []
     by_file: dict[str, list[Diagnostic]] = {}
@@ -319,8 +324,10 @@ def _report(diagnostics: list[Diagnostic], args: argparse.Namespace, options: An
     for file, group in by_file.items():
         shown += options.apply(file, group)
     shown = without_info(shown)
-    out = stream or sys.stderr
-    out.write(format_json(shown) if args.format == 'json' and stream is not None else format_text(shown))
+    if stream is not None and reporter is not None:
+        stream.write(reporter.report(Report('nodl policy', shown)))
+    else:
+        sys.stderr.write(format_text(shown))
     return shown
 
 
@@ -328,11 +335,16 @@ def _check(args: argparse.Namespace, expected: Any, options: Any, failed: bool) 
     from nodl.diagnostics import Severity
     from nodl.policy.check import check_policy_file
 
+    from nodl.cli.report_options import reporter_for
+
+    reporter = reporter_for(args, 'nodl policy')
+    if reporter is None:
+        return EXIT_USAGE
     try:
         found = check_policy_file(args.check, expected)
     except OSError as exc:
         return _usage(f'cannot read {args.check}: {_os_words(exc)}')
-    shown = _report(found, args, options, sys.stdout)
+    shown = _report(found, args, options, sys.stdout, reporter)
     missing = sum(d.code in ('NODL604', 'NODL607') for d in shown)
     extra = sum(d.code in ('NODL605', 'NODL608') for d in shown)
     misplaced = sum(d.code == 'NODL609' for d in shown)
