@@ -153,7 +153,7 @@ def test_every_table_keyed_by_parameter_type_covers_the_vocabulary() -> None:
     from rcl_interfaces.msg import ParameterType
 
     from nodl.generate.cpp.text import CPP_TYPES
-    from nodl.generate.parameters import ROS_TYPES
+    from nodl.plan.parameter_plan import ROS_TYPES
     from nodl.generate.python import _PY_TYPES
     from nodl.live.observe import _PARAMETER_TYPES
 
@@ -165,7 +165,7 @@ def test_every_table_keyed_by_parameter_type_covers_the_vocabulary() -> None:
 
 
 def test_tables_beside_the_validator_table_name_its_rows() -> None:
-    from nodl.generate.parameters import _RANGE_VALIDATORS
+    from nodl.plan.parameter_plan import _RANGE_VALIDATORS
     from nodl.validation.parameters import _CONFLICTS
     from nodl.validation.validators import VALIDATORS
 

@@ -135,7 +135,7 @@ def value_text(value: Any) -> str:
 
 
 def _parameter_row(entity: Entity) -> tuple[tuple[Inline, ...], ...]:
-    from nodl.generate.parameters import ROS_TYPES
+    from nodl.plan.parameter_plan import ROS_TYPES
     from nodl.interface_types.mapping import PARAMETER_CPP, PARAMETER_PY
     from nodl.validation.validators import lookup
 

@@ -12,8 +12,8 @@ without arguments and returns :class:`GeneratedFile` objects: it never
 writes, prints or exits.  :func:`write_files` writes them (or, with
 ``check=True``, only says which are stale).
 
-Shared building blocks: :mod:`nodl.generate.identifiers` (names to
-identifiers, collision-free) and :mod:`nodl.generate.parameters` (the
+Shared building blocks: :mod:`nodl.plan.identifiers` (names to
+identifiers, collision-free) and :mod:`nodl.plan.parameter_plan` (the
 language-neutral parameter plan).
 """
 
@@ -96,14 +96,14 @@ def load_generators(on_error: Callable[[PluginError], None] | None = None
 
 def default_class_name(name: str) -> str:
     """The class stem for a definition file or executable name (``laser_driver.nodl.yaml`` -> ``LaserDriver``)."""
-    from nodl.generate.identifiers import pascal_case
+    from nodl.plan.identifiers import pascal_case
 
     return pascal_case(default_node_name(name))
 
 
 def default_node_name(name: str) -> str:
     """The node name for a definition file or executable (``dir/laser_driver.nodl.yaml`` -> ``laser_driver``)."""
-    from nodl.generate.identifiers import snake_case
+    from nodl.plan.identifiers import snake_case
 
     base = os.path.basename(name)
     for ending in ('.nodl.yaml', '.nodl.yml', '.nodl.json', '.yaml', '.yml', '.json'):
@@ -129,7 +129,7 @@ def check_options(options: GenerateOptions, language: str = '') -> list[Diagnost
     ``class_name`` (an ASCII identifier, not a keyword of ``language``: it names classes and
     files), ``namespace`` (C++: identifiers separated by ``::``, no keywords)."""
     from nodl.diagnostics import Diagnostic, Severity
-    from nodl.generate.identifiers import CPP_KEYWORDS, KEYWORDS, is_identifier
+    from nodl.plan.identifiers import CPP_KEYWORDS, KEYWORDS, is_identifier
     from nodl.naming.validation import node_name_error
 
     problems: list[str] = []

@@ -19,8 +19,8 @@ from __future__ import annotations
 from typing import Any
 
 from nodl.generate import GeneratedFile, GenerateOptions, GenerationError, GeneratorExtension
-from nodl.generate.identifiers import PYTHON_KEYWORDS, IdentifierScope
-from nodl.generate.parameters import ParameterPlan, ParametersPlan, StructPlan, plan_parameters
+from nodl.plan.identifiers import PYTHON_KEYWORDS, IdentifierScope
+from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, StructPlan, plan_parameters
 from nodl.generate.python_text import (
     LINE_LENGTH, comment, docstring, literal, mark_long_lines, python_value, validator_expression)
 from nodl.system.entities import Entity, EntityKind, InterfaceType

@@ -9,7 +9,7 @@
   parameters never set; each a coded diagnostic (NODL70x) at ``FILE:LINE:COL``.
 
 The parameter semantics (types, validators) are the generators' parameter
-plan (:mod:`nodl.generate.parameters`), so a file that passes here
+plan (:mod:`nodl.plan.parameter_plan`), so a file that passes here
 starts a generated or runtime node.
 """
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 from typing import Any, Iterable, Sequence
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.generate.parameters import ParametersPlan, plan_parameters, value_problems
+from nodl.plan.parameter_plan import ParametersPlan, plan_parameters, value_problems
 from nodl.system import Entity, ResolvedNode
 
 TYPE_CHECKING = False
@@ -98,7 +98,7 @@ def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) ->
                 problems = value_problems(parameter, value)
                 if not problems:
                     continue
-                from nodl.generate.parameters import type_problem
+                from nodl.plan.parameter_plan import type_problem
 
                 code = 'NODL702' if type_problem(parameter, value) is not None else 'NODL703'
                 out.append(Diagnostic(

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from nodl.generate.parameters import ParameterPlan, ParametersPlan, plan_parameters
+from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, plan_parameters
 from nodl.system import ResolvedNode, Provider
 
 __all__ = ['defaults_yaml', 'yaml_scalar']

@@ -12,7 +12,7 @@ from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackRet
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 
-from nodl.generate.parameters import ParametersPlan, plan_parameters
+from nodl.plan.parameter_plan import ParametersPlan, plan_parameters
 from nodl.runtime.binding import ActionCallbacks, collect_callbacks, missing_callbacks
 from nodl.runtime.errors import RuntimeDefinitionError
 from nodl.runtime.parameters import (

@@ -6,7 +6,7 @@ from its validators), required parameters and every validator checked at
 start-up, every batch of changes validated in the on-set callback (the whole
 batch rejected with the validators' words in ``reason``) and committed in the
 post-set callback into a new typed snapshot.  Validators are the validator
-table's predicates (:meth:`~nodl.generate.parameters.ValidatorPlan.check`);
+table's predicates (:meth:`~nodl.plan.parameter_plan.ValidatorPlan.check`);
 custom validators are called through functions the user gives.
 """
 
@@ -15,7 +15,7 @@ from __future__ import annotations
 from types import SimpleNamespace
 from typing import Any, Callable, Mapping
 
-from nodl.generate.parameters import ParameterPlan, ParametersPlan, StructPlan
+from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, StructPlan
 from nodl.runtime.errors import RuntimeDefinitionError
 
 __all__ = ['ParameterSnapshot', 'normalized', 'build_snapshot', 'descriptor_of', 'problems_of',

@@ -209,7 +209,7 @@ def check_package_name(package: str) -> None:
     letter, two characters at least), and not a Python or C++ keyword: the name is
     the package's Python module and its C++ namespace.
     """
-    from nodl.generate.identifiers import CPP_KEYWORDS, PYTHON_KEYWORDS
+    from nodl.plan.identifiers import CPP_KEYWORDS, PYTHON_KEYWORDS
 
     if not _PACKAGE_NAME.fullmatch(package) or len(package) < 2 or '__' in package:
         raise ScaffoldError(f'{package!r} is not a valid ROS package name: lowercase letters, '

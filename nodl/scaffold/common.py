@@ -77,7 +77,7 @@ def required_placeholders(node: NodeSource) -> list[tuple[str, str]]:
 def required_parameters(node: NodeSource) -> list[tuple[str, str]]:
     """``(name, type)`` of each parameter the node must be given (no default), in declaration
     order (as the parameter file lists them)."""
-    from nodl.generate.parameters import plan_parameters
+    from nodl.plan.parameter_plan import plan_parameters
     from nodl.system.entities import Provider
 
     entities = node.node.provided_by(Provider.IMPLEMENTATION, Provider.OTHER_CODE)

@@ -36,7 +36,7 @@ from __future__ import annotations
 import os
 
 from nodl.generate import GeneratedFile, GenerateOptions, GenerationError, GeneratorExtension
-from nodl.generate.identifiers import CPP_KEYWORDS, is_identifier, snake_case
+from nodl.plan.identifiers import CPP_KEYWORDS, is_identifier, snake_case
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:

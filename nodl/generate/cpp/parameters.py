@@ -1,6 +1,6 @@
 """The C++ side of the parameter plan: the parameter struct, declarations, validation, updates.
 
-Everything here renders :mod:`nodl.generate.parameters` (the
+Everything here renders :mod:`nodl.plan.parameter_plan` (the
 language-neutral plan, shared with the Python generator and the runtime)
 as C++ for rclcpp.  The one C++-specific table is :data:`CPP_PREDICATES`:
 each built-in validator of :mod:`nodl.validation.validators`
@@ -16,8 +16,8 @@ from typing import Any, Callable
 from nodl.generate import GenerationError
 from nodl.generate.cpp.text import (
     comment_lines, cpp_type, cpp_value, element_value, string_literal)
-from nodl.generate.identifiers import CPP_KEYWORDS, IdentifierScope, is_identifier, pascal_case
-from nodl.generate.parameters import (
+from nodl.plan.identifiers import CPP_KEYWORDS, IdentifierScope, is_identifier, pascal_case
+from nodl.plan.parameter_plan import (
     ParameterPlan, ParametersPlan, StructPlan, ValidatorPlan, plan_parameters)
 
 __all__ = ['CPP_PREDICATES', 'cpp_parameter_plan', 'field_type', 'struct_lines', 'predicate',

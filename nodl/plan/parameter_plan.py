@@ -5,7 +5,7 @@ derives, once, for every target:
 
 * a tree of structs nested by dotted name (``camera.exposure.max`` ->
   struct ``camera`` -> struct ``exposure`` -> field ``max``), with
-  identifiers from :mod:`nodl.generate.identifiers` (collision-free,
+  identifiers from :mod:`nodl.plan.identifiers` (collision-free,
   keyword-free in the target language);
 * per parameter: its parsed type (fixed sizes and ``byte_array`` included),
   its ROS parameter type, its default (or that it is required), its
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from dataclasses import field as _field
 from typing import Any, Iterable, Sequence, Union
 
-from nodl.generate.identifiers import PYTHON_KEYWORDS, IdentifierScope
+from nodl.plan.identifiers import PYTHON_KEYWORDS, IdentifierScope
 from nodl.model.parameter_types import TypeSpec, parse_type
 from nodl.validation.validators import ValidatorRule, lookup
 from nodl.vocabulary import ROS_PARAMETER_TYPE_NAMES
@@ -280,7 +280,7 @@ def plan_parameters(parameters: Iterable[tuple[str, Any]] | Any,
                     reserved: Iterable[str] = ()) -> ParametersPlan:
     """The plan of ``parameters``: ``(name, ParameterDefinition)`` pairs, or entities of a resolved node.
 
-    ``keywords`` are the target language's (:data:`~nodl.generate.identifiers.KEYWORDS`);
+    ``keywords`` are the target language's (:data:`~nodl.plan.identifiers.KEYWORDS`);
     ``reserved`` identifiers no struct may use as a field (methods of the generated struct).
     """
     pairs: list[tuple[str, Any]] = []

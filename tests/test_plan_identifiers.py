@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import keyword
 
-from nodl.generate.identifiers import (
+from nodl.plan.identifiers import (
     CPP_KEYWORDS, IdentifierScope, is_identifier, pascal_case, snake_case)
 
 
