@@ -5,6 +5,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+import pytest
+
 from nodl.launch.model import SourceLocation
 from nodl.launch.python_places import frame_location, keyword_places
 
@@ -64,3 +66,35 @@ def test_a_list_given_through_a_variable_is_placed_where_it_is_written(tmp_path:
     assert at(7, 5) == [(3, 15), (4, 15), (1, 11)]
     assert at(10, 5) == (10, 21)
     assert at(12, 12) == (12, 28)
+
+
+def test_a_function_s_assignments_are_read_once_for_all_its_calls(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Twenty nodes of one function given remappings=common: the function's assignments (and
+    the module's) are read once, not once per node, and every node's rules are placed at the
+    one place they are written; a name assigned twice is still not plain to see (the
+    argument's own place)."""
+    from nodl.launch import python_places
+
+    launch = tmp_path / 'many.launch.py'
+    nodes = ''.join(f"        Node(name='n{i}', remappings=common),\n" for i in range(20))
+    launch.write_text("def generate_launch_description():\n"
+                      "    common = [('/tf', 'tf'), ('/tf_static', 'tf_static')]\n"
+                      "    twice = []\n    twice = [('a', 'b')]\n"
+                      f"    return [\n{nodes}        Node(name='x', remappings=twice),\n    ]\n")
+    reads: list[object] = []
+    real = python_places._assignments
+
+    def counted(where: object) -> dict[str, list[object]]:
+        reads.append(where)
+        return real(where)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(python_places, '_assignments', counted)
+    for line in range(6, 26):
+        places = keyword_places(SourceLocation(str(launch), line, 9), 'remappings')
+        assert isinstance(places, list)
+        assert [(p.line, p.column) for p in places] == [(2, 15), (2, 30)]
+    assert len(reads) == 1
+    whole = keyword_places(SourceLocation(str(launch), 26, 9), 'remappings')
+    assert isinstance(whole, SourceLocation) and (whole.line, whole.column) == (26, 35)
+    assert len(reads) == 1

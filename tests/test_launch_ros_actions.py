@@ -114,3 +114,51 @@ def test_the_container_s_global_arguments_reach_a_node_only_with_forward_global_
     assert twice.nodes == ('/robot/box',)
     (json_node,) = [n for n in json.loads(report.format_json(analysis))['nodes'] if n['name'] == '/maybe']
     assert json_node['remaps_complete'] is False
+
+
+def test_a_parameter_file_given_to_many_nodes_is_evaluated_once(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """launch_ros's ParameterFile keeps its first evaluation: one object given to several
+    nodes is performed once (nav2's bringup gives one ParameterFile(RewrittenYaml(...)) to
+    twenty nodes), and a node in another scope gets the file the first node's scope made;
+    a ParameterFile of its own is evaluated in its node's scope."""
+    counter = tmp_path / 'count'
+    monkeypatch.setenv('NODL_TEST_COUNT_FILE', str(counter))
+    analysis = analyse_launch(LAUNCH / 'shared_parameter_file.launch.py', {}, prefixes=PREFIX)
+    values = {n.fqn: n.parameter_values() for n in analysis.nodes}
+    assert values == {'/one': {'robot': 'first', 'written': 1},
+                      '/two': {'robot': 'first', 'written': 1},
+                      '/three': {'robot': 'second', 'written': 2}}
+    assert counter.read_text().splitlines() == ['performed', 'performed']
+
+
+NAV2 = Path(__file__).parent / 'fixtures' / 'launch' / 'nav2_bringup'
+
+
+def test_nav2_bringup_without_nav2_common(monkeypatch: pytest.MonkeyPatch,
+                                          capsys: pytest.CaptureFixture[str]) -> None:
+    """nodl analyse of nav2's bringup_launch.py (navigation2 1.4.2, nav2_common not installed
+    here): its 21 nodes (the container and 20 composable nodes of four included files), each
+    with the parameters known here and the RewrittenYaml entry said to be known only at run
+    time, as analysed before a shared ParameterFile was evaluated once."""
+    from nodl.cli.main import main
+
+    prefix = NAV2 / 'prefix'
+    launch = prefix / 'share' / 'nav2_bringup' / 'launch'
+    monkeypatch.setenv('AMENT_PREFIX_PATH', str(prefix))
+    assert main(['analyse', str(launch / 'bringup_launch.py'), '--format', 'json']) == 0
+    nodes = json.loads(capsys.readouterr().out)['nodes']
+    root = f'{launch}/'
+    found = [{'name': n['name'], 'package': n['package'], 'executable': n['executable'],
+              'source': [n['source']['file'].replace(root, ''), n['source']['line']],
+              'remaps': n['remaps'], 'parameters': n['parameters'],
+              'parameters_complete': n['parameters_complete'],
+              'run_time': [[r['part'], r['file'].replace(root, ''), r['line'], r['column']]
+                           for r in n['run_time']]} for n in nodes]
+    expected = json.loads((NAV2 / 'expected_nodes.json').read_text(encoding='utf-8'))
+    assert found == expected
+    assert len(found) == 21
+    # every node given the RewrittenYaml file (all but the four lifecycle managers) says so
+    assert [n['name'] for n in found if not n['run_time']] == [
+        '/lifecycle_manager_localization', '/lifecycle_manager_keepout_zone',
+        '/lifecycle_manager_speed_zone', '/lifecycle_manager_navigation']
