@@ -199,3 +199,29 @@ def test_the_integrators_flow_names_what_the_tools_write(tmp_path) -> None:  # t
     for name in re.findall(r'`hand/([\w/]+\.yaml)`', section):
         assert (fixture / 'hand' / name).is_file(), name
     assert '--missing --definitions extracted -o described' in ' '.join(section.split())
+
+
+def test_the_output_format_example_is_a_working_reporter(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """'An output format': the quoted plug-in, installed under the quoted entry point in a
+    site directory, is offered by nodl validate and prints one annotation per diagnostic."""
+    section = README[README.index('### An output format'):]
+    toml = re.search(r'```toml\n(.*?)```', section, re.S)
+    code = re.search(r'```python\n(.*?)```', section, re.S)
+    assert toml and code, 'the output format example lost its entry point or its code'
+    name, target = re.search(r'(\w+) = "([\w.]+):(\w+)"', toml.group(1)).group(1, 2)  # type: ignore[union-attr]
+    module = tmp_path / (target.replace('.', os.sep) + '.py')
+    module.parent.mkdir(parents=True)
+    for folder in (module.parent, module.parent.parent):
+        (folder / '__init__.py').touch()
+    module.write_text(code.group(1))
+    dist = tmp_path / 'my_package-1.0.dist-info'
+    dist.mkdir()
+    (dist / 'METADATA').write_text('Metadata-Version: 2.1\nName: my-package\nVersion: 1.0\n')
+    (dist / 'entry_points.txt').write_text(f'[nodl.reporters]\n{name} = {target}:'
+                                           f'{toml.group(1).rsplit(":", 1)[1].strip().strip(chr(34))}\n')
+    invalid = REPO / 'tests' / 'fixtures' / 'invalid' / 'duplicate_endpoints.nodl.yaml'
+    result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', '--format', name, str(invalid)],
+                            cwd=REPO, text=True, capture_output=True, timeout=60,
+                            env={**os.environ, 'PYTHONPATH': str(tmp_path)})
+    assert result.returncode == 1, result.stderr
+    assert result.stdout.startswith(f'::error file={invalid},line='), result.stdout + result.stderr
