@@ -130,3 +130,18 @@ def test_unsafe_text_in_a_parameter_file_is_an_error_at_the_character(tmp_path: 
     key = tmp_path / 'key.yaml'
     key.write_text('"/a\\u2066b":\n  ros__parameters:\n    x: 1\n', encoding='utf-8')
     assert [(d.code, d.line, d.column) for d in load_parameter_file(key).diagnostics] == [('NODL222', 1, 4)]
+
+
+def test_a_substituted_text_read_for_many_nodes_is_parsed_once() -> None:
+    """The text of one ParameterFile launch_ros evaluated once for many nodes is read once
+    (twenty nodes of nav2's bringup read one such file): the same name and text give the same
+    reading; another text (or another name) is read on its own."""
+    from nodl.launch.params import parse_parameter_text
+
+    text = '/**:\n  ros__parameters:\n    speed: 0.5\n'
+    first = parse_parameter_text('/tmp/params_a.yaml', text)
+    assert parse_parameter_text('/tmp/params_a.yaml', text) is first
+    assert [n.parameters for n in first.nodes] == [{'speed': 0.5}]
+    other = parse_parameter_text('/tmp/params_a.yaml', text.replace('0.5', '0.75'))
+    assert other is not first and [n.parameters for n in other.nodes] == [{'speed': 0.75}]
+    assert parse_parameter_text('/tmp/params_b.yaml', text) is not first

@@ -392,7 +392,7 @@ def load_parameter_file(path: str | os.PathLike[str]) -> ParameterFile:
         result = ParameterFile(name, [], [problem])
         _CACHE[key] = result
         return result
-    result = parse_parameter_text(name, text)
+    result = _parse_parameter_text(name, text)
     if len(_CACHE) > 1024:
         _CACHE.clear()
     _CACHE[key] = result
@@ -414,10 +414,27 @@ def read_parameter_text(path: str) -> tuple[str | None, Diagnostic | None]:
     return decode(data, path)
 
 
+#: Substituted parameter files already read, by (name, text): a file launch_ros evaluates once
+#: for many nodes (one ``ParameterFile`` given to them all) is one text they all read.
+_TEXTS: dict[tuple[str, str], ParameterFile] = {}
+
+
 def parse_parameter_text(name: str, text: str) -> ParameterFile:
     """A parameter file's ``text`` (read from ``name``, which findings name) read as
     :func:`load_parameter_file` reads a file: for a file whose text launch substitutes first
-    (``allow_substs``)."""
+    (``allow_substs``).  The same name and text are read once (the result, as
+    :func:`load_parameter_file`'s, is shared: not to be changed)."""
+    key = (name, text)
+    found = _TEXTS.get(key)
+    if found is None:
+        found = _parse_parameter_text(name, text)
+        if len(_TEXTS) > 64:
+            _TEXTS.clear()
+        _TEXTS[key] = found
+    return found
+
+
+def _parse_parameter_text(name: str, text: str) -> ParameterFile:
     from yaml.nodes import MappingNode, ScalarNode
 
     from nodl.frontends.source import SourceText
