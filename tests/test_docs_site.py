@@ -157,6 +157,42 @@ def test_the_makefile_builds_the_site_with_warnings_as_errors() -> None:
     assert '-m sphinx -W' in rule and 'build/docs' in rule and 'ros/nodl_toolkit/doc' in rule
 
 
+
+def test_rosdoc2_builds_the_site_for_the_package_with_no_warning(tmp_path: Path) -> None:
+    """`rosdoc2 build --package-path ros/nodl_toolkit` (rosdoc2 0.2.1, offline: proxies at a
+    closed loopback port) builds the same site with no warning: package.xml exports
+    rosdoc2.yaml, which names the Sphinx project (doc/) and the Python source (nodl), and
+    doc/conf.py leaves out the copy of doc/ that rosdoc2 adds as user_docs/ (else every page,
+    label and API entry is there twice)."""
+    package = REPO / 'ros' / 'nodl_toolkit'
+    assert '<rosdoc2>rosdoc2.yaml</rosdoc2>' in (package / 'package.xml').read_text(encoding='utf-8')
+    closed = 'http://127.0.0.1:9'
+    venv_bin = str(Path(sys.prefix) / 'bin')  # rosdoc2 runs sphinx-apidoc from PATH
+    env = {**os.environ, 'AMENT_PREFIX_PATH': sys.prefix, 'NODL_REPOSITORY': str(REPO),
+           'PATH': venv_bin + os.pathsep + os.environ.get('PATH', ''),
+           'http_proxy': closed, 'https_proxy': closed, 'HTTP_PROXY': closed,
+           'HTTPS_PROXY': closed, 'no_proxy': '', 'NO_PROXY': ''}
+    built = subprocess.run([str(Path(venv_bin) / 'rosdoc2'), 'build', '--package-path', str(package),
+                            '--output-directory', str(tmp_path / 'site'),
+                            '--doc-build-directory', str(tmp_path / 'build'),
+                            '--cross-reference-directory', str(tmp_path / 'xref')],
+                           cwd=tmp_path, env=env, text=True, capture_output=True, timeout=120)
+    log = built.stdout + built.stderr
+    assert built.returncode == 0, log
+    assert 'build succeeded' in log, log
+    assert 'WARNING' not in log and 'ERROR' not in log, log
+    assert 'Running sphinx-apidoc' in log, log  # the Python source was found
+    site = tmp_path / 'site' / 'nodl_toolkit'
+    for page in ('index', 'guides/getting-started', 'guides/package-authors',
+                 'guides/system-integrators', 'guides/security-engineers', 'reference/verbs',
+                 'reference/codes', 'reference/api', 'examples/nodes/laser-driver'):
+        assert (site / f'{page}.html').is_file(), page
+    assert 'For package authors' in _text(site / 'index.html')
+    assert not (site / 'user_docs').exists()  # the pages are there once
+    api = (site / 'reference' / 'api.html').read_text(encoding='utf-8')
+    assert 'id="nodl.validate_node"' in api
+
+
 # -- every command example of the docs is what the command prints ------------------------------
 
 #: ```text blocks whose first line is `$ nodl ...`; the comment line before one may say how to

@@ -28,7 +28,10 @@ release = version = __import__('nodl').__version__
 extensions = ['myst_parser', 'sphinx.ext.autodoc', 'nodl_sphinx']
 source_suffix = {'.md': 'markdown'}
 root_doc = 'index'
-exclude_patterns = ['_build', '_ext', 'Thumbs.db', '.DS_Store']
+exclude_patterns = ['_build', '_ext', 'Thumbs.db', '.DS_Store',
+                    # rosdoc2 copies this folder again as user_docs/ into the folder it builds
+                    # (this one's copy): the pages are read once, from here.
+                    'user_docs']
 
 myst_enable_extensions = ['colon_fence', 'deflist']
 myst_heading_anchors = 4
