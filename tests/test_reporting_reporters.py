@@ -125,3 +125,13 @@ def test_a_blocked_or_broken_format_is_a_usage_error_in_one_line(github_site: Pa
                     NODL_EXTENSION_BLOCKLIST='nodl.reporters.github')
     assert blocked.returncode == 2 and "invalid choice: 'github'" in blocked.stderr
     assert 'Traceback' not in blocked.stderr
+
+
+def test_what_a_format_does_not_show_is_never_made() -> None:
+    def never() -> object:
+        raise AssertionError('made for a format that does not show it')
+
+    report = Report('nodl x', [ERROR], summary='s', payload=never, cases=never)  # type: ignore[arg-type]
+    assert TextReporter().report(report) == f'{ERROR}\ns\n'
+    lazy = Report('nodl x', [ERROR], text=never, payload=lambda: {'a': 1})  # type: ignore[arg-type]
+    assert json.loads(JsonReporter().report(lazy)) == {'a': 1}

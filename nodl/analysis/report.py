@@ -194,5 +194,5 @@ def analysis_report(analysis: Analysis, verbose: bool = False) -> Report:
     return Report(f'nodl analyse {analysis.launch_file or "launch"}',
                   [f.diagnostic for f in analysis.findings],
                   summary=f'{coverage(analysis)}\n{summary(analysis)}',
-                  text=format_text(analysis, verbose), payload=analysis_to_dict(analysis),
-                  cases=junit_cases(analysis))
+                  text=lambda: format_text(analysis, verbose), payload=lambda: analysis_to_dict(analysis),
+                  cases=lambda: junit_cases(analysis))

@@ -141,8 +141,7 @@ def check_report(result: CheckResult, verbose: bool = False) -> Report:
     checked entity, the text report and its verdict line."""
     from nodl.reporting.reporters import Report
 
-    text = format_check_text(result, verbose)
     return Report(f'nodl check {result.fqn}',
                   [d.replace(message=f'{result.fqn}: {d.message}') for d in result.diagnostics],
-                  summary=format_check_text(result).splitlines()[-1], text=text,
-                  payload=check_payload(result), cases=check_cases(result))
+                  summary=format_check_text(result).splitlines()[-1], text=lambda: format_check_text(result, verbose),
+                  payload=lambda: check_payload(result), cases=lambda: check_cases(result))

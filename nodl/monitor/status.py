@@ -186,7 +186,7 @@ def monitor_report(statuses: list[Status], verbose: bool = False, note: str = ''
     from nodl.reporting.reporters import Report
 
     return Report('nodl monitor', diagnostics_of(statuses, True),
-                  text=format_text(statuses, verbose, note),
+                  text=lambda: format_text(statuses, verbose, note),
                   payload={'statuses': [s.to_dict() for s in statuses], 'note': note},
-                  cases=[JUnitCase(s.name, diagnostics_of([s], True), s.level == 2)
-                         for s in statuses])
+                  cases=lambda: [JUnitCase(s.name, diagnostics_of([s], True), s.level == 2)
+                                 for s in statuses])

@@ -23,13 +23,13 @@ import json
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Sequence
+    from typing import Any, Callable, Sequence
+
+    from nodl.reporting.junit import JUnitCase
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.plugins import ExtensionPoint
 from nodl.reporting import format_text
-from nodl.reporting.junit import JUnitCase, format_junit
-from nodl.reporting.sarif import format_sarif
 
 __all__ = ['GROUP', 'DIAGNOSTICS', 'Report', 'ReporterExtension', 'TextReporter', 'JsonReporter',
            'SarifReporter', 'JUnitReporter', 'cases_by_file']
@@ -50,14 +50,19 @@ class Report:
     to standard error); ``text``: the verb's own rendering for people (None:
     the diagnostics, then the summary); ``payload``: the verb's structured
     result, JSON-ready (None: the list of diagnostics); ``cases``: JUnit test
-    cases (None: one per file of the diagnostics).
+    cases (None: one per file of the diagnostics).  ``text``, ``payload`` and
+    ``cases`` may be given as functions that make them: only a reporter that asks
+    (:meth:`people_text`, :meth:`json_payload`, :meth:`junit_cases`) pays for them.
     """
 
     __slots__ = ('tool', 'diagnostics', 'kind', 'summary', 'text', 'payload', 'cases')
 
     def __init__(self, tool: str, diagnostics: Sequence[Diagnostic] = (), *,
-                 kind: str = DIAGNOSTICS, summary: str = '', text: str | None = None,
-                 payload: Any = None, cases: Sequence[JUnitCase] | None = None) -> None:
+                 kind: str = DIAGNOSTICS, summary: str = '',
+                 text: str | Callable[[], str] | None = None,
+                 payload: Any = None,
+                 cases: Sequence[JUnitCase] | Callable[[], Sequence[JUnitCase]] | None = None
+                 ) -> None:
         self.tool = tool
         self.diagnostics: list[Diagnostic] = list(diagnostics)
         self.kind = kind
@@ -66,10 +71,28 @@ class Report:
         self.payload = payload
         self.cases = cases
 
+    def people_text(self) -> str | None:
+        """The verb's own text for people (made now if given as a function), or None."""
+        return self.text() if callable(self.text) else self.text
+
+    def json_payload(self) -> Any:
+        """The verb's structured result (made now if given as a function), or the list of
+        diagnostic objects."""
+        payload = self.payload() if callable(self.payload) else self.payload
+        return payload if payload is not None else [d.to_dict() for d in self.diagnostics]
+
+    def junit_cases(self) -> Sequence[JUnitCase]:
+        """The verb's JUnit test cases (made now if given as a function), or one per file of
+        the diagnostics."""
+        cases = self.cases() if callable(self.cases) else self.cases
+        return cases if cases is not None else cases_by_file(self.diagnostics)
+
 
 def cases_by_file(diagnostics: Sequence[Diagnostic], strict: bool = False) -> list[JUnitCase]:
     """One JUnit test case per file of ``diagnostics`` (sorted), failed when it holds an error
     (with ``strict``: any diagnostic)."""
+    from nodl.reporting.junit import JUnitCase
+
     by_file: dict[str, list[Diagnostic]] = {}
     for d in diagnostics:
         by_file.setdefault(d.file, []).append(d)
@@ -116,8 +139,9 @@ class TextReporter(ReporterExtension):
         return (f'{header}\n' if header else '') + format_text(diagnostics)
 
     def report(self, report: Report) -> str:
-        if report.text is not None:
-            return report.text
+        text = report.people_text()
+        if text is not None:
+            return text
         return format_text(report.diagnostics) + (f'{report.summary}\n' if report.summary else '')
 
 
@@ -130,9 +154,7 @@ class JsonReporter(ReporterExtension):
     KINDS = frozenset({'*'})
 
     def report(self, report: Report) -> str:
-        data = report.payload if report.payload is not None else [
-            d.to_dict() for d in report.diagnostics]
-        return json.dumps(data, indent=2, default=str) + '\n'
+        return json.dumps(report.json_payload(), indent=2, default=str) + '\n'
 
 
 class SarifReporter(ReporterExtension):
@@ -143,6 +165,8 @@ class SarifReporter(ReporterExtension):
     SUFFIX = '.sarif'
 
     def report(self, report: Report) -> str:
+        from nodl.reporting.sarif import format_sarif
+
         return format_sarif(report.diagnostics)
 
 
@@ -154,5 +178,6 @@ class JUnitReporter(ReporterExtension):
     SUFFIX = '.xml'
 
     def report(self, report: Report) -> str:
-        cases = report.cases if report.cases is not None else cases_by_file(report.diagnostics)
-        return format_junit(cases, report.tool)
+        from nodl.reporting.junit import format_junit
+
+        return format_junit(report.junit_cases(), report.tool)

@@ -7,6 +7,11 @@ import sys
 
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from nodl.diagnostics import Diagnostic
+    from nodl.reporting.junit import JUnitCase
+
 
 #: The code of a path that cannot be read (see nodl.codes).
 UNREADABLE_CODE = 'NODL020'
@@ -73,7 +78,6 @@ class ValidateVerb(Verb):
         from nodl.diagnostics import Diagnostic, Severity
         from nodl.cli.report_options import reporter_for, write_report
         from nodl.reporting import Tally, plural, summary_line, without_info
-        from nodl.reporting.junit import JUnitCase
         from nodl.reporting.reporters import Report
         from nodl.validation.kinds import Kind
 
@@ -87,7 +91,7 @@ class ValidateVerb(Verb):
             return EXIT_USAGE
         tally = Tally()
         unreadable: list[Diagnostic] = []
-        cases: list[JUnitCase] = []  # one test case per path
+        cases: list[tuple[str, list[Diagnostic], bool, bool]] = []  # a JUnit test case per path
         invalid = False
         out = sys.stderr if args.stderr else sys.stdout
         text = reporter.FOR_PEOPLE
@@ -116,7 +120,7 @@ class ValidateVerb(Verb):
                 problem = Diagnostic(Severity.ERROR, result.problem or 'cannot be read',
                                      file=result.path, code=UNREADABLE_CODE)
                 unreadable.append(problem)
-                cases.append(JUnitCase(result.path, [problem], True, True))
+                cases.append((result.path, [problem], True, True))
                 print(problem, file=sys.stderr)
                 sys.stderr.flush()
                 continue
@@ -128,8 +132,8 @@ class ValidateVerb(Verb):
                 return EXIT_USAGE
             tally.files += 1
             tally.add(result.diagnostics)
-            cases.append(JUnitCase(result.path, without_info(result.diagnostics),
-                                   failed(result, args.strict)))
+            cases.append((result.path, without_info(result.diagnostics), failed(result, args.strict),
+                          False))
             header = None
             if failed(result, args.strict):
                 invalid = True
@@ -146,8 +150,14 @@ class ValidateVerb(Verb):
         # the text was shown file by file: only the summary is left (none when quiet and clean)
         quiet = args.quiet and tally.errors + tally.warnings == 0 and not unreadable
         write_report(reporter, Report('nodl validate', tally.diagnostics + unreadable,
-                                      summary=summary, cases=cases,
+                                      summary=summary, cases=lambda: _junit_cases(cases),
                                       text='' if quiet else f'{summary}\n'), out)
         if unreadable:
             return EXIT_USAGE
         return EXIT_FAILURE if invalid else EXIT_OK
+
+
+def _junit_cases(cases: list[tuple[str, list[Diagnostic], bool, bool]]) -> list[JUnitCase]:
+    from nodl.reporting.junit import JUnitCase
+
+    return [JUnitCase(*case) for case in cases]
