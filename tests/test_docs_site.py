@@ -271,3 +271,138 @@ def test_a_quoted_line_the_command_does_not_print_is_caught() -> None:
     assert _matches(['a', 'b', 'c'], ['a', '...', 'c'])
     assert not _matches(['a', 'b'], ['b', 'a'])
     assert not _matches(['a', 'b'], ['a', 'changed'])
+
+
+# -- every shell example of the docs runs, or says why it cannot run here ----------------------
+
+#: ```sh / ```console / ```bash / ```shell blocks (commands, no quoted output), with the marker
+#: comment line before one: <!-- nodl:example exit=N --> (the status every command of it
+#: exits with, 0 unless given) or <!-- nodl:not-run REASON -->.
+SHELL_BLOCK = re.compile(r'(?:^ *(<!-- nodl:(example|not-run)([^>]*)-->)\n)?^( *)```(sh|console|bash|shell)\n'
+                         r'(.*?)\n *```', re.S | re.M)
+
+#: The commands an unmarked block may hold besides nodl: they only set up its folder.
+SET_UP = {'mkdir', 'cd', 'cp', 'ls', 'cat', 'diff'}
+
+
+def _commands(language: str, body: str, indent: int) -> list[str]:
+    """The command lines of a shell block (a console block's `$ ` lines; `\\` joins lines)."""
+    lines = [line[indent:] for line in body.splitlines()]
+    if language == 'console':
+        lines = [line[2:] for line in lines if line.startswith('$ ')]
+    commands: list[str] = []
+    for line in lines:
+        if commands and commands[-1].endswith('\\'):
+            commands[-1] = commands[-1][:-1] + line
+        elif line.strip() and not line.lstrip().startswith('#'):
+            commands.append(line)
+    return commands
+
+
+def _programs(command: str) -> list[str]:
+    """The programs one command line runs (first words, and after `&&`, `||`, `;`, `|`, `(`)."""
+    import shlex
+
+    lexer = shlex.shlex(command, posix=True, punctuation_chars=True)
+    lexer.commenters = '#'
+    programs, first = [], True
+    for token in lexer:
+        if token in ('&&', '||', ';', '|', '(', ')', '&'):
+            first = True
+        elif first:
+            programs.append(token)
+            first = False
+    return programs
+
+
+def _shell_blocks() -> list[tuple[str, int, str, str, list[str]]]:
+    """(page, line, marker kind, marker text, command lines) of every shell block of the docs."""
+    from site_pages import pages
+
+    found = []
+    for name, text in pages().items():
+        for match in SHELL_BLOCK.finditer(text):
+            line = text.count('\n', 0, match.start(4)) + 1
+            found.append((name, line, match.group(2) or 'example', (match.group(3) or '').strip(),
+                          _commands(match.group(5), match.group(6), len(match.group(4)))))
+    return found
+
+
+def _run_block(block: tuple[str, int, str, str, list[str]], work: Path) -> tuple[str, list[tuple[str, int]]]:
+    """Run one block's commands in order in one bash, in a folder of its own holding a copy of
+    examples/ (tests/ linked, read only) with HOME there too: its output, and each command's
+    exit status."""
+    work.mkdir(parents=True)
+    shutil.copytree(REPO / 'examples', work / 'examples', symlinks=True,
+                    ignore=shutil.ignore_patterns('__pycache__'))
+    (work / 'tests').symlink_to(REPO / 'tests')
+    shim = work / '.bin'
+    shim.mkdir()
+    (shim / 'nodl').write_text(f'#!/bin/sh\nexec "{sys.executable}" -m nodl "$@"\n', encoding='utf-8')
+    (shim / 'nodl').chmod(0o755)
+    script = ''.join(f'{command}\nprintf "\\n@@status %s\\n" "$?"\n' for command in block[4])
+    env = {**os.environ, 'PYTHONPATH': str(REPO), 'AMENT_PREFIX_PATH': sys.prefix, 'HOME': str(work),
+           'PATH': str(shim) + os.pathsep + os.environ.get('PATH', '')}
+    env.pop('NODL_PATH', None)
+    result = subprocess.run(['bash', '--noprofile', '--norc', '-c', script], cwd=work, env=env,
+                            text=True, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
+    statuses = [int(status) for status in re.findall(r'^@@status (\d+)$', result.stdout, re.M)]
+    return result.stdout, list(zip(block[4], statuses))
+
+
+@pytest.fixture(scope='module')
+def shell_runs(tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, int], tuple[str, list[tuple[str, int]]]]:
+    """Every block that is not marked not-run, run at once (each in its own folder)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    root = tmp_path_factory.mktemp('shell-examples')
+    blocks = [block for block in _shell_blocks() if block[2] != 'not-run']
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        runs = pool.map(lambda numbered: _run_block(numbered[1], root / str(numbered[0])), enumerate(blocks))
+        return {(block[0], block[1]): run for block, run in zip(blocks, runs)}
+
+
+def test_the_docs_have_shell_examples_that_run() -> None:
+    blocks = _shell_blocks()
+    assert len(blocks) >= 10
+    run = [block for block in blocks if block[2] != 'not-run']
+    assert len(run) >= 3 and sum(len(block[4]) for block in run) >= 5
+    for page, line, kind, marker, commands in blocks:
+        assert commands, f'{page}:{line}: a shell block with no command'
+        if kind == 'not-run':
+            assert len(marker) > 20, f'{page}:{line}: say why it cannot run here'
+
+
+@pytest.mark.parametrize('block', _shell_blocks(), ids=lambda b: f'{b[0]}:{b[1]}')
+def test_every_shell_example_runs_or_says_why_not(block: tuple[str, int, str, str, list[str]],
+                                                  shell_runs: dict[tuple[str, int], tuple[str, list[tuple[str, int]]]]) -> None:
+    import shlex
+
+    page, line, kind, marker, commands = block
+    if kind == 'not-run':
+        return  # the marker says why (checked above)
+    for command in commands:
+        programs = _programs(command)
+        assert 'nodl' in programs or set(programs) <= SET_UP, (
+            f'{page}:{line}: `{command}` cannot run in the test: run only nodl and folder set-up '
+            f'({", ".join(sorted(SET_UP))}) or mark the block <!-- nodl:not-run REASON -->')
+        assert set(programs) <= SET_UP | {'nodl'}, (
+            f'{page}:{line}: `{command}`: {set(programs) - SET_UP - {"nodl"}} cannot run in the test; '
+            'mark the block <!-- nodl:not-run REASON -->')
+    options = dict(word.split('=', 1) if '=' in word else (word, '') for word in shlex.split(marker))
+    expected = int(options.get('exit', '0'))
+    output, statuses = shell_runs[(page, line)]
+    assert len(statuses) == len(commands), f'{page}:{line}: the block stopped early\n{output}'
+    for command, status in statuses:
+        assert status == expected, f'{page}:{line}: `{command}` exited {status}, not {expected}\n{output}'
+
+
+def test_a_shell_example_that_fails_or_is_not_nodl_is_caught(tmp_path: Path) -> None:
+    assert _programs('mkdir -p .vscode && nodl schema node -o x.json  # a comment; rm') == ['mkdir', 'nodl']
+    assert _programs('(cd /tmp/ws && colcon build)') == ['cd', 'colcon']
+    assert _commands('sh', '  nodl validate a \\\n  b  # why\n  # a comment\n', 2) == ['nodl validate a b  # why']
+    assert _commands('console', '$ nodl show x\nprinted\n', 0) == ['nodl show x']
+    output, statuses = _run_block(('page', 1, 'example', '', ['nodl validate examples/',
+                                                              'nodl show no/such/file.nodl.yaml']),
+                                  tmp_path / 'run')
+    assert statuses[0][1] == 0 and statuses[1][1] != 0, output
