@@ -244,6 +244,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL565': ('warning', 'a node launched without a name takes the name of its executable (its registration records none)'),
     'NODL566': ('error', 'a launched node cannot be analysed: its definition does not compose, or its name, namespace or remapping is invalid'),
     'NODL567': ('warning', 'an analysis check plug-in is broken and was skipped'),
+    'NODL568': ('warning', "draft-gaps: a node's definition is an extracted draft with entities still under # GAP "
+                           '(what the analysis says about them cannot be judged)'),
     'NODL570': ('error', 'type-definition-mismatch: endpoints of a topic use one type name with different installed definitions'),
     # -- NODL6xx: SROS 2 policies (nodl policy) -----------------------------
     'NODL601': ('error', 'policy: a node has no definition, so its profile cannot be written (--allow-missing: a warning and an empty profile)'),
@@ -262,6 +264,8 @@ CODES: dict[str, tuple[str, str]] = {
     'NODL614': ('error', 'policy XInclude: more includes than the limit (an include bomb?); the rest are not expanded'),
     'NODL615': ('error', 'policy XInclude: the included text passes the total size limit; the rest is not expanded'),
     'NODL616': ('error', "policy XInclude: an href leads outside the including file's folder (after '..' and symbolic links)"),
+    'NODL617': ('error', "policy: a node's definition is an extracted draft with entities still under # GAP: "
+                         'nothing is granted for them (--allow-gaps: a warning)'),
     # -- NODL70x: parameter files checked against definitions (nodl params check) --
     'NODL701': ('error', "parameter file: a parameter the node's definition does not declare (a warning "
                 'under a wildcard key, which also serves other nodes)'),

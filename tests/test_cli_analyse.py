@@ -287,3 +287,46 @@ def test_a_file_neither_launch_file_nor_definition_stays_exit_2(tmp_path: Path) 
     mixed = run('analyse', driver, str(OVERLAYS / 'launch' / 'system.launch.xml'))
     assert mixed.returncode == 2 and 'not both' in mixed.stderr
     assert run('analyse', str(OVERLAYS / 'launch' / 'system.launch.xml'), '--name', 'x').returncode == 2
+
+
+GAPS = OVERLAYS / 'gaps'
+
+
+def test_an_extracted_draft_with_gaps_is_one_warning_and_orphans_it_could_answer_say_so(
+        tmp_path: Path) -> None:
+    draft = GAPS / 'defs' / 'relay_pkg' / 'relay.nodl.yaml'
+    done = run('analyse', str(GAPS / 'launch' / 'system.launch.xml'),
+               '--definitions', str(GAPS / 'defs'), '--format', 'json', '-v')
+    assert done.returncode == 0, done.stderr
+    findings = json.loads(done.stdout)['findings']
+    gaps = [f for f in findings if f['code'] == 'NODL568']
+    assert len(gaps) == 1 and gaps[0]['nodes'] == ['/relay'] and gaps[0]['severity'] == 'warning'
+    assert gaps[0]['line'] == 3  # the relay's launch entry
+    assert 'with 3 entities still unknown (1 publisher, 1 subscription and 1 service client' \
+        in gaps[0]['message'] and 'cannot be judged' in gaps[0]['message']
+    lines = draft.read_text().split('\n')
+    related = [(r['file'], r['line'], r['column']) for r in gaps[0]['related']]
+    assert related == [(str(draft), i + 1, line.index('#') + 1)
+                       for i, line in enumerate(lines) if line.lstrip().startswith('# GAP ')]
+    orphans = {(f['endpoint'], f['code']): f['message'] for f in findings if f['code'] in ('NODL555', 'NODL558')}
+    unless = "(unless /relay's unresolved entities, under # GAP in its extracted draft, do)"
+    assert orphans[('/status', 'NODL555')].endswith(unless)  # the draft's status publisher, QoS unknown
+    assert orphans[('/image', 'NODL558')].endswith(unless)  # its subscription of an unknown name
+    assert 'unless' not in orphans[('/settings', 'NODL555')]  # no publisher of it is a gap
+    assert 'unless' not in orphans[('/relayed', 'NODL558')]  # (not the draft's own endpoint)
+    # filled in and uncommented (the GAP comments may stay): resolved, no finding about it
+    filled = tmp_path / 'defs'
+    (filled / 'relay_pkg').mkdir(parents=True)
+    (filled / 'camera_pkg').mkdir()
+    (filled / 'camera_pkg' / 'camera.nodl.yaml').write_text(
+        (GAPS / 'defs' / 'camera_pkg' / 'camera.nodl.yaml').read_text())
+    text = draft.read_text().replace(
+        '    # - name: status\n    #   type: std_msgs/msg/String\n',
+        '    - name: status\n      type: std_msgs/msg/String\n'
+        '      qos: {history: KEEP_LAST, depth: 10, reliability: RELIABLE}\n')
+    (filled / 'relay_pkg' / 'relay.nodl.yaml').write_text(text)
+    again = run('analyse', str(GAPS / 'launch' / 'system.launch.xml'),
+                '--definitions', str(filled), '--format', 'json')
+    found = json.loads(again.stdout)['findings']
+    assert [f['message'] for f in found if f['code'] == 'NODL568'][0].count('2 entities still unknown')
+    assert not any(f.get('endpoint') == '/status' and f['code'] == 'NODL555' for f in found)  # published

@@ -155,3 +155,31 @@ def test_definitions_folders_serve_nodes_and_the_coverage_line_says_so() -> None
     assert '4 nodes: 1 registered, 2 overlay (1 extracted), 1 without definition' in launched.stderr
     bad = policy('nav', 'planner', '--definitions', str(overlays / 'bad'))
     assert bad.returncode == 1 and '[NODL242]' in bad.stderr and 'no policy written' in bad.stderr
+
+
+def test_an_extracted_draft_with_gaps_is_no_policy_unless_allow_gaps() -> None:
+    """NODL617: a draft's unresolved entities would be denied at run time: an error (no policy)
+    unless --allow-gaps, then a warning and a GAP comment in the profile for each entity."""
+    gaps = REPO / 'tests' / 'fixtures' / 'overlays' / 'gaps'
+    env = dict(os.environ, AMENT_PREFIX_PATH=str(REPO / 'tests' / 'fixtures' / 'analysis' / 'prefix'))
+    env.pop('NODL_PATH', None)
+
+    def policy(*args: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run([sys.executable, '-m', 'nodl', 'policy', *args], cwd=REPO,
+                              env=env, text=True, capture_output=True, timeout=60)
+
+    launch = str(gaps / 'launch' / 'system.launch.xml')
+    refused = policy(launch, '--definitions', str(gaps / 'defs'))
+    assert refused.returncode == 1 and refused.stdout == ''
+    assert refused.stderr.count('[NODL617]') == 1 and 'system.launch.xml:3:3: error: /relay' in refused.stderr
+    assert '3 unresolved entities' in refused.stderr and '--allow-gaps' in refused.stderr
+    allowed = policy(launch, '--definitions', str(gaps / 'defs'), '--allow-gaps')
+    assert allowed.returncode == 0, allowed.stderr
+    assert allowed.stderr.count('warning: /relay') == 1 and '[NODL617]' in allowed.stderr
+    assert allowed.stdout.count('<!-- GAP: ') == 3
+    assert 'GAP: a subscription of the extracted draft is unresolved' in allowed.stdout
+    # placed by name too (the draft's first GAP line is the place); the complete camera: none
+    placed = policy('relay_pkg', 'relay', '--definitions', str(gaps / 'defs'))
+    assert placed.returncode == 1 and 'relay.nodl.yaml:22:5: error: /relay' in placed.stderr
+    camera = policy('camera_pkg', 'camera', '--definitions', str(gaps / 'defs'))
+    assert camera.returncode == 0 and 'NODL617' not in camera.stderr

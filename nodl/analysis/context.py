@@ -13,6 +13,7 @@ from typing import Iterable
 from nodl.analysis.instances import AnalysedNode
 from nodl.system.graph import System
 from nodl.system.instance import NodeInstance
+from nodl.targets.drafts import DraftGap
 
 __all__ = ['AnalysisSettings', 'AnalysisContext', 'SETTINGS_KEYS']
 
@@ -51,6 +52,7 @@ class AnalysisContext:
         #: The system of the nodes that have a definition.
         self.system = System([n.instance for n in self.nodes if n.instance is not None])
         self._by_fqn: dict[str, list[AnalysedNode]] | None = None
+        self._gaps: dict[int, list[DraftGap]] | None = None
 
     @property
     def by_fqn(self) -> dict[str, list[AnalysedNode]]:
@@ -72,6 +74,31 @@ class AnalysisContext:
         """The nodes without a usable definition (their endpoints are unknown), containers
         of composable nodes left out."""
         return [n for n in self.nodes if n.instance is None and n.entry.role != 'container']
+
+    @property
+    def draft_gaps(self) -> dict[int, list[DraftGap]]:
+        """``id(node)`` -> the unresolved entities of its extracted draft, for every analysed
+        node served by a draft ``nodl extract`` wrote with gaps still commented out (each file
+        read once, on first use)."""
+        gaps = self._gaps
+        if gaps is None:
+            from nodl.targets.drafts import draft_gaps
+
+            by_file: dict[str, list[DraftGap]] = {}
+            gaps = self._gaps = {}
+            for node in self.analysed():
+                file = node.match.file
+                if file is None:
+                    continue
+                if file not in by_file:
+                    by_file[file] = draft_gaps(file)
+                if by_file[file]:
+                    gaps[id(node)] = by_file[file]
+        return gaps
+
+    def gaps_of(self, node: AnalysedNode) -> list[DraftGap]:
+        """The unresolved entities of ``node``'s extracted draft (none for a complete definition)."""
+        return self.draft_gaps.get(id(node), [])
 
     def analysed(self) -> Iterable[AnalysedNode]:
         """The nodes with an instance."""

@@ -41,6 +41,7 @@ KINDS: dict[str, str] = {
     'broken-check': 'NODL567',
     'assumed-duplicate-node': 'NODL530',
     'type-definition-mismatch': 'NODL570',
+    'draft-gaps': 'NODL568',
 }
 #: code -> kind.
 KIND_OF_CODE: dict[str, str] = {code: kind for kind, code in KINDS.items()}

@@ -6,7 +6,10 @@
 keeps the policy from being exact: nodes without a definition (NODL601: an
 error, or with ``allow_missing`` a warning and a profile granting nothing,
 with a comment marking the gap), names that cannot be granted (NODL602),
-two instances with one name (NODL611: DDS cannot tell them apart).
+two instances with one name (NODL611: DDS cannot tell them apart), nodes served by an
+extracted draft whose gaps are still commented out (NODL617: an error, or with
+``allow_gaps`` a warning; nothing is granted for those entities and a comment
+in the profile says so).
 """
 
 from __future__ import annotations
@@ -22,9 +25,10 @@ from nodl.system.instance import NodeInstance
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
+    from nodl.targets.drafts import DraftGap
     from nodl.targets.resolve import Provenance
 
-__all__ = ['MissingNode', 'PolicyResult', 'policy_for_instances']
+__all__ = ['MissingNode', 'GappedNode', 'PolicyResult', 'gapped_nodes', 'policy_for_instances']
 
 
 class MissingNode(NamedTuple):
@@ -36,6 +40,38 @@ class MissingNode(NamedTuple):
     reason: str
     #: Where it is launched, if known.
     location: Location | None = None
+
+
+class GappedNode(NamedTuple):
+    """A node whose definition is an extracted draft with entities still under ``# GAP``
+    (see :func:`nodl.targets.drafts.draft_gaps`): the policy grants them nothing."""
+
+    #: Its fully qualified name.
+    fqn: str
+    #: The draft.
+    file: str
+    #: Its unresolved entities (:class:`~nodl.targets.drafts.DraftGap`) a policy would grant.
+    gaps: tuple[DraftGap, ...]
+    #: Where it is launched, if known (else the draft's first GAP line is the place).
+    location: Location | None = None
+
+
+def gapped_nodes(nodes: Iterable[tuple[str, str | None, Location | None]]) -> list[GappedNode]:
+    """The nodes among ``(fqn, definition file, launch location)`` whose definition is an
+    extracted draft with communication entities still under ``# GAP`` (parameters need no
+    grant); each draft read once."""
+    from nodl.targets.drafts import draft_gaps
+
+    read: dict[str, tuple[DraftGap, ...]] = {}
+    out: list[GappedNode] = []
+    for fqn, file, location in nodes:
+        if file is None:
+            continue
+        if file not in read:
+            read[file] = tuple(gap for gap in draft_gaps(file) if gap.communication)
+        if read[file]:
+            out.append(GappedNode(fqn, file, read[file], location))
+    return out
 
 
 class PolicyResult(NamedTuple):
@@ -60,19 +96,67 @@ class PolicyResult(NamedTuple):
 def policy_for_instances(instances: Iterable[NodeInstance], *,
                          missing: Sequence[MissingNode] = (), distro: str = DEFAULT_DISTRO,
                          enclaves: str | EnclaveMapping = 'node', allow_missing: bool = False,
-                         notes: Sequence[str] = (), containers: Mapping[str, str] | None = None
+                         notes: Sequence[str] = (), containers: Mapping[str, str] | None = None,
+                         gapped: Sequence[GappedNode] = (), allow_gaps: bool = False
                          ) -> PolicyResult:
     """The least-privilege policy of ``instances`` (plus ``missing`` nodes, as gaps).
 
     ``containers`` maps composable nodes to their container (fully qualified
-    names): they share its process, hence its enclave.
+    names): they share its process, hence its enclave.  ``gapped``: instances whose
+    definition is a draft with unresolved entities (:func:`gapped_nodes`); each is
+    NODL617, an error unless ``allow_gaps``.
     """
     from nodl.analysis.gc_tuning import batch_collection
 
     # a large system allocates many objects that live until the end: collect less often
     with batch_collection():
-        return _policy_for_instances(list(instances), missing, distro, enclaves, allow_missing, notes,
-                                     containers)
+        result = _policy_for_instances(list(instances), missing, distro, enclaves, allow_missing,
+                                       notes, containers)
+    if gapped:
+        result = _mark_gaps(result, gapped, allow_gaps)
+    return result
+
+
+def _mark_gaps(result: PolicyResult, gapped: Sequence[GappedNode], allow_gaps: bool) -> PolicyResult:
+    """NODL617 for each node of ``gapped``, and a note in its profile per unresolved entity."""
+    from nodl.policy.grants import display_path
+    from nodl.targets.drafts import describe
+
+    profiles = {profile.fqn: profile for enclave in result.policy.enclaves
+                for profile in enclave.profiles}
+    diagnostics = list(result.diagnostics)
+    for node in gapped:
+        count = len(node.gaps)
+        first = node.gaps[0].lines[0]
+        where = node.location or Location(first.file, first.line, first.column)
+        severity = Severity.WARNING if allow_gaps else Severity.ERROR
+        hint = ('written with --allow-gaps: fill them in before deploying, or the node is denied '
+                'that traffic' if allow_gaps else
+                'fill in what each GAP says is missing and uncomment the entities in the draft (or '
+                'extract again), or pass --allow-gaps to write the policy without them')
+        diagnostics.append(Diagnostic(
+            severity, f'{node.fqn}: its definition {node.file} is a draft nodl extract wrote, with '
+            f'{count} unresolved entit{"y" if count == 1 else "ies"} ({describe(list(node.gaps))}, '
+            f'under # GAP): the policy grants nothing for {"it" if count == 1 else "them"}, so '
+            f'SROS 2 would deny that traffic; {hint}', (), where.file, where.line, where.column,
+            code='NODL617',
+            related=[(line.file, line.line, line.column, f'GAP {line.reason}')
+                     for gap in node.gaps for line in gap.lines]))
+        profile = profiles.get(node.fqn)
+        if profile is not None:
+            for gap in node.gaps:
+                line = gap.lines[0]
+                what = f'{_word(gap.section)} {gap.name}' if gap.name else f'a {_word(gap.section)}'
+                profile.notes.append(f'GAP: {what} of the extracted draft is unresolved '
+                                     f'({display_path(line.file)}:{line.line}:{line.column}); '
+                                     'nothing is granted for it')
+    return result._replace(diagnostics=diagnostics)
+
+
+def _word(section: str) -> str:
+    from nodl.vocabulary import SECTION_BY_KEY
+
+    return SECTION_BY_KEY[section].word
 
 
 def _policy_for_instances(instances: list[NodeInstance], missing: Sequence[MissingNode], distro: str,

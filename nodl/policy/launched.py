@@ -28,7 +28,7 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
                   client_library: str | None = None, distro: str = DEFAULT_DISTRO,
                   enclaves: str | EnclaveMapping = 'node', allow_missing: bool = False,
                   prefixes: list[str] | None = None, limits: LaunchLimits | None = None,
-                  definitions: Definitions | None = None) -> PolicyResult:
+                  definitions: Definitions | None = None, allow_gaps: bool = False) -> PolicyResult:
     """The policy of the system ``path`` launches with ``arguments`` (``limits``: how the
     launch's Python code runs, if at all; see :class:`~nodl.launch.sandbox.LaunchLimits`).
 
@@ -61,9 +61,13 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
             reason = f'{node.executable_label}: its name or remapping cannot be resolved'
         missing.append(MissingNode(node.fqn, reason, node.location))
     containers = {node.fqn: node.entry.container for node in analysis.nodes if node.entry.container}
+    from nodl.policy.generate import gapped_nodes
+
+    gapped = gapped_nodes((node.fqn, node.match.file, node.location) for node in analysis.nodes
+                          if node.instance is not None)
     result = policy_for_instances(
         instances, missing=missing, distro=distro, enclaves=enclaves, allow_missing=allow_missing,
-        containers=containers,
+        containers=containers, gapped=gapped, allow_gaps=allow_gaps,
         notes=[f'Least-privilege SROS 2 policy written by nodl policy for the system '
                f'{display_path(os.path.abspath(path))} launches.'])
     from nodl.analysis.report import node_provenance

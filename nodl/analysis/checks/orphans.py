@@ -19,6 +19,14 @@ _ORPHANS = {
     EntityKind.ACTION_CLIENT: ('orphan-action-client', 'no node serves it'),
     EntityKind.PUBLISHER: ('orphan-publisher', 'no node subscribes to it'),
 }
+#: The kind of an endpoint that has no peer -> the draft section whose unresolved entity could be
+#: that peer.
+_PEER_SECTION = {
+    EntityKind.SUBSCRIPTION: 'publishers',
+    EntityKind.SERVICE_CLIENT: 'service_servers',
+    EntityKind.ACTION_CLIENT: 'action_servers',
+    EntityKind.PUBLISHER: 'subscriptions',
+}
 
 
 class OrphanCheck(CheckExtension):
@@ -26,7 +34,9 @@ class OrphanCheck(CheckExtension):
 
     Nodes without a definition have unknown endpoints: names they are remapped
     to are taken as theirs (no finding), and every other orphan finding says
-    which nodes are unknown.
+    which nodes are unknown.  Nodes served by an extracted draft with gaps may
+    be the missing side too: an orphan finding names those whose unresolved
+    entities could be its peer (of the peer's kind, with its name or an unknown one).
     """
 
     kinds = tuple(kind for kind, _ in _ORPHANS.values())
@@ -47,7 +57,8 @@ class OrphanCheck(CheckExtension):
         caveat = ''
         if unknown:
             names = ', '.join(n.fqn for n in unknown[:3]) + (', ...' if len(unknown) > 3 else '')
-            caveat = f' (unless {names}, launched without a definition, does)'
+            caveat = f'{names}, launched without a definition, does'
+        drafts = _draft_peers(context)
         # (a service or action one server offers and no client uses is no orphan: those, most
         # connections of a system, are not even made)
         for connection in context.system.connections(lone_servers=False):
@@ -62,10 +73,45 @@ class OrphanCheck(CheckExtension):
                 if kind is None:
                     continue  # a server without clients is no problem
                 location = bound.entity.location
+                unless = [caveat] if caveat else []
+                gapped = [fqn for fqn, (anywhere, named) in drafts.get(bound.entity.kind, {}).items()
+                          if fqn != bound.instance.fqn and (anywhere or connection.name in named)]
+                if gapped:
+                    shown = ', '.join(gapped[:3]) + (', ...' if len(gapped) > 3 else '')
+                    unless.append(f"{shown}'s unresolved entities, under # GAP in its extracted "
+                                  'draft, do')
+                why = f' (unless {" or unless ".join(unless)})' if unless else ''
                 yield make_finding(
                     kind, f'{bound.instance.fqn}: {bound.entity.kind.word} '
-                    f'{connection.name} ({bound.entity.type_name}): {missing}{caveat}',
+                    f'{connection.name} ({bound.entity.type_name}): {missing}{why}',
                     context.node_of(bound.instance).location, [bound.instance.fqn],
                     endpoint=connection.name,
                     related=[(location.file, location.line, location.column,
                               f'declared as {bound.entity.name!r}')])
+
+
+def _draft_peers(context: AnalysisContext) -> dict[EntityKind, dict[str, tuple[bool, set[str]]]]:
+    """The kind of an orphan endpoint -> the nodes whose draft gaps could be its peer: fully
+    qualified name -> (True if such a gap's name is unknown, the final names of those named)."""
+    peers: dict[EntityKind, dict[str, tuple[bool, set[str]]]] = {}
+    if not context.draft_gaps:
+        return peers
+    for node in context.analysed():
+        gaps = context.gaps_of(node)
+        for kind, section in _PEER_SECTION.items():
+            anywhere = False
+            named: set[str] = set()
+            for gap in gaps:
+                if gap.section != section:
+                    continue
+                if gap.name is None or node.names is None:
+                    anywhere = True
+                    continue
+                try:
+                    named.add(node.names.resolve(gap.name, service=section != 'publishers'
+                                                 and section != 'subscriptions'))
+                except ValueError:
+                    anywhere = True  # a name rcl would refuse: where it ends up is unknown
+            if anywhere or named:
+                peers.setdefault(kind, {})[node.fqn] = (anywhere, named)
+    return peers

@@ -70,6 +70,10 @@ class PolicyVerb(Verb):
         parser.add_argument('--allow-missing', action='store_true',
                             help='write the policy even if a node has no definition (an empty '
                                  'profile with a comment marks the gap)')
+        parser.add_argument('--allow-gaps', action='store_true',
+                            help='write the policy even if a node\'s definition is an extracted draft '
+                                 'with entities still under # GAP (nothing is granted for them; a '
+                                 'comment in its profile marks each)')
         from nodl.cli.arguments import add_client_library_argument, add_definitions_argument
 
         add_client_library_argument(parser)
@@ -218,7 +222,8 @@ class PolicyVerb(Verb):
                 launched = launch_policy(launches[0], values, client_library=args.client_library,
                                          distro=args.distro, enclaves=enclaves,
                                          allow_missing=args.allow_missing,
-                                         limits=launch_limits(args), definitions=folders)
+                                         limits=launch_limits(args), definitions=folders,
+                                         allow_gaps=args.allow_gaps)
                 return launched._replace(diagnostics=layout + launched.diagnostics)
             except OSError as exc:
                 return _usage(f'cannot read {launches[0]}: {_os_words(exc)}')
@@ -237,11 +242,14 @@ class PolicyVerb(Verb):
             return _usage(str(exc))
         except OSError as exc:
             return _usage(f'cannot read {exc.filename or ""}: {_os_words(exc)}')
-        from nodl.policy.generate import policy_for_instances
+        from nodl.policy.generate import gapped_nodes, policy_for_instances
 
         result = policy_for_instances([p.instance for p in placed], distro=args.distro,
                                       enclaves=enclaves,
                                       allow_missing=args.allow_missing,
+                                      gapped=gapped_nodes((p.instance.fqn, p.file, None)
+                                                          for p in placed),
+                                      allow_gaps=args.allow_gaps,
                                       notes=['Least-privilege SROS 2 policy written by nodl policy '
                                              'from node definitions.'])
         read = [d.file for d in definitions if d.file is not None] + [
