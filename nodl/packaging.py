@@ -307,7 +307,7 @@ def _node_info(package: str, nodes: Mapping[str, str], plugins: dict[str, str],
                node_names: dict[str, str], staging_dir: str,
                entries: dict[str, list[str]]) -> None:
     """Write the ``nodl_node_info`` markers (plugin, node name) and add them to ``entries``."""
-    from nodl.index.node_info import NODE_INFO_RESOURCE, format_node_info
+    from nodl.registry.node_info import NODE_INFO_RESOURCE, format_node_info
 
     problems = [f"nodl_data_files: {what} names '{key}', which is not in nodes"
                 for what, given in (('plugins', plugins), ('node_names', node_names))

@@ -160,7 +160,7 @@ INTERFACE_RESOURCE = 'nodl_interfaces'
 #: Resource type of the legacy marker (spec 001: ``nodl_desc/<package>``).
 LEGACY_RESOURCE = 'nodl_desc'
 #: Resource type of what a registered node records besides its file (its plugin class, its
-#: default node name: ``nodl_node_info/<package>__<executable>``, see :mod:`nodl.index.node_info`).
+#: default node name: ``nodl_node_info/<package>__<executable>``, see :mod:`nodl.registry.node_info`).
 NODE_INFO_RESOURCE = 'nodl_node_info'
 #: Resource type the reference implementation's current ``ament_nodl_register(NAME FILE f
 #: [PACKAGE p])`` installs (``nodl/<package>__<name>``, the entry holding the document itself,

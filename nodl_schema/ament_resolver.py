@@ -34,10 +34,10 @@ class AmentIndexResolver(Resolver):
         if not package or not name:
             raise ResolutionError(f'invalid reference {ref!r}: expected nodl://<package>/<name>')
         key = resource_name(package, name)
-        found = self._reference_entry(key)
+        found = self._reference_entry(package, name)
         if found is not None:
             return found
-        own = self._toolkit_entry(INTERFACE_RESOURCE, key, package)
+        own = self._toolkit_entry(package, name)
         if own is not None:
             return own
         raise ResolutionError(
@@ -45,14 +45,17 @@ class AmentIndexResolver(Resolver):
             f'{self.ament_resource_type}/{key} or {INTERFACE_RESOURCE}/{key}): is the package '
             'that registers it built and its install/setup.bash sourced?')
 
-    def _reference_entry(self, key: str) -> Path | None:
+    def _reference_entry(self, package: str, name: str) -> Path | None:
+        from nodl.vocabulary import resource_name
+
+        key = resource_name(package, name)
         try:
             from ament_index_python import resources
             from ament_index_python.constants import RESOURCE_INDEX_SUBFOLDER
-        except ImportError:  # without ROS's package: the toolkit's reader of the same index
-            from nodl.index import ament
+        except ImportError:  # without ROS's package: the toolkit's registry of the same index
+            from nodl.registry import registrations
 
-            entry = ament.get_resource(self.ament_resource_type, key)
+            entry = registrations.interface_entry(package, name, self.ament_resource_type)
             return Path(entry.path) if entry is not None else None
         prefix = resources.has_resource(self.ament_resource_type, key)
         if not prefix:
@@ -64,15 +67,14 @@ class AmentIndexResolver(Resolver):
         return path
 
     @staticmethod
-    def _toolkit_entry(resource_type: str, key: str, package: str) -> Path | None:
-        from nodl.composition.ament_resolver import read_registered
+    def _toolkit_entry(package: str, name: str) -> Path | None:
         from nodl.composition.resolvers import ResolutionError as NodlResolutionError
-        from nodl.index import ament
+        from nodl.registry import registrations
 
-        entry = ament.get_resource(resource_type, key)
+        entry = registrations.interface_entry(package, name)
         if entry is None:
             return None
         try:
-            return Path(read_registered(entry, package).file)
+            return Path(registrations.read_registered(entry, package).file)
         except NodlResolutionError as error:
             raise ResolutionError(str(error)) from None

@@ -50,7 +50,7 @@ def test_verbs_options_choices_and_paths_complete() -> None:
 
 def test_show_offers_registered_packages() -> None:
     env_prefix = os.environ.get('AMENT_PREFIX_PATH', '')
-    from nodl.index.registry import list_registrations
+    from nodl.registry.registrations import list_registrations
 
     packages = {r.package for r in list_registrations()}
     words = complete('nodl show ')

@@ -282,13 +282,13 @@ def test_a_run_shares_the_base_and_copies_a_trace_only_when_a_later_layer_adds_t
     # Within a snapshot (an analysis) every node shares the base layer's merge; a node that
     # refines a base parameter must not change what the others see.
     from nodl.composition import compose
-    from nodl.index import ament
+    from nodl import ament_index
 
     refined = NODE.format(extra='    use_sim_time: {type: bool, default_value: true, '
                                 'description: Refined.}\n')
     plain = NODE.format(extra='')
     key = ('parameters', 'use_sim_time')
-    with ament.snapshot():
+    with ament_index.snapshot():
         first, other, again = compose(refined), compose(plain), compose(refined)
     assert [d.layer.label for d in first.declarations[key]] == ['base:node', 'main']
     assert [d.layer.label for d in again.declarations[key]] == ['base:node', 'main']

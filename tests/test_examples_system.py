@@ -22,7 +22,7 @@ import pytest
 
 from conftest import REPO
 from nodl.analysis import KINDS, analyse_launch
-from nodl.index.node_info import find_plugin, read_node_info
+from nodl.registry.node_info import find_plugin, read_node_info
 
 VENV = Path(sys.prefix)
 SYSTEM = REPO / 'examples' / 'system'

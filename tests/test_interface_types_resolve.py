@@ -67,7 +67,7 @@ def test_source_package_shadows_and_lists_its_types(index: InterfaceIndex) -> No
 
 
 def test_one_index_per_run_inside_a_snapshot() -> None:
-    from nodl.index.ament import snapshot
+    from nodl.ament_index import snapshot
 
     with snapshot():
         assert interface_index(prefixes=[VENV]) is interface_index(prefixes=[VENV])

@@ -157,7 +157,7 @@ def test_nodes_resolved_in_one_run_share_their_base(tmp_path: Path) -> None:
     # Inside an index snapshot (one analysis) every node of a base shares its layer and the
     # entities only the base declares; what a node declares or refines stays its own, and
     # outside a snapshot nothing is shared.
-    from nodl.index import ament
+    from nodl import ament_index
 
     files = []
     for i, refine in enumerate(('', '  parameters:\n    use_sim_time: {type: bool, default_value: false,'
@@ -166,7 +166,7 @@ def test_nodes_resolved_in_one_run_share_their_base(tmp_path: Path) -> None:
         file.write_text('nodl_version: 2\nbase: node\nmain:\n  nodl_version: 2\n  description: N.\n'
                         + refine)
         files.append(file)
-    with ament.snapshot():
+    with ament_index.snapshot():
         one, two = (resolve_node(f) for f in files)
         assert one.layers[0] is two.layers[0]
         assert one.entity('publisher', '/rosout') is two.entity('publisher', '/rosout')

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from conftest import FIXTURES
 
-from nodl.index import node_info, registry
+from nodl.registry import node_info, registrations
 from nodl.targets.overlay import Definitions, active, read_folder, read_folders, using
 
 OVERLAYS = FIXTURES / 'overlays'
@@ -73,19 +73,19 @@ def test_first_folder_wins_and_a_folder_given_twice_is_read_once() -> None:
 def test_the_index_lookups_consult_the_folders_in_force(tmp_path) -> None:  # type: ignore[no-untyped-def]
     prefixes = [str(FIXTURES / 'analysis' / 'prefix')]
     definitions = Definitions([read_folder(DEFS)])
-    assert registry.find_node('upstream_drv', 'driver', prefixes) is None
-    assert registry.find_node('nav', 'controller', prefixes).origin == 'index'  # type: ignore[union-attr]
+    assert registrations.find_node('upstream_drv', 'driver', prefixes) is None
+    assert registrations.find_node('nav', 'controller', prefixes).origin == 'index'  # type: ignore[union-attr]
     with using(definitions):
         assert active() is definitions
-        found = registry.find_node('nav', 'controller', prefixes)
+        found = registrations.find_node('nav', 'controller', prefixes)
         assert found is not None and found.origin == f'overlay {DEFS}'
         assert found.file == f'{DEFS}/nav/controller.nodl.yaml'
-        assert registry.find_node('nav', 'planner', prefixes).origin == 'index'  # type: ignore[union-attr]
+        assert registrations.find_node('nav', 'planner', prefixes).origin == 'index'  # type: ignore[union-attr]
         assert node_info.find_plugin('upstream_drv', 'upstream_drv::Fusion', prefixes) == \
             node_info.NodeInfo('upstream_drv', 'fusion', 'upstream_drv::Fusion', 'fusion')
         assert node_info.read_node_info('upstream_drv', 'driver', prefixes).node_name == 'drv'
         listed = {(r.package, r.name, r.kind, r.origin.split()[0])
-                  for r in registry.list_registrations('nav', prefixes)}
+                  for r in registrations.list_registrations('nav', prefixes)}
         assert listed == {('nav', 'controller', 'node', 'overlay'), ('nav', 'planner', 'node', 'index')}
     assert active() is None
 

@@ -123,18 +123,18 @@ def test_cmake_registers_under_the_python_resource_types() -> None:
     # every resource type the CMake functions register is one of the vocabulary's
     literal = set(re.findall(r'ament_index_register_resource\((\w+)', text)) - {'resource_type'}
     assert literal == {v.NODE_INFO_RESOURCE}
-    from nodl.index import node_info
+    from nodl.registry import node_info
 
     assert node_info.NODE_INFO_RESOURCE is v.NODE_INFO_RESOURCE
 
 
 def test_python_consumers_use_the_resource_types() -> None:
     from nodl import packaging
-    from nodl.composition import ament_resolver
+    from nodl.registry import registrations
 
-    assert packaging.NODE_RESOURCE == ament_resolver.NODE_RESOURCE == v.NODE_RESOURCE
-    assert packaging.INTERFACE_RESOURCE == ament_resolver.INTERFACE_RESOURCE == v.INTERFACE_RESOURCE
-    assert ament_resolver.resource_name('pkg', 'x') == v.resource_name('pkg', 'x') == 'pkg__x'
+    assert packaging.NODE_RESOURCE == registrations.NODE_RESOURCE == v.NODE_RESOURCE
+    assert packaging.INTERFACE_RESOURCE == registrations.INTERFACE_RESOURCE == v.INTERFACE_RESOURCE
+    assert registrations.resource_name('pkg', 'x') == v.resource_name('pkg', 'x') == 'pkg__x'
 
 
 def test_vocabulary_imports_nothing_heavy() -> None:

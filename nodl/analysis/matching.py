@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 from nodl.analysis.entries import LaunchEntry
 from nodl.diagnostics import Diagnostic
-from nodl.index import ament, node_info, registry
+from nodl.registry import node_info, registrations
 from nodl.system.resolved import ResolvedNode, resolve_registered
 
 # Imported here, not in the functions: an import statement costs a few microseconds each
@@ -56,7 +56,7 @@ class DefinitionMatcher:
     def __init__(self, client_library: str | None = None,
                  prefixes: list[str] | None = None) -> None:
         self.client_library = client_library
-        self.prefixes = prefixes if prefixes is not None else ament.prefix_paths()
+        self.prefixes = prefixes if prefixes is not None else registrations.search_path()
         self._cache: dict[tuple[str, str, str], Match] = {}
 
     def match(self, entry: LaunchEntry) -> Match:
@@ -76,7 +76,7 @@ class DefinitionMatcher:
         return found
 
     def _find(self, package: str, key: str, how: str) -> Match:
-        registration = registry.find_node(package, key, self.prefixes)
+        registration = registrations.find_node(package, key, self.prefixes)
         if registration is None:
             return Match(package, key, None, None, how=how)
         node_name = node_info.read_node_info(package, key, self.prefixes).node_name

@@ -137,7 +137,7 @@ def _analyse(entries: Iterable[LaunchEntry | Any], matches: list[Any] | None, *,
     from nodl.analysis.checks import run_checks
     from nodl.analysis.gc_tuning import batch_collection
     from nodl.analysis.matching import DefinitionMatcher
-    from nodl.index import ament
+    from nodl.registry.registrations import one_run
 
     entries = list(entries)
     findings: list[Finding] = (list(launch_findings) + _parameter_file_findings(entries)
@@ -146,7 +146,7 @@ def _analyse(entries: Iterable[LaunchEntry | Any], matches: list[Any] | None, *,
         if definitions else []
     # The index is listed once (not looked up file by file per node), and the collector
     # does not rescan, every 700 allocations, what the analysis keeps until its end.
-    with ament.snapshot(), batch_collection(), overlay.using(definitions):
+    with one_run(), batch_collection(), overlay.using(definitions):
         matcher = DefinitionMatcher(client_library, prefixes)
         launched = entries_from_launch(entries)
         nodes = [build_node(entry, matches[index] if matches is not None else matcher.match(entry),

@@ -21,7 +21,7 @@ __all__ = ['complete_definition', 'autocomplete']
 def complete_definition(prefix: str = '', parsed_args: Any = None, **_: Any) -> list[str]:
     """Completions for ``FILE | PACKAGE EXECUTABLE``: paths and registered packages, or,
     after a package, its registered executables."""
-    from nodl.index.registry import list_registrations
+    from nodl.registry.registrations import list_registrations
 
     given = [t for t in (getattr(parsed_args, 'target', None) or getattr(parsed_args, 'definition', None)
                          or [])]

@@ -141,11 +141,11 @@ def base_layer(base: Base | str, client_library: str = DEFAULT_CLIENT_LIBRARY) -
 
 
 def shared_base_layer(base: Base | str, client_library: str = DEFAULT_CLIENT_LIBRARY) -> Layer:
-    """:func:`base_layer`, one for a whole run inside :func:`nodl.index.ament.snapshot`
+    """:func:`base_layer`, one for a whole run inside :func:`nodl.ament_index.snapshot`
     (an analysis of a launched system: every node of that base then shares one layer, and
     the merged copies and resolved entities derived from it, see :attr:`Layer.shared`); a
     fresh layer outside one.  Composition reads a base layer and never edits it."""
-    from nodl.index import ament
+    from nodl import ament_index
 
     name, library = Base(base), check_client_library(client_library)
 
@@ -154,5 +154,5 @@ def shared_base_layer(base: Base | str, client_library: str = DEFAULT_CLIENT_LIB
         layer.shared = {}
         return layer
 
-    return ament.remembered(('base layer', name, library), make) if ament.in_snapshot() \
+    return ament_index.remembered(('base layer', name, library), make) if ament_index.in_snapshot() \
         else base_layer(name, library)

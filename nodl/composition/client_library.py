@@ -13,7 +13,7 @@ import os
 from typing import NamedTuple
 
 from nodl.composition.bases import DEFAULT_CLIENT_LIBRARY, check_client_library
-from nodl.index import ament
+from nodl import ament_index
 from nodl.vocabulary import BUILD_TYPE_LIBRARIES
 
 __all__ = ['ClientLibraryChoice', 'BUILD_TYPE_LIBRARIES', 'choose_client_library',
@@ -34,14 +34,14 @@ class ClientLibraryChoice(NamedTuple):
 def package_build_type(package: str, prefixes: list[str] | None = None) -> str | None:
     """The ``<export><build_type>`` of an installed package's package.xml (None if unknown).
 
-    Read once per package within an :func:`nodl.index.ament.snapshot`.
+    Read once per package within an :func:`nodl.ament_index.snapshot`.
     """
     key = ('build_type', package, tuple(prefixes) if prefixes is not None else None)
-    return ament.remembered(key, lambda: _read_build_type(package, prefixes))
+    return ament_index.remembered(key, lambda: _read_build_type(package, prefixes))
 
 
 def _read_build_type(package: str, prefixes: list[str] | None) -> str | None:
-    prefix = ament.package_prefix(package, prefixes)
+    prefix = ament_index.package_prefix(package, prefixes)
     if prefix is None:
         return None
     manifest = os.path.join(prefix, 'share', package, 'package.xml')

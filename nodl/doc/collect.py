@@ -108,7 +108,7 @@ class _Run:
 
     def package(self, package: str, description_of: Mapping[str, str] | None = None) -> None:
         from nodl.doc.model import package_page
-        from nodl.index.registry import list_registrations
+        from nodl.registry.registrations import list_registrations
         from nodl.targets.resolve import resolve_target
 
         registrations = list_registrations(package, self.prefixes)
@@ -157,13 +157,13 @@ def collect(targets: Sequence[str], *, root: str | None = None, client_library: 
             limits: LaunchLimits | None = None, definitions: Definitions | None = None) -> DocSet:
     """The pages of ``targets`` (see the module docstring), with the definitions folders
     ``definitions`` in force; paths shown relative to ``root`` (default: the current folder)."""
-    from nodl.index.ament import prefix_paths
+    from nodl.registry.registrations import search_path
     from nodl.interface_types.resolve import interface_index
     from nodl.targets.overlay import using
     from nodl.targets.placement import is_launch_file
 
     docs = DocSet()
-    chosen = prefixes if prefixes is not None else prefix_paths()
+    chosen = search_path(prefixes)
     run = _Run(docs, Displayer(root or os.getcwd(), chosen), interface_index(prefixes=chosen),
                client_library, prefixes)
     with using(definitions):

@@ -174,7 +174,7 @@ class ExtractedNode:
             return self.executable
         name = self.plugin or self.name
         if '::' in name:
-            from nodl.index.node_info import plugin_key
+            from nodl.registry.node_info import plugin_key
 
             return plugin_key(name)
         return name

@@ -122,7 +122,7 @@ class InterfaceIndex:
     """
 
     def __init__(self, prefixes: list[str] | None = None, sources: Iterable[str] = ()) -> None:
-        from nodl.index.ament import prefix_paths
+        from nodl.ament_index import prefix_paths
 
         self.prefixes = list(prefixes) if prefixes is not None else prefix_paths()
         self._packages: dict[str, InterfacePackage | None] = {}
@@ -271,10 +271,10 @@ def _close(word: str, candidates: list[str], cutoff: float = 0.6) -> list[str]:
 def interface_index(sources: Iterable[str] = (), prefixes: list[str] | None = None) -> InterfaceIndex:
     """The index of the current ``AMENT_PREFIX_PATH`` (and source folders), one per run.
 
-    Inside :func:`nodl.index.ament.snapshot` the same index (and its type
+    Inside :func:`nodl.ament_index.snapshot` the same index (and its type
     cache) is returned for the same prefixes and sources; outside one, a new one.
     """
-    from nodl.index.ament import in_snapshot, prefix_paths, remembered
+    from nodl.ament_index import in_snapshot, prefix_paths, remembered
 
     chosen = list(prefixes) if prefixes is not None else prefix_paths()
     folders = tuple(os.path.abspath(s) for s in sources)

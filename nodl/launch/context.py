@@ -33,7 +33,7 @@ class LaunchContext:
         self.environment: dict[str, str] = dict(os.environ if environment is None else environment)
         self._environment_stack: list[dict[str, str]] = []
         if prefixes is None:
-            from nodl.index.ament import prefix_paths
+            from nodl.ament_index import prefix_paths
 
             prefixes = prefix_paths(self.environment)
         self.prefixes = prefixes
@@ -89,13 +89,13 @@ class LaunchContext:
     def package_prefix(self, package: str) -> str:
         """The ament prefix of ``package`` (``find-pkg-prefix``); NODL511 if it is not installed."""
         if package not in self._packages:
-            from nodl.index.ament import get_resource
+            from nodl.ament_index import get_resource
 
             resource = get_resource('packages', package, self.prefixes)
             self._packages[package] = resource.prefix if resource is not None else None
         prefix = self._packages[package]
         if prefix is None:
-            from nodl.index.ament import get_resources
+            from nodl.ament_index import get_resources
             from nodl.validation.messages import did_you_mean
 
             hint = did_you_mean(package, get_resources('packages', self.prefixes))

@@ -147,7 +147,7 @@ def _related(instance: Instance, message: str) -> tuple[str, int, int, str]:
 
 def _group_key(launched: 'AnalysedNode') -> tuple[str, str, str | None] | None:
     """``(package, key, plugin)`` a launched node is filed under, or None if unknown."""
-    from nodl.index.node_info import plugin_key
+    from nodl.registry.node_info import plugin_key
 
     entry = launched.entry
     if not entry.package:

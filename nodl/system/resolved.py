@@ -22,7 +22,7 @@ from nodl.composition.merge import PARAMETERS, Declaration, seeded_copies
 from nodl.composition.resolvers import Resolver
 from nodl.diagnostics import Diagnostic, Severity, ValidationError
 from nodl.frontends.source import Source
-from nodl.index.registry import compose_registered
+from nodl.registry.registrations import compose_registered
 from nodl.loading import Report
 from nodl.model import ENDPOINT_SECTIONS, Base, Interface, Node
 from nodl.system.entities import (

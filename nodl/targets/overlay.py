@@ -17,8 +17,8 @@ files are left alone.
 
 :class:`Definitions` is the ordered list of folders of one run (the first
 that has a definition wins).  :func:`using` makes it the one every look-up of
-the run consults before the ament index (:mod:`nodl.index.registry`,
-:mod:`nodl.index.node_info`, ``nodl://`` references); :func:`active`
+the run consults before the ament index (:mod:`nodl.registry.registrations`,
+:mod:`nodl.registry.node_info`, ``nodl://`` references); :func:`active`
 is what is in force.
 """
 

@@ -134,7 +134,7 @@ def resolve_target(target: Sequence[str] | str, *, client_library: str | None = 
     parts = [target] if isinstance(target, str) else list(target)
     with using(definitions):
         if len(parts) == 2:
-            from nodl.index.registry import find_node
+            from nodl.registry.registrations import find_node
             from nodl.system.resolved import resolve_registered
 
             registration = find_node(parts[0], parts[1], prefixes)

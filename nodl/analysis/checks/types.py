@@ -40,12 +40,12 @@ class TypeDefinitionCheck(CheckExtension):
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """One finding per topic whose endpoints' definitions of its type hash differently."""
         from nodl.analysis.findings import make_finding
-        from nodl.index.ament import prefix_paths
+        from nodl.registry.registrations import search_path
         from nodl.interface_types import interface_index
         from nodl.interface_types.hashes import type_hash
         from nodl.interface_types.tree import InterfaceFileError
 
-        prefixes = list(context.prefixes) if context.prefixes is not None else prefix_paths()
+        prefixes = search_path(list(context.prefixes) if context.prefixes is not None else None)
         for connection in context.system.connections('topic', include_client_library=False):
             endpoints = connection.offering + connection.using
             if len(endpoints) < 2 or len({e.entity.type_name for e in endpoints}) != 1:

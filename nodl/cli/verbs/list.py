@@ -36,7 +36,7 @@ class ListVerb(Verb):
         from nodl.cli.arguments import definitions_failed, load_definitions
         from nodl.cli.report_options import reporter_for
         from nodl.reporting.reporters import Report
-        from nodl.index.registry import list_registrations
+        from nodl.registry.registrations import list_registrations
         from nodl.targets.overlay import using
         from nodl.targets.resolve import Provenance
 

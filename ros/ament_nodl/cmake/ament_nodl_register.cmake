@@ -117,7 +117,7 @@ function(_ament_nodl_register kind resource_type key)
     PACKAGE_NAME "${PROJECT_NAME}__${key}"
     CONTENT "nodl/${_name}")
   if(NOT _info STREQUAL "")
-    # read back by nodl.index.node_info
+    # read back by nodl.registry.node_info
     ament_index_register_resource(nodl_node_info
       PACKAGE_NAME "${PROJECT_NAME}__${key}"
       CONTENT "${_info}")

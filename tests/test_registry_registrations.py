@@ -1,4 +1,4 @@
-"""Registered NoDL definitions (nodl.index.registry)."""
+"""Registered NoDL definitions (nodl.registry.registrations)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import pytest
 from conftest import FIXTURES
 import nodl
 from nodl.composition import ResolutionError
-from nodl.index.registry import (
+from nodl.registry.registrations import (
     Registration, describe_missing, find_node, list_registrations, read_registration)
 
 FIRST = str(FIXTURES / 'index' / 'first')
@@ -190,7 +190,7 @@ def test_a_node_of_our_own_registration_wins_over_the_references(tmp_path: Path)
 
 
 def test_a_flat_reference_document_composes_as_a_node_of_its_interface() -> None:
-    from nodl.index.registry import compose_registered
+    from nodl.registry.registrations import compose_registered
 
     composed, diagnostics, source = compose_registered('ref_robot', 'talker', [REFERENCE])
     assert composed is not None, diagnostics
@@ -204,7 +204,7 @@ def test_a_flat_reference_document_composes_as_a_node_of_its_interface() -> None
 
 
 def test_rewritten_includes_resolve_through_the_reference_registrations() -> None:
-    from nodl.index.registry import compose_registered
+    from nodl.registry.registrations import compose_registered
 
     composed, diagnostics, _ = compose_registered('ref_robot', 'lidar', [REFERENCE], 'rclcpp')
     assert composed is not None, diagnostics
@@ -250,7 +250,7 @@ def test_a_package_installed_by_a_re_creation_of_the_references_macro(tmp_path: 
     # The local:// include was rewritten on install; it resolves through the index.
     entry_text = (install / 'share' / 'ament_index' / 'resource_index' / 'nodl' / 'ref_pkg__camera')
     assert '- ref: nodl://ref_pkg/sensor_common' in entry_text.read_text()
-    from nodl.index.registry import compose_registered
+    from nodl.registry.registrations import compose_registered
 
     composed, diagnostics, _ = compose_registered('ref_pkg', 'camera', prefixes)
     assert composed is not None, diagnostics
@@ -263,3 +263,50 @@ def test_a_package_installed_by_a_re_creation_of_the_references_macro(tmp_path: 
                            capture_output=True, timeout=60)
     assert shown.returncode == 0, shown.stderr
     assert '~/reset' in shown.stdout
+
+
+def test_find_interface_reads_the_first_registration_and_its_entry() -> None:
+    from nodl.registry.registrations import find_interface, interface_entry
+
+    found = interface_entry('alpha', 'chatter', prefixes=BOTH)
+    assert found is not None and found.path == entry(FIRST, 'nodl_interfaces', 'alpha__chatter')
+    assert interface_entry('alpha', 'chatter', 'nodl', BOTH) is None
+    assert find_interface('alpha', 'chatter', BOTH).file == share(FIRST, 'alpha', 'chatter.nodl.yaml')
+
+
+def test_find_interface_says_what_the_package_registers() -> None:
+    from nodl.registry.registrations import find_interface
+
+    with pytest.raises(ResolutionError, match=r"registers no interface definition 'nope' "
+                                              r'\(it registers: chatter\)') as caught:
+        find_interface('alpha', 'nope', BOTH)
+    assert caught.value.searched == [entry(p, t, 'alpha__nope') for t in ('nodl_interfaces', 'nodl')
+                                     for p in BOTH]
+    with pytest.raises(ResolutionError, match="package 'zeta' is not in the ament index "
+                                              r'\(prefixes searched: '):
+        find_interface('zeta', 'x', BOTH)
+    with pytest.raises(ResolutionError, match='no ament prefix was given'):
+        find_interface('alpha', 'chatter', [])
+
+
+def test_search_path_is_the_given_prefixes_else_ament_prefix_path(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from nodl.registry.registrations import search_path
+
+    monkeypatch.setenv('AMENT_PREFIX_PATH', os.pathsep.join([SECOND, FIRST, SECOND]))
+    assert search_path() == [SECOND, FIRST]
+    assert search_path(BOTH) == BOTH
+    assert search_path([]) == []
+
+
+def test_one_run_reads_each_registered_document_once() -> None:
+    from nodl import ament_index
+    from nodl.registry.registrations import one_run, read_registered
+
+    resource = ament_index.get_resource('nodl_nodes', 'alpha__talker', BOTH)
+    assert resource is not None
+    assert read_registered(resource, 'alpha') is not read_registered(resource, 'alpha')
+    with one_run():
+        assert ament_index.in_snapshot()
+        assert read_registered(resource, 'alpha') is read_registered(resource, 'alpha')
+    assert not ament_index.in_snapshot()

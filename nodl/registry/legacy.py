@@ -17,8 +17,8 @@ from __future__ import annotations
 import os
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.index import ament
-from nodl.index.registry import Registration
+from nodl import ament_index
+from nodl.registry.registrations import Registration
 from nodl.vocabulary import LEGACY_RESOURCE
 
 __all__ = ['legacy_registrations', 'legacy_files', 'compose_legacy']
@@ -29,11 +29,11 @@ LEGACY_KIND = 'legacy node'
 def legacy_files(package: str | None, prefixes: list[str]) -> list[tuple[str, str]]:
     """``(package, file)`` for every legacy NoDL file found."""
     found: list[tuple[str, str]] = []
-    for name, prefix in ament.get_resources(LEGACY_RESOURCE, prefixes).items():
+    for name, prefix in ament_index.get_resources(LEGACY_RESOURCE, prefixes).items():
         if package is not None and name != package:
             continue
         share = os.path.join(prefix, 'share', name)
-        resource = ament.get_resource(LEGACY_RESOURCE, name, [prefix])
+        resource = ament_index.get_resource(LEGACY_RESOURCE, name, [prefix])
         content = resource.content.strip() if resource else ''
         if content:
             found += [(name, os.path.join(share, line.strip()))
@@ -43,7 +43,7 @@ def legacy_files(package: str | None, prefixes: list[str]) -> list[tuple[str, st
                       if f.endswith('.nodl.xml')]
     from nodl.frontends.legacy_xml import interface_files_from_package_xml
 
-    for name, prefix in ament.get_resources('packages', prefixes).items():
+    for name, prefix in ament_index.get_resources('packages', prefixes).items():
         if package is not None and name != package:
             continue
         manifest = os.path.join(prefix, 'share', name, 'package.xml')

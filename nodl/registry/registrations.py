@@ -20,24 +20,23 @@ holds, and its :attr:`Registration.origin` says which folder served it.
 from __future__ import annotations
 
 import os
-from typing import NamedTuple
+from typing import ContextManager, NamedTuple
 
-# Importing the ament resolver imports the composition package, and with it loading: the
-# names compose_registered needs are there already, so they are imported here rather than
-# on every call (an import statement costs a few microseconds each time it runs).  Composing
-# and checking are called through their modules, so that timing wrappers see the calls.
-from nodl import composition, loading
-from nodl.composition.ament_resolver import (
-    INTERFACE_RESOURCE, NODE_RESOURCE, read_registered, resource_name)
-from nodl.vocabulary import REFERENCE_RESOURCE
+# The names compose_registered needs are imported here rather than on every call (an
+# import statement costs a few microseconds each time it runs).  Composing and checking
+# are called through their modules, so that timing wrappers see the calls.
+from nodl import ament_index, composition, loading
 from nodl.composition.resolvers import ResolutionError, Resolved
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.index import ament
+from nodl.files import tidy_path
+from nodl.frontends.source import read_regular
 from nodl.targets import overlay
 from nodl.validation.kinds import Kind
-from nodl.vocabulary import RESOURCE_SEPARATOR
+from nodl.vocabulary import (
+    INTERFACE_RESOURCE, NODE_RESOURCE, REFERENCE_RESOURCE, RESOURCE_SEPARATOR, resource_name)
 
-__all__ = ['Registration', 'list_registrations', 'find_node', 'read_registration',
+__all__ = ['Registration', 'search_path', 'one_run', 'list_registrations', 'find_node',
+           'read_registration', 'read_registered', 'interface_entry', 'find_interface',
            'compose_registered', 'describe_missing']
 
 _KINDS = {NODE_RESOURCE: 'node', INTERFACE_RESOURCE: 'interface', REFERENCE_RESOURCE: 'node'}
@@ -60,13 +59,54 @@ class Registration(NamedTuple):
     origin: str = 'index'
 
 
+def search_path(prefixes: list[str] | None = None) -> list[str]:
+    """The prefixes a look-up searches: ``prefixes`` as given, else ``AMENT_PREFIX_PATH``'s."""
+    return prefixes if prefixes is not None else ament_index.prefix_paths()
+
+
+def one_run() -> ContextManager[None]:
+    """A block within which every look-up sees the index as it was when first read (one
+    listing per resource folder, each entry and registered document read once): for one
+    run over many nodes, such as an analysis of a launched system.  Nested blocks share
+    the outer one (:func:`nodl.ament_index.snapshot`)."""
+    return ament_index.snapshot()
+
+
+def read_registered(resource: ament_index.Resource, package: str) -> Resolved:
+    """The document a registration entry points at (or holds); read once per entry within
+    :func:`one_run`.
+
+    The entry's content is the path of the installed file relative to
+    ``share/<package>`` (what ``ament_nodl_register_*`` and the Python helper write), an
+    absolute path (the build-time staging index), or the document itself (the reference's
+    ``nodl`` resource).  :class:`ResolutionError` for a path whose file is gone.
+    """
+    return ament_index.remembered(('registered', resource, package),
+                                  lambda: _read_registered(resource, package))
+
+
+def _read_registered(resource: ament_index.Resource, package: str) -> Resolved:
+    content = resource.content.strip()
+    # A path is one line; a document held in the entry may be one line too (flow YAML
+    # or minified JSON: '{...}', or 'key: value').
+    if content and '\n' not in content and not content.startswith('{') and ': ' not in content:
+        candidate = tidy_path(content if os.path.isabs(content) else
+                              os.path.join(resource.prefix, 'share', package, content))
+        data = read_regular(candidate)
+        if data is not None:
+            return Resolved(data, candidate)
+        raise ResolutionError(f'the index entry {resource.path} points at {candidate}, '
+                              'which does not exist (is the package fully installed?)', [candidate])
+    return Resolved(resource.content, resource.path)
+
+
 def _v2(resource_type: str, prefixes: list[str], package: str | None) -> list[Registration]:
     found = []
-    for name in ament.get_resources(resource_type, prefixes):
+    for name in ament_index.get_resources(resource_type, prefixes):
         pkg, sep, key = name.partition(RESOURCE_SEPARATOR)
         if not sep or (package is not None and pkg != package):
             continue
-        resource = ament.get_resource(resource_type, name, prefixes)
+        resource = ament_index.get_resource(resource_type, name, prefixes)
         assert resource is not None
         try:
             file = read_registered(resource, pkg).file
@@ -82,7 +122,7 @@ def list_registrations(package: str | None = None, prefixes: list[str] | None = 
 
     ``kind`` keeps one kind: ``node`` (v2 and legacy node definitions) or ``interface``.
     """
-    prefixes = prefixes if prefixes is not None else ament.prefix_paths()
+    prefixes = prefixes if prefixes is not None else ament_index.prefix_paths()
     found: list[Registration] = []
     definitions = overlay.active()
     served: set[tuple[str, str, str]] = set()
@@ -109,7 +149,7 @@ def _index_registrations(package: str | None, prefixes: list[str], kind: str | N
     if kind in (None, 'interface'):
         found += _v2(INTERFACE_RESOURCE, prefixes, package)
     if kind in (None, 'node'):
-        from nodl.index.legacy import legacy_registrations
+        from nodl.registry.legacy import legacy_registrations
 
         v2_nodes = {(r.package, r.name) for r in found if r.kind == 'node'}
         found += [r for r in legacy_registrations(package, prefixes)
@@ -120,23 +160,23 @@ def _index_registrations(package: str | None, prefixes: list[str], kind: str | N
 def find_node(package: str, executable: str,
               prefixes: list[str] | None = None) -> Registration | None:
     """The node definition registered for ``package``'s ``executable`` (v2 first, then legacy);
-    looked up once within an :func:`nodl.index.ament.snapshot`."""
+    looked up once within an :func:`nodl.ament_index.snapshot`."""
     definitions = overlay.active()
     if definitions:
         served = definitions.find_node(package, executable)
         if served is not None:
             return Registration(package, executable, 'node', served[0], served[1].label)
-    prefixes = prefixes if prefixes is not None else ament.prefix_paths()
-    return ament.remembered(('find_node', package, executable, tuple(prefixes)),
+    prefixes = prefixes if prefixes is not None else ament_index.prefix_paths()
+    return ament_index.remembered(('find_node', package, executable, tuple(prefixes)),
                             lambda: _find_node(package, executable, prefixes))
 
 
 def _node_resource(package: str, executable: str, prefixes: list[str] | None
-                   ) -> tuple[str, ament.Resource] | None:
+                   ) -> tuple[str, ament_index.Resource] | None:
     """The resource type and entry a node definition is registered as (own type first)."""
     key = resource_name(package, executable)
     for resource_type in _NODE_RESOURCES:
-        resource = ament.get_resource(resource_type, key, prefixes)
+        resource = ament_index.get_resource(resource_type, key, prefixes)
         if resource is not None:
             return resource_type, resource
     return None
@@ -150,7 +190,7 @@ def _find_node(package: str, executable: str, prefixes: list[str]) -> Registrati
             return Registration(package, executable, 'node', read_registered(resource, package).file)
         except ResolutionError:
             return Registration(package, executable, 'node', resource.path)
-    from nodl.index.legacy import legacy_registrations
+    from nodl.registry.legacy import legacy_registrations
 
     for registration in legacy_registrations(package, prefixes):
         if registration.name == executable:
@@ -166,22 +206,69 @@ def read_registration(registration: Registration, prefixes: list[str] | None = N
 def _read_registration(registration: Registration, prefixes: list[str] | None
                        ) -> tuple[Resolved, bool]:
     """The text of a registered v2 definition, and whether the reference's macro installed it."""
-    resource: ament.Resource | None
+    resource: ament_index.Resource | None
     if registration.kind == 'node':
         found = _node_resource(registration.package, registration.name, prefixes)
         resource_type, resource = found if found is not None else (NODE_RESOURCE, None)
     else:
         resource_type = INTERFACE_RESOURCE
-        resource = ament.get_resource(resource_type, resource_name(registration.package,
+        resource = ament_index.get_resource(resource_type, resource_name(registration.package,
                                                                    registration.name), prefixes)
     if resource is None:
         raise ResolutionError(f'{registration.package}/{registration.name} is not registered')
     return read_registered(resource, registration.package), resource_type == REFERENCE_RESOURCE
 
 
+def interface_entry(package: str, name: str, resource_type: str = INTERFACE_RESOURCE,
+                    prefixes: list[str] | None = None) -> ament_index.Resource | None:
+    """The index entry registering ``package``'s interface definition ``name`` as
+    ``resource_type`` (``nodl_interfaces``, or the reference's ``nodl``), or None."""
+    return ament_index.get_resource(resource_type, resource_name(package, name), prefixes)
+
+
+def find_interface(package: str, name: str, prefixes: list[str] | None = None) -> Resolved:
+    """The interface definition ``nodl://<package>/<name>``: a definitions folder's in force
+    first, then ``nodl_interfaces``, then the reference's ``nodl`` resource, in ``prefixes``
+    (default: ``AMENT_PREFIX_PATH``).
+
+    :class:`ResolutionError` saying what was searched and what the package registers.
+    """
+    definitions = overlay.active()
+    served = definitions.find_interface(package, name) if definitions else None
+    if served is not None:
+        data = read_regular(served[0])
+        if data is None:
+            raise ResolutionError(f'{served[0]} cannot be read', [served[0]])
+        return Resolved(data, served[0])
+    where = 'prefixes searched' if prefixes is not None else 'AMENT_PREFIX_PATH'
+    prefixes = search_path(prefixes)
+    key = resource_name(package, name)
+    resource = (ament_index.get_resource(INTERFACE_RESOURCE, key, prefixes)
+                or ament_index.get_resource(REFERENCE_RESOURCE, key, prefixes))
+    if resource is not None:
+        return read_registered(resource, package)
+    searched = [ament_index.resource_file(p, t, key)
+                for t in (INTERFACE_RESOURCE, REFERENCE_RESOURCE) for p in prefixes]
+    if not prefixes:
+        if where != 'AMENT_PREFIX_PATH':
+            raise ResolutionError('no ament prefix was given to search, so no package can be found')
+        raise ResolutionError('AMENT_PREFIX_PATH is empty, so no package can be found; '
+                              'source the workspace (install/setup.bash) first')
+    start = resource_name(package, '')
+    available = sorted({n[len(start):] for t in (INTERFACE_RESOURCE, REFERENCE_RESOURCE)
+                        for n in ament_index.get_resources(t, prefixes) if n.startswith(start)})
+    if available:
+        raise ResolutionError(f"package '{package}' registers no interface definition "
+                              f"'{name}' (it registers: {', '.join(available)})", searched)
+    if ament_index.package_share_directory(package, prefixes) is None:
+        raise ResolutionError(f"package '{package}' is not in the ament index "
+                              f"({where}: {os.pathsep.join(prefixes)})", searched)
+    raise ResolutionError(f"package '{package}' registers no interface definitions", searched)
+
+
 def describe_missing(package: str, executable: str, prefixes: list[str] | None = None) -> str:
     """Why ``find_node`` found nothing, for an error message."""
-    prefixes = prefixes if prefixes is not None else ament.prefix_paths()
+    prefixes = prefixes if prefixes is not None else ament_index.prefix_paths()
     definitions = overlay.active()
     folders = ('; the definitions folders (' + ', '.join(f.root for f in definitions.folders)
                + f') have none of {package} {executable} either') if definitions else ''
@@ -190,7 +277,7 @@ def describe_missing(package: str, executable: str, prefixes: list[str] | None =
                 + folders)
     registered = list_registrations(package, prefixes)
     names = sorted(r.name for r in registered if 'node' in r.kind)
-    if not registered and ament.package_share_directory(package, prefixes) is None:
+    if not registered and ament_index.package_share_directory(package, prefixes) is None:
         return f"package '{package}' is not in the ament index{folders}"
     if names:
         return (f"package '{package}' registers no node definition for '{executable}' "
@@ -229,7 +316,7 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
                                                            prefixes=prefixes)
         return composed, diagnostics, registration.file
     if registration.kind == 'legacy node':
-        from nodl.index.legacy import compose_legacy
+        from nodl.registry.legacy import compose_legacy
 
         composed, diagnostics = compose_legacy(registration, client_library)
         return composed, diagnostics, registration.file

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from nodl.index.node_info import (find_plugin, format_node_info, parse_node_info,
+from nodl.registry.node_info import (find_plugin, format_node_info, parse_node_info,
                                          plugin_key, read_node_info)
 from nodl.packaging import nodl_data_files
 

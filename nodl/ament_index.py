@@ -4,6 +4,9 @@ The index is a folder tree under each prefix of ``AMENT_PREFIX_PATH``:
 ``<prefix>/share/ament_index/resource_index/<type>/<name>``, whose content is
 free text chosen by the resource type.  The first prefix that has a resource
 wins, as with ``ament_index_python``.  Reading it needs no ROS package.
+
+This reader knows nothing of NoDL: which resources are NoDL registrations, and what
+they hold, is the registry's (:mod:`nodl.registry`).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Packages that ship only legacy (XML) NoDL files (nodl.index.legacy).
+"""Packages that ship only legacy (XML) NoDL files (nodl.registry.legacy).
 
 A registered legacy node is converted to v2 in memory; what is said about it,
 and where its entities are, points into the XML file the user wrote.
@@ -12,8 +12,8 @@ import sys
 
 from conftest import FIXTURES, REPO
 from nodl.diagnostics import Severity
-from nodl.index.legacy import compose_legacy, legacy_files, legacy_registrations
-from nodl.index.registry import Registration
+from nodl.registry.legacy import compose_legacy, legacy_files, legacy_registrations
+from nodl.registry.registrations import Registration
 from nodl.show import show_registered
 from nodl.system.entities import Location
 from nodl.system.resolved import ResolvedNode, resolve_registered

@@ -21,7 +21,7 @@ from __future__ import annotations
 import re
 from typing import NamedTuple
 
-from nodl.index import ament
+from nodl import ament_index
 from nodl.vocabulary import NODE_INFO_RESOURCE, resource_name
 
 __all__ = ['NODE_INFO_RESOURCE', 'NODE_INFO_ATTRIBUTES', 'NodeInfo', 'parse_node_info',
@@ -79,7 +79,7 @@ def read_node_info(package: str, key: str, prefixes: list[str] | None = None) ->
         recorded = definitions.node_info(package, key)
         if recorded is not None:
             return NodeInfo(package, key, *recorded)
-    resource = ament.get_resource(NODE_INFO_RESOURCE, resource_name(package, key), prefixes)
+    resource = ament_index.get_resource(NODE_INFO_RESOURCE, resource_name(package, key), prefixes)
     if resource is None:
         return NodeInfo(package, key)
     return parse_node_info(package, key, resource.content)
@@ -95,10 +95,10 @@ def find_plugin(package: str, plugin: str, prefixes: list[str] | None = None) ->
         if key is not None:
             return NodeInfo(package, key, *(definitions.node_info(package, key) or (None, None)))
     start = resource_name(package, '')
-    for name, prefix in ament.get_resources(NODE_INFO_RESOURCE, prefixes).items():
+    for name, prefix in ament_index.get_resources(NODE_INFO_RESOURCE, prefixes).items():
         if not name.startswith(start):
             continue
-        resource = ament.get_resource(NODE_INFO_RESOURCE, name, [prefix])
+        resource = ament_index.get_resource(NODE_INFO_RESOURCE, name, [prefix])
         if resource is None:
             continue
         info = parse_node_info(package, name[len(start):], resource.content)

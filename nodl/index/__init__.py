@@ -1,1 +1,0 @@
-"""Looking things up in the ament index (without needing ROS installed)."""

@@ -1,0 +1,14 @@
+"""NoDL's registrations in the ament index, read through :mod:`nodl.ament_index`.
+
+* :mod:`~nodl.registry.registrations`: which definitions are registered where
+  (``nodl_nodes``, ``nodl_interfaces``, the reference's ``nodl`` resource; definitions
+  folders in force first), the documents they point at, ``nodl://`` look-ups, and the
+  run's search path and snapshot;
+* :mod:`~nodl.registry.node_info`: what a registration records besides its definition
+  (plugin class, node name);
+* :mod:`~nodl.registry.legacy`: packages that ship only legacy XML files (``nodl_desc``,
+  ``package.xml`` exports).
+
+Consumers ask the registry (or :mod:`nodl.targets`), never the ament reader, for NoDL's
+resources.
+"""
