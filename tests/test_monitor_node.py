@@ -166,7 +166,10 @@ def level(status: Any) -> int:
 def once(*arguments: str, wait: float = 6.0) -> tuple[int, dict[str, Any]]:
     """``nodl monitor --once --format json``: exit status and the statuses by name."""
     result = subprocess.run([sys.executable, '-m', 'nodl', 'monitor', *arguments, '--once',
-                             '--wait', str(wait), '--format', 'json', *FAST],
+                             '--wait', str(wait), '--format', 'json', *FAST,
+                             # a report is about its case: a loaded machine's slow answer
+                             # (the 1 s of FAST) is not what it checks
+                             '-p', 'liveness_timeout:=3.0'],
                             capture_output=True, text=True, cwd=REPO, timeout=wait + 30)
     assert result.stdout, result.stderr
     report = json.loads(result.stdout)
@@ -466,7 +469,7 @@ def test_ctrl_c_stops_within_a_second_after_a_complete_last_publication(
 
 def test_lost_parameter_events_are_said_and_the_parameters_read_again(
         processes: Processes, diagnostics: Diagnostics) -> None:
-    node = processes.node('lossy', '--lax', '--storm', '3000')
+    node = processes.node('lossy', '--lax', '--storm', '5000')
     monitor = processes.monitor(str(SENSOR), '--name', '/lossy', '--format', 'jsonl', *FAST)
     diagnostics.wait_status('nodl: /lossy', lambda s: values(s).get('state') == 'running'
                             and level(s) == 0, 20)
@@ -487,7 +490,7 @@ def test_lost_parameter_events_are_said_and_the_parameters_read_again(
         f'{lost} parameter events of /lossy never reached the monitor (it fell behind, or the '
         'network dropped them): its parameters are read again')
     # (a gap is counted between two events received: not those lost after the last one)
-    assert lost + int(values(system)['parameter events']) <= 3000
+    assert lost + int(values(system)['parameter events']) <= 5000
     # read again, the loss is no longer said (2 s after it); the value is the last one set
     _, system = diagnostics.wait_status('nodl: system', lambda s: 'NODL442' not in codes(s), 10,
                                         after=len(diagnostics.arrays))

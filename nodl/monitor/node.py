@@ -358,10 +358,14 @@ class Monitor:
                 if now >= deadline:
                     break
                 self.executor.spin_once(timeout_sec=max(0.0, min(
-                    next_tick, next_publish, deadline, self._next_flush(), self._scan_due()) - now))
+                    next_tick, next_publish, deadline, self._next_flush(),
+                    self._scan_at(now, next_publish)) - now))
                 now = time.monotonic()
                 self._flush_events(now)
-                self._follow(now)
+                if now >= next_publish:  # before a scan that could make it late
+                    self._publish(now)
+                    next_publish = now + 1.0 / max(self.settings.publish_rate, 1e-3)
+                self._follow(now, next_publish)
                 if now >= next_tick:
                     next_tick = now + TICK
                     self._tick(now)
@@ -424,8 +428,20 @@ class Monitor:
             period = min(period, ONCE_SCAN_PERIOD)  # a report waits for a confirming scan
         return max(self._next_scan, self.snapshot.time + period)
 
-    def _follow(self, now: float) -> None:
-        """Take the graph changes the poller queued; scan when one is wanted and due."""
+    def _scan_at(self, now: float, publish_at: float) -> float:
+        """When to scan: :meth:`_scan_due`, or just after the publication due at
+        ``publish_at`` when the scan (as long as the last) would not end before it."""
+        due = self._scan_due()
+        period = 1.0 / max(self.settings.publish_rate, 1e-3)
+        if self.snapshot is not None and self.snapshot.cost < period \
+                and max(due, now) + self.snapshot.cost >= publish_at:
+            return max(due, publish_at)  # (a scan longer than the period cannot wait)
+        return due
+
+    def _follow(self, now: float, publish_at: float = float('inf')) -> None:
+        """Take the graph changes the poller queued; scan when one is wanted and due, and
+        would end before the next periodic publication (``publish_at``) is due (else just
+        after it: a scan of thousands of endpoints takes a while)."""
         changed = False
         while self._graph_changes:
             when = self._graph_changes.popleft()
@@ -434,7 +450,7 @@ class Monitor:
             changed = True
         if changed:
             self._scan_wanted = True
-        if now >= self._next_scan and now >= self._scan_due():
+        if now >= self._scan_at(now, publish_at):
             self._scan(now)
             self._refresh(now)  # a change is published within a poll, not a tick
         elif self._scan_wanted and self._min_scan_gap > 1.0:
