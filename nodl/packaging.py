@@ -29,7 +29,8 @@ file stops the build with ``FILE:LINE:COL`` diagnostics (:class:`NodlBuildError`
 warnings of valid files go to the ``nodl.packaging`` logger).  The build then
 needs this toolkit importable (``pip install --no-build-isolation``, or the
 toolkit in ``[build-system] requires``).  Without that, use the plain recipe
-in the README, which needs nothing at build time.
+in the package authors' guide (ros/nodl_toolkit/doc/guides/package-authors.md,
+"Registering from a Python package"), which needs nothing at build time.
 """
 
 from __future__ import annotations

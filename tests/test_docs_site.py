@@ -406,3 +406,37 @@ def test_a_shell_example_that_fails_or_is_not_nodl_is_caught(tmp_path: Path) -> 
                                                               'nodl show no/such/file.nodl.yaml']),
                                   tmp_path / 'run')
     assert statuses[0][1] == 0 and statuses[1][1] != 0, output
+
+
+def test_the_security_engineers_guide_holds_what_a_security_engineer_needs(built: Path) -> None:
+    """Policies, what runs when a launch file is read, the hostile-input limits, text safety
+    and the writing rules: in the guide, or linked from it to where the details live."""
+    page = built / 'guides' / 'security-engineers.html'
+    text = _text(page)
+    for words in ('nodl policy', '--check', '--live', '--enclave-map', 'XInclude', '1,000 includes',
+                  '--no-exec', '$(command)', '$(eval)', '--launch-timeout', '--launch-memory',
+                  'sandboxed child', '16 MiB', '10 MB', '100 levels', 'NODL219', 'NODL220', 'NODL221',
+                  'NODL222', 'NODL223', 'NODL224', 'Every writer escapes', 'Atomic', 'Modes kept',
+                  'Links replaced, never followed', 'An output is never an input', 'Content markers',
+                  '--force'):
+        assert words in text, words
+    markup = page.read_text(encoding='utf-8')
+    assert 'system-integrators.html#reading-launch-files' in markup
+    assert '../reference/cli.html#how-files-are-written-and-force' in markup
+
+
+def test_no_shared_file_points_at_a_readme_section_that_moved() -> None:
+    """The README is a short first page: code, tests, docs and examples point at the site's
+    pages, not at README sections that are no longer there."""
+    stale = re.compile(r"(in|see) the README\b(?! of)(?!$)|README's|README lost|README\.md#")
+    found = []
+    for folder in ('nodl', 'ros', 'tests', 'docs', 'examples'):
+        for path in sorted((REPO / folder).rglob('*')):
+            if path.suffix not in ('.py', '.md', '.txt', '.toml', '.cmake', '.xml', '.yaml') or not path.is_file():
+                continue
+            if path == Path(__file__) or 'fixtures' in path.parts:
+                continue
+            for number, line in enumerate(path.read_text(encoding='utf-8', errors='replace').splitlines(), 1):
+                if stale.search(line):
+                    found.append(f'{path.relative_to(REPO)}:{number}: {line.strip()}')
+    assert not found, '\n'.join(found)

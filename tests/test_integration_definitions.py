@@ -15,8 +15,9 @@ The cart of tests/fixtures/integration_definitions/launch/cart.launch.xml starts
 
 Then ``nodl analyse`` with the three folders (``--definitions``, ``NODL_PATH``, ``nodl.toml``)
 covers every node, says where each definition came from, and finds exactly the planted
-problems; ``nodl policy`` writes a profile for every node.  The README's "From a launch file
-to a fully covered system" quotes what these commands print.
+problems; ``nodl policy`` writes a profile for every node.  The system integrators'
+guide (ros/nodl_toolkit/doc/guides/system-integrators.md), "From a launch file to a fully
+covered system", quotes what these commands print.
 """
 
 from __future__ import annotations
@@ -356,11 +357,11 @@ def test_the_readme_quotes_what_the_flow_prints(workspace: Workspace, described)
     section = readme[readme.index('## From a launch file to a fully covered system'):]
     final = _quoted(section, 'nodl analyse cart.launch.xml --definitions hand --definitions '
                              'extracted --definitions described')
-    assert final, "README lost the flow's final analysis"
+    assert final, "the docs lost the flow's final analysis"
     result = workspace.nodl('analyse', str(LAUNCH), *workspace.folders())
     assert result.stdout.replace(str(LAUNCH), 'cart.launch.xml').splitlines() == final
     first = _quoted(section, 'nodl analyse cart.launch.xml')
-    assert first, "README lost the flow's first analysis"
+    assert first, "the docs lost the flow's first analysis"
     before = workspace.nodl('analyse', str(LAUNCH)).stdout.replace(str(LAUNCH), 'cart.launch.xml')
     quoted = [line for line in first if line != '...']
     assert before.splitlines()[-len(quoted):] == quoted

@@ -304,5 +304,5 @@ def test_the_readme_quotes_what_the_tool_prints(described) -> None:
     readme = docs_text()
     block = re.search(r'```text\n\$ nodl describe --all --launch system\.launch\.xml rate:=5 -o '
                       r'overlay\n(.*?)```', readme, re.S)
-    assert block, 'README lost its describe --all --launch example'
+    assert block, 'the docs lost their describe --all --launch example'
     assert result.stdout.replace(str(out), 'overlay') == block.group(1)

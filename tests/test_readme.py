@@ -16,7 +16,7 @@ README = docs_text()
 
 def test_quoted_validate_output_matches_the_tool() -> None:
     block = re.search(r'```text\n\$ nodl validate (\S+)\n(.*?)```', README, re.S)
-    assert block, 'README lost its `nodl validate` example'
+    assert block, 'the docs lost their `nodl validate` example'
     path, quoted = block.group(1), block.group(2)
     result = subprocess.run([sys.executable, '-m', 'nodl', 'validate', path], cwd=REPO,
                             text=True, capture_output=True, timeout=60)
@@ -33,7 +33,7 @@ def test_readme_names_the_two_commands() -> None:
 def test_quoted_policy_example_is_what_the_tool_writes(tmp_path) -> None:  # type: ignore[no-untyped-def]
     block = re.search(r'`(nodl policy talker\.nodl\.yaml use_sim_time:=true\s+--name /robot/talker)` '
                       r'writes:\n\n```xml\n(.*?)```', README, re.S)
-    assert block, 'README lost its `nodl policy` example'
+    assert block, 'the docs lost their `nodl policy` example'
     arguments = block.group(1).split()[2:]
     fixtures = REPO / 'tests' / 'fixtures' / 'policy'
     written = subprocess.run([sys.executable, '-m', 'nodl', 'policy', *arguments],
@@ -44,7 +44,7 @@ def test_quoted_policy_example_is_what_the_tool_writes(tmp_path) -> None:  # typ
     # the check of a copy with one grant added by hand, as quoted
     check = re.search(r'`nodl policy --check policy.xml talker.nodl.yaml use_sim_time:=true --name\s+'
                       r'/robot/talker` exits 1 with:\n\n```text\n(.*?)```', README, re.S)
-    assert check, 'README lost its `nodl policy --check` example'
+    assert check, 'the docs lost their `nodl policy --check` example'
     (tmp_path / 'talker.nodl.yaml').write_text((fixtures / 'talker.nodl.yaml').read_text())
     (tmp_path / 'policy.xml').write_text(written.stdout.replace(
         '<topic>chatter</topic>', '<topic>chatter</topic>\n            <topic>cmd_vel</topic>', 1))
@@ -74,7 +74,7 @@ def _result_comment(lines: list[str], end_line: int) -> str | None:
 def _check_result(value: object, comment: str, namespace: dict[str, object]) -> str | None:
     """Why ``value`` is not what ``comment`` says (None: it is, or the comment is prose)."""
     try:
-        expected = eval(comment, dict(namespace))  # noqa: S307 - the README's own text
+        expected = eval(comment, dict(namespace))  # noqa: S307 - the docs' own text
     except Exception:  # noqa: BLE001 - not an expression: a repr, an abridged repr or prose
         if '...' in comment and re.match(r'\[?[\w.]+\(', comment):
             prefix = comment.split('...', 1)[0].rstrip(', ')
@@ -86,7 +86,7 @@ def _check_result(value: object, comment: str, namespace: dict[str, object]) -> 
 
 
 def test_python_api_examples_run_and_give_the_results_they_show(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    """Every example of the README's Python API section runs, in order, in a folder holding
+    """Every example of the Python API page (reference/api.md) runs, in order, in a folder holding
     the examples and the talker/listener it names; each `expression  # result` is checked."""
     import ast
     import contextlib
@@ -128,7 +128,7 @@ def test_python_api_examples_run_and_give_the_results_they_show(tmp_path) -> Non
 
 def test_quoted_extract_example_is_what_the_tool_prints() -> None:
     block = re.search(r'```text\n\$ nodl extract (\S+)\n(.*?)```', README, re.S)
-    assert block, 'README lost its `nodl extract` example'
+    assert block, 'the docs lost their `nodl extract` example'
     result = subprocess.run([sys.executable, '-m', 'nodl', 'extract', block.group(1)], cwd=REPO,
                             text=True, capture_output=True, timeout=60)
     assert result.returncode == 0, result.stderr
@@ -140,7 +140,7 @@ def test_quoted_extract_example_is_what_the_tool_prints() -> None:
 
 def test_quoted_overlay_analysis_matches_the_tool() -> None:
     block = re.search(r'```text\n\$ (nodl analyse \S+ --definitions \S+ -v)\n(.*?)```', README, re.S)
-    assert block, 'README lost its definitions folder example'
+    assert block, 'the docs lost their definitions folder example'
     arguments = block.group(1).split()[1:]
     env = {**os.environ, 'PYTHONPATH': str(REPO), 'AMENT_PREFIX_PATH': 'tests/fixtures/analysis/prefix'}
     env.pop('NODL_PATH', None)
@@ -154,7 +154,7 @@ def test_quoted_overlay_analysis_matches_the_tool() -> None:
 def test_quoted_monitor_aggregator_config_is_what_the_tool_writes(tmp_path) -> None:  # type: ignore[no-untyped-def]
     block = re.search(r'`(nodl monitor sensor\.nodl\.yaml [^`]*--aggregator-config agg\.yaml)` '
                       r'writes:\n\n```yaml\n(.*?)```', README, re.S)
-    assert block, 'README lost its `nodl monitor --aggregator-config` example'
+    assert block, 'the docs lost their `nodl monitor --aggregator-config` example'
     arguments = block.group(1).split()[2:]
     (tmp_path / 'sensor.nodl.yaml').write_text(
         (REPO / 'tests' / 'fixtures' / 'monitor' / 'sensor.nodl.yaml').read_text())
@@ -167,7 +167,7 @@ def test_quoted_monitor_aggregator_config_is_what_the_tool_writes(tmp_path) -> N
 
 def test_quoted_doc_example_is_what_the_tool_writes(tmp_path) -> None:  # type: ignore[no-untyped-def]
     block = re.search(r'```text\n\$ nodl doc (\S+) -o site\n(.*?)```', README, re.S)
-    assert block, 'README lost its `nodl doc` example'
+    assert block, 'the docs lost their `nodl doc` example'
     result = subprocess.run([sys.executable, '-m', 'nodl', 'doc', block.group(1), '-o',
                              str(tmp_path / 'site')], cwd=REPO, text=True, capture_output=True,
                             timeout=60, env={**os.environ, 'AMENT_PREFIX_PATH': sys.prefix})
