@@ -40,7 +40,7 @@ $(DEPS): pyproject.toml $(CONSTRAINTS) tools/lock.in $(if $(STALE_VENV),FORCE)
 	@$(PYTHON) -c 'import sys; sys.exit(sys.version_info[:2] != ($(subst .,$(comma),$(ROS_WHEELS_PYTHON))))' 2>/dev/null || { \
 	  echo "make: '$(PYTHON)' is not Python $(ROS_WHEELS_PYTHON), which the ROS 2 wheels need."; \
 	  echo "      Install python$(ROS_WHEELS_PYTHON), or run: make PYTHON=/path/to/python$(ROS_WHEELS_PYTHON) $(MAKECMDGOALS)"; \
-	  echo "      (With a system ROS instead, see 'Set-ups' in the README.)"; exit 2; }
+	  echo "      (With a system ROS instead, see the docs: ros/nodl_toolkit/doc/guides/getting-started.md, Set-ups.)"; exit 2; }
 	@if [ -n "$(STALE_VENV)" ]; then \
 	  echo "make: $(VENV) was made with Python $(or $(VENV_MADE_WITH),?) or its interpreter is gone; rebuilding it with $(PYTHON)"; \
 	  rm -rf $(VENV); fi
