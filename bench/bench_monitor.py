@@ -74,9 +74,9 @@ class Lines:
         for line in self.process.stdout:
             self.lines.append((time.monotonic(), line.rstrip('\n')))
 
-    def wait(self, test: Any, timeout: float) -> tuple[float, str]:
+    def wait(self, test: Any, timeout: float, after: int = 0) -> tuple[float, str]:
         end = time.monotonic() + timeout
-        seen = 0
+        seen = after
         while time.monotonic() < end:
             for when, line in self.lines[seen:]:
                 if test(line):
@@ -138,11 +138,13 @@ def kill_latency() -> dict[str, float]:
         time.sleep(3.0)  # the monitor has seen it (10 Hz) and called it a few times
         killed = time.monotonic()
         node.send_signal(signal.SIGKILL)
-        # its ERROR for the kill: not answering (NODL434) or gone (not: never seen)
+        # its first ERROR after the kill (not answering NODL434, its deadline topic silent
+        # NODL435, gone NODL430), not an ERROR for never having been seen
+        seen = len(monitor.lines)
         error_at, _ = monitor.wait(lambda line: _jsonl(line).get('status') == 'nodl: /bench_killed'
                                    and _jsonl(line).get('level') == 'ERROR'
-                                   and ('NODL434' in _jsonl(line).get('codes', [])
-                                        or 'gone from the graph' in _jsonl(line)['message']), 90)
+                                   and 'not seen within' not in _jsonl(line)['message'], 90,
+                                   after=seen)
         _, gone = floor.wait(lambda line: line.startswith('gone '), 90)
         gone_at = float(gone.split()[1])
     finally:
