@@ -50,6 +50,8 @@ PLANTED = [
     ('NODL552', 15, '/cart/cmd_vel', ['/cart/motor_driver', '/cart/planner']),
     ('NODL553', 19, '/cart/scan', ['/cart/lidar', '/cart/safety']),
     ('NODL559', 42, '/cart/telemetry', ['/cart/bridge']),
+    # the draft's gap, filled in: its progress topic has no subscriber (an info)
+    ('NODL558', 32, '/cart/mission/progress', ['/cart/mission']),
 ]
 COVERED = '8 nodes: 2 registered, 6 overlay (2 extracted, 2 described), 0 without definition'
 
@@ -101,7 +103,26 @@ def workspace(tmp_path_factory: pytest.TempPathFactory) -> Workspace:
 
 @pytest.fixture(scope='module')
 def extracted(workspace: Workspace) -> subprocess.CompletedProcess[str]:
-    return workspace.nodl('extract', str(SOURCES), '-o', str(workspace.extracted))
+    done = workspace.nodl('extract', str(SOURCES), '-o', str(workspace.extracted))
+    fill_the_gap(workspace.extracted / 'cart_autonomy' / 'mission.nodl.yaml')
+    return done
+
+
+def fill_the_gap(draft: Path) -> None:
+    """What the integrator does with the draft's one gap (the guide's step): the progress
+    topic is the parameter's value, '~/progress' by default and in this launch; write it in
+    and uncomment the entity.  The GAP comment stays above it, as a reviewer would leave it."""
+    lines = draft.read_text(encoding='utf-8').splitlines()
+    start = next(i for i, line in enumerate(lines)
+                 if line.strip() == '# fill in what is missing, then uncomment:')
+    end = start + 1
+    while end < len(lines) and lines[end].startswith('    # '):
+        end += 1
+    body = [line.replace('    # ', '    ', 1) for line in lines[start + 1:end]]
+    assert body[0] == '    - type: std_msgs/msg/String', body
+    lines[start + 1:end] = ['    - name: ~/progress', '      ' + body[0].lstrip('- ').lstrip(),
+                            *body[1:]]
+    draft.write_text('\n'.join(lines) + '\n', encoding='utf-8')
 
 
 def _value(value: Any) -> str:
@@ -274,7 +295,7 @@ def test_the_findings_are_exactly_the_planted_problems(report: dict[str, Any]) -
 def test_the_text_report_ends_with_the_coverage_line(workspace: Workspace, described) -> None:  # type: ignore[no-untyped-def]
     result = workspace.nodl('analyse', str(LAUNCH), *workspace.folders(), '-v')
     lines = result.stdout.splitlines()
-    assert lines[-2:] == [COVERED, '8 nodes, 2 errors, 1 warning']
+    assert lines[-2:] == [COVERED, '8 nodes, 2 errors, 1 warning, 1 info']
     assert (f'/cart/front_camera: {workspace.described}/vendor_camera/camera_node.nodl.yaml '
             f'(overlay {workspace.described}, described)') in lines
 
@@ -319,7 +340,7 @@ def test_the_first_folder_that_defines_a_node_wins(workspace: Workspace, describ
     folders = {n['name']: n['definition_folder'] for n in data['nodes']}
     assert folders['/cart/lidar'] == str(tmp_path / 'fixes')
     assert folders['/cart/teleop'] == str(HAND)
-    assert sorted(f['code'] for f in data['findings']) == ['NODL552', 'NODL559']
+    assert sorted(f['code'] for f in data['findings']) == ['NODL552', 'NODL558', 'NODL559']
 
 
 def test_policy_covers_every_node(workspace: Workspace, described, tmp_path: Path) -> None:  # type: ignore[no-untyped-def]
