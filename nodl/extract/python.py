@@ -1864,13 +1864,16 @@ def _calls(stmt: ast.AST) -> list[ast.Call]:
     return found
 
 
+#: ``try: ... except* ...`` (Python 3.11): none on 3.10, whose sources cannot hold one.
+_TRY_STAR: tuple[type[ast.stmt], ...] = ((ast.TryStar,) if hasattr(ast, 'TryStar')  # type: ignore[attr-defined,unused-ignore]
+                                          else ())
 #: Statements that hold statements (an import can be in any), and those that can make a node.
 _HOLDERS = (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef, ast.If, ast.For, ast.AsyncFor, ast.While, ast.With,
-            ast.AsyncWith, ast.Try, ast.TryStar, ast.Match)
+            ast.AsyncWith, ast.Try, *_TRY_STAR, ast.Match)
 _MAKERS = (ast.Assign, ast.AnnAssign, ast.Expr, ast.If, ast.For, ast.AsyncFor, ast.While, ast.With, ast.AsyncWith,
-           ast.Try, ast.TryStar)
+           ast.Try, *_TRY_STAR)
 _POSITION = attrgetter('lineno', 'col_offset')
-_COMPOUND = (ast.If, ast.For, ast.AsyncFor, ast.While, ast.With, ast.AsyncWith, ast.Try, ast.TryStar, ast.Match)
+_COMPOUND = (ast.If, ast.For, ast.AsyncFor, ast.While, ast.With, ast.AsyncWith, ast.Try, *_TRY_STAR, ast.Match)
 
 
 def _reached_calls(reached: list[int], stmt: ast.stmt) -> list[ast.Call]:
