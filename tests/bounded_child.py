@@ -3,7 +3,7 @@
 ``run_bounded(setup, body)`` starts ``python -c`` with ``RLIMIT_AS`` set (``resource.setrlimit``
 in the child before it runs anything), runs ``setup`` (imports: not measured), then ``body``,
 which assigns ``out`` (anything JSON can write), and returns ``out`` with the seconds ``body``
-took and the child's peak resident memory in MB.  A case that needs more memory than the
+took and the child's peak resident memory in MB (its VmHWM).  A case that needs more memory than the
 limit fails there (MemoryError, exit status not 0) instead of exhausting the machine; one
 that hangs is killed after ``timeout`` seconds.  The helper of the hostile-input tests of
 the launch substitutions, the policy XInclude expansion and the big-input tests.
@@ -28,7 +28,10 @@ import json, resource, time
 start = time.perf_counter()
 {body}
 seconds = time.perf_counter() - start
-peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+# VmHWM, not ru_maxrss: Linux keeps ru_maxrss across exec, so a child of a big pytest worker
+# would report the worker's size (the pages fork copied) as its own
+peak = next(int(line.split()[1]) for line in open('/proc/self/status')
+            if line.startswith('VmHWM:')) / 1024
 print(json.dumps({{'out': out, 'seconds': seconds, 'peak_mb': peak}}))
 '''
 
