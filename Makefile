@@ -13,7 +13,12 @@ STAMP := $(VENV)/.installed
 CONSTRAINTS := constraints.txt
 # The project is installed for real (not editable: editable installs skip the CMake
 # files that `find_package(ament_nodl)` needs), and reinstalled when a source changes.
-SOURCES := $(shell find nodl nodl_schema ros -type f -not -name '*.pyc') pyproject.toml
+SOURCES := $(shell find nodl nodl_schema ros -type f -not -name '*.pyc' -not -path '*/node_modules/*' \
+             -not -path 'nodl/studio/static/vendor/*') pyproject.toml
+# nodl studio's browser libraries (Cytoscape.js, cytoscape-edgehandles): installed from the npm
+# registry at the versions of their lock, then copied where the package serves them from.
+STUDIO_WEB := nodl/studio/web
+STUDIO_VENDOR := nodl/studio/static/vendor/.copied
 
 # Anything that starts ROS stays on loopback, in its own domain.
 export ROS_AUTOMATIC_DISCOVERY_RANGE := LOCALHOST
@@ -52,7 +57,13 @@ $(DEPS): pyproject.toml $(CONSTRAINTS) tools/lock.in $(if $(STALE_VENV),FORCE)
 
 FORCE:
 
-$(STAMP): $(DEPS) $(SOURCES)
+$(STUDIO_VENDOR): $(DEPS) $(STUDIO_WEB)/package.json $(STUDIO_WEB)/package-lock.json nodl/studio/vendor.py
+	@command -v npm >/dev/null 2>&1 || { echo "make: nodl studio needs npm (Node.js) to install its browser libraries: apt-get install npm"; exit 2; }
+	npm ci --prefix $(STUDIO_WEB) --no-audit --no-fund --loglevel=error
+	$(BIN)/python -m nodl.studio.vendor $(STUDIO_WEB)/node_modules
+	touch $@
+
+$(STAMP): $(DEPS) $(SOURCES) $(STUDIO_VENDOR)
 	$(BIN)/python -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation --force-reinstall .
 	touch $(STAMP)
 
