@@ -11,7 +11,7 @@ import pytest
 from conftest import FIXTURES, REPO
 from nodl import plugins
 from nodl.composition import ResolutionError, ResolveContext, compose, load_resolvers
-from nodl.composition.ament_resolver import AmentIndexResolver
+from nodl.registry.nodl_resolver import AmentIndexResolver
 from nodl.composition.path_resolver import PathResolver
 from nodl.composition.resolvers import RESOLVER_GROUP, package_root, scheme_of
 
@@ -76,7 +76,7 @@ def test_the_fixture_packages_have_their_roots() -> None:
 
 def test_builtin_resolvers_are_found_through_entry_points() -> None:
     specs = {spec.name: spec.value for spec in plugins.iter_entry_points(RESOLVER_GROUP)}
-    assert specs['nodl'] == 'nodl.composition.ament_resolver:AmentIndexResolver'
+    assert specs['nodl'] == 'nodl.registry.nodl_resolver:AmentIndexResolver'
     assert specs['file'] == 'nodl.composition.path_resolver:PathResolver'
     resolvers = load_resolvers()
     assert isinstance(resolvers['nodl'], AmentIndexResolver)

@@ -165,7 +165,7 @@ def resolve_reference(reference: str, *, prefixes: list[str] | None = None,
                       ) -> tuple[str | bytes | None, str, list[Diagnostic]]:
     """The interface definition ``nodl://PACKAGE/NAME``: ``(text or None, file, diagnostics)``,
     looked up in the definitions folders, then the ament index ``prefixes``."""
-    from nodl.composition.ament_resolver import AmentIndexResolver
+    from nodl.registry.nodl_resolver import AmentIndexResolver
     from nodl.composition.resolvers import ResolutionError, ResolveContext
 
     with using(definitions):

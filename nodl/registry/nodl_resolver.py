@@ -15,13 +15,16 @@ as content) is found too, after ``nodl_interfaces``: the reference resolves
 Definitions folders in force (:mod:`nodl.targets.overlay`) come first:
 ``DIR/<package>/interfaces/<name>.nodl.yaml``.  The look-up is the registry's
 (:func:`nodl.registry.registrations.find_interface`); this module only plugs it into
-composition as the ``nodl`` resolver.
+composition as the ``nodl`` resolver.  It lives in the registry, not in composition:
+composition knows resolvers only through their extension point and never imports the
+registry (which composes legacy packages with composition).
 """
 
 from __future__ import annotations
 
 from nodl.composition.resolvers import ResolutionError, ResolveContext, Resolved, ResolverExtension
 from nodl.registry import registrations
+from nodl.validation.references import parse_nodl_uri
 
 __all__ = ['AmentIndexResolver']
 
@@ -31,8 +34,6 @@ class AmentIndexResolver(ResolverExtension):
 
     def resolve(self, reference: str, context: ResolveContext) -> Resolved:
         """Find the registered interface definition (:func:`nodl.registry.registrations.find_interface`)."""
-        from nodl.validation.references import parse_nodl_uri
-
         parsed = parse_nodl_uri(reference)
         if parsed is None:
             raise ResolutionError(f'{reference!r} is not of the form nodl://<package>/<name>')
