@@ -24,7 +24,7 @@ __all__ = ['Shown', 'show_file', 'show_registered', 'show_reference', 'render']
 TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.system.resolved import ResolvedNode
-    from nodl.targets.overlay import Definitions
+    from nodl.registry.overlay import Definitions
     from nodl.targets.resolve import Provenance
 
 

@@ -106,7 +106,7 @@ def _cpp_packages(root: Path) -> Path:
 
 
 def test_cpp_packages_end_to_end_in_the_overlay_layout(tmp_path: Path) -> None:
-    from nodl.targets.overlay import read_folder
+    from nodl.registry.overlay import read_folder
 
     sources = _cpp_packages(tmp_path / 'src')
     result = _run(str(sources), '-o', str(tmp_path / 'out'))

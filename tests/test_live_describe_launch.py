@@ -154,7 +154,7 @@ def test_composable_nodes_are_recorded_in_nodes_yaml(described) -> None:
 
 
 def test_the_overlay_is_a_valid_definitions_folder(described) -> None:
-    from nodl.targets.overlay import read_folder
+    from nodl.registry.overlay import read_folder
 
     out, _ = described
     folder = read_folder(str(out))
@@ -267,7 +267,7 @@ def _live_endpoints(fqns: list[str]) -> dict[str, set[tuple[str, str]]]:
 
 
 def test_round_trip_the_overlay_serves_the_analysis_of_the_same_system(described) -> None:
-    from nodl.targets.overlay import read_folders, using
+    from nodl.registry.overlay import read_folders, using
 
     out, _ = described
     result = nodl('analyse', str(SYSTEM), 'rate:=5', '--definitions', str(out), '--format', 'json')

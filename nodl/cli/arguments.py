@@ -10,7 +10,7 @@ if TYPE_CHECKING:
     from typing import Callable
 
     from nodl.launch.sandbox import LaunchLimits
-    from nodl.targets.overlay import Definitions
+    from nodl.registry.overlay import Definitions
 
 __all__ = ['seconds', 'node_name', 'definition_problem', 'add_client_library_argument',
            'positive_seconds', 'mebibytes', 'add_launch_code_arguments', 'launch_limits',
@@ -180,7 +180,7 @@ def run_with_definitions(args: argparse.Namespace, prog: str, run: Callable[[], 
     look-up of a registered definition consults them first): its exit status, made 1 at
     least when a folder's layout has errors."""
     from nodl.cli.verb import EXIT_FAILURE, EXIT_OK
-    from nodl.targets.overlay import using
+    from nodl.registry.overlay import using
 
     definitions = load_definitions(args, prog, start)
     if isinstance(definitions, int):

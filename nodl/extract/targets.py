@@ -460,13 +460,13 @@ def output_paths(extraction: Extraction) -> dict[int, str]:
 
 def registrations(extraction: Extraction) -> tuple[dict[str, dict[str, dict[str, str]]], list[Diagnostic]]:
     """What each package's ``nodes.yaml`` of the overlay layout records (see
-    :mod:`nodl.targets.overlay`): package -> ``{key: {plugin: pkg::Class, node_name: name}}``,
+    :mod:`nodl.registry.overlay`): package -> ``{key: {plugin: pkg::Class, node_name: name}}``,
     the key being the draft's file stem.  A component is recorded with its plugin class, every
     node whose name the source fixes with its ``node_name``.  A plugin class outside its package's
     namespace cannot be recorded there (the layout refuses it): one NODL961 note each."""
     import re
 
-    from nodl.targets.overlay import NODES_FILE
+    from nodl.registry.overlay import NODES_FILE
 
     paths = output_paths(extraction)
     tables: dict[str, dict[str, dict[str, str]]] = {}

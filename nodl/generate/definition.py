@@ -13,7 +13,7 @@ from nodl.system import ResolvedNode
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from nodl.targets.overlay import Definitions
+    from nodl.registry.overlay import Definitions
 
 __all__ = ['resolve_target', 'target_name']
 

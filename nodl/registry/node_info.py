@@ -12,7 +12,7 @@ write a second index entry next to ``nodl_nodes/<package>__<KEY>``:
 
 Unknown attribute names are ignored (newer toolkits may record more).
 
-Definitions folders in force (:mod:`nodl.targets.overlay`) come first: their
+Definitions folders in force (:mod:`nodl.registry.overlay`) come first: their
 packages' ``nodes.yaml`` record the same attributes.
 """
 
@@ -72,7 +72,7 @@ def format_node_info(plugin: str | None = None, node_name: str | None = None) ->
 
 def read_node_info(package: str, key: str, prefixes: list[str] | None = None) -> NodeInfo:
     """What ``package``'s registration ``key`` records (empty attributes if nothing)."""
-    from nodl.targets import overlay
+    from nodl.registry import overlay
 
     definitions = overlay.active()
     if definitions:
@@ -87,7 +87,7 @@ def read_node_info(package: str, key: str, prefixes: list[str] | None = None) ->
 
 def find_plugin(package: str, plugin: str, prefixes: list[str] | None = None) -> NodeInfo | None:
     """The registration of ``package`` that records ``plugin`` as its class, or None."""
-    from nodl.targets import overlay
+    from nodl.registry import overlay
 
     definitions = overlay.active()
     if definitions:

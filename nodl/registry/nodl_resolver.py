@@ -12,7 +12,7 @@ What the reference implementation's current ``ament_nodl_register`` installs
 as content) is found too, after ``nodl_interfaces``: the reference resolves
 ``nodl://<package>/<name>`` there.
 
-Definitions folders in force (:mod:`nodl.targets.overlay`) come first:
+Definitions folders in force (:mod:`nodl.registry.overlay`) come first:
 ``DIR/<package>/interfaces/<name>.nodl.yaml``.  The look-up is the registry's
 (:func:`nodl.registry.registrations.find_interface`); this module only plugs it into
 composition as the ``nodl`` resolver.  It lives in the registry, not in composition:

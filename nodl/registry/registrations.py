@@ -12,7 +12,7 @@
 * legacy packages: the ``nodl_desc/<package>`` marker (spec 001) and a
   ``package.xml`` that exports ``<interface path="..."/>`` (spec 000).
 
-Definitions folders (overlays, :mod:`nodl.targets.overlay`) in force come
+Definitions folders (overlays, :mod:`nodl.registry.overlay`) in force come
 first: a package's executable defined there is found there, whatever the index
 holds, and its :attr:`Registration.origin` says which folder served it.
 """
@@ -30,7 +30,7 @@ from nodl.composition.resolvers import ResolutionError, Resolved
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.files import tidy_path
 from nodl.frontends.source import read_regular
-from nodl.targets import overlay
+from nodl.registry import overlay
 from nodl.validation.kinds import Kind
 from nodl.vocabulary import (
     INTERFACE_RESOURCE, NODE_RESOURCE, REFERENCE_RESOURCE, RESOURCE_SEPARATOR, resource_name)

@@ -1,6 +1,6 @@
 """Targets: every way to name a definition, resolved once, with its provenance.
 
-* :mod:`~nodl.targets.overlay`: definitions folders (overlays) laid out by
+* :mod:`~nodl.registry.overlay`: definitions folders (overlays) laid out by
   package, their layout checked, and the folders in force for a run;
 * :mod:`~nodl.targets.resolve`: ``FILE``, ``PACKAGE EXECUTABLE`` and
   ``nodl://PACKAGE/NAME`` -> a definition, looked up in the definitions folders
@@ -10,7 +10,7 @@
   (``nodl policy`` and ``nodl analyse DEFINITION...``).
 
 Names are imported lazily, like the package's other ``__init__`` modules: the index
-imports :mod:`~nodl.targets.overlay` alone.
+imports :mod:`~nodl.registry.overlay` alone.
 """
 
 from __future__ import annotations

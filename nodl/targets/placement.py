@@ -15,7 +15,7 @@ from typing import Any, Mapping, NamedTuple, Sequence
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.system.instance import NodeInstance
-from nodl.targets.overlay import Definitions
+from nodl.registry.overlay import Definitions
 from nodl.targets.resolve import Provenance
 
 __all__ = ['Definition', 'Placed', 'LAUNCH_SUFFIXES', 'is_launch_file', 'split_targets',

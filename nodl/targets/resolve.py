@@ -6,7 +6,7 @@ precedence: ``--definitions DIR`` (as given), then ``NODL_PATH`` (folders
 separated by ``os.pathsep``), then ``definitions = [...]`` of the ``nodl.toml`` /
 ``[tool.nodl]`` that applies (relative to that file); the ament index comes
 last.  :func:`resolve_target` resolves a target with them in force
-(:func:`nodl.targets.overlay.using`) and says where the definition came
+(:func:`nodl.registry.overlay.using`) and says where the definition came
 from (:class:`Provenance`): the index, a definitions folder, or a file given by
 path; and whether the file was written by ``nodl extract`` or ``nodl describe``
 (read from the provenance header those verbs write).
@@ -19,7 +19,7 @@ import re
 from typing import Iterable, Mapping, NamedTuple, Sequence
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.targets.overlay import Definitions, read_folders, using
+from nodl.registry.overlay import Definitions, read_folders, using
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:

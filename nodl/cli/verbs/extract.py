@@ -110,7 +110,7 @@ class ExtractVerb(Verb):
     def _write(self, args: argparse.Namespace, extraction: Extraction) -> tuple[list[str], list[Diagnostic]]:
         from nodl.extract.targets import nodes_file_text, output_paths, registrations
         from nodl.extract.writer import draft_text
-        from nodl.targets.overlay import NODES_FILE
+        from nodl.registry.overlay import NODES_FILE
         from nodl.writing import WriteError, check_within, output_is_input, write_marked
 
         single = _is_file_output(args.output)

@@ -1,11 +1,11 @@
-"""Definitions folders (nodl.targets.overlay): layout, checks, precedence, look-ups."""
+"""Definitions folders (nodl.registry.overlay): layout, checks, precedence, look-ups."""
 
 from __future__ import annotations
 
 from conftest import FIXTURES
 
 from nodl.registry import node_info, registrations
-from nodl.targets.overlay import Definitions, active, read_folder, read_folders, using
+from nodl.registry.overlay import Definitions, active, read_folder, read_folders, using
 
 OVERLAYS = FIXTURES / 'overlays'
 DEFS = str(OVERLAYS / 'defs')
