@@ -12,3 +12,24 @@
 Consumers ask the registry (or :mod:`nodl.targets`), never the ament reader, for NoDL's
 resources.
 """
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+__all__ = ['Registration']
+
+
+class Registration(NamedTuple):
+    """One registered definition."""
+
+    package: str
+    #: The executable (node definitions) or the name (interface definitions).
+    name: str
+    #: ``node``, ``interface`` or ``legacy node``.
+    kind: str
+    #: The file the definition is read from (for index entries holding the
+    #: document itself, the index entry).
+    file: str
+    #: Where it was found: ``index``, or ``overlay DIR`` (a definitions folder).
+    origin: str = 'index'

@@ -15,10 +15,15 @@ and what is said about it points into the XML file.
 from __future__ import annotations
 
 import os
+from pathlib import Path
 
-from nodl.diagnostics import Diagnostic, Severity
 from nodl import ament_index
-from nodl.registry.registrations import Registration
+from nodl.composition import compose_report
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.frontends.legacy_xml import interface_files_from_package_xml, parse_legacy_xml
+from nodl.legacy import convert_legacy
+from nodl.legacy.placement import converted_report
+from nodl.registry import Registration
 from nodl.vocabulary import LEGACY_RESOURCE
 
 __all__ = ['legacy_registrations', 'legacy_files', 'compose_legacy']
@@ -41,8 +46,6 @@ def legacy_files(package: str | None, prefixes: list[str]) -> list[tuple[str, st
         elif os.path.isdir(share):
             found += [(name, os.path.join(share, f)) for f in sorted(os.listdir(share))
                       if f.endswith('.nodl.xml')]
-    from nodl.frontends.legacy_xml import interface_files_from_package_xml
-
     for name, prefix in ament_index.get_resources('packages', prefixes).items():
         if package is not None and name != package:
             continue
@@ -60,14 +63,10 @@ def legacy_files(package: str | None, prefixes: list[str]) -> list[tuple[str, st
 
 def legacy_registrations(package: str | None, prefixes: list[str]) -> list[Registration]:
     """Legacy node definitions, one per ``<node>`` of every legacy file."""
-    from nodl.frontends.legacy_xml import parse_legacy_xml
-
     registrations = []
     for name, file in legacy_files(package, prefixes):
         if not os.path.isfile(file):
             continue
-        from pathlib import Path
-
         document = parse_legacy_xml(Path(file), file)
         for node in document.nodes:
             key = node.executable or node.name
@@ -77,11 +76,6 @@ def legacy_registrations(package: str | None, prefixes: list[str]) -> list[Regis
 
 
 def _converted(registration: Registration):  # type: ignore[no-untyped-def]
-    from pathlib import Path
-
-    from nodl.frontends.legacy_xml import parse_legacy_xml
-    from nodl.legacy import convert_legacy
-
     document = parse_legacy_xml(Path(registration.file), registration.file)
     diagnostics = list(document.diagnostics)
     for converted in convert_legacy(document):
@@ -100,9 +94,6 @@ def compose_legacy(registration: Registration,  # type: ignore[no-untyped-def]
     placed in the legacy XML file (``registration.file``), at the element or
     attribute the entry came from (see :mod:`nodl.legacy.placement`).
     """
-    from nodl.composition import compose_report
-    from nodl.legacy.placement import converted_report
-
     converted, diagnostics = _converted(registration)
     if converted is None or not converted.ok:
         return None, diagnostics

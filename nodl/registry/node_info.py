@@ -22,6 +22,7 @@ import re
 from typing import NamedTuple
 
 from nodl import ament_index
+from nodl.registry import overlay
 from nodl.vocabulary import NODE_INFO_RESOURCE, resource_name
 
 __all__ = ['NODE_INFO_RESOURCE', 'NODE_INFO_ATTRIBUTES', 'NodeInfo', 'parse_node_info',
@@ -72,8 +73,6 @@ def format_node_info(plugin: str | None = None, node_name: str | None = None) ->
 
 def read_node_info(package: str, key: str, prefixes: list[str] | None = None) -> NodeInfo:
     """What ``package``'s registration ``key`` records (empty attributes if nothing)."""
-    from nodl.registry import overlay
-
     definitions = overlay.active()
     if definitions:
         recorded = definitions.node_info(package, key)
@@ -87,8 +86,6 @@ def read_node_info(package: str, key: str, prefixes: list[str] | None = None) ->
 
 def find_plugin(package: str, plugin: str, prefixes: list[str] | None = None) -> NodeInfo | None:
     """The registration of ``package`` that records ``plugin`` as its class, or None."""
-    from nodl.registry import overlay
-
     definitions = overlay.active()
     if definitions:
         key = definitions.find_plugin(package, plugin)

@@ -22,7 +22,12 @@ registry (which composes legacy packages with composition).
 
 from __future__ import annotations
 
-from nodl.composition.resolvers import ResolutionError, ResolveContext, Resolved, ResolverExtension
+from nodl.composition.resolvers import (
+    ResolutionError,
+    ResolveContext,
+    Resolved,
+    ResolverExtension,
+)
 from nodl.registry import registrations
 from nodl.validation.references import parse_nodl_uri
 

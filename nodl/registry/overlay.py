@@ -30,7 +30,13 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from typing import Iterator, NamedTuple, Sequence
 
+import yaml
+
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.files import describe_os_error
+from nodl.frontends import yaml_events
+from nodl.frontends.source import decode, read_limited
+from nodl.frontends.yaml_events import _COLUMN_BITS, _COLUMN_MASK
 
 __all__ = ['DEFINITION_SUFFIXES', 'NODES_FILE', 'INTERFACES_FOLDER', 'OverlayEntry',
            'DefinitionFolder', 'Definitions', 'read_folder', 'read_folders', 'using', 'active']
@@ -125,8 +131,6 @@ def _misplaced(found: DefinitionFolder, path: str, why: str) -> None:
 def read_folder(root: str, given_by: str = '--definitions') -> DefinitionFolder:
     """Read the definitions folder ``root`` and check its layout (never raises: a folder
     that cannot be read is a NODL246 diagnostic)."""
-    from nodl.files import describe_os_error
-
     found = DefinitionFolder(root, given_by)
     if not os.path.isdir(root):
         why = 'no such folder' if not os.path.exists(root) else 'not a folder'
@@ -157,8 +161,6 @@ def read_folder(root: str, given_by: str = '--definitions') -> DefinitionFolder:
 
 
 def _read_package(found: DefinitionFolder, package: str, folder: str) -> None:
-    from nodl.files import describe_os_error
-
     try:
         entries = _list(folder)
     except OSError as exc:
@@ -195,8 +197,6 @@ def _read_package(found: DefinitionFolder, package: str, folder: str) -> None:
 
 
 def _read_interfaces(found: DefinitionFolder, package: str, folder: str) -> None:
-    from nodl.files import describe_os_error
-
     try:
         entries = _list(folder)
     except OSError as exc:
@@ -222,12 +222,6 @@ def _read_interfaces(found: DefinitionFolder, package: str, folder: str) -> None
 def _read_nodes_file(found: DefinitionFolder, package: str, path: str) -> None:
     """``nodes.yaml``: ``{key: {plugin: pkg::Class, node_name: name}}``, each value checked
     at its line and column."""
-    import yaml
-
-    from nodl.files import describe_os_error
-    from nodl.frontends import yaml_events
-    from nodl.frontends.source import decode, read_limited
-
     try:
         text, problem = decode(read_limited(path), path)
     except OSError as exc:
@@ -306,8 +300,6 @@ def _mark(mark: object) -> tuple[int, int]:
     if mark is None:
         return 0, 0
     if isinstance(mark, int):  # yaml_events' packed positions
-        from nodl.frontends.yaml_events import _COLUMN_BITS, _COLUMN_MASK
-
         return (mark >> _COLUMN_BITS) + 1, (mark & _COLUMN_MASK) + 1
     return getattr(mark, 'line', -1) + 1, getattr(mark, 'column', -1) + 1
 

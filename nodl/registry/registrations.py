@@ -20,7 +20,8 @@ holds, and its :attr:`Registration.origin` says which folder served it.
 from __future__ import annotations
 
 import os
-from typing import ContextManager, NamedTuple
+from pathlib import Path
+from typing import ContextManager
 
 # The names compose_registered needs are imported here rather than on every call (an
 # import statement costs a few microseconds each time it runs).  Composing and checking
@@ -30,10 +31,16 @@ from nodl.composition.resolvers import ResolutionError, Resolved
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.files import tidy_path
 from nodl.frontends.source import read_regular
-from nodl.registry import overlay
+from nodl.registry import Registration, overlay
+from nodl.registry.legacy import compose_legacy, legacy_registrations
 from nodl.validation.kinds import Kind
 from nodl.vocabulary import (
-    INTERFACE_RESOURCE, NODE_RESOURCE, REFERENCE_RESOURCE, RESOURCE_SEPARATOR, resource_name)
+    INTERFACE_RESOURCE,
+    NODE_RESOURCE,
+    REFERENCE_RESOURCE,
+    RESOURCE_SEPARATOR,
+    resource_name,
+)
 
 __all__ = ['Registration', 'search_path', 'one_run', 'list_registrations', 'find_node',
            'read_registration', 'read_registered', 'interface_entry', 'find_interface',
@@ -42,21 +49,6 @@ __all__ = ['Registration', 'search_path', 'one_run', 'list_registrations', 'find
 _KINDS = {NODE_RESOURCE: 'node', INTERFACE_RESOURCE: 'interface', REFERENCE_RESOURCE: 'node'}
 #: Where a node definition may be registered, in the order they are looked up.
 _NODE_RESOURCES = (NODE_RESOURCE, REFERENCE_RESOURCE)
-
-
-class Registration(NamedTuple):
-    """One registered definition."""
-
-    package: str
-    #: The executable (node definitions) or the name (interface definitions).
-    name: str
-    #: ``node``, ``interface`` or ``legacy node``.
-    kind: str
-    #: The file the definition is read from (for index entries holding the
-    #: document itself, the index entry).
-    file: str
-    #: Where it was found: ``index``, or ``overlay DIR`` (a definitions folder).
-    origin: str = 'index'
 
 
 def search_path(prefixes: list[str] | None = None) -> list[str]:
@@ -149,8 +141,6 @@ def _index_registrations(package: str | None, prefixes: list[str], kind: str | N
     if kind in (None, 'interface'):
         found += _v2(INTERFACE_RESOURCE, prefixes, package)
     if kind in (None, 'node'):
-        from nodl.registry.legacy import legacy_registrations
-
         v2_nodes = {(r.package, r.name) for r in found if r.kind == 'node'}
         found += [r for r in legacy_registrations(package, prefixes)
                   if (r.package, r.name) not in v2_nodes]
@@ -190,8 +180,6 @@ def _find_node(package: str, executable: str, prefixes: list[str]) -> Registrati
             return Registration(package, executable, 'node', read_registered(resource, package).file)
         except ResolutionError:
             return Registration(package, executable, 'node', resource.path)
-    from nodl.registry.legacy import legacy_registrations
-
     for registration in legacy_registrations(package, prefixes):
         if registration.name == executable:
             return registration
@@ -301,8 +289,6 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
         return None, [Diagnostic(Severity.ERROR, describe_missing(package, executable, prefixes),
                                  (), where, code='NODL306')], where
     if registration.origin != 'index':  # a definitions folder's file
-        from pathlib import Path
-
         try:
             report = loading.check_source(Path(registration.file), kind=Kind.NODE,
                                           file=registration.file)
@@ -316,8 +302,6 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
                                                            prefixes=prefixes)
         return composed, diagnostics, registration.file
     if registration.kind == 'legacy node':
-        from nodl.registry.legacy import compose_legacy
-
         composed, diagnostics = compose_legacy(registration, client_library)
         return composed, diagnostics, registration.file
     try:
