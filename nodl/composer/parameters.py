@@ -1,0 +1,97 @@
+"""Setting a parameter of a node's entry, checked at once against its declaration.
+
+The value is typed as launch types a ``<param value=...>`` (:func:`nodl.composer.values.typed_value`),
+then checked with the parameter plan every consumer shares (:mod:`nodl.plan`): the declared
+type as a real node checks it, then each built-in validator.  A value that breaks them is
+refused (nothing changes) with what the parameter accepts.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from nodl.composer.model import ComposedNode, Kept, Param
+from nodl.diagnostics import Diagnostic, Severity
+
+if TYPE_CHECKING:
+    from nodl.composer.composition import Change, Composition
+
+__all__ = ['check_value', 'parameter_plans', 'set_parameter']
+
+
+def parameter_plans(resolved: Any) -> Any:
+    """The parameter plan of a resolved node (:class:`nodl.plan.ParametersPlan`)."""
+    from nodl.plan.parameter_plan import plan_parameters
+
+    return plan_parameters(list(resolved.parameters))
+
+
+def check_value(plan: Any, value: Any) -> list[str]:
+    """Why ``value`` cannot be the parameter's (its type, then its validators); empty: it can."""
+    from nodl.plan.parameter_plan import value_problems
+
+    return list(value_problems(plan, value))
+
+
+def set_parameter(composition: Composition, ref: ComposedNode | str, name: str,
+                  text: str) -> Change:
+    """:meth:`Composition.set_parameter`."""
+    from nodl.composer.composition import Change
+    from nodl.composer.values import typed_value
+
+    node = ref if isinstance(ref, ComposedNode) else composition.node(ref)
+    if node is None:
+        return Change([composition.find(str(ref))[1]])  # type: ignore[list-item]
+    problem = composition._editable(node)
+    if problem is not None:
+        return Change([problem], node.id)
+    path, line = composition.path, node.line
+    try:
+        value = typed_value(text)
+    except ValueError as exc:
+        return Change([Diagnostic(Severity.ERROR, f'{name}: {exc}', code='NODL977', file=path, line=line)],
+                      node.id)
+    diagnostics: list[Diagnostic] = []
+    resolved = composition.definition_of(node)
+    if resolved is None:
+        diagnostics.append(Diagnostic(
+            Severity.WARNING, f'{node.label}: no definition is found, so {name} = {text} is '
+            'written unchecked', code='NODL985', file=path, line=line))
+    else:
+        plans = parameter_plans(resolved)
+        plan = plans.get(name)
+        if plan is None:
+            from nodl.validation.messages import did_you_mean
+
+            declared = [p.name for p in plans.parameters]
+            return Change([Diagnostic(
+                Severity.ERROR, f"{composition.fqn(node)} ({node.label}) declares no parameter "
+                f"'{name}'{did_you_mean(name, declared)} (it declares: "
+                f"{', '.join(declared) or 'none'})", code='NODL978', file=path, line=line)], node.id)
+        problems = check_value(plan, value)
+        if problems:
+            hint = ''
+            if plan.ros_type == 'PARAMETER_DOUBLE' and isinstance(value, int) \
+                    and not isinstance(value, bool):
+                hint = f' (write {value}.0 for a double)'
+            accepts = f'; it {plan.constraints_text}' if plan.constraints_text else ''
+            return Change([Diagnostic(
+                Severity.ERROR, f'{name} = {text} is refused: {"; ".join(problems)}{hint} '
+                f'({plan.type_name}{accepts})', code='NODL977', file=path, line=line)], node.id)
+    _write(node, name, value)
+    composition._changed(node)
+    return Change(diagnostics, node.id)
+
+
+def _write(node: ComposedNode, name: str, value: Any) -> None:
+    """Set ``name`` in the entry: in place when no kept source after it may set it again,
+    else as the entry's last parameter (a later value wins)."""
+    index = next((i for i in range(len(node.params) - 1, -1, -1)
+                  if isinstance(node.params[i], Param) and node.params[i].name == name), None)  # type: ignore[union-attr]
+    later_kept = index is not None and any(isinstance(p, Kept) for p in node.params[index + 1:])
+    if index is not None and not later_kept:
+        old = node.params[index]
+        node.params[index] = Param(name, value, None, old.gap)
+        return
+    node.params = [p for p in node.params if not (isinstance(p, Param) and p.name == name)]
+    node.params.append(Param(name, value))
