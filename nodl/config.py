@@ -10,9 +10,10 @@ without one is passed over).  Keys:
 ``error``
     a list of codes whose diagnostics are errors whatever their severity;
 ``analyse``
-    a table of settings of ``nodl analyse`` (:mod:`nodl.analysis.settings`);
+    a table of settings of ``nodl analyse`` (:data:`ANALYSE_KEYS`, checked here by
+    :func:`analyse_table`; :mod:`nodl.system.settings` makes the analysis's settings of it);
 ``definitions``
-    a list of definitions folders (overlays, :mod:`nodl.targets.overlay`), relative
+    a list of definitions folders (overlays, :mod:`nodl.registry.overlay`), relative
     to the configuration file's folder (:func:`definitions_of`).
 
 Unknown keys, values that are not lists of strings and unknown codes are a
@@ -23,22 +24,27 @@ from __future__ import annotations
 
 import os
 import re
+from typing import Any
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any
+from nodl.overrides import Overrides, parse_code_list
 
-from nodl.overrides import Overrides
-
-__all__ = ['ConfigError', 'CONFIG_FILES', 'KEYS', 'find_config_file', 'load_config',
-           'overrides_for', 'ConfigCache', 'definitions_of']
+__all__ = ['ConfigError', 'CONFIG_FILES', 'KEYS', 'ANALYSE_TABLE', 'ANALYSE_KEYS', 'analyse_table',
+           'find_config_file', 'load_config', 'overrides_for', 'ConfigCache', 'definitions_of']
 
 #: The file names looked for in each directory, in order of precedence.
 CONFIG_FILES = ('nodl.toml', 'pyproject.toml')
 #: The keys of a configuration and what each holds.
 KEYS = {'ignore': 'a list of codes to silence', 'error': 'a list of codes to report as errors',
-        'analyse': 'a table of settings of nodl analyse (see nodl.analysis.settings)',
+        'analyse': 'a table of settings of nodl analyse (see nodl.system.settings)',
         'definitions': 'a list of definitions folders, relative to this file'}
+#: The key of the table of ``nodl analyse`` settings.
+ANALYSE_TABLE = 'analyse'
+#: The keys of the ``[analyse]`` table of ``nodl.toml`` (``[tool.nodl.analyse]`` in
+#: ``pyproject.toml``) and what each holds.
+ANALYSE_KEYS = {
+    'multiple_publishers_allow': 'a list of topics (fnmatch patterns such as "/tf" or '
+                                 '"/diagnostics*") that several nodes may publish',
+}
 
 
 class ConfigError(ValueError):
@@ -104,8 +110,9 @@ def find_config_file(start: str) -> str | None:
 
 def load_config(path: str) -> Overrides:
     """The overrides a configuration file sets (ConfigError if it is not valid)."""
+    # The catalogue of codes is read only when a configuration needs it: `nodl validate`'s
+    # start-up budget (issue 16) does not pay for it otherwise.
     from nodl.codes import close_codes
-    from nodl.overrides import parse_code_list
 
     table = _table(path) or {}
     where = path + (' [tool.nodl]' if os.path.basename(path) == 'pyproject.toml' else '')
@@ -117,10 +124,8 @@ def load_config(path: str) -> Overrides:
             close = difflib.get_close_matches(str(key), list(KEYS), n=1)
             hint = f"; did you mean '{close[0]}'?" if close else f'; expected {" or ".join(KEYS)}'
             raise ConfigError(f"{where}: error: unknown key '{key}'{hint}")
-        if key == 'analyse':  # checked by its owner, so that a wrong table fails every verb alike
-            from nodl.analysis.settings import settings_from_table
-
-            settings_from_table(value, where)
+        if key == ANALYSE_TABLE:  # checked here, so that a wrong table fails every verb alike
+            analyse_table(value, where)
             continue
         if key == 'definitions':  # folders, not codes: read by definitions_of
             _folder_list(value, where)
@@ -139,6 +144,24 @@ def load_config(path: str) -> Overrides:
         raise ConfigError(f"{where}: error: {sorted(both)[0]} is both ignored and an error; "
                           'keep it in one list')
     return Overrides(values['ignore'], values['error'])
+
+
+def analyse_table(table: object, where: str) -> dict[str, tuple[str, ...]]:
+    """The settings an ``analyse`` table gives, by key of :data:`ANALYSE_KEYS` (ConfigError
+    naming ``where`` if the table is wrong)."""
+    if not isinstance(table, dict):
+        raise ConfigError(f"{where}: error: '{ANALYSE_TABLE}' must be a table")
+    for key, value in table.items():
+        if key not in ANALYSE_KEYS:
+            import difflib
+
+            close = difflib.get_close_matches(str(key), list(ANALYSE_KEYS), n=1)
+            hint = f"; did you mean '{close[0]}'?" if close else \
+                f'; expected {", ".join(ANALYSE_KEYS)}'
+            raise ConfigError(f"{where}: error: unknown key '{ANALYSE_TABLE}.{key}'{hint}")
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            raise ConfigError(f"{where}: error: '{ANALYSE_TABLE}.{key}' must be {ANALYSE_KEYS[key]}")
+    return {key: tuple(value) for key, value in table.items()}
 
 
 def _folder_list(value: Any, where: str) -> list[str]:
