@@ -17,8 +17,14 @@ import sys
 from pathlib import Path
 from typing import NamedTuple
 
-__all__ = ['VENDOR_FILES', 'VendorFile', 'vendor_folder', 'missing_vendor_files', 'copy_vendor',
-           'INSTALL_HINT']
+__all__ = [
+    'INSTALL_HINT',
+    'VENDOR_FILES',
+    'VendorFile',
+    'copy_vendor',
+    'missing_vendor_files',
+    'vendor_folder',
+]
 
 #: What to run when the files are missing (from a clone of the sources).
 INSTALL_HINT = ('run `make install` in the nodl sources (it runs `npm ci --prefix nodl/studio/web` '

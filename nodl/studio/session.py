@@ -1,0 +1,599 @@
+"""One studio session: a :class:`nodl.composer.Composition` and what the page asks of it.
+
+The session owns no model of its own: every edit is a composer operation, every answer
+the composer's state shaped for the page (:meth:`Session.state`): nodes with their ports
+and parameters (with editors' facts: type, value, default, constraints in words), edges
+(pairs of ports whose final names meet), the analysis's findings (``nodl analyse``'s,
+same codes), the read-only pieces, the positions of the side file
+(:mod:`nodl.studio.layout`) and whether the launch files' Python code has run.
+
+Safety:
+
+* files are read and written only under the session's folders (:class:`FolderGuard`):
+  the launch file, its side file and the exports;
+* the launch files' Python code (a Python launch file, ``$(eval)``) does not run until
+  :meth:`Session.run_code` (the page's button, the user's explicit action); never when the
+  session was started with ``execute=False`` (``--no-exec``).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from collections.abc import Callable, Sequence
+from typing import Any
+
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.studio.guard import FolderGuard
+
+__all__ = ['NOT_RUN_CODES', 'SUFFIXES', 'Session', 'StudioError', 'port_id']
+
+#: The endings of the launch files the studio opens.
+SUFFIXES = ('.launch.xml', '.launch.yaml', '.launch.yml', '.launch.py')
+#: The analysis's codes that say launch code was not run (--no-exec, or not yet asked).
+NOT_RUN_CODES = frozenset({'NODL525', 'NODL526'})
+#: How long an export (a separate nodl process) may take.
+EXPORT_TIMEOUT = 120.0
+
+
+class StudioError(Exception):
+    """A request the session refuses: a message, the diagnostics (JSON), the HTTP status."""
+
+    def __init__(self, message: str, diagnostics: Sequence[Diagnostic] = (), status: int = 400,
+                 **extra: Any) -> None:
+        super().__init__(message)
+        self.message = message
+        self.diagnostics = [d.to_dict() for d in diagnostics]
+        self.status = status
+        self.extra = extra
+
+
+def port_id(node: str, kind: str, name: str) -> str:
+    """The page's identifier of a port: ``NODE_ID|KIND|NAME``."""
+    return f'{node}|{kind}|{name}'
+
+
+def _split_port(text: Any) -> tuple[str, str, str]:
+    if not isinstance(text, str) or text.count('|') < 2:
+        raise StudioError(f'{text!r} is not a port')
+    node, kind, name = text.split('|', 2)
+    return node, kind, name
+
+
+def _text(data: dict[str, Any], key: str, *, required: bool = True) -> str:
+    value = data.get(key)
+    if value is None and not required:
+        return ''
+    if not isinstance(value, str):
+        raise StudioError(f"'{key}' must be a string")
+    return value
+
+
+def _value_text(value: Any) -> str | None:
+    """A parameter value as the editor shows it (launch's typing reads it back the same)."""
+    if value is None:
+        return None
+    from nodl.composer.values import xml_value
+
+    return xml_value(value)[0]
+
+
+def _constraints(definition: Any) -> str:
+    """A parameter's validators (and additional constraints) in words."""
+    from nodl.validation.validators import lookup
+
+    words = []
+    for key, raw in (getattr(definition, 'validation', None) or {}).items():
+        rule = lookup(key)
+        if rule is not None and rule.accepts(raw):
+            words.append(rule.describe(raw))
+    extra = getattr(definition, 'additional_constraints', '') or ''
+    if extra:
+        words.append(extra)
+    return '; '.join(words)
+
+
+class Session:
+    """The studio's state (see the module docstring)."""
+
+    def __init__(self, launch_file: str, *, definitions: Any = None,
+                 roots: Sequence[str] = (), execute: bool = True,
+                 definition_folders: Sequence[str] = (),
+                 exporters: dict[str, Callable[..., list[str]]] | None = None) -> None:
+        from nodl.composer.composition import ComposerError, Composition
+        from nodl.launch.sandbox import LaunchLimits
+
+        self.launch_file = os.path.abspath(launch_file)
+        self.guard = FolderGuard([os.path.dirname(self.launch_file), *roots])
+        problem = self.guard.check(self.launch_file, 'the launch file')
+        if problem is not None:
+            raise StudioError(problem.message, [problem])
+        #: ``--no-exec`` not given: the user may ask for the launch's Python code to run.
+        self.execute_allowed = execute
+        #: The user asked for it (the page's button).
+        self.code_ran = False
+        self.definitions = definitions
+        self.definition_folders = list(definition_folders)
+        self._palette: list[dict[str, Any]] | None = None
+        self._positions_cache: dict[str, dict[str, float]] | None = None
+        options = {'definitions': definitions, 'limits': LaunchLimits(execute=False)}
+        try:
+            if os.path.exists(self.launch_file):
+                self.composition = Composition.open(self.launch_file, **options)
+            else:
+                self.composition = Composition.new(self.launch_file, **options)
+        except ComposerError as exc:
+            raise StudioError(str(exc.diagnostic), [exc.diagnostic]) from None
+
+    # -- reading ------------------------------------------------------------------------------
+
+    def palette(self) -> dict[str, Any]:
+        """``{'palette': [...]}``: every definition the toolkit finds (computed once)."""
+        if self._palette is None:
+            from nodl.studio.palette import build_palette
+            from nodl.targets.overlay import using
+
+            with using(self.definitions):
+                self._palette = build_palette()
+        return {'ok': True, 'palette': self._palette}
+
+    def _positions(self) -> dict[str, dict[str, float]]:
+        if self._positions_cache is None:
+            from nodl.studio.layout import read_layout
+
+            self._positions_cache = read_layout(self.launch_file) \
+                if self.guard.inside(self.launch_file) else {}
+        return self._positions_cache
+
+    def state(self) -> dict[str, Any]:
+        """``{'ok': True, 'state': ...}``: the whole state the page draws."""
+        return {'ok': True, 'state': self.snapshot()}
+
+    def snapshot(self) -> dict[str, Any]:
+        """The state the page draws (see the module docstring)."""
+        from nodl.composer.ports import ports_of
+        from nodl.system.entities import Provider
+        from nodl.targets.overlay import using
+
+        composition = self.composition
+        with using(self.definitions):
+            analysis = composition.analyse()
+            data = composition.to_dict(analyse=False)
+            findings = [f.to_dict() for f in analysis.findings]
+            nodes = []
+            by_entity: dict[tuple[int, int], str] = {}
+            launched_of: list[tuple[dict[str, Any], Any]] = [
+                (item, analysis.node(item['id'])) for item in data['nodes']]
+            seen: dict[str, int] = {}
+            for launched in analysis.others:  # from included files and kept code: read-only
+                fqn = str(launched.fqn)
+                seen[fqn] = seen.get(fqn, 0) + 1
+                node_id = f'x:{fqn}' + (f'#{seen[fqn]}' if seen[fqn] > 1 else '')
+                entry = launched.entry
+                where = launched.location
+                launched_of.append(({
+                    'id': node_id, 'kind': getattr(entry, 'kind', 'node') or 'node',
+                    'package': entry.package, 'executable': entry.executable,
+                    'plugin': getattr(entry, 'plugin', None), 'name': None, 'namespace': None,
+                    'fqn': fqn, 'editable': False,
+                    'read_only_reason': f'launched by {os.path.basename(str(where.file))}:'
+                                        f'{where.line}, kept as written',
+                    'parameters': {}, 'remaps': [], 'kept': [],
+                    'definition': launched.match.file if launched.match.resolved is not None
+                    else None, 'included': True}, launched))
+            for item, launched in launched_of:
+                ports = []
+                for port in ports_of(item['id'], launched):
+                    bound = port.entity
+                    if bound.entity.provider is Provider.CLIENT_LIBRARY:
+                        continue
+                    key = port_id(item['id'], port.kind, port.name)
+                    by_entity[id(bound.instance), id(bound.entity)] = key
+                    ports.append({'kind': port.kind, 'name': port.name,
+                                  'final': port.final_name, 'type': port.type})
+                nodes.append(self._node(composition, item, ports))
+            edges = self._edges(analysis, by_entity)
+        counts = {'error': 0, 'warning': 0, 'info': 0}
+        for finding in findings:
+            counts[finding['severity']] = counts.get(finding['severity'], 0) + 1
+        not_run = [f for f in findings if f['code'] in NOT_RUN_CODES]
+        positions = self._positions()
+        placed = {n['id']: positions[n['fqn']] for n in nodes if n['fqn'] in positions}
+        if not self.execute_allowed:
+            message = "the launch files' Python code is not run (--no-exec)"
+        elif not_run:
+            message = ("the launch files' Python code has not run: what it launches is not "
+                       'analysed until you run it (in a sandboxed child process)')
+        else:
+            message = ''
+        return {
+            'file': self.launch_file, 'format': data['format'], 'dirty': data['dirty'],
+            'editable': data.get('editable', True),
+            'nodes': nodes, 'edges': edges, 'findings': findings, 'counts': counts,
+            'readonly': data.get('kept', []), 'groups': data.get('groups', []),
+            'positions': placed,
+            'code': {'allowed': self.execute_allowed and not self.code_ran,
+                     'ran': self.code_ran, 'needed': bool(not_run), 'message': message},
+        }
+
+    @staticmethod
+    def _edges(analysis: Any, by_entity: dict[tuple[int, int], str]) -> list[dict[str, Any]]:
+        """The analysis's connections between the ports drawn (publisher -> subscription,
+        server -> client), client-library endpoints left out."""
+        context = getattr(analysis.analysis, 'context', None)
+        if context is None:
+            return []
+        out = []
+        for connection in context.system.connections(include_client_library=False,
+                                                      lone_servers=False):
+            for offering in connection.offering:
+                source = by_entity.get((id(offering.instance), id(offering.entity)))
+                for using in connection.using:
+                    target = by_entity.get((id(using.instance), id(using.entity)))
+                    if source is None or target is None:
+                        continue
+                    out.append({'id': f'e:{source}>{target}', 'source': source,
+                                'target': target, 'name': connection.name,
+                                'communication': connection.communication,
+                                'type': offering.entity.type_name})
+        return out
+
+    def _node(self, composition: Any, item: dict[str, Any],
+              ports: list[dict[str, Any]]) -> dict[str, Any]:
+        fqn = item['fqn']
+        namespace, _, name = fqn.rpartition('/')
+        node = None if item.get('included') else composition.node(item['id'])
+        resolved = composition.definition_of(node) if node is not None else None
+        given = item.get('parameters') or {}
+        parameters = []
+        if resolved is not None:
+            from nodl.system.entities import Provider
+
+            for entity in resolved.entities:
+                if not entity.is_parameter:
+                    continue
+                if entity.provider is Provider.CLIENT_LIBRARY and entity.name not in given:
+                    continue
+                definition = entity.definition
+                value = given.get(entity.name)
+                parameters.append({
+                    'name': entity.name, 'type': entity.type_name,
+                    'value': value, 'text': _value_text(value) if entity.name in given else '',
+                    'given': entity.name in given,
+                    'default_text': _value_text(entity.default_value),
+                    'read_only': entity.read_only,
+                    'description': getattr(definition, 'description', '') or '',
+                    'constraints': _constraints(definition), 'error': ''})
+        known = {p['name'] for p in parameters}
+        for pname, value in given.items():  # given but not declared (the analysis says so)
+            if pname not in known:
+                parameters.append({'name': pname, 'type': 'undeclared', 'value': value,
+                                   'text': _value_text(value), 'given': True,
+                                   'default_text': None, 'read_only': False, 'description': '',
+                                   'constraints': 'not declared by the definition',
+                                   'error': ''})
+        remaps = [{'from': a, 'to': b, 'kept': False} for a, b in item.get('remaps', [])]
+        kept = item.get('kept', [])
+        remaps += [{'kept': True, 'text': k['text'], 'from': '', 'to': ''} for k in kept
+                   if 'remap' in k.get('what', '').lower()]
+        return {
+            'id': item['id'], 'kind': item['kind'], 'package': item['package'],
+            'executable': item.get('executable'), 'plugin': item.get('plugin'),
+            'name': name or fqn, 'namespace': namespace or '/', 'fqn': fqn,
+            'name_given': item.get('name') or '', 'namespace_given': item.get('namespace') or '',
+            'editable': item.get('editable', True),
+            'read_only_reason': item.get('read_only_reason', ''),
+            'definition': bool(item.get('definition')),
+            'ports': ports, 'included': bool(item.get('included')),
+            'parameters': parameters, 'remaps': remaps,
+            'kept': [{'what': k.get('what', ''), 'text': k.get('text', '')} for k in kept],
+        }
+
+    # -- editing ------------------------------------------------------------------------------
+
+    def _answer(self, change: Any, **extra: Any) -> dict[str, Any]:
+        out: dict[str, Any] = dict(change.to_dict())
+        out.update(extra)
+        out['state'] = self.snapshot()
+        if not change.ok:
+            errors = [d for d in change.diagnostics if d.severity is Severity.ERROR]
+            out['error'] = '; '.join(d.message for d in errors)
+        return out
+
+    def _node_ref(self, data: dict[str, Any]) -> str:
+        ref = _text(data, 'node')
+        if self.composition.node(ref) is None:
+            raise StudioError(f"no node '{ref}' in the composition")
+        return ref
+
+    def add(self, data: dict[str, Any]) -> dict[str, Any]:
+        """Add ``{package, executable, name, namespace}`` (a free name is chosen when the
+        name is taken in that namespace)."""
+        from nodl.targets.overlay import using
+
+        package, executable = _text(data, 'package'), _text(data, 'executable')
+        name = _text(data, 'name', required=False) or executable
+        namespace = _text(data, 'namespace', required=False) or '/'
+        container = _text(data, 'container', required=False) or None
+        taken = {n['fqn'] for n in self.composition.instances}
+        base, number = name, 1
+        while _join(namespace, name) in taken:
+            number += 1
+            name = f'{base}_{number}'
+        with using(self.definitions):
+            change = self.composition.add(package, executable, name,
+                                          namespace if namespace != '/' else None, container)
+        return self._answer(change)
+
+    def remove(self, data: dict[str, Any]) -> dict[str, Any]:
+        """Remove ``{node}``."""
+        ref = self._node_ref(data)
+        fqn = self.composition.fqn(self.composition.node(ref))  # type: ignore[arg-type]
+        change = self.composition.remove(ref)
+        if change.ok:
+            self._forget(fqn)
+        return self._answer(change)
+
+    def _port_ref(self, text: Any) -> str:
+        node, kind, name = _split_port(text)
+        return f'{node}:{kind}/{name}'
+
+    def connect(self, data: dict[str, Any]) -> dict[str, Any]:
+        """Join ports ``{a, b}`` (page port identifiers)."""
+        from nodl.targets.overlay import using
+
+        with using(self.definitions):
+            change = self.composition.connect(self._port_ref(data.get('a')),
+                                              self._port_ref(data.get('b')))
+        rules = ', '.join(f"{r['from']}:={r['to']}" for r in change.remaps)
+        return self._answer(change, message=f'connected ({rules})' if rules else 'connected')
+
+    def disconnect(self, data: dict[str, Any]) -> dict[str, Any]:
+        """Part ports ``{a, b}``."""
+        from nodl.targets.overlay import using
+
+        with using(self.definitions):
+            change = self.composition.disconnect(self._port_ref(data.get('a')),
+                                                 self._port_ref(data.get('b')))
+        return self._answer(change)
+
+    def compatible(self, data: dict[str, Any]) -> dict[str, Any]:
+        """``{port}`` -> ``{'ports': {port id: {ok, verdict, reason}}}`` for every other port:
+        the composer's verdict (kinds pair, same type, QoS can connect), from the last
+        analysis's ports (nothing is analysed again)."""
+        from nodl.composer.ports import verdict
+
+        node_id, kind, name = _split_port(data.get('port'))
+        composition = self.composition
+        all_ports = {n.id: composition.ports(n) for n in composition.nodes}
+        source = next((p for p in all_ports.get(node_id, [])
+                       if p.kind == kind and p.name == name), None)
+        if source is None:
+            raise StudioError(f"no port {kind} '{name}' on node '{node_id}'")
+        out: dict[str, Any] = {}
+        for other_id, ports in all_ports.items():
+            for port in ports:
+                if port is source:
+                    continue
+                key = port_id(other_id, port.kind, port.name)
+                if other_id == node_id:
+                    out[key] = {'ok': False, 'verdict': 'error',
+                                'reason': 'a port of the same node'}
+                    continue
+                judged = verdict(source, port)
+                out[key] = {'ok': judged.ok, 'verdict': judged.verdict,
+                            'reason': judged.reason or 'compatible'}
+        return {'ok': True, 'ports': out}
+
+    def set_parameter(self, data: dict[str, Any]) -> dict[str, Any]:
+        """Set ``{node, name, value}`` (the value's text, typed as launch types it); refused,
+        with the errors, when it breaks the declared type or a validator."""
+        from nodl.targets.overlay import using
+
+        ref = self._node_ref(data)
+        with using(self.definitions):
+            change = self.composition.set_parameter(ref, _text(data, 'name'),
+                                                    _text(data, 'value'))
+        return self._answer(change)
+
+    def rename(self, data: dict[str, Any]) -> dict[str, Any]:
+        """Give ``{node}`` the ``name`` and ``namespace`` of its entry (empty: none)."""
+        from nodl.naming import namespace_error, node_name_error
+
+        ref = self._node_ref(data)
+        node = self.composition.node(ref)
+        assert node is not None
+        name = _text(data, 'name', required=False).strip()
+        namespace = _text(data, 'namespace', required=False).strip()
+        problems = []
+        if name:
+            why = node_name_error(name)
+            if why:
+                problems.append(Diagnostic(Severity.ERROR, f"'{name}' is not a node name: {why}",
+                                           file=self.launch_file, code='NODL993'))
+        if namespace:
+            why = namespace_error(namespace if namespace.startswith('/') else '/' + namespace)
+            if why:
+                problems.append(Diagnostic(Severity.ERROR,
+                                           f"'{namespace}' is not a namespace: {why}",
+                                           file=self.launch_file, code='NODL993'))
+        if not node.editable:
+            problems.append(Diagnostic(Severity.ERROR, f'{node.label} is read-only: '
+                                       f'{node.read_only_reason}', file=self.launch_file,
+                                       code='NODL993'))
+        if problems:
+            raise StudioError('; '.join(p.message for p in problems), problems)
+        before = self.composition.fqn(node)
+        rename = getattr(self.composition, 'rename', None)
+        if rename is not None:
+            change = rename(ref, name or None, namespace or None)
+        else:  # (see /tmp/h/studio-needs.md: until the composer has the operation)
+            node.name = name or None
+            node.namespace = namespace or None
+            self.composition._changed(node)
+            from nodl.composer.composition import Change
+
+            change = Change([], node.id)
+        answer = self._answer(change)
+        after = self.composition.fqn(node)
+        if change.ok and before != after:
+            self._move(before, after)
+        return answer
+
+    def set_remaps(self, data: dict[str, Any]) -> dict[str, Any]:
+        """Replace ``{node}``'s own rules with ``remaps`` (``[[from, to], ...]``)."""
+        from nodl.naming import parse_remap_rules
+
+        ref = self._node_ref(data)
+        node = self.composition.node(ref)
+        assert node is not None
+        rules = data.get('remaps')
+        if not isinstance(rules, list) or not all(
+                isinstance(r, list) and len(r) == 2 and all(isinstance(x, str) for x in r)
+                for r in rules):
+            raise StudioError("'remaps' must be a list of [from, to] pairs")
+        try:
+            parse_remap_rules([f'{a}:={b}' for a, b in rules])
+        except ValueError as exc:
+            problem = Diagnostic(Severity.ERROR, f'a remapping rule rcl would refuse: {exc}',
+                                 file=self.launch_file, code='NODL993')
+            raise StudioError(problem.message, [problem]) from None
+        if not node.editable:
+            raise StudioError(f'{node.label} is read-only: {node.read_only_reason}')
+        setter = getattr(self.composition, 'set_remaps', None)
+        if setter is not None:
+            change = setter(ref, [(a, b) for a, b in rules])
+        else:  # (see /tmp/h/studio-needs.md)
+            from nodl.composer.composition import Change
+            from nodl.composer.model import Kept, Remap
+
+            kept = [r for r in node.remaps if isinstance(r, Kept)]
+            node.remaps = [*kept, *(Remap(a, b) for a, b in rules)]
+            self.composition._changed(node)
+            change = Change([], node.id)
+        return self._answer(change)
+
+    # -- files --------------------------------------------------------------------------------
+
+    def save(self, data: dict[str, Any]) -> dict[str, Any]:
+        """Write the launch file through the composer (``force``: over changes made on disk
+        since it was read), and the positions' side file."""
+        problem = self.guard.check(self.launch_file, 'the launch file')
+        if problem is not None:
+            raise StudioError(problem.message, [problem], status=403)
+        problems = self.composition.save(force=bool(data.get('force')))
+        if problems:
+            changed = any(d.code in ('NODL980', 'NODL981') for d in problems)
+            return {'ok': False, 'error': '; '.join(d.message for d in problems),
+                    'diagnostics': [d.to_dict() for d in problems], 'changed': changed,
+                    'state': self.snapshot()}
+        self._write_positions()
+        return {'ok': True, 'file': self.launch_file, 'state': self.snapshot()}
+
+    def save_positions(self, data: dict[str, Any]) -> dict[str, Any]:
+        """Keep ``{positions: {node id: {x, y}}}`` in the side file (by final name)."""
+        given = data.get('positions')
+        if not isinstance(given, dict):
+            raise StudioError("'positions' must be an object")
+        fqns = {n['id']: n['fqn'] for n in self.composition.instances}
+        positions = self._positions()
+        for node_id, where in given.items():
+            if node_id in fqns and isinstance(where, dict) and all(
+                    isinstance(where.get(k), (int, float)) and not isinstance(where.get(k), bool)
+                    for k in ('x', 'y')):
+                positions[fqns[node_id]] = {'x': float(where['x']), 'y': float(where['y'])}
+        written = self._write_positions()
+        return {'ok': True, 'file': written}
+
+    def _write_positions(self) -> str | None:
+        from nodl.studio.layout import layout_file, write_layout
+        from nodl.writing import WriteError
+
+        side = layout_file(self.launch_file)
+        problem = self.guard.check(side, 'the positions file')
+        if problem is not None:
+            raise StudioError(problem.message, [problem], status=403)
+        if not self._positions() and not os.path.exists(side):
+            return None
+        try:
+            return write_layout(self.launch_file, self._positions())
+        except WriteError as exc:
+            raise StudioError(exc.diagnostic.message, [exc.diagnostic]) from None
+
+    def _forget(self, fqn: str) -> None:
+        self._positions().pop(fqn, None)
+
+    def _move(self, before: str, after: str) -> None:
+        positions = self._positions()
+        if before in positions:
+            positions[after] = positions.pop(before)
+
+    def export(self, data: dict[str, Any]) -> dict[str, Any]:
+        """Write ``{what}``: ``policy`` (``<stem>.policy.xml``), ``doc`` (``<stem>-docs/``) or
+        ``graph`` (``<stem>.graph.svg``) next to the launch file, or at ``output`` (under the
+        session's folders), with ``nodl policy``, ``nodl doc`` or ``nodl analyse --graph`` on the
+        saved launch file (unsaved changes: save first)."""
+        what = _text(data, 'what')
+        folder, base = os.path.split(self.launch_file)
+        stem = base
+        for suffix in SUFFIXES:
+            if stem.lower().endswith(suffix):
+                stem = stem[:-len(suffix)]
+        defaults = {'policy': f'{stem}.policy.xml', 'doc': f'{stem}-docs',
+                    'graph': f'{stem}.graph.svg'}
+        if what not in defaults:
+            raise StudioError(f"cannot export '{what}': policy, doc or graph")
+        if self.composition.dirty or not os.path.exists(self.launch_file):
+            raise StudioError('save the launch file first: the export reads it from the disk')
+        output = os.path.join(folder, _text(data, 'output', required=False) or defaults[what])
+        problem = self.guard.check(output, 'the export')
+        if problem is not None:
+            raise StudioError(problem.message, [problem], status=403)
+        command = {'policy': ['policy', self.launch_file, '-o', output, '--force'],
+                   'doc': ['doc', self.launch_file, '-o', output],
+                   'graph': ['analyse', self.launch_file, '--graph', output]}[what]
+        for folder_given in self.definition_folders:
+            command += ['--definitions', folder_given]
+        if not (self.execute_allowed and self.code_ran):
+            command.append('--no-exec')
+        done = _run_nodl(command)
+        if not os.path.exists(output):
+            raise StudioError(f'nodl {command[0]} wrote nothing: '
+                              + (done.stderr.strip().splitlines() or ['no reason given'])[-1])
+        return {'ok': True, 'written': [output], 'status': done.returncode,
+                'log': done.stderr[-4000:]}
+
+    def run_code(self, data: dict[str, Any]) -> dict[str, Any]:
+        """The user's explicit action: analyse with the launch files' Python code run (in the
+        analysis's sandboxed child process).  Refused with ``--no-exec`` (NODL994)."""
+        if not self.execute_allowed:
+            problem = Diagnostic(Severity.ERROR, "nodl studio was started with --no-exec: the "
+                                 "launch files' Python code never runs", file=self.launch_file,
+                                 code='NODL994')
+            raise StudioError(problem.message, [problem], status=403)
+        from nodl.launch.sandbox import LaunchLimits
+
+        self.code_ran = True
+        self.composition.limits = LaunchLimits(execute=True)
+        self.composition._analysis = None
+        return {'ok': True, 'state': self.snapshot()}
+
+
+def _join(namespace: str, name: str) -> str:
+    namespace = '/' + namespace.strip('/') if namespace.strip('/') else ''
+    return f'{namespace}/{name}'
+
+
+def _run_nodl(arguments: list[str]) -> subprocess.CompletedProcess[str]:
+    """``nodl ARGUMENTS`` in a process of its own (the same interpreter and package)."""
+    import nodl
+
+    package_root = os.path.dirname(os.path.dirname(os.path.abspath(nodl.__file__)))
+    env = dict(os.environ)
+    env['PYTHONPATH'] = os.pathsep.join(p for p in (package_root, env.get('PYTHONPATH')) if p)
+    try:
+        return subprocess.run([sys.executable, '-m', 'nodl', *arguments], capture_output=True,
+                              text=True, timeout=EXPORT_TIMEOUT, env=env, check=False)
+    except subprocess.TimeoutExpired:
+        raise StudioError(f'nodl {arguments[0]} took longer than {EXPORT_TIMEOUT:g} s') from None

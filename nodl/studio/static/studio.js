@@ -1,0 +1,601 @@
+/* nodl studio's page: draws the state the server holds and sends the user's edits to it.
+ *
+ * Every edit is a request to the studio's API; its answer is the whole new state (nodes,
+ * ports, edges, findings), which is drawn again.  Text from definitions and launch files is
+ * only ever put in the page with textContent (never innerHTML) and in the canvas as labels.
+ */
+(function () {
+  'use strict';
+
+  var TOKEN = document.querySelector('meta[name="nodl-token"]').content;
+  var PORT_W = 150;      // half the distance between the two columns of ports
+  var PORT_H = 18;       // the distance between two rows of ports
+  var OFFERS = {publisher: true, service_server: true, action_server: true};
+  var SHORT = {publisher: 'pub', subscription: 'sub', service_server: 'srv', service_client: 'cli',
+               action_server: 'act srv', action_client: 'act cli'};
+  var studio = window.studio = {state: null, palette: [], cy: null, eh: null, selected: null,
+                                compatible: null, ready: false, version: 0, busy: 0};
+
+  function $(id) { return document.getElementById(id); }
+  function el(tag, cls, text) {
+    var e = document.createElement(tag);
+    if (cls) { e.className = cls; }
+    if (text !== undefined && text !== null) { e.textContent = String(text); }
+    return e;
+  }
+  function clear(node) { while (node.firstChild) { node.removeChild(node.firstChild); } }
+  function status(text) { $('status').textContent = text || ''; $('status').title = text || ''; }
+
+  function call(path, data) {
+    studio.busy += 1;
+    return fetch('/api/' + path, {
+      method: 'POST', headers: {'X-Nodl-Token': TOKEN, 'Content-Type': 'application/json'},
+      body: JSON.stringify(data || {})
+    }).then(function (response) {
+      return response.json().then(function (answer) {
+        studio.busy -= 1;
+        if (answer.state) { show(answer.state); }
+        if (!response.ok || answer.ok === false) {
+          var why = answer.error || (answer.diagnostics || []).map(function (d) { return d.message; }).join('; ');
+          status(why || ('the studio refused: ' + response.status));
+        }
+        return answer;
+      });
+    }, function (err) { studio.busy -= 1; status('the studio does not answer: ' + err); throw err; });
+  }
+
+  // -- the canvas ---------------------------------------------------------------------------
+
+  function portId(node, port) { return node.id + '|' + port.kind + '|' + port.name; }
+
+  function namespaceChain(ns) {
+    var parts = (ns || '/').split('/').filter(Boolean), out = [], path = '';
+    parts.forEach(function (p) { path += '/' + p; out.push(path); });
+    return out;
+  }
+
+  function defaultPositions(nodes, known) {
+    // Unplaced nodes: a column per namespace, side by side, in the order they come.
+    var out = {}, columns = {}, order = [], x0 = 0;
+    Object.keys(known).forEach(function (k) { x0 = Math.max(x0, known[k].x + 2 * PORT_W + 120); });
+    nodes.forEach(function (n) {
+      if (known[n.id]) { return; }
+      var ns = n.namespace || '/';
+      if (!columns[ns]) { columns[ns] = []; order.push(ns); }
+      columns[ns].push(n);
+    });
+    var x = x0, colHeight = 760;
+    order.forEach(function (ns) {
+      var y = 0, startX = x;
+      columns[ns].forEach(function (n) {
+        var rows = Math.max(1, rowsOf(n));
+        var h = rows * PORT_H + 56;
+        if (y > 0 && y + h > colHeight) { y = 0; x += 2 * PORT_W + 90; }
+        out[n.id] = {x: x, y: y + h / 2};
+        y += h + 16;
+      });
+      x = Math.max(x, startX) + 2 * PORT_W + 150;
+    });
+    return out;
+  }
+
+  function rowsOf(node) {
+    var ins = 0, outs = 0;
+    node.ports.forEach(function (p) { if (OFFERS[p.kind]) { outs += 1; } else { ins += 1; } });
+    return Math.max(ins, outs);
+  }
+
+  function severityOf(findings) {
+    var rank = {error: 3, warning: 2, info: 1}, best = '';
+    findings.forEach(function (f) { if (!best || rank[f.severity] > rank[best]) { best = f.severity; } });
+    return best;
+  }
+
+  function findingsIndex(state) {
+    var byFqn = {}, byNode = {}, byPort = {}, byEdge = {};
+    state.nodes.forEach(function (n) { (byFqn[n.fqn] = byFqn[n.fqn] || []).push(n); });
+    state.findings.forEach(function (f) {
+      (f.nodes || []).forEach(function (fqn) {
+        (byFqn[fqn] || []).forEach(function (n) {
+          (byNode[n.id] = byNode[n.id] || []).push(f);
+          if (f.endpoint) {
+            n.ports.forEach(function (p) {
+              if (p.final === f.endpoint) { var id = portId(n, p); (byPort[id] = byPort[id] || []).push(f); }
+            });
+          }
+        });
+      });
+    });
+    state.edges.forEach(function (e) {
+      state.findings.forEach(function (f) {
+        if (f.endpoint && f.endpoint === e.name) { (byEdge[e.id] = byEdge[e.id] || []).push(f); }
+      });
+    });
+    return {byNode: byNode, byPort: byPort, byEdge: byEdge};
+  }
+
+  function elements(state) {
+    var out = [], groups = {}, index = findingsIndex(state);
+    var positions = Object.assign({}, state.positions || {});
+    Object.assign(positions, defaultPositions(state.nodes, positions));
+    studio.positions = positions;
+    state.nodes.forEach(function (n) {
+      var chain = namespaceChain(n.namespace), parent;
+      chain.forEach(function (ns, i) {
+        if (!groups[ns]) {
+          groups[ns] = true;
+          out.push({group: 'nodes', data: {id: 'ns:' + ns, label: ns, parent: i ? 'ns:' + chain[i - 1] : undefined},
+                    classes: 'namespace', selectable: false});
+        }
+      });
+      parent = chain.length ? 'ns:' + chain[chain.length - 1] : undefined;
+      var nf = index.byNode[n.id] || [];
+      out.push({group: 'nodes', data: {id: n.id, label: n.name + (n.definition ? '' : ' (no definition)'), parent: parent},
+                classes: ['instance', severityOf(nf), n.editable ? '' : 'readonly'].join(' ')});
+      var pos = positions[n.id], ins = 0, outs = 0, rows = rowsOf(n);
+      n.ports.forEach(function (p) {
+        var offers = !!OFFERS[p.kind], row = offers ? outs++ : ins++;
+        var id = portId(n, p), pf = index.byPort[id] || [];
+        out.push({group: 'nodes', data: {id: id, label: p.name, node: n.id, kind: p.kind, type: p.type,
+                                          final: p.final, dx: offers ? PORT_W : -PORT_W,
+                                          dy: (row - (rows - 1) / 2) * PORT_H, parent: n.id},
+                  position: {x: pos.x + (offers ? PORT_W : -PORT_W), y: pos.y + (row - (rows - 1) / 2) * PORT_H},
+                  classes: ['port', p.kind, offers ? 'out' : 'in', severityOf(pf)].join(' '),
+                  grabbable: false});
+      });
+      // two invisible corners: every node's box is as wide as two columns of ports
+      [-PORT_W, PORT_W].forEach(function (dx, i) {
+        out.push({group: 'nodes', data: {id: n.id + '|spacer' + i, parent: n.id, dx: dx, dy: 0},
+                  position: {x: pos.x + dx, y: pos.y}, classes: 'spacer', grabbable: false,
+                  selectable: false});
+      });
+    });
+    state.edges.forEach(function (e) {
+      out.push({group: 'edges', data: {id: e.id, source: e.source, target: e.target, label: e.name,
+                                        communication: e.communication},
+                classes: ['link', e.communication, severityOf(index.byEdge[e.id] || [])].join(' ')});
+    });
+    return out;
+  }
+
+  var STYLE = [
+    {selector: 'node', style: {'font-family': 'DejaVu Sans, Liberation Sans, Arial, sans-serif'}},
+    {selector: 'node.namespace', style: {
+      'shape': 'round-rectangle', 'background-color': '#e8eef5', 'background-opacity': 0.7,
+      'border-width': 1, 'border-style': 'dashed', 'border-color': '#8aa0b8', 'label': 'data(label)',
+      'text-valign': 'top', 'text-halign': 'center', 'font-size': 14, 'color': '#4a5f75', 'padding': 18}},
+    {selector: 'node.instance', style: {
+      'shape': 'round-rectangle', 'background-color': '#ffffff', 'border-width': 1.5, 'border-color': '#5a6b7b',
+      'label': 'data(label)', 'text-valign': 'top', 'text-halign': 'center', 'font-size': 13,
+      'font-weight': 'bold', 'color': '#1d2733', 'padding': 10, 'min-width': 2 * PORT_W, 'min-height': 20}},
+    {selector: 'node.instance.readonly', style: {'border-style': 'dotted'}},
+    {selector: 'node.instance:selected', style: {'border-width': 3, 'border-color': '#2a6fdb'}},
+    {selector: 'node.port', style: {
+      'width': 11, 'height': 11, 'label': 'data(label)', 'font-size': 10, 'color': '#33475b',
+      'text-valign': 'center', 'text-max-width': 120, 'text-wrap': 'ellipsis',
+      'border-width': 1.5, 'border-color': '#4a78b5', 'background-color': '#4a78b5'}},
+    {selector: 'node.port.in', style: {'text-halign': 'right', 'text-margin-x': 4, 'background-color': '#ffffff'}},
+    {selector: 'node.port.out', style: {'text-halign': 'left', 'text-margin-x': -4}},
+    {selector: 'node.port.service_server, node.port.service_client', style: {'shape': 'diamond', 'border-color': '#3c9d5d'}},
+    {selector: 'node.port.service_server', style: {'background-color': '#3c9d5d'}},
+    {selector: 'node.port.action_server, node.port.action_client', style: {'shape': 'hexagon', 'border-color': '#a05ab4'}},
+    {selector: 'node.port.action_server', style: {'background-color': '#a05ab4'}},
+    {selector: 'edge.link', style: {
+      'curve-style': 'bezier', 'width': 1.6, 'line-color': '#4a78b5', 'target-arrow-color': '#4a78b5',
+      'target-arrow-shape': 'triangle', 'arrow-scale': 0.9}},
+    {selector: 'edge.service', style: {'line-color': '#3c9d5d', 'target-arrow-color': '#3c9d5d', 'line-style': 'dashed'}},
+    {selector: 'edge.action', style: {'line-color': '#a05ab4', 'target-arrow-color': '#a05ab4', 'line-style': 'dashed'}},
+    {selector: '.info', style: {'border-color': '#7d8fa3'}},
+    {selector: '.warning', style: {'border-color': '#e69500', 'border-width': 2.5}},
+    {selector: '.error', style: {'border-color': '#d32f2f', 'border-width': 2.5}},
+    {selector: 'edge.warning', style: {'line-color': '#e69500', 'target-arrow-color': '#e69500', 'width': 2.5}},
+    {selector: 'edge.error', style: {'line-color': '#d32f2f', 'target-arrow-color': '#d32f2f', 'width': 2.5}},
+    {selector: 'node.port.compatible', style: {'border-color': '#1e9e3e', 'border-width': 3.5, 'width': 15, 'height': 15}},
+    {selector: 'node.port.incompatible', style: {'opacity': 0.3}},
+    {selector: 'node.spacer', style: {'width': 1, 'height': 1, 'opacity': 0, 'events': 'no'}},
+    {selector: '.eh-preview, .eh-ghost-edge', style: {'line-color': '#2a6fdb', 'target-arrow-color': '#2a6fdb',
+                                                      'target-arrow-shape': 'triangle', 'line-style': 'dotted', 'width': 2}},
+    {selector: '.eh-ghost-node', style: {'opacity': 0, 'width': 1, 'height': 1}}
+  ];
+
+  function makeCanvas() {
+    var cy = studio.cy = cytoscape({
+      container: $('canvas'), style: STYLE, elements: [], wheelSensitivity: 0.3,
+      minZoom: 0.1, maxZoom: 3, boxSelectionEnabled: false, autoungrabify: false
+    });
+    studio.eh = cy.edgehandles({
+      canConnect: function (source, target) {
+        return !!(studio.compatible && studio.compatible[target.id()] && studio.compatible[target.id()].ok);
+      },
+      edgeParams: function () { return {classes: 'pending'}; },
+      hoverDelay: 50, snap: true, snapThreshold: 12, snapFrequency: 30, noEdgeEventsInDraw: true,
+      disableBrowserGestures: true
+    });
+    cy.on('tapstart', 'node.port', function (evt) {
+      var port = evt.target;
+      studio.compatible = null;
+      markCompatible(port);
+      studio.eh.start(port);
+    });
+    cy.on('ehhoverover', function (evt, source, target) {
+      var verdict = studio.compatible && studio.compatible[target.id()];
+      if (verdict) { status(verdict.ok ? 'connect to ' + target.data('label') : verdict.reason); }
+    });
+    cy.on('ehcomplete', function (evt, source, target, added) {
+      added.remove();
+      call('connect', {a: source.id(), b: target.id()}).then(function (answer) {
+        if (answer.ok) { status((answer.message || 'connected') + ''); }
+      });
+    });
+    cy.on('ehstop', function () {
+      cy.nodes('.port').removeClass('compatible incompatible');
+    });
+    cy.on('tap', 'node.instance', function (evt) { select(evt.target.id()); });
+    cy.on('tap', 'node.port', function (evt) { select(evt.target.data('node')); });
+    cy.on('tap', function (evt) { if (evt.target === cy) { select(null); } });
+    cy.on('tap', 'edge.link', function (evt) {
+      var e = evt.target;
+      status(e.data('communication') + ' ' + e.data('label'));
+    });
+    cy.on('cxttap', 'edge.link', function (evt) {
+      var e = evt.target;
+      if (window.confirm('Disconnect ' + e.data('label') + '?')) {
+        call('disconnect', {a: e.data('source'), b: e.data('target')});
+      }
+    });
+    cy.on('dragfree', 'node.instance', function () { savePositions(); });
+    cy.on('mouseover', 'node.port', function (evt) {
+      var p = evt.target;
+      status(SHORT[p.data('kind')] + ' ' + p.data('label') + ' → ' + p.data('final') + ' (' + p.data('type') + ')');
+    });
+  }
+
+  function markCompatible(port) {
+    var cy = studio.cy;
+    call('compatible', {port: port.id()}).then(function (answer) {
+      studio.compatible = answer.ports || {};
+      cy.batch(function () {
+        cy.nodes('.port').forEach(function (p) {
+          if (p.id() === port.id()) { return; }
+          var verdict = studio.compatible[p.id()];
+          p.removeClass('compatible incompatible');
+          p.addClass(verdict && verdict.ok ? 'compatible' : 'incompatible');
+        });
+      });
+    });
+  }
+
+  function anchorOf(instance) {
+    var ports = instance.children();
+    if (!ports.length) { return instance.position(); }
+    var p = ports[0];
+    return {x: p.position('x') - p.data('dx'), y: p.position('y') - p.data('dy')};
+  }
+
+  var positionTimer = null;
+  function savePositions() {
+    clearTimeout(positionTimer);
+    positionTimer = setTimeout(function () {
+      var positions = {};
+      studio.cy.nodes('.instance').forEach(function (n) {
+        var a = anchorOf(n);
+        positions[n.id()] = {x: Math.round(a.x), y: Math.round(a.y)};
+      });
+      studio.positions = positions;
+      call('positions', {positions: positions});
+    }, 150);
+  }
+
+  function draw(state, fit) {
+    var cy = studio.cy;
+    var keepView = cy.elements().length > 0 && !fit;
+    var zoom = cy.zoom(), pan = cy.pan();
+    cy.batch(function () {
+      cy.elements().remove();
+      cy.add(elements(state));
+    });
+    if (keepView) { cy.viewport({zoom: zoom, pan: pan}); } else { cy.fit(undefined, 24); }
+    if (studio.selected && cy.getElementById(studio.selected).length) {
+      cy.getElementById(studio.selected).select();
+    }
+  }
+
+  // -- the toolbar, the findings ------------------------------------------------------------
+
+  function showCounts(state) {
+    var counts = $('counts');
+    clear(counts);
+    ['error', 'warning', 'info'].forEach(function (sev, i) {
+      var n = state.counts[sev] || 0;
+      if (i) { counts.appendChild(document.createTextNode(' · ')); }
+      counts.appendChild(el('span', sev, n + ' ' + (n === 1 ? sev : sev + 's').replace('infos', 'info')));
+    });
+  }
+
+  function findingLine(f) {
+    var li = el('li');
+    li.appendChild(el('span', 'sev ' + f.severity, f.severity));
+    li.appendChild(el('span', 'code', f.code));
+    li.appendChild(document.createTextNode(f.message));
+    li.title = f.message + (f.file ? ' (' + f.file + ':' + f.line + ':' + f.column + ')' : '');
+    return li;
+  }
+
+  function showFindings(state) {
+    var list = $('findings');
+    clear(list);
+    state.findings.forEach(function (f) {
+      var li = findingLine(f);
+      li.addEventListener('click', function () {
+        var target = state.nodes.filter(function (n) { return (f.nodes || []).indexOf(n.fqn) >= 0; })[0];
+        if (target) { select(target.id); studio.cy.animate({center: {eles: studio.cy.getElementById(target.id)}}, {duration: 200}); }
+      });
+      list.appendChild(li);
+    });
+    var kept = $('readonly-items');
+    clear(kept);
+    (state.readonly || []).forEach(function (k) {
+      kept.appendChild(el('li', null, 'kept as written, read-only: ' + k.what + (k.line ? ' (line ' + k.line + ')' : '')));
+    });
+  }
+
+  function showCode(state) {
+    var code = state.code || {}, button = $('run-code');
+    button.hidden = !code.needed;
+    button.disabled = !code.allowed;
+    button.title = code.message || button.title;
+  }
+
+  // -- the side panel -----------------------------------------------------------------------
+
+  function nodeById(id) {
+    return studio.state && studio.state.nodes.filter(function (n) { return n.id === id; })[0];
+  }
+
+  function select(id) {
+    studio.selected = id;
+    studio.cy.nodes(':selected').unselect();
+    if (id) { studio.cy.getElementById(id).select(); }
+    panel();
+  }
+
+  var paramTimers = {};
+  function parameterEditor(node, param) {
+    var box = el('div', 'param' + (param.error ? ' invalid' : ''));
+    box.dataset.name = param.name;
+    var head = el('div', 'head');
+    head.appendChild(el('span', 'pname', param.name));
+    head.appendChild(el('span', 'ptype', param.type + (param.read_only ? ', read-only' : '')));
+    box.appendChild(head);
+    var input = el('input');
+    if (param.type === 'bool') {
+      input.type = 'checkbox';
+      input.checked = param.value === true;
+    } else {
+      input.type = 'text';
+      input.value = param.text === null || param.text === undefined ? '' : param.text;
+      input.placeholder = param.default_text === null || param.default_text === undefined
+        ? 'no default: required' : 'default ' + param.default_text;
+    }
+    input.setAttribute('aria-label', param.name);
+    input.disabled = !node.editable;
+    var error = el('p', 'error-text', param.error || '');
+    error.hidden = !param.error;
+    function send() {
+      var text = input.type === 'checkbox' ? (input.checked ? 'true' : 'false') : input.value;
+      call('parameter', {node: node.id, name: param.name, value: text}).then(function (answer) {
+        var problems = (answer.diagnostics || []).filter(function (d) { return d.severity === 'error'; });
+        error.textContent = problems.map(function (d) { return d.message; }).join('; ') || answer.error || '';
+        error.hidden = !error.textContent;
+        box.classList.toggle('invalid', !error.hidden);
+      });
+    }
+    input.addEventListener(input.type === 'checkbox' ? 'change' : 'input', function () {
+      clearTimeout(paramTimers[param.name]);
+      paramTimers[param.name] = setTimeout(send, input.type === 'checkbox' ? 0 : 200);
+    });
+    box.appendChild(input);
+    if (param.constraints) { box.appendChild(el('div', 'constraints', param.constraints)); }
+    if (param.description) { box.appendChild(el('div', 'description', param.description)); }
+    box.appendChild(error);
+    return box;
+  }
+
+  function remapRows(node) {
+    var holder = $('remaps');
+    clear(holder);
+    node.remaps.forEach(function (r, i) {
+      if (r.kept) { holder.appendChild(el('div', 'remap kept', r.text)); return; }
+      var row = el('div', 'remap');
+      var from = el('input'); from.type = 'text'; from.value = r.from; from.setAttribute('aria-label', 'from');
+      var to = el('input'); to.type = 'text'; to.value = r.to; to.setAttribute('aria-label', 'to');
+      var drop = el('button', null, '×'); drop.type = 'button'; drop.title = 'remove the rule';
+      from.disabled = to.disabled = drop.disabled = !node.editable;
+      row.appendChild(from); row.appendChild(el('span', null, ':=')); row.appendChild(to); row.appendChild(drop);
+      from.addEventListener('change', sendRemaps); to.addEventListener('change', sendRemaps);
+      drop.addEventListener('click', function () { row.remove(); sendRemaps(); });
+      holder.appendChild(row);
+    });
+  }
+
+  function sendRemaps() {
+    var rules = [];
+    Array.prototype.forEach.call($('remaps').querySelectorAll('.remap:not(.kept)'), function (row) {
+      var inputs = row.querySelectorAll('input');
+      if (inputs[0].value || inputs[1].value) { rules.push([inputs[0].value, inputs[1].value]); }
+    });
+    call('remaps', {node: studio.selected, remaps: rules}).then(function () { panel(); });
+  }
+
+  function panel() {
+    var node = nodeById(studio.selected);
+    $('panel-empty').hidden = !!node;
+    $('panel-node').hidden = !node;
+    if (!node) { return; }
+    $('panel-title').textContent = node.name;
+    $('panel-what').textContent = node.package + ' ' + (node.executable || node.plugin || '') +
+      (node.kind !== 'node' ? ' (' + node.kind + ')' : '') + ' — ' + node.fqn;
+    $('panel-readonly').hidden = node.editable;
+    $('panel-readonly').textContent = node.editable ? '' : 'Read-only: ' + (node.read_only_reason || 'not declarative');
+    $('node-name').value = node.name_given || '';
+    $('node-name').placeholder = node.name;
+    $('node-namespace').value = node.namespace_given || '';
+    $('node-namespace').placeholder = node.namespace;
+    $('node-name').disabled = $('node-namespace').disabled = !node.editable;
+    $('rename-error').hidden = true;
+    var params = $('parameters');
+    clear(params);
+    if (!node.parameters.length) { params.appendChild(el('p', 'muted', node.definition ? 'none declared' : 'no definition: unknown')); }
+    node.parameters.forEach(function (p) { params.appendChild(parameterEditor(node, p)); });
+    remapRows(node);
+    var list = $('node-findings');
+    clear(list);
+    var fs = studio.state.findings.filter(function (f) { return (f.nodes || []).indexOf(node.fqn) >= 0; });
+    if (!fs.length) { list.appendChild(el('li', 'muted', 'none')); }
+    fs.forEach(function (f) { list.appendChild(findingLine(f)); });
+    var kept = $('node-kept');
+    clear(kept);
+    $('kept-title').hidden = !node.kept.length;
+    node.kept.forEach(function (k) { kept.appendChild(el('li', null, k.what + ': ' + k.text)); });
+    $('remove-node').disabled = !node.editable;
+  }
+
+  function refreshPanelFindings() {
+    // after a parameter edit: the findings of the node change, its editors stay as typed
+    var node = nodeById(studio.selected);
+    if (!node) { panel(); return; }
+    var list = $('node-findings');
+    clear(list);
+    var fs = studio.state.findings.filter(function (f) { return (f.nodes || []).indexOf(node.fqn) >= 0; });
+    if (!fs.length) { list.appendChild(el('li', 'muted', 'none')); }
+    fs.forEach(function (f) { list.appendChild(findingLine(f)); });
+  }
+
+  function rename() {
+    call('rename', {node: studio.selected, name: $('node-name').value, namespace: $('node-namespace').value})
+      .then(function (answer) {
+        var problems = (answer.diagnostics || []).filter(function (d) { return d.severity === 'error'; });
+        $('rename-error').textContent = problems.map(function (d) { return d.message; }).join('; ') || answer.error || '';
+        $('rename-error').hidden = !$('rename-error').textContent;
+        if (answer.ok) { panel(); }
+      });
+  }
+
+  // -- the palette --------------------------------------------------------------------------
+
+  function portSummary(entry) {
+    var counts = {};
+    entry.ports.forEach(function (p) { counts[p.kind] = (counts[p.kind] || 0) + 1; });
+    return Object.keys(SHORT).filter(function (k) { return counts[k]; })
+      .map(function (k) { return counts[k] + ' ' + SHORT[k]; }).join(' · ') || 'no ports';
+  }
+
+  function showPalette() {
+    var words = $('search').value.toLowerCase().split(/\s+/).filter(Boolean);
+    var list = $('definitions'), shown = 0;
+    clear(list);
+    studio.palette.forEach(function (entry) {
+      var hay = [entry.package, entry.executable].concat(entry.ports.map(function (p) { return p.type; }))
+        .join(' ').toLowerCase();
+      if (!words.every(function (w) { return hay.indexOf(w) >= 0; })) { return; }
+      shown += 1;
+      var li = el('li');
+      li.dataset.package = entry.package;
+      li.dataset.executable = entry.executable;
+      li.title = entry.ports.map(function (p) { return SHORT[p.kind] + ' ' + p.name + ' (' + p.type + ')'; }).join('\n');
+      li.appendChild(el('span', 'pkg', entry.package));
+      li.appendChild(el('span', 'exe', entry.executable));
+      li.appendChild(el('span', 'ports', portSummary(entry)));
+      if (entry.problems.length) { li.appendChild(el('span', 'problem', entry.problems[0])); }
+      var add = el('button', 'add', '+');
+      add.type = 'button';
+      add.title = 'add ' + entry.package + ' ' + entry.executable + ' to the system';
+      add.addEventListener('click', function (evt) { evt.stopPropagation(); addNode(entry); });
+      li.addEventListener('dblclick', function () { addNode(entry); });
+      li.appendChild(add);
+      list.appendChild(li);
+    });
+    $('palette-count').textContent = shown + ' of ' + studio.palette.length + ' definitions';
+  }
+
+  function addNode(entry) {
+    call('add', {package: entry.package, executable: entry.executable, name: entry.node_name,
+                 namespace: $('add-namespace').value || '/'}).then(function (answer) {
+      if (answer.ok && answer.node) { select(answer.node); status('added ' + entry.executable); savePositions(); }
+    });
+  }
+
+  // -- the whole state ----------------------------------------------------------------------
+
+  function show(state, fit) {
+    var first = !studio.state;
+    studio.state = state;
+    $('file').textContent = state.file;
+    $('dirty').hidden = !state.dirty;
+    draw(state, fit || first);
+    showCounts(state);
+    showFindings(state);
+    showCode(state);
+    var active = document.activeElement;
+    var editing = active && $('panel').contains(active) && active.tagName === 'INPUT';
+    if (editing) { refreshPanelFindings(); } else { panel(); }
+    studio.version += 1;
+    document.body.dataset.version = String(studio.version);
+  }
+
+  function wire() {
+    $('search').addEventListener('input', showPalette);
+    $('fit').addEventListener('click', function () { studio.cy.fit(undefined, 24); });
+    $('save').addEventListener('click', function () {
+      call('save', {}).then(function (answer) {
+        if (answer.ok) { status('saved ' + answer.file); return; }
+        if (answer.changed && window.confirm((answer.error || 'the file changed on disk') + '\nSave anyway?')) {
+          call('save', {force: true}).then(function (a) { if (a.ok) { status('saved ' + a.file); } });
+        }
+      });
+    });
+    $('export').addEventListener('change', function () {
+      var what = $('export').value;
+      $('export').value = '';
+      if (!what) { return; }
+      call('export', {what: what}).then(function (answer) {
+        if (answer.ok) { status('wrote ' + answer.written.join(', ')); }
+      });
+    });
+    $('run-code').addEventListener('click', function () {
+      if (window.confirm('Run the Python code of the launch files (in a sandboxed child process)?')) {
+        call('run-code', {});
+      }
+    });
+    $('node-name').addEventListener('change', rename);
+    $('node-namespace').addEventListener('change', rename);
+    $('add-remap').addEventListener('click', function () {
+      var node = nodeById(studio.selected);
+      if (!node) { return; }
+      node.remaps.push({from: '', to: ''});
+      remapRows(node);
+    });
+    $('remove-node').addEventListener('click', function () {
+      var id = studio.selected;
+      if (id) { select(null); call('remove', {node: id}); }
+    });
+  }
+
+  function start() {
+    makeCanvas();
+    wire();
+    var t0 = performance.now();
+    call('state', {}).then(function () {
+      studio.ready = true;
+      studio.shownAfter = performance.now() - t0;
+      document.body.dataset.ready = 'true';
+      return call('palette', {});
+    }).then(function (answer) {
+      studio.palette = answer.palette || [];
+      showPalette();
+      document.body.dataset.palette = 'true';
+    });
+  }
+
+  start();
+}());
