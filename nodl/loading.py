@@ -14,17 +14,25 @@ if TYPE_CHECKING:
     from typing import Any, Union
 
 from nodl.diagnostics import Diagnostic, Severity, ValidationError, has_errors
-from nodl.dialects import adapt
+from nodl.frontends.frontend import Placer, read_document
 from nodl.frontends.source import Source, read_source
-from nodl.frontends.yaml_json import ParsedDocument, parse_document
 from nodl.validation import Kind, detect_kind, validate_data
 from nodl.validation.kinds import KIND_REASONS
 from nodl.validation.messages import article, kind_of
 
 __all__ = [
-    'Document', 'Report', 'check_source', 'load_nodl', 'load_parameter', 'load_interface',
-    'load_node', 'validate_parameter', 'validate_interface', 'validate_node', 'dump_nodl',
+    'Document',
+    'Report',
+    'check_source',
+    'dump_nodl',
+    'load_interface',
+    'load_node',
+    'load_nodl',
+    'load_parameter',
     'model_from_data',
+    'validate_interface',
+    'validate_node',
+    'validate_parameter',
 ]
 
 if TYPE_CHECKING:
@@ -50,7 +58,7 @@ class Report:
     """The outcome of checking one document: its kind, data and diagnostics."""
 
     def __init__(self, file: str, kind: Kind | None, data: Any,
-                 raw: list[Diagnostic] | None = None, parsed: ParsedDocument | None = None) -> None:
+                 raw: list[Diagnostic] | None = None, parsed: Placer | None = None) -> None:
         self.file = file
         self.kind = kind
         self.data = data
@@ -105,7 +113,8 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
     names the document in diagnostics (default: the path, or ``<string>``).
     ``installed``: the document is one the reference implementation's
     ``ament_nodl_register`` installed (ament resource type ``nodl``), read as
-    a node definition even without ``include`` (see :func:`nodl.dialects.adapt`).
+    a node definition even without ``include`` (see
+    :class:`nodl.frontends.builtin.IncludeFrontend`).
     I/O errors such as a missing file propagate as :class:`OSError`.
     """
     wanted = Kind(kind) if kind is not None else None
@@ -113,39 +122,31 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
     if text is None:
         assert problem is not None
         return Report(problem.file, None, None, [problem])
-    if text.text.lstrip('\ufeff \t\r\n')[:1] == '<':  # XML (legacy NoDL?): say what it is
-        from nodl.legacy.recognise import xml_diagnostics
-
-        found = xml_diagnostics(text.text, text.file)
-        if found is not None:
-            return Report(text.file, None, None, found)
-    parsed = parse_document(text)
-    if parsed.diagnostics:
-        return Report(text.file, None, parsed.data, list(parsed.diagnostics), parsed)
-    # A dialect (the reference's include files, generate_parameter_library files) is read
-    # as NoDL v2 where it has a NoDL meaning; its diagnostics land on the original text.
-    dialect = adapt(parsed, installed)
-    early: list[Diagnostic] = []
-    if dialect is not None:
-        if dialect.data is None:  # recognised, but not a NoDL document: say what it is
-            return Report(text.file, None, parsed.data, dialect.diagnostics, parsed)
-        parsed, early = dialect.document, dialect.diagnostics
-    detected = detect_kind(parsed.data)
+    # The frontends (nodl.frontends) read the text: YAML or JSON, a dialect read as NoDL v2
+    # (its diagnostics land on the original text), or something that is not NoDL (XML, a
+    # generate_parameter_library file), said to be what it is.
+    reading = read_document(text, installed=installed)
+    parsed, early = reading.document, reading.diagnostics
+    if reading.data is None:
+        report = Report(text.file, None, reading.raw, early, parsed)
+        report.dialect = reading.dialect
+        return report
+    detected = detect_kind(reading.data)
     if wanted is not None and wanted is not detected:
         mismatch = Diagnostic(
             Severity.ERROR, f'expected {article(wanted)} definition, but this is '
             f'{article(detected)} definition ({KIND_REASONS[detected]})', (), text.file, 1, 1,
             code='NODL108')
-        return Report(text.file, wanted, parsed.data, early + [mismatch], parsed)
-    diagnostics = early + validate_data(parsed.data, detected)
+        return Report(text.file, wanted, reading.data, early + [mismatch], parsed)
+    diagnostics = early + validate_data(reading.data, detected)
     if diagnostics and text.text.startswith('#'):
         # A leading '# nodl: ignore=CODE' comment silences warnings of those codes for this
         # file (what describe and convert write for the descriptions they cannot know).
         from nodl.overrides import apply_directives
 
         diagnostics = apply_directives(text.text, diagnostics)
-    report = Report(text.file, detected, parsed.data, diagnostics, parsed)
-    report.dialect = dialect.dialect if dialect is not None else None
+    report = Report(text.file, detected, reading.data, diagnostics, parsed)
+    report.dialect = reading.dialect
     return report
 
 
@@ -235,7 +236,7 @@ def model_from_data(data: dict[str, Any]) -> Document:
     return document
 
 
-def dump_nodl(doc: Union[Document, dict[str, Any]], format: str = 'yaml', *,
+def dump_nodl(doc: Document | dict[str, Any], format: str = 'yaml', *,
               validate: bool = True) -> str:
     """Serialize a document (model or plain dict) as ``yaml`` or ``json`` text.
 

@@ -69,7 +69,7 @@ def load_schema() -> dict[str, Any]:
 
 
 def _reference_shape() -> dict[str, Any]:
-    from nodl.dialects.include import BASE_DESCRIPTIONS
+    from nodl.frontends.include import BASE_DESCRIPTIONS
     from nodl.schemas import bundled_schema
 
     bundled = bundled_schema('interface')
@@ -118,7 +118,7 @@ def _reference_shape() -> dict[str, Any]:
 
 
 def _uri_check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
-    from nodl.dialects.include import uri_problem
+    from nodl.frontends.include import uri_problem
     from nodl.validation.messages import described
 
     if not isinstance(value, str):

@@ -11,7 +11,8 @@ from conftest import FIXTURES
 
 from nodl.dialects import GENPARAMLIB, recognise
 from nodl.dialects.convert import convert_dialect
-from nodl.dialects.genparamlib import export_genparamlib, read_genparamlib
+from nodl.dialects.genparamlib import export_genparamlib
+from nodl.frontends.genparamlib import read_genparamlib
 from nodl.loading import check_source, load_interface
 from nodl.model import ParameterDefinition
 

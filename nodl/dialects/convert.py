@@ -15,16 +15,17 @@ import os
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Sequence
+    from collections.abc import Sequence
+    from typing import Any
 
 from nodl.diagnostics import Diagnostic, Severity, has_errors
-from nodl.dialects import GENPARAMLIB, INCLUDE, recognise
+from nodl.dialects import INCLUDE, recognise
 from nodl.legacy.convert import FileConversion
 
 #: A local include the converted file cannot reach from where it is written.
 _UNREACHABLE = 'NODL854'
 
-__all__ = ['DialectConversion', 'convert_dialect', 'convert_dialect_file', 'FileConversion']
+__all__ = ['DialectConversion', 'FileConversion', 'convert_dialect', 'convert_dialect_file']
 
 
 class DialectConversion:
@@ -126,7 +127,8 @@ def convert_dialect(path: str, dialect: str | None = None, out_dir: str | None =
             (f'; it looks like {DIALECTS[found]} (leave --from out)' if found else ''), (), path, 1, 1)])
     source_dir = os.path.dirname(os.path.abspath(path))
     if wanted == INCLUDE:
-        from nodl.dialects.include import read_include, remapped as remapped_include
+        from nodl.frontends.include import read_include
+        from nodl.frontends.include import remapped as remapped_include
 
         reading = read_include(parsed.data)
         document = remapped_include(parsed, reading)
@@ -142,7 +144,7 @@ def convert_dialect(path: str, dialect: str | None = None, out_dir: str | None =
         header = (f'Converted by nodl convert from {os.path.basename(path)} (the reference '
                   f"implementation's '{reading.key}' dialect).")
     else:
-        from nodl.dialects.genparamlib import read_genparamlib, remapped
+        from nodl.frontends.genparamlib import read_genparamlib, remapped
 
         greading = read_genparamlib(parsed.data)
         document = remapped(parsed, greading)

@@ -17,7 +17,7 @@ if TYPE_CHECKING:
 
 from nodl.diagnostics import Diagnostic, Severity
 
-__all__ = ['ExportSource', 'parameters_of_file', 'parameters_of_registered', 'default_name']
+__all__ = ['ExportSource', 'default_name', 'parameters_of_file', 'parameters_of_registered']
 
 _SUFFIX = re.compile(r'(\.nodl)?\.(ya?ml|json)$')
 

@@ -1774,7 +1774,7 @@ def _read_genparam(path: str) -> tuple[Any, str]:
     from pathlib import Path
 
     from nodl.diagnostics import ValidationError
-    from nodl.dialects.genparamlib import read_genparamlib
+    from nodl.frontends.genparamlib import read_genparamlib
     from nodl.frontends.source import read_source as read_text
     from nodl.frontends.yaml_json import parse_document
     from nodl.loading import model_from_data

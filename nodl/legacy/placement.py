@@ -6,7 +6,7 @@ location) is found as a path into the v2 data; :class:`ConvertedDocument`
 places that path at the XML element or attribute it came from, through the
 conversion's source map (:attr:`Converted.origins
 <nodl.legacy.converted.Converted.origins>`), the way
-:class:`~nodl.dialects.remapped.RemappedDocument` places a dialect's
+:class:`~nodl.frontends.remapped.RemappedDocument` places a dialect's
 rewritten data at the keys the user wrote.  There is no v2 text to point at:
 the file is the XML file itself.
 """

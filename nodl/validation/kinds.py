@@ -12,7 +12,7 @@ __all__ = ['Kind', 'detect_kind', 'KIND_REASONS', 'NODE_KEYS', 'INTERFACE_KEYS',
 
 #: The reference implementation's key for composition, in both its spellings: a document
 #: with it (and no base, main or mixins) is a node definition in the ``include`` dialect
-#: (see :mod:`nodl.dialects.include`).
+#: (see :mod:`nodl.frontends.include`).
 INCLUDE_KEYS = ('include', 'includes')
 
 

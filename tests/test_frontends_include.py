@@ -14,7 +14,7 @@ from conftest import FIXTURES, REPO
 import nodl
 from nodl import compose
 from nodl.dialects import INCLUDE, recognise
-from nodl.dialects.include import read_include
+from nodl.frontends.include import read_include
 from nodl.loading import check_source
 from nodl.model import Base, Node
 from nodl.show import show_file
@@ -97,7 +97,7 @@ def test_an_include_reference_that_is_not_a_uri_is_an_error_at_its_value(
                                  'local://../common/x.nodl.yaml', 'test://in_memory/doc',
                                  'https://example.com/x.nodl.yaml', 'git+ssh://host/repo'])
 def test_uris_of_any_scheme_are_include_references(ref: str) -> None:
-    from nodl.dialects.include import uri_problem
+    from nodl.frontends.include import uri_problem
 
     assert uri_problem(ref) is None
     report = check_source(f'nodl_version: 2\ninclude:\n  - ref: {ref}\n')

@@ -21,21 +21,24 @@ document are placed back at the original keys and lines.
 from __future__ import annotations
 
 import re
-
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any
-
-    from nodl.dialects import Adapted
+from typing import Any
 
 from nodl.diagnostics import Diagnostic, DocPath, Severity
-from nodl.dialects.remapped import RemappedDocument
+from nodl.frontends.remapped import RemappedDocument
 from nodl.frontends.yaml_json import ParsedDocument
 from nodl.validation.kinds import INCLUDE_KEYS, NODE_KEYS
 
-__all__ = ['INCLUDE_KEYS', 'BASE_DESCRIPTIONS', 'LOCAL_SCHEME', 'CODEGEN_KEY',
-           'is_include_document', 'IncludeReading', 'read_include', 'remapped', 'adapt_include',
-           'uri_problem']
+__all__ = [
+    'BASE_DESCRIPTIONS',
+    'CODEGEN_KEY',
+    'INCLUDE_KEYS',
+    'LOCAL_SCHEME',
+    'IncludeReading',
+    'is_include_document',
+    'read_include',
+    'remapped',
+    'uri_problem',
+]
 
 #: The reference's built-in base descriptions and the NoDL v2 base each one is.
 BASE_DESCRIPTIONS = {
@@ -154,7 +157,7 @@ def uri_problem(ref: str) -> str | None:
     if ref.startswith(':') or (sep and not scheme):
         return f"{shown} has no scheme before '://'; write nodl://PACKAGE/NAME or local://FILE"
     if '://' not in ref:
-        path = ref[2:] if ref.startswith('./') else ref
+        path = ref.removeprefix('./')
         hint = ('an absolute path cannot name the same file on another machine; use '
                 'nodl://PACKAGE/NAME' if ref.startswith('/') else f'write local://{path}')
         return f'{shown} is a path, not a URI ({hint})'
@@ -207,7 +210,7 @@ def read_include(data: dict[str, Any], announce: bool = True) -> IncludeReading:
             if base is None or BASE_DESCRIPTIONS[ref] == 'lifecycle_node':
                 base, base_origin = BASE_DESCRIPTIONS[ref], index
             continue
-        mixins.append(ref[len(LOCAL_SCHEME):] if ref.startswith(LOCAL_SCHEME) else ref)
+        mixins.append(ref.removeprefix(LOCAL_SCHEME))
         mixin_origins.append(index)
     main: dict[str, Any] = {'nodl_version': 2}
     main.update((k, v) for k, v in data.items()
@@ -236,14 +239,3 @@ def read_include(data: dict[str, Any], announce: bool = True) -> IncludeReading:
 def remapped(parsed: ParsedDocument, reading: IncludeReading) -> ParsedDocument:
     """A document that places diagnostics about ``reading.data`` in ``parsed``'s text."""
     return RemappedDocument(parsed, reading)
-
-
-def adapt_include(parsed: ParsedDocument, announce: bool = True) -> Adapted:
-    """The loader's view of an include-dialect document (an :class:`~nodl.dialects.Adapted`);
-    ``announce`` as for :func:`read_include`."""
-    from nodl.dialects import INCLUDE, Adapted
-
-    reading = read_include(parsed.data, announce)
-    placed = [parsed.place(d) for d in reading.diagnostics]
-    return Adapted(INCLUDE, reading.data, remapped(parsed, reading), placed,
-                   {CODEGEN_KEY: reading.codegen} if reading.codegen is not None else None)

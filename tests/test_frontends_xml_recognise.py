@@ -1,4 +1,4 @@
-"""An XML file read where NoDL v2 is expected says what it is (nodl.legacy.recognise).
+"""An XML file read where NoDL v2 is expected says what it is (nodl.frontends.xml_recognise, the legacy-xml frontend).
 
 Before, YAML read the XML text as one string: "document is a string, not a mapping".
 """
@@ -13,7 +13,7 @@ import pytest
 
 from conftest import FIXTURES, REPO
 from nodl import ValidationError, check_source, load_nodl
-from nodl.legacy.recognise import looks_like_xml, xml_diagnostics
+from nodl.frontends.xml_recognise import looks_like_xml, xml_diagnostics
 
 LEGACY = FIXTURES / 'legacy'
 

@@ -1,4 +1,4 @@
-"""Saying what an XML file is when a NoDL v2 document (YAML or JSON) was expected.
+"""The legacy-xml frontend's reading: what an XML file is when a NoDL v2 document was expected.
 
 YAML reads the text of an XML file as one long string, so without this
 ``nodl validate pkg.nodl.xml`` would say "document is a string, not a
@@ -13,6 +13,8 @@ from __future__ import annotations
 import re
 
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.frontends.legacy_xml import legacy_document_from_tree
+from nodl.frontends.xml_reader import load_xml
 
 __all__ = ['NOT_V2_CODE', 'looks_like_xml', 'xml_diagnostics']
 
@@ -32,9 +34,6 @@ def xml_diagnostics(text: str, file: str) -> list[Diagnostic] | None:
     """What an XML document given as NoDL v2 is, as placed diagnostics (None: not XML)."""
     if not looks_like_xml(text):
         return None
-    from nodl.frontends.legacy_xml import legacy_document_from_tree
-    from nodl.frontends.xml_reader import load_xml
-
     tree = load_xml(text, file)
     root = tree.root
     line, column = (root.line, root.column) if root is not None else (1, 1)
