@@ -68,6 +68,8 @@ def set_parameter(composition: Composition, ref: ComposedNode | str, name: str,
                 Severity.ERROR, f"{composition.fqn(node)} ({node.label}) declares no parameter "
                 f"'{name}'{did_you_mean(name, declared)} (it declares: "
                 f"{', '.join(declared) or 'none'})", code='NODL978', file=path, line=line)], node.id)
+        if plan.ros_type == 'PARAMETER_STRING' and not isinstance(value, str):
+            value = text  # a string parameter: the text is the string ('3', 'true')
         problems = check_value(plan, value)
         if problems:
             hint = ''

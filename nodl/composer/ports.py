@@ -38,6 +38,9 @@ class Port:
     type: str
     #: The QoS the definition declares (topics; services when declared), NoDL keys.
     qos: dict[str, Any] | None
+    #: Who provides it: ``client_library`` (the base: ``/rosout``, parameter services),
+    #: ``other_code`` (a mixin) or ``implementation`` (the node's own).
+    provider: str = 'implementation'
     #: The instance entity (for the library; not in :meth:`to_dict`).
     entity: Any = None
 
@@ -54,7 +57,8 @@ class Port:
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready mapping."""
         return {'node': self.node, 'kind': self.kind, 'name': self.name,
-                'final_name': self.final_name, 'type': self.type, 'qos': self.qos}
+                'final_name': self.final_name, 'type': self.type, 'qos': self.qos,
+                'provider': self.provider}
 
 
 @dataclass(frozen=True)
@@ -91,7 +95,7 @@ def ports_of(node_id: str, launched: Any) -> list[Port]:
         entity = bound.entity
         qos = entity.qos.to_dict() if entity.qos is not None else None
         out.append(Port(node_id, entity.kind.value, entity.name, bound.name, entity.type_name,
-                        qos, bound))
+                        qos, entity.provider.value, bound))
     return out
 
 

@@ -287,6 +287,7 @@ _NEW = '''"""A launch file written by nodl system."""
 from launch import LaunchDescription
 {imports}
 
+
 def generate_launch_description():
     return LaunchDescription(['''
 
@@ -323,7 +324,9 @@ def node_python(node: ComposedNode, indent: str) -> str:
     fields: list[tuple[str, str | None]] = [('package', node.package)]
     fields += [('plugin', node.plugin)] if node.kind == 'composable' else \
         [('executable', node.executable)]
-    fields += [('name', node.name), ('namespace', node.namespace)]
+    # (launch_ros's container takes its namespace as a required keyword)
+    namespace = '' if node.namespace is None and node.kind == 'container' else node.namespace
+    fields += [('name', node.name), ('namespace', namespace)]
     lines = [f'{key}={_literal_text(value)}' for key, value in fields if value is not None]
     if node.params or node.style.get('params_written'):
         parts: list[str] = []

@@ -1,0 +1,70 @@
+"""nodl.composer.python_format: a Python launch file parsed (never run) into items."""
+
+from __future__ import annotations
+
+import ast
+
+import pytest
+
+from composer_helpers import EXAMPLE, LAUNCH
+from nodl.composer.formats import new_document, read_document, render
+from nodl.composer.model import ComposedNode, Group, Kept, Param, Remap
+from nodl.composer.python_format import node_python, read_python
+from nodl.composer.xml_format import ReadError
+
+
+@pytest.mark.parametrize('path', [LAUNCH / 'demo.launch.py',
+                                  EXAMPLE / 'launch' / 'navigation.launch.py'])
+def test_unchanged_file_is_written_byte_for_byte(path) -> None:  # type: ignore[no-untyped-def]
+    text = path.read_text(encoding='utf-8')
+    assert render(read_document(text, 'python')).text == text
+
+
+def test_calls_understood_and_code_kept() -> None:
+    doc = read_python((LAUNCH / 'demo.launch.py').read_text(encoding='utf-8'))
+    assert [type(i).__name__ for i in doc.items] == ['Kept', 'ComposedNode', 'ComposedNode',
+                                                     'ComposedNode', 'Group']
+    talker, _, quiet, group = doc.items[1:]
+    assert isinstance(talker, ComposedNode) and talker.params == [Param('rate', 5.0)]
+    assert [k.text for k in talker.extra] == ["output='screen'"]
+    assert isinstance(quiet, ComposedNode) and not quiet.editable
+    assert isinstance(group, Group) and group.namespace == 'sub'
+
+
+def test_a_list_built_by_code_is_kept_whole() -> None:
+    text = ('from launch import LaunchDescription\n\n'
+            'def generate_launch_description():\n    ld = LaunchDescription()\n    return ld\n')
+    doc = read_python(text)
+    assert doc.style['opaque'] and doc.items == [] and render(doc).text == text
+
+
+def test_new_nodes_bring_their_imports_and_the_file_parses() -> None:
+    doc = new_document('python')
+    node = ComposedNode('n1', 'node', 'demo_pkg', 'talker', name="it's", dirty=True,
+                        params=[Param('rate', 2.0), Param('prefix', 'x')],
+                        remaps=[Remap('chatter', '/robot/chatter')])
+    node.gap, node.indent = '\n' + doc.indent, doc.indent
+    doc.items.append(node)
+    text = render(doc).text
+    ast.parse(text)
+    assert 'from launch_ros.actions import Node\n' in text
+    assert node_python(node, '') == (
+        "Node(\n    package='demo_pkg',\n    executable='talker',\n    name=\"it's\",\n"
+        "    parameters=[{'rate': 2.0, 'prefix': 'x'}],\n"
+        "    remappings=[('chatter', '/robot/chatter')],\n)")
+
+
+def test_a_kept_parameter_source_stays_in_its_place() -> None:
+    doc = read_python((EXAMPLE / 'launch' / 'navigation.launch.py').read_text(encoding='utf-8'))
+    planner = next(n for n in doc.nodes() if n.executable == 'planner')
+    assert [type(p).__name__ for p in planner.params] == ['Kept']
+    planner.params.append(Param('tolerance', 0.5))
+    assert 'parameters=[params, {\'tolerance\': 0.5}],' in node_python(planner, '')
+    assert isinstance(planner.params[0], Kept)
+
+
+def test_not_a_launch_file() -> None:
+    with pytest.raises(ReadError, match='syntax'):
+        read_python('def (:\n')
+    with pytest.raises(ReadError, match='generate_launch_description'):
+        read_python('x = 1\n')
