@@ -87,7 +87,7 @@ EXTENSION_POINTS: dict[str, ExtensionPointSpec] = {p.group: p for p in (
                        'nodl.composition.resolvers:ResolverExtension',
                        'mixin reference resolvers, one per URI scheme (the entry point name)'),
     ExtensionPointSpec('nodl.frontends', '1.0', None, 'readers of other definition formats'),
-    ExtensionPointSpec('nodl.checks', '1.0', 'nodl.analysis.checks:CheckExtension',
+    ExtensionPointSpec('nodl.checks', '1.0', 'nodl.system.checks:CheckExtension',
                        'checks of `nodl analyse` over a launched system'),
     ExtensionPointSpec('nodl.generators', '1.0', 'nodl.generate:GeneratorExtension',
                        'code generators, one per language (the entry point name)'),

@@ -7,9 +7,9 @@ from pathlib import Path
 import pytest
 
 from nodl.analysis import KINDS, AnalysisSettings, analyse_launch
-from nodl.analysis.checks import load_checks
-from nodl.analysis.checks.parameters import launch_value_fits, launch_value_verdict
 from nodl.model.parameter_types import parse_type
+from nodl.system.checks import load_checks
+from nodl.system.checks.parameters import launch_value_fits, launch_value_verdict
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
 PREFIX = [str(FIXTURES / 'prefix')]
@@ -132,7 +132,10 @@ def _rclpy_verdict(type_name: str, params_file: Path) -> str:
     """What a real rclpy node does when it declares ``x`` of ``type_name`` with that file."""
     import rclpy
     from rcl_interfaces.msg import ParameterDescriptor
-    from rclpy.exceptions import InvalidParameterTypeException, ParameterUninitializedException
+    from rclpy.exceptions import (
+        InvalidParameterTypeException,
+        ParameterUninitializedException,
+    )
     from rclpy.node import Node
     from rclpy.parameter import Parameter
 

@@ -1,4 +1,4 @@
-"""The analysis checks against the real semantics (nodl.analysis.checks.names,
+"""The analysis checks against the real semantics (nodl.system.checks.names,
 connections, orphans): final names as rcl makes them (``__node``/``__ns`` rules, pushed
 namespaces, composable nodes), QoS exactly as ``check_qos_compatible`` decides for every
 publisher/subscription pair, actions remapped as a whole by their name as rcl remaps them
@@ -93,11 +93,12 @@ def test_duplicate_findings_at_one_place_follow_each_name_s_first_launch() -> No
     """Nodes launched from one place (a loop in a Python launch file) sort alike: their
     duplicate-node findings come in the order of context.by_fqn, that of each name's first
     launch (/a before /b here, though /b is launched again first)."""
-    from nodl.analysis import LaunchEntry, analyse_entries
-    from nodl.system.entities import Location
+    from nodl.launch.model import LaunchedNode
+    from nodl.location import Location
+    from nodl.system.run import analyse_entries
 
     here = Location('system.launch.py', 4, 5)
-    analysis = analyse_entries([LaunchEntry('demo', 'talker', here, name=name)
+    analysis = analyse_entries([LaunchedNode('node', 'demo', 'talker', name, '/', here)
                                 for name in ('a', 'b', 'b', 'a', 'b')], prefixes=[])
     assert analysis.context is not None and list(analysis.context.by_fqn) == ['/a', '/b']
     found = [f.message.split(' ')[0] for f in _kinds(analysis, 'duplicate-node')]

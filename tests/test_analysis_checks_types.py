@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 
 from nodl.analysis import analyse_launch
-from nodl.analysis.checks.types import TypeDefinitionCheck
+from nodl.system.checks.types import TypeDefinitionCheck
 
 VENV = Path(sys.prefix)
 INDEX = Path('share') / 'ament_index' / 'resource_index'

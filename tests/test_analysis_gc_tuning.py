@@ -1,17 +1,17 @@
-"""Garbage collection paused during a batch (nodl.analysis.gc_tuning), and the
+"""Garbage collection paused during a batch (nodl.system.gc_tuning), and the
 analysis's own promise that makes the pause safe: it forms no reference cycles."""
 
 from __future__ import annotations
 
 import gc
 import threading
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Iterator
 
 import pytest
 
 from nodl.analysis import analyse_launch
-from nodl.analysis.gc_tuning import batch_collection
+from nodl.system.gc_tuning import batch_collection
 
 PREFIX = [str(Path(__file__).parent / 'fixtures' / 'analysis' / 'prefix')]
 
@@ -35,9 +35,8 @@ def test_a_batch_pauses_collection_and_resumes_it() -> None:
 
 
 def test_collection_resumes_when_the_batch_raises() -> None:
-    with pytest.raises(RuntimeError):
-        with batch_collection():
-            raise RuntimeError('boom')
+    with pytest.raises(RuntimeError), batch_collection():
+        raise RuntimeError('boom')
     assert gc.isenabled()
 
 

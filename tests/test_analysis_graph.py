@@ -12,12 +12,12 @@ from typing import Any
 import pytest
 
 from nodl.analysis import analyse_launch
-from nodl.analysis.graph import render_graph
-from nodl.analysis.graph.dot import dot_string, format_dot, grid_edges
-from nodl.analysis.graph.html import json_for_script
-from nodl.analysis.graph.layout import fit_scale, layout_graph, layout_svg
-from nodl.analysis.graph.model import build_graph
-from nodl.analysis.system import analyse_definitions
+from nodl.graph import render_graph
+from nodl.graph.dot import dot_string, format_dot, grid_edges
+from nodl.graph.html import json_for_script
+from nodl.graph.layout import fit_scale, layout_graph, layout_svg
+from nodl.graph.model import build_graph
+from nodl.system.run import analyse_definitions
 from nodl.targets.placement import Definition
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'analysis'
@@ -97,12 +97,12 @@ def test_html_page_is_self_contained_and_complete(tmp_path: Path) -> None:
     assert urls <= {'http://www.w3.org/2000/svg', 'http://www.w3.org/1999/xlink'}, urls
     assert not re.search(r'\b(src|href)\s*=', page.replace('xlink:href', ''))
     data = json.loads(re.search(r'<script type="application/json" id="nodl-data">(.*?)</script>',
-                                page, re.S).group(1))
+                                page, re.DOTALL).group(1))
     assert {v['name'] for v in data['vertices'].values() if v['kind'] == 'node'} == \
         {n.fqn for n in analysis.nodes}
     for vid in data['vertices']:
         assert f'id="{vid}"' in page   # every vertex is clickable in the SVG
-    script = re.findall(r'<script>(.*?)</script>', page, re.S)[0]
+    script = re.findall(r'<script>(.*?)</script>', page, re.DOTALL)[0]
     node = shutil.which('node') or shutil.which('nodejs')
     if node is not None:
         js = tmp_path / 'page.js'
@@ -209,7 +209,7 @@ def test_a_node_s_own_interface_comes_before_its_client_library_s() -> None:
 
 
 def test_labels_and_page_text_show_control_and_bidi_characters() -> None:
-    from nodl.analysis.graph.html import _h
+    from nodl.graph.html import _h
 
     assert dot_string('a\u202eb\x1b"c\nd') == '"a\\\\u202eb\\\\x1b\\"c\\nd"'
     assert _h('<a\u2066>') == '&lt;a\\u2066&gt;'
@@ -218,7 +218,7 @@ def test_labels_and_page_text_show_control_and_bidi_characters() -> None:
 
 # ---- the page in a real browser (headless Chromium at 1280x800: tests/browser.py) ----
 
-from browser import assert_fits, browser, open_page  # noqa: E402,F401  (browser: a fixture)
+from browser import assert_fits, browser, open_page  # noqa: F401  (browser: a fixture)
 
 
 def _view(driver) -> list[float]:  # type: ignore[no-untyped-def]

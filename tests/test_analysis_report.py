@@ -47,7 +47,7 @@ _MARKERS = ('known at run time>', 'KNOWN AT RUN TIME>', 'RunTimeText', 'RuntimeV
 
 
 def _every_output(launch: Path, limits: object = None) -> tuple[object, dict[str, str]]:
-    from nodl.analysis.graph import render_graph
+    from nodl.graph import render_graph
     from nodl.params.check import check_launch_parameters
     from nodl.policy.launched import launch_policy
     from nodl.policy.writer import write_policy

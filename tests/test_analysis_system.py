@@ -186,7 +186,7 @@ def test_a_remap_rule_given_on_the_command_line_is_one_finding() -> None:
     """analyse_definitions(remaps=[...]) (nodl analyse DEFINITION... --remap) gives the rule to
     every node at once: an unused one is one finding at the command line (each node's
     definition a related place), not one per definition."""
-    from nodl.analysis.system import analyse_definitions
+    from nodl.system.run import analyse_definitions
     from nodl.targets.placement import Definition
 
     share = FIXTURES / 'prefix' / 'share' / 'nav' / 'nodl'

@@ -255,7 +255,7 @@ def test_the_graph_page_of_the_example_system_fits_1280x800(analysis, browser, t
     tests/test_analysis_graph.py)."""
     from selenium.webdriver.common.by import By
 
-    from nodl.analysis.graph import render_graph
+    from nodl.graph import render_graph
 
     page = tmp_path / 'rover.html'
     page.write_text(render_graph(analysis, 'html'), encoding='utf-8')

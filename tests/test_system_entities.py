@@ -6,7 +6,13 @@ import pytest
 
 from nodl.model.parameter_types import TypeSpec
 from nodl.system.entities import (
-    PROVIDER_OF_ROLE, EntityKind, InterfaceType, Location, Provider, parse_entity_type)
+    PROVIDER_OF_ROLE,
+    EntityKind,
+    InterfaceType,
+    Location,
+    Provider,
+    parse_entity_type,
+)
 from nodl.vocabulary import SECTIONS
 
 

@@ -5,12 +5,19 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-
 from conftest import FIXTURES
+
 from nodl import ValidationError, compose
 from nodl.composition.bases import base_file
 from nodl.system import (
-    EntityKind, InterfaceType, Location, Provider, ResolvedNode, resolve_node, resolve_registered)
+    EntityKind,
+    InterfaceType,
+    Location,
+    Provider,
+    ResolvedNode,
+    resolve_node,
+    resolve_registered,
+)
 
 SYSTEM = FIXTURES / 'system'
 TALKER = SYSTEM / 'talker.nodl.yaml'

@@ -17,10 +17,12 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from nodl.analysis.findings import Finding
-from nodl.analysis.instances import AnalysedNode
-from nodl.analysis.system import LAUNCH_KIND, Analysis
+from nodl import __version__
 from nodl.launch.params import RuntimeValue
+from nodl.system.findings import Finding
+from nodl.system.launched import SystemNode
+from nodl.system.run import LAUNCH_KIND, Analysis
+from nodl.text_safety import visible
 
 __all__ = ['format_log']
 
@@ -44,7 +46,7 @@ def _line(label: str, text: str) -> str:
     return f'  {label:<{_LABEL}}{text}'.rstrip()
 
 
-def _name_origin(node: AnalysedNode) -> str:
+def _name_origin(node: SystemNode) -> str:
     entry = node.entry
     if entry.name:
         how = 'given in the launch file'
@@ -64,7 +66,7 @@ def _qos(qos: Any) -> str:
     return '; qos ' + ', '.join(f'{k}={v}' for k, v in qos.to_dict().items())
 
 
-def _node(node: AnalysedNode) -> list[str]:
+def _node(node: SystemNode) -> list[str]:
     entry = node.entry
     out = [f'node {node.fqn}', _line('launched at', str(entry.location))]
     role = _ROLES.get(entry.role, entry.role)
@@ -72,7 +74,7 @@ def _node(node: AnalysedNode) -> list[str]:
         role += f' in container {entry.container}'
     out.append(_line('kind', role))
     runs = entry.executable if entry.executable is not None else f'plugin {entry.plugin}'
-    out.append(_line('runs', f'{entry.package} {runs}'))
+    out.append(_line('runs', f'{node.package} {runs}'))
     out.append(_line('name', _name_origin(node)))
     namespace = node.names.namespace if node.names is not None else entry.namespace
     out.append(_line('namespace', namespace + (f' (launched in {entry.namespace})'
@@ -132,12 +134,9 @@ def _finding(finding: Finding) -> list[str]:
 
 def format_log(analysis: Analysis) -> str:
     """The whole log text."""
-    from nodl import __version__
-    from nodl.analysis.report import summary
-
     out = [f'# nodl analyse {analysis.launch_file or ""}'.rstrip(),
            f'# nodl-toolkit {__version__}',
-           f'# {summary(analysis)}', '', f'== System ({len(analysis.nodes)} nodes)', '']
+           f'# {analysis.summary()}', '', f'== System ({len(analysis.nodes)} nodes)', '']
     for node in analysis.nodes:
         out += _node(node)
         out.append('')
@@ -147,7 +146,5 @@ def format_log(analysis: Analysis) -> str:
         out.append('')
     if not analysis.findings:
         out += ['no findings', '']
-    from nodl.text_safety import visible
-
     # names, values and messages from launch files: no control or bidi character reaches the log
     return visible('\n'.join(out))

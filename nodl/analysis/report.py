@@ -41,73 +41,37 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from nodl.analysis.instances import AnalysedNode
-from nodl.analysis.system import Analysis
 from nodl.diagnostics import Severity
-from nodl.launch.params import RuntimeValue
+from nodl.reporting.junit import JUnitCase, JUnitFailure
+from nodl.reporting.reporters import JUnitReporter, Report, SarifReporter
+from nodl.system.findings import KINDS
+from nodl.system.launched import SystemNode, node_provenance
+from nodl.system.run import LAUNCH_KIND, Analysis
+from nodl.targets.resolve import coverage_line
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from nodl.reporting.junit import JUnitCase
-    from nodl.reporting.reporters import Report
-    from nodl.targets.resolve import Provenance
-
-__all__ = ['node_to_dict', 'analysis_to_dict', 'format_json', 'format_text', 'format_sarif',
-           'format_junit', 'junit_cases', 'analysis_report', 'summary', 'node_provenance',
-           'coverage']
-
-
-def node_provenance(node: AnalysedNode) -> Provenance:
-    """Where the definition of ``node`` came from (``none`` without one)."""
-    from nodl.targets.resolve import Provenance
-
-    return Provenance.of(node.match.origin, node.match.file)
+__all__ = [
+    'analysis_report',
+    'analysis_to_dict',
+    'coverage',
+    'format_json',
+    'format_junit',
+    'format_sarif',
+    'format_text',
+    'junit_cases',
+    'node_provenance',
+    'node_to_dict',
+    'summary',
+]
 
 
 def coverage(analysis: Analysis) -> str:
     """``16 nodes: 9 registered, 6 overlay (2 extracted), 1 without definition``."""
-    from nodl.targets.resolve import coverage_line
-
     return coverage_line(node_provenance(node) for node in analysis.nodes)
 
 
-def node_to_dict(node: AnalysedNode) -> dict[str, Any]:
-    """One node of the JSON report."""
-    endpoints: dict[str, list[list[str]]] = {}
-    if node.instance is not None:
-        for bound in node.instance.endpoints:
-            endpoints.setdefault(bound.entity.section, []).append([bound.entity.name, bound.name])
-    entry = node.entry
-    parameters: dict[str, Any] = {}
-    unknown: list[dict[str, Any]] = [
-        {'part': part, 'file': where.file, 'line': where.line, 'column': where.column}
-        for part, where in entry.run_time]
-    for name, setting in node.parameters.items():
-        if isinstance(setting.value, RuntimeValue):  # no value, and no text standing for one
-            parameters[name] = None
-            where = setting.location
-            unknown.append({'part': 'parameter', 'parameter': name, 'file': where.file,
-                            'line': where.line, 'column': where.column})
-        else:
-            parameters[name] = setting.value
-    complete = not entry.run_time or entry.parameters_complete
-    provenance = node_provenance(node)
-    return {
-        'name': node.fqn,
-        'package': entry.package,
-        'executable': entry.executable if entry.executable is not None else entry.plugin,
-        'definition': node.match.file,
-        'definition_source': provenance.source if provenance.source != 'none' else None,
-        'definition_folder': provenance.folder,
-        'definition_provenance': provenance.made_by,
-        'source': {'file': entry.location.file, 'line': entry.location.line},
-        'remaps': [[source, target] for source, target in entry.remaps],
-        'remaps_complete': not entry.run_time or entry.remaps_complete,
-        'parameters': parameters,
-        'parameters_complete': complete and len(unknown) == len(entry.run_time),
-        'run_time': unknown,
-        'endpoints': endpoints,
-    }
+def node_to_dict(node: SystemNode) -> dict[str, Any]:
+    """One node of the JSON report (:meth:`~nodl.system.launched.SystemNode.to_dict`)."""
+    return node.to_dict()
 
 
 def analysis_to_dict(analysis: Analysis) -> dict[str, Any]:
@@ -123,14 +87,7 @@ def format_json(analysis: Analysis) -> str:
 
 def summary(analysis: Analysis) -> str:
     """``N nodes, N errors, N warnings`` (and infos when there are some)."""
-    from nodl.reporting import plural
-
-    counts = analysis.counts()
-    parts = [plural(len(analysis.nodes), 'node'), plural(counts['error'], 'error'),
-             plural(counts['warning'], 'warning')]
-    if counts['info']:
-        parts.append(f"{counts['info']} info")
-    return ', '.join(parts)
+    return analysis.summary()
 
 
 def format_text(analysis: Analysis, verbose: bool = False) -> str:
@@ -152,18 +109,12 @@ def format_text(analysis: Analysis, verbose: bool = False) -> str:
 
 def format_sarif(analysis: Analysis) -> str:
     """SARIF 2.1.0 (one result per finding)."""
-    from nodl.reporting.reporters import SarifReporter
-
     return SarifReporter().report(analysis_report(analysis))
 
 
 def junit_cases(analysis: Analysis) -> list[JUnitCase]:
     """One JUnit test case per kind of finding (failed when it has errors), the errors as
     its failure and the other findings as its output."""
-    from nodl.analysis.findings import KINDS
-    from nodl.analysis.system import LAUNCH_KIND
-    from nodl.reporting.junit import JUnitCase, JUnitFailure
-
     by_kind: dict[str, list[Any]] = {kind: [] for kind in (LAUNCH_KIND, *KINDS)}
     for finding in analysis.findings:
         by_kind.setdefault(finding.kind, []).append(finding)
@@ -181,16 +132,12 @@ def junit_cases(analysis: Analysis) -> list[JUnitCase]:
 
 def format_junit(analysis: Analysis) -> str:
     """JUnit XML: one test case per kind of finding (:func:`junit_cases`)."""
-    from nodl.reporting.reporters import JUnitReporter
-
     return JUnitReporter().report(analysis_report(analysis))
 
 
 def analysis_report(analysis: Analysis, verbose: bool = False) -> Report:
     """The analysis as every reporter reads it: its findings, the nodes as the JSON payload,
     a test case per kind of finding, the text report, and the coverage and summary lines."""
-    from nodl.reporting.reporters import Report
-
     return Report(f'nodl analyse {analysis.launch_file or "launch"}',
                   [f.diagnostic for f in analysis.findings],
                   summary=f'{coverage(analysis)}\n{summary(analysis)}',

@@ -210,8 +210,8 @@ def _folder(run: _Run, folder: str) -> None:
 
 def _launch(run: _Run, launch_file: str, arguments: Mapping[str, str] | None,
             limits: LaunchLimits | None, definitions: Definitions | None) -> None:
-    from nodl.analysis.settings import load_settings
-    from nodl.analysis.system import analyse_launch
+    from nodl.system.settings import load_settings
+    from nodl.system.run import analyse_launch
     from nodl.doc.model import NodeSource, node_page
     from nodl.doc.system import graph_picture, system_page
 

@@ -8,7 +8,7 @@
 * the parameters each node receives, with where each value is written and how
   (inline, a parameter file, ``set_parameter``, ``-p``);
 * the findings of the analysis;
-* the graph (:mod:`nodl.analysis.graph`), embedded.
+* the graph (:mod:`nodl.graph`), embedded.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Callable, Mapping
 
-    from nodl.analysis.system import Analysis
+    from nodl.system.run import Analysis
     from nodl.diagnostics import Diagnostic
     from nodl.system.instance import InstanceEntity
 
@@ -34,7 +34,7 @@ _TITLES = {'topic': 'Topics', 'service': 'Services', 'action': 'Actions'}
 def graph_picture(analysis: Analysis, file: str) -> tuple[Picture | None, Diagnostic | None]:
     """The system's graph as SVG (kept as ``file`` next to the page), or why it cannot be
     drawn (NODL274: the layout program is missing or fails)."""
-    from nodl.analysis.graph import GraphError, render_graph
+    from nodl.graph import GraphError, render_graph
     from nodl.diagnostics import Diagnostic, Severity
 
     try:
@@ -71,7 +71,7 @@ def system_page(analysis: Analysis, path: str, node_pages: Mapping[int, tuple[st
         else:
             definition = ('no definition',)
         what = node.entry.executable or node.entry.plugin or ''
-        rows.append(((Literal(node.fqn),), (Literal(node.entry.package),), (Literal(what),),
+        rows.append(((Literal(node.fqn),), (Literal(node.package),), (Literal(what),),
                      definition))
     page.blocks.append(Table(('Final name', 'Package', 'Executable', 'Definition'), tuple(rows)))
     system = analysis.context.system if analysis.context is not None else None

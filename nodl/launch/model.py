@@ -14,6 +14,11 @@ from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 from nodl.diagnostics import Diagnosed, Diagnostic
+from nodl.location import Location
+# A place in a launch file (1-based line and column, 0 when unknown) is the toolkit's one
+# Location, made once by the reader and carried unchanged to the launched node's instance and
+# its findings; SourceLocation is its name in the launch reader.
+from nodl.location import Location as SourceLocation
 
 __all__ = ['SourceLocation', 'LaunchRemap', 'ParameterSource', 'RunTimeSource', 'LaunchedNode',
            'LaunchArgument', 'LaunchResult', 'NODE_KINDS', 'PARAMETER_ORIGINS', 'RUN_TIME_PARTS']
@@ -28,17 +33,6 @@ PARAMETER_ORIGINS = ('arguments', 'global', 'node')
 #: whose path is a run-time value, a ``parameters`` entry computed by a module not installed
 #: here), its ``remappings`` or its ``arguments``/``ros_arguments`` given whole as such a value.
 RUN_TIME_PARTS = ('parameters', 'remaps', 'arguments')
-
-
-class SourceLocation(NamedTuple):
-    """A place in a launch file: 1-based line and column (0 when unknown)."""
-
-    file: str
-    line: int
-    column: int
-
-    def __str__(self) -> str:
-        return f'{self.file}:{self.line}:{self.column}' if self.line else self.file
 
 
 class LaunchRemap(tuple):  # type: ignore[type-arg]
@@ -195,6 +189,31 @@ class LaunchedNode:
     def launch_file(self) -> str:
         """The launch file the entry is written in."""
         return self.source.file
+
+    # What the system layer (nodl.system.launched) reads of a launched node, in its words:
+    # the record itself is the launched node there, not a copy of it.
+
+    @property
+    def location(self) -> Location:
+        """Where the node is launched (the node entry: :attr:`source`)."""
+        return self.source
+
+    @property
+    def role(self) -> str:
+        """``node``, ``container`` or ``composable`` (:attr:`kind`)."""
+        return self.kind
+
+    @property
+    def composable(self) -> bool:
+        """True for a composable node (matched by its plugin)."""
+        return self.plugin is not None
+
+    def remap_location(self, index: int) -> Location:
+        """Where rule ``index`` of :attr:`remaps` is written (the node entry for a plain pair)."""
+        remaps = self.remaps
+        if 0 <= index < len(remaps):
+            return remap_source(remaps[index], self.source)
+        return self.source
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready mapping."""

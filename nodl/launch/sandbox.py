@@ -346,6 +346,7 @@ class _Unpickler(pickle.Unpickler):
             'LaunchResult', 'LaunchedNode', 'LaunchArgument', 'ParameterSource', 'SourceLocation',
             'LaunchRemap', 'RunTimeSource')} | {
         ('nodl.diagnostics', 'Diagnostic'), ('nodl.diagnostics', 'Severity'),
+        ('nodl.location', 'Location'),  # (SourceLocation is nodl.location.Location)
         ('nodl.launch.params', 'RuntimeValue'),
         ('builtins', 'set'), ('builtins', 'frozenset'), ('builtins', 'complex')}
 

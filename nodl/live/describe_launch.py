@@ -1,7 +1,7 @@
 """``describe --all --launch``: the running system a launch file started, as a definitions
 folder (overlay).
 
-The launch file is analysed first (:func:`~nodl.analysis.analyse_launch`, no
+The launch file is analysed first (:func:`~nodl.system.run.analyse_launch`, no
 checks): it says which nodes to expect, under which final names, and which package and
 executable (or composable plugin) each one runs.  The observer then waits for exactly
 those nodes, together, until they and their endpoints are seen and stable (or the
@@ -44,7 +44,7 @@ from nodl.vocabulary import TOPIC_SECTIONS
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from nodl.analysis.instances import AnalysedNode
+    from nodl.system.launched import SystemNode
     from nodl.launch.sandbox import LaunchLimits
     from nodl.targets.overlay import Definitions
 
@@ -60,7 +60,7 @@ class Instance:
     """One launched node as observed: the analysis's record, and what was seen."""
 
     #: The analysed launched node (final name, namespace, remaps, parameters, entry).
-    launched: 'AnalysedNode'
+    launched: 'SystemNode'
     observed: ObservedNode
     description: Description
 
@@ -130,7 +130,7 @@ class LaunchDescription:
         return [d for d in self.diagnostics if d.severity is Severity.ERROR]
 
 
-def _diagnostic(code: str, severity: Severity, message: str, launched: 'AnalysedNode | None',
+def _diagnostic(code: str, severity: Severity, message: str, launched: 'SystemNode | None',
                 launch_file: str, related: list[tuple[str, int, int, str]] | None = None
                 ) -> Diagnostic:
     if launched is not None:
@@ -145,7 +145,7 @@ def _related(instance: Instance, message: str) -> tuple[str, int, int, str]:
     return (str(loc.file), int(loc.line), int(loc.column), message)
 
 
-def _group_key(launched: 'AnalysedNode') -> tuple[str, str, str | None] | None:
+def _group_key(launched: 'SystemNode') -> tuple[str, str, str | None] | None:
     """``(package, key, plugin)`` a launched node is filed under, or None if unknown."""
     from nodl.registry.node_info import plugin_key
 
@@ -185,8 +185,8 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
     no definition covers (neither the ament index ``prefixes`` nor ``definitions``); the
     others are :attr:`LaunchDescription.left_out`, not waited for.
     """
-    from nodl.analysis import analyse_launch
-    from nodl.analysis.system import LAUNCH_KIND
+    from nodl.system.run import analyse_launch
+    from nodl.system.run import LAUNCH_KIND
 
     result = LaunchDescription(launch_file)
     if definitions:  # the folder written is refreshed by this run, not read by it
@@ -203,7 +203,7 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
         return result
 
     expected: dict[str, int] = {}
-    launched: list[AnalysedNode] = []
+    launched: list[SystemNode] = []
     covered: set[str] = set()  # launched, and left out because a definition covers them
     for node in analysis.nodes:
         if node.names is None:
@@ -216,7 +216,7 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
             result.left_out.append((node.fqn, 'a hidden node (its name starts with _)'))
             continue
         if missing and node.match.file is not None:
-            from nodl.analysis.report import node_provenance
+            from nodl.system.launched import node_provenance
 
             covered.add(node.fqn)
             result.left_out.append((node.fqn, f'has a definition: {node.match.file} '
@@ -267,7 +267,7 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
                    else f'not started by {launch_file}')
             result.left_out.append((fqn, why))
 
-    by_fqn: dict[str, list[AnalysedNode]] = {}
+    by_fqn: dict[str, list[SystemNode]] = {}
     for node in launched:
         by_fqn.setdefault(node.fqn, []).append(node)
     for fqn, nodes in by_fqn.items():

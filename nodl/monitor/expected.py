@@ -18,8 +18,8 @@ from nodl.system.entities import Location
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from nodl.analysis.instances import AnalysedNode
-    from nodl.analysis.system import Analysis
+    from nodl.system.launched import SystemNode
+    from nodl.system.run import Analysis
     from nodl.launch.sandbox import LaunchLimits
     from nodl.naming import NodeNames
     from nodl.system.resolved import ResolvedNode
@@ -104,7 +104,7 @@ def _deadlines(resolved: 'ResolvedNode', names: 'NodeNames') -> list[DeadlineTop
     return out
 
 
-def _hardware_id(node: 'AnalysedNode') -> str:
+def _hardware_id(node: 'SystemNode') -> str:
     entry = node.entry
     what = entry.executable or entry.plugin or '?'
     if not entry.package:
@@ -113,14 +113,14 @@ def _hardware_id(node: 'AnalysedNode') -> str:
 
 
 def expected_from_analysis(analysis: 'Analysis', source: str) -> ExpectedSystem:
-    """The expected system of an analysis (:func:`~nodl.analysis.analyse_launch` or
-    :func:`~nodl.analysis.system.analyse_definitions`).
+    """The expected system of an analysis (:func:`~nodl.system.run.analyse_launch` or
+    :func:`~nodl.system.run.analyse_definitions`).
 
     A node whose final name cannot be computed cannot be found in the graph: it is left
     out with a warning (NODL566's wording is the analysis's; the warning here says what
     the monitor does).  Two launched nodes with one final name are expected once.
     """
-    from nodl.analysis.system import DEFINITIONS_KIND, LAUNCH_KIND
+    from nodl.system.run import DEFINITIONS_KIND, LAUNCH_KIND
 
     system = ExpectedSystem(source)
     system.diagnostics.extend(f.diagnostic for f in analysis.findings
@@ -156,7 +156,7 @@ def expected_from_launch(launch_file: str, arguments: Mapping[str, str] | None =
                          definitions: 'Definitions | None' = None,
                          prefixes: list[str] | None = None, settings: Any = None) -> ExpectedSystem:
     """The expected system of the launch file ``launch_file`` with launch ``arguments``."""
-    from nodl.analysis import analyse_launch
+    from nodl.system.run import analyse_launch
 
     analysis = analyse_launch(launch_file, arguments, client_library=client_library,
                               prefixes=prefixes, settings=settings, checks={}, limits=limits,
@@ -175,7 +175,7 @@ def expected_from_definitions(targets: Sequence['Definition'], names: Sequence[s
     ValueError for more names than definitions or a malformed name or rule; OSError for
     a file that cannot be read.
     """
-    from nodl.analysis.system import analyse_definitions
+    from nodl.system.run import analyse_definitions
 
     analysis = analyse_definitions(targets, names, remaps=remaps, client_library=client_library,
                                    prefixes=prefixes, settings=settings, checks={},

@@ -48,7 +48,7 @@ def _declared_here(name: str, entity: Any) -> list[tuple[str, int, int, str]]:
 
 def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) -> list[Diagnostic]:
     """Every problem of ``files`` for ``node`` started as ``fqn`` (``/ns/name``)."""
-    from nodl.analysis.checks.parameters import launch_value_verdict
+    from nodl.system.checks.parameters import launch_value_verdict
     from nodl.launch.overrides import match_parameter_file_nodes
     from nodl.model.parameter_types import TypeSpec
     from nodl.launch.params import load_parameter_file
@@ -133,7 +133,7 @@ def check_launch_parameters(launch_file: str, files: Sequence[str] = (),
     definitions are looked up in (default: ``AMENT_PREFIX_PATH``).  ``limits``: how the
     launch's Python code runs, if at all (:class:`~nodl.launch.sandbox.LaunchLimits`).
     """
-    from nodl.analysis.system import LAUNCH_KIND, analyse_launch
+    from nodl.system.run import LAUNCH_KIND, analyse_launch
 
     analysis = analyse_launch(launch_file, arguments or {}, prefixes=prefixes, limits=limits)
     out = [f.diagnostic for f in analysis.findings

@@ -106,7 +106,7 @@ def policy_for_instances(instances: Iterable[NodeInstance], *,
     definition is a draft with unresolved entities (:func:`gapped_nodes`); each is
     NODL617, an error unless ``allow_gaps``.
     """
-    from nodl.analysis.gc_tuning import batch_collection
+    from nodl.system.gc_tuning import batch_collection
 
     # a large system allocates many objects that live until the end: collect less often
     with batch_collection():

@@ -1,7 +1,7 @@
 """The policy of a launched system: the launch file resolved exactly as ``nodl analyse`` resolves it.
 
 The launch file is read and its nodes matched, named, remapped and given
-their parameters by :func:`nodl.analysis.analyse_launch` (no checks
+their parameters by :func:`nodl.system.run.analyse_launch` (no checks
 run: the policy needs the instances, not the findings).  Launch-file problems
 are reported as they are; a node without a usable definition is a gap
 (NODL601).
@@ -36,7 +36,7 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
     their layout is among the diagnostics).  OSError if the launch file cannot be read at
     all; ValueError if it cannot be parsed (its diagnostics in the message).
     """
-    from nodl.analysis import analyse_launch
+    from nodl.system.run import analyse_launch
     from nodl.policy.grants import display_path
 
     path = os.fspath(path)
@@ -70,7 +70,7 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
         containers=containers, gapped=gapped, allow_gaps=allow_gaps,
         notes=[f'Least-privilege SROS 2 policy written by nodl policy for the system '
                f'{display_path(os.path.abspath(path))} launches.'])
-    from nodl.analysis.report import node_provenance
+    from nodl.system.launched import node_provenance
 
     sources = tuple(node_provenance(node) for node in analysis.nodes)
     return result._replace(diagnostics=launch_problems + result.diagnostics, sources=sources,

@@ -114,7 +114,7 @@ def _profile_lines(profile: Profile, problems: list[Diagnostic]) -> list[str]:
 
 def write_policy(policy: Policy) -> str:
     """The policy document as text (UTF-8 XML); :class:`PolicyNotWritable` if SROS 2 would reject it."""
-    from nodl.analysis.gc_tuning import batch_collection
+    from nodl.system.gc_tuning import batch_collection
 
     with batch_collection():  # the lines live until the end
         return _write_policy(policy)

@@ -26,7 +26,7 @@ _EXPORTS = {
     'ResolvedNode': 'resolved', 'resolve_node': 'resolved', 'resolve_report': 'resolved',
     'resolve_registered': 'resolved',
     'InstanceEntity': 'instance', 'NodeInstance': 'instance',
-    'Connection': 'graph', 'System': 'graph',
+    'Connection': 'connections', 'System': 'connections',
     'ClientLibraryChoice': '..composition.client_library',
     'choose_client_library': '..composition.client_library',
 }
@@ -37,12 +37,25 @@ __all__ = ['ClientLibraryChoice', 'Connection', 'Entity', 'EntityKind', 'Instanc
            'choose_client_library', 'resolve_node', 'resolve_registered', 'resolve_report']
 
 if TYPE_CHECKING:  # pragma: no cover
-    from nodl.composition.client_library import ClientLibraryChoice, choose_client_library
-    from nodl.system.entities import Entity, EntityKind, InterfaceType, Location, Provider
-    from nodl.system.graph import Connection, System
+    from nodl.composition.client_library import (
+        ClientLibraryChoice,
+        choose_client_library,
+    )
+    from nodl.system.connections import Connection, System
+    from nodl.system.entities import (
+        Entity,
+        EntityKind,
+        InterfaceType,
+        Location,
+        Provider,
+    )
     from nodl.system.instance import InstanceEntity, NodeInstance
     from nodl.system.resolved import (
-        ResolvedNode, resolve_node, resolve_registered, resolve_report)
+        ResolvedNode,
+        resolve_node,
+        resolve_registered,
+        resolve_report,
+    )
 
 
 def __getattr__(name: str) -> Any:

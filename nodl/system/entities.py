@@ -10,15 +10,17 @@ interface type and where it is written (file, line, column).
 from __future__ import annotations
 
 import enum
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any, Callable, NamedTuple, Union
+from typing import Any, NamedTuple, Union
 
+from nodl.location import Location
 from nodl.model import QoSProfile
 from nodl.model.parameter_types import TypeSpec, parse_type
 from nodl.vocabulary import KIND_NAMESPACES, SECTION_BY_KEY, SECTIONS
 
-__all__ = ['EntityKind', 'Provider', 'InterfaceType', 'Location', 'Entity', 'PROVIDER_OF_ROLE']
+__all__ = ['PROVIDER_OF_ROLE', 'Entity', 'EntityKind', 'InterfaceType', 'Location', 'Provider']
 
 
 class EntityKind(str, enum.Enum):
@@ -36,7 +38,7 @@ class EntityKind(str, enum.Enum):
         return self.value
 
     @classmethod
-    def of_section(cls, section: str) -> 'EntityKind':
+    def of_section(cls, section: str) -> EntityKind:
         """The kind of the entities of a document section (``publishers`` -> PUBLISHER)."""
         if section == 'parameters':
             return cls.PARAMETER
@@ -110,7 +112,7 @@ class InterfaceType(NamedTuple):
         return f'{self.package}/{self.namespace}/{self.name}'
 
     @classmethod
-    def parse(cls, text: str, communication: str | None = None) -> 'InterfaceType':
+    def parse(cls, text: str, communication: str | None = None) -> InterfaceType:
         """Parse ``pkg/ns/Name``; the short form ``pkg/Name`` takes the namespace of
         ``communication`` (``topic`` -> ``msg``).  ValueError for anything else."""
         parts = text.split('/')
@@ -119,17 +121,6 @@ class InterfaceType(NamedTuple):
         if len(parts) == 2 and all(parts) and communication in KIND_NAMESPACES:
             return cls(parts[0], KIND_NAMESPACES[communication], parts[1])
         raise ValueError(f'{text!r} is not an interface type (expected <package>/<namespace>/<Name>)')
-
-
-class Location(NamedTuple):
-    """Where something is written: file, 1-based line and column (0 when unknown)."""
-
-    file: str
-    line: int
-    column: int
-
-    def __str__(self) -> str:
-        return f'{self.file}:{self.line}:{self.column}' if self.line else self.file
 
 
 #: The parsed type of an entity: an interface type, or a parameter type.

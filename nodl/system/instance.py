@@ -9,20 +9,26 @@ their default, overridden by the instance's overrides.
 
 from __future__ import annotations
 
-from typing import Any, Iterable, Iterator, Mapping, NamedTuple
+from collections.abc import Iterable, Iterator, Mapping
+from typing import Any, NamedTuple
 
 from nodl.naming import (
-    NodeNames, RemapArgs, RemapRule, normalize_namespace, parse_remap_rules)
+    NodeNames,
+    RemapArgs,
+    RemapRule,
+    normalize_namespace,
+    parse_remap_rules,
+)
 from nodl.system.entities import Entity, EntityKind, Location, Provider
 from nodl.system.resolved import ResolvedNode
 
-__all__ = ['NodeInstance', 'InstanceEntity']
+__all__ = ['InstanceEntity', 'NodeInstance']
 
 
 class InstanceEntity(NamedTuple):
     """An entity of a node instance with its final (fully qualified, remapped) name."""
 
-    instance: 'NodeInstance'
+    instance: NodeInstance
     entity: Entity
     #: The final name (parameters keep their name).
     name: str

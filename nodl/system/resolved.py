@@ -12,8 +12,8 @@ of walking documents.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable, Iterator, Sequence
 from functools import partial
-from typing import Callable, Iterator, Sequence
 
 from nodl.composition.client_library import ClientLibraryChoice, choose_client_library
 from nodl.composition.compose import ComposedNode, compose_report
@@ -22,13 +22,19 @@ from nodl.composition.merge import PARAMETERS, Declaration, seeded_copies
 from nodl.composition.resolvers import Resolver
 from nodl.diagnostics import Diagnostic, Severity, ValidationError
 from nodl.frontends.source import Source
-from nodl.registry.registrations import compose_registered
 from nodl.loading import Report
 from nodl.model import ENDPOINT_SECTIONS, Base, Interface, Node
+from nodl.registry.registrations import compose_registered
 from nodl.system.entities import (
-    PROVIDER_OF_ROLE, Entity, EntityKind, Location, Provider, parse_entity_type)
+    PROVIDER_OF_ROLE,
+    Entity,
+    EntityKind,
+    Location,
+    Provider,
+    parse_entity_type,
+)
 
-__all__ = ['ResolvedNode', 'resolve_node', 'resolve_report', 'resolve_registered']
+__all__ = ['ResolvedNode', 'resolve_node', 'resolve_registered', 'resolve_report']
 
 
 def _location(declaration: Declaration, parameter: bool) -> Location:
@@ -67,7 +73,7 @@ def _new_entity(kind: EntityKind, name: str, merged: object,
         label = getattr(merged, 'origin', None) or ''
         layer = next((l for l in layers if l.label == label), Layer(label or 'main', Interface()))
         first, location, labels = layer, Location(layer.label, 0, 0), (layer.label,)
-    type_name: str = getattr(merged, 'type')
+    type_name: str = merged.type
     description = getattr(merged, 'description', None)
     return Entity(kind, name, type_name, parse_entity_type(kind, type_name),
                   getattr(merged, 'qos', None), description if description != '' else None,

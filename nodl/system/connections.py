@@ -9,7 +9,8 @@ need them; they carry their provider, so an analysis can leave them out.
 
 from __future__ import annotations
 
-from typing import Iterable, Mapping, NamedTuple
+from collections.abc import Iterable, Mapping
+from typing import NamedTuple
 
 from nodl.system.entities import Entity, EntityKind, Provider
 from nodl.system.instance import InstanceEntity, NodeInstance, instances_named

@@ -9,8 +9,9 @@ involved, and the final name of the endpoint or parameter it is about.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, replace
-from typing import Any, Iterable
+from typing import Any
 
 from nodl.codes import default_severity
 from nodl.diagnostics import Diagnostic, Severity
@@ -78,7 +79,7 @@ class Finding:
         """What is wrong."""
         return self.diagnostic.message
 
-    def with_diagnostic(self, diagnostic: Diagnostic) -> 'Finding':
+    def with_diagnostic(self, diagnostic: Diagnostic) -> Finding:
         """The same finding with another diagnostic (a promoted severity)."""
         return replace(self, diagnostic=diagnostic)
 

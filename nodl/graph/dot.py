@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from nodl.analysis.graph.model import Edge, Graph, Vertex, isolated_vertices
+from nodl.graph.model import Edge, Graph, Vertex, isolated_vertices
 from nodl.text_safety import visible
 
-__all__ = ['format_dot', 'dot_string', 'grid_edges', 'SHAPES', 'COLOURS', 'GRID_ASPECT']
+__all__ = ['COLOURS', 'GRID_ASPECT', 'SHAPES', 'dot_string', 'format_dot', 'grid_edges']
 
 #: The width/height a grid of unconnected nodes aims at (a 1280x800 window's).
 GRID_ASPECT = 1.6

@@ -8,7 +8,7 @@ otherwise the key that is the class name in snake case
 (``rover_sensors::CameraDriver`` -> ``rover_sensors`` ``camera_driver``).
 
 Each definition is found and resolved once per analysis, however many nodes
-launch it.  Definitions folders in force (:mod:`nodl.targets.overlay`)
+launch it.  Definitions folders in force (:mod:`nodl.registry.overlay`)
 are looked in before the index; :attr:`Match.origin` says which served.
 """
 
@@ -16,8 +16,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from nodl.analysis.entries import LaunchEntry
 from nodl.diagnostics import Diagnostic
+from nodl.launch.model import LaunchedNode
 from nodl.registry import node_info, registrations
 from nodl.system.resolved import ResolvedNode, resolve_registered
 
@@ -25,12 +25,12 @@ from nodl.system.resolved import ResolvedNode, resolve_registered
 # time it runs, for every launched node.  The index functions are called through their
 # modules, so that timing wrappers put on the modules' functions see these calls too.
 
-__all__ = ['Match', 'DefinitionMatcher']
+__all__ = ['DefinitionMatcher', 'Match']
 
 
 @dataclass
 class Match:
-    """The definition a launch entry runs, and what its registration records."""
+    """The definition a launched node runs, and what its registration records."""
 
     package: str
     #: The registration key (the executable, or the plugin's key).
@@ -59,19 +59,20 @@ class DefinitionMatcher:
         self.prefixes = prefixes if prefixes is not None else registrations.search_path()
         self._cache: dict[tuple[str, str, str], Match] = {}
 
-    def match(self, entry: LaunchEntry) -> Match:
-        """The match of one launch entry (cached per package and key)."""
+    def match(self, entry: LaunchedNode) -> Match:
+        """The match of one launched node (cached per package and key)."""
+        package = entry.package or ''
         how = 'executable'
         if entry.plugin is not None:
-            info = node_info.find_plugin(entry.package, entry.plugin, self.prefixes)
+            info = node_info.find_plugin(package, entry.plugin, self.prefixes)
             key, how = (info.key, 'plugin') if info is not None \
                 else (node_info.plugin_key(entry.plugin), 'class name')
         else:
             key = entry.executable or ''
-        cache_key = (entry.package, key, how)
+        cache_key = (package, key, how)
         found = self._cache.get(cache_key)
         if found is None:
-            found = self._find(entry.package, key, how)
+            found = self._find(package, key, how)
             self._cache[cache_key] = found
         return found
 

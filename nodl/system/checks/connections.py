@@ -4,16 +4,17 @@
 from __future__ import annotations
 
 import operator
-from typing import Any, Iterator
+from collections.abc import Iterator
+from typing import Any
 
-from nodl.analysis.checks import CheckExtension
-from nodl.analysis.context import AnalysisContext
-from nodl.analysis.findings import Finding, make_finding
 from nodl.model.qos import QOS_POLICIES
+from nodl.system.checks import CheckExtension
+from nodl.system.context import AnalysisContext
 from nodl.system.entities import Provider
+from nodl.system.findings import Finding, make_finding
 from nodl.system.instance import InstanceEntity
 
-__all__ = ['MultiplePublishersCheck', 'TypeMismatchCheck', 'QoSCheck']
+__all__ = ['MultiplePublishersCheck', 'QoSCheck', 'TypeMismatchCheck']
 
 
 def _own(endpoints: tuple[InstanceEntity, ...]) -> list[InstanceEntity]:

@@ -14,8 +14,8 @@ import html
 import json
 import re
 
-from nodl.analysis.graph.model import Graph
-from nodl.analysis.system import Analysis
+from nodl.graph.model import Graph
+from nodl.system.run import Analysis
 from nodl.text_safety import visible
 
 __all__ = ['format_html', 'json_for_script']
@@ -50,7 +50,7 @@ def _inline_svg(svg: str) -> str:
     canvas: the page's script fits the drawing to it, zooms and pans with the ``viewBox``."""
     start = svg.find('<svg')
     svg = svg[start:] if start >= 0 else svg
-    svg = re.sub(r'<!--.*?-->', '', svg, flags=re.S)
+    svg = re.sub(r'<!--.*?-->', '', svg, flags=re.DOTALL)
     return re.sub(r'<svg([^>]*?)\swidth="[^"]*"\s+height="[^"]*"',
                   r'<svg\1 width="100%" height="100%" preserveAspectRatio="xMidYMid meet"',
                   svg, count=1)
@@ -371,7 +371,6 @@ _JS = r"""
 
 def format_html(graph: Graph, svg: str, analysis: Analysis) -> str:
     """The page."""
-    from nodl.analysis.report import summary
 
     counts = analysis.counts()
     data = {'vertices': {vid: {'kind': v.kind, 'name': v.name, 'details': v.details,
@@ -405,7 +404,7 @@ def format_html(graph: Graph, svg: str, analysis: Analysis) -> str:
 </head>
 <body>
 <header><h1>System analysis</h1><span class="file">{title}</span>
-<span class="hint">{_h(summary(analysis))}</span><div class="counts">{pills}</div></header>
+<span class="hint">{_h(analysis.summary())}</span><div class="counts">{pills}</div></header>
 <main>
 <div id="canvas">{_inline_svg(svg)}
 <div id="tools"><input id="search" type="search" placeholder="Search names (/)"

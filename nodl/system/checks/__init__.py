@@ -1,9 +1,9 @@
-"""The ``nodl.checks`` extension point: checks over a launched system.
+"""The ``nodl.checks`` extension point: checks over a launched system (NODL55x and more).
 
 A check is a class registered in the ``nodl.checks`` entry point group,
 normally a subclass of :class:`CheckExtension`.  It lists the kinds of finding
-it reports (keys of :data:`nodl.analysis.findings.KINDS`, or its own
-with codes it brings) and yields :class:`~nodl.analysis.findings.Finding`
+it reports (keys of :data:`nodl.system.findings.KINDS`, or its own
+with codes it brings) and yields :class:`~nodl.system.findings.Finding`
 objects from :meth:`CheckExtension.check`, given the :class:`AnalysisContext`.
 The built-in checks are registered exactly as a plug-in registers its own; a
 plug-in that cannot be loaded, or raises, is reported as a finding
@@ -12,13 +12,12 @@ plug-in that cannot be loaded, or raises, is reported as a finding
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterable, Iterator
+from collections.abc import Iterable, Iterator
 
-from nodl.plugins import EXTENSION_POINTS, ExtensionPoint
-
-if TYPE_CHECKING:  # pragma: no cover
-    from nodl.analysis.context import AnalysisContext
-    from nodl.analysis.findings import Finding
+from nodl.location import Location
+from nodl.plugins import EXTENSION_POINTS, ExtensionPoint, instantiate_extensions
+from nodl.system.context import AnalysisContext
+from nodl.system.findings import Finding, make_finding
 
 __all__ = ['CHECK_GROUP', 'CheckExtension', 'load_checks', 'run_checks']
 
@@ -42,8 +41,6 @@ class CheckExtension(ExtensionPoint):
 
 def load_checks(names: Iterable[str] | None = None) -> tuple[dict[str, object], list[str]]:
     """The registered checks (by entry point name, by priority) and one line per broken one."""
-    from nodl.plugins import instantiate_extensions
-
     broken: list[str] = []
     checks = instantiate_extensions(
         CHECK_GROUP, names=names,
@@ -54,9 +51,6 @@ def load_checks(names: Iterable[str] | None = None) -> tuple[dict[str, object], 
 def run_checks(context: AnalysisContext, checks: dict[str, object] | None = None
                ) -> Iterator[Finding]:
     """Every finding of every check; a check that raises becomes a ``broken-check`` finding."""
-    from nodl.analysis.findings import Finding, make_finding
-    from nodl.system.entities import Location
-
     broken: list[str] = []
     if checks is None:
         checks, broken = load_checks()

@@ -7,15 +7,15 @@ so that checks stay linear in the size of the system.
 from __future__ import annotations
 
 import fnmatch
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Iterable
 
-from nodl.analysis.instances import AnalysedNode
-from nodl.system.graph import System
+from nodl.system.connections import System
 from nodl.system.instance import NodeInstance
+from nodl.system.launched import SystemNode
 from nodl.targets.drafts import DraftGap
 
-__all__ = ['AnalysisSettings', 'AnalysisContext', 'SETTINGS_KEYS']
+__all__ = ['SETTINGS_KEYS', 'AnalysisContext', 'AnalysisSettings']
 
 #: The keys of the ``[analyse]`` table of ``nodl.toml`` (``[tool.nodl.analyse]`` in
 #: ``pyproject.toml``) and what each holds.
@@ -42,7 +42,7 @@ class AnalysisContext:
     """The launched system as the checks see it."""
 
     #: Every launched node, in launch order.
-    nodes: list[AnalysedNode]
+    nodes: list[SystemNode]
     settings: AnalysisSettings = field(default_factory=AnalysisSettings)
     #: The ament prefixes definitions were looked up in (None: ``AMENT_PREFIX_PATH``).
     prefixes: list[str] | None = None
@@ -51,11 +51,11 @@ class AnalysisContext:
         self._by_instance = {id(n.instance): n for n in self.nodes if n.instance is not None}
         #: The system of the nodes that have a definition.
         self.system = System([n.instance for n in self.nodes if n.instance is not None])
-        self._by_fqn: dict[str, list[AnalysedNode]] | None = None
+        self._by_fqn: dict[str, list[SystemNode]] | None = None
         self._gaps: dict[int, list[DraftGap]] | None = None
 
     @property
-    def by_fqn(self) -> dict[str, list[AnalysedNode]]:
+    def by_fqn(self) -> dict[str, list[SystemNode]]:
         """Final name -> the nodes launched under it (more than one is a duplicate); made on
         first use (a list per launched node is a lot for the collector to keep walking)."""
         by_fqn = self._by_fqn
@@ -65,12 +65,12 @@ class AnalysisContext:
                 by_fqn.setdefault(node.fqn, []).append(node)
         return by_fqn
 
-    def node_of(self, instance: NodeInstance) -> AnalysedNode:
+    def node_of(self, instance: NodeInstance) -> SystemNode:
         """The analysed node of an instance."""
         return self._by_instance[id(instance)]
 
     @property
-    def undefined(self) -> list[AnalysedNode]:
+    def undefined(self) -> list[SystemNode]:
         """The nodes without a usable definition (their endpoints are unknown), containers
         of composable nodes left out."""
         return [n for n in self.nodes if n.instance is None and n.entry.role != 'container']
@@ -96,10 +96,10 @@ class AnalysisContext:
                     gaps[id(node)] = by_file[file]
         return gaps
 
-    def gaps_of(self, node: AnalysedNode) -> list[DraftGap]:
+    def gaps_of(self, node: SystemNode) -> list[DraftGap]:
         """The unresolved entities of ``node``'s extracted draft (none for a complete definition)."""
         return self.draft_gaps.get(id(node), [])
 
-    def analysed(self) -> Iterable[AnalysedNode]:
+    def analysed(self) -> Iterable[SystemNode]:
         """The nodes with an instance."""
         return (n for n in self.nodes if n.instance is not None)

@@ -6,11 +6,19 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from nodl.analysis.system import Analysis
 from nodl.system.entities import Provider
+from nodl.system.run import Analysis
 
-__all__ = ['GraphError', 'Vertex', 'Edge', 'Cluster', 'Graph', 'build_graph', 'namespace_of',
-           'isolated_vertices']
+__all__ = [
+    'Cluster',
+    'Edge',
+    'Graph',
+    'GraphError',
+    'Vertex',
+    'build_graph',
+    'isolated_vertices',
+    'namespace_of',
+]
 
 #: Who provides an entity, in the order a node's interface is listed: the node's own code,
 #: then other code it uses (a mixin), then what the client library gives every node.
@@ -156,8 +164,6 @@ def _clusters(vertices: dict[str, Vertex]) -> dict[str, Cluster]:
 
 def build_graph(analysis: Analysis) -> Graph:
     """The graph of an analysis (one pass over nodes and findings)."""
-    from nodl.analysis.report import node_to_dict
-
     vertices: dict[str, Vertex] = {}
     node_ids: dict[str, str] = {}
     for node in analysis.nodes:
@@ -165,7 +171,7 @@ def build_graph(analysis: Analysis) -> Graph:
             continue  # a duplicate name: one vertex, the finding says there are two
         vid = f'n{len(node_ids)}'
         node_ids[node.fqn] = vid
-        vertices[vid] = Vertex(vid, 'node', node.fqn, _node_details(node, node_to_dict(node)),
+        vertices[vid] = Vertex(vid, 'node', node.fqn, _node_details(node, node.to_dict()),
                                defined=node.instance is not None,
                                namespace=namespace_of(node.fqn))
     channel_ids: dict[tuple[str, str], str] = {}

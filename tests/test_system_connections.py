@@ -1,12 +1,12 @@
-"""Systems (nodl.system.graph): connections per topic, service and action; peers."""
+"""Systems (nodl.system.connections): connections per topic, service and action; peers."""
 
 from __future__ import annotations
 
 import pytest
-
 from conftest import FIXTURES
+
 from nodl.system import EntityKind, NodeInstance, Provider, System, resolve_node
-from nodl.system.graph import Connection
+from nodl.system.connections import Connection
 
 SYSTEM = FIXTURES / 'system'
 

@@ -18,14 +18,15 @@ for it, since the unknown source may set the parameter.
 from __future__ import annotations
 
 import difflib
-from typing import Any, Iterator
+from collections.abc import Iterator
+from typing import Any
 
-from nodl.analysis.checks import CheckExtension
-from nodl.analysis.context import AnalysisContext
-from nodl.analysis.findings import Finding, make_finding
 from nodl.launch.params import RuntimeValue
 from nodl.model.parameter_types import TypeSpec
+from nodl.system.checks import CheckExtension
+from nodl.system.context import AnalysisContext
 from nodl.system.entities import EntityKind
+from nodl.system.findings import Finding, make_finding
 
 __all__ = ['ParameterCheck', 'launch_value_fits', 'launch_value_verdict', 'value_type_words']
 

@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
-from typing import Any, Iterator
+from collections.abc import Iterator
+from typing import Any
 
-from nodl.analysis.checks import CheckExtension
-from nodl.analysis.context import AnalysisContext
-from nodl.analysis.findings import Finding, make_finding
-from nodl.analysis.instances import AnalysedNode
 from nodl.naming import RemapRule
+from nodl.system.checks import CheckExtension
+from nodl.system.context import AnalysisContext
 from nodl.system.entities import Location
+from nodl.system.findings import Finding, make_finding
+from nodl.system.launched import SystemNode
 
 __all__ = ['DuplicateNodeCheck', 'UnusedRemapCheck']
 
@@ -38,7 +39,7 @@ def _action_part(node: Any, match: str, kind: str) -> tuple[str, str] | None:
 class DuplicateNodeCheck(CheckExtension):
     """Two launched nodes with the same final name (rcl lets them start; the graph cannot
     tell them apart, and their parameters and services collide).  When one of the names is
-    assumed (:attr:`AnalysedNode.name_assumed`) it is a warning that says so
+    assumed (:attr:`SystemNode.name_assumed`) it is a warning that says so
     (``assumed-duplicate-node``), not an error."""
 
     kinds = ('duplicate-node', 'assumed-duplicate-node')
@@ -46,8 +47,8 @@ class DuplicateNodeCheck(CheckExtension):
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """One finding per node launched under a name an earlier node already has."""
         # context.by_fqn's groups, made only for the names launched more than once (few)
-        first_of: dict[str, AnalysedNode] = {}
-        groups: dict[str, list[AnalysedNode]] = {}
+        first_of: dict[str, SystemNode] = {}
+        groups: dict[str, list[SystemNode]] = {}
         for node in context.nodes:
             first = first_of.setdefault(node.fqn, node)
             if first is not node:
@@ -70,7 +71,7 @@ class DuplicateNodeCheck(CheckExtension):
                               f'{fqn} is first launched here')])
 
 
-def _assumed_duplicate(fqn: str, first: AnalysedNode, other: AnalysedNode) -> Finding:
+def _assumed_duplicate(fqn: str, first: SystemNode, other: SystemNode) -> Finding:
     """The warning for two nodes whose shared final name rests on a name the analysis
     assumed (a program launched without a name may name its node itself at run time:
     two ``controller_manager spawner`` processes, for one)."""
@@ -103,7 +104,7 @@ class UnusedRemapCheck(CheckExtension):
         it uses.  A node-scoped rule (``other:chatter:=x``) is for the node of that name only
         (rcl applies it to that node alone): the other nodes given it are not its users."""
         # (where, rule text) -> the nodes given it, each with the rule as parsed for it
-        scopes: dict[tuple[Location, str], list[tuple[AnalysedNode, RemapRule]]] = {}
+        scopes: dict[tuple[Location, str], list[tuple[SystemNode, RemapRule]]] = {}
         used: set[tuple[Location, str]] = set()
         for node in context.nodes:
             names = node.names
@@ -125,7 +126,7 @@ class UnusedRemapCheck(CheckExtension):
                     used.add(key)  # used, or given to a node whose endpoints are unknown
         if len(used) == len(scopes):
             return
-        launched: dict[str, AnalysedNode] | None = None  # base name -> a node (made if needed)
+        launched: dict[str, SystemNode] | None = None  # base name -> a node (made if needed)
         for key, given in scopes.items():
             if key in used:
                 continue
@@ -142,7 +143,7 @@ class UnusedRemapCheck(CheckExtension):
 _CONTAINER_GLOBALS = ('/rosout', '/parameter_events')
 
 
-def _may_use(node: AnalysedNode, names: Any, rule: RemapRule) -> bool:
+def _may_use(node: SystemNode, names: Any, rule: RemapRule) -> bool:
     """True when ``node``, whose definition is unknown, may use ``rule``: any rule for it,
     except that a container's own interface is rclcpp_components' (its private services
     and rcl's topics), so a container uses only a rule for one of those."""
@@ -164,7 +165,7 @@ def _listed(names: list[str], most: int = 3) -> str:
     return f'{", ".join(names[:most])} and {len(names) - most} more'
 
 
-def _left_out(given: list[tuple[AnalysedNode, RemapRule]], context: AnalysisContext) -> list[str]:
+def _left_out(given: list[tuple[SystemNode, RemapRule]], context: AnalysisContext) -> list[str]:
     """The composable nodes that would use a rule given on their container's command line
     but do not get it: rclcpp_components loads a node without its process's global
     arguments unless ``forward_global_arguments`` is true (these have not)."""
@@ -190,8 +191,8 @@ def _left_out(given: list[tuple[AnalysedNode, RemapRule]], context: AnalysisCont
     return out
 
 
-def _unused(where: Location, given: list[tuple[AnalysedNode, RemapRule]],
-            launched: dict[str, AnalysedNode], context: AnalysisContext) -> Finding:
+def _unused(where: Location, given: list[tuple[SystemNode, RemapRule]],
+            launched: dict[str, SystemNode], context: AnalysisContext) -> Finding:
     """The finding for a rule written at ``where`` that none of the nodes ``given`` it uses."""
     node, rule = given[0]
     text = str(rule)

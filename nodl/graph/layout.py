@@ -7,14 +7,20 @@ import shutil
 import subprocess
 import sys
 
-from nodl.analysis.graph.model import GraphError
+from nodl.graph.model import GraphError
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from nodl.analysis.graph.model import Graph
+    from nodl.graph.model import Graph
 
-__all__ = ['LAYOUT_PROGRAM', 'VIEW', 'find_layout_program', 'layout_svg', 'layout_graph',
-           'fit_scale']
+__all__ = [
+    'LAYOUT_PROGRAM',
+    'VIEW',
+    'find_layout_program',
+    'fit_scale',
+    'layout_graph',
+    'layout_svg',
+]
 
 #: The picture's part of the page in a 1280x800 window (CSS pixels): what the layout is
 #: chosen to fit.
@@ -72,7 +78,7 @@ def layout_graph(graph: Graph, view: tuple[float, float] = VIEW) -> str:
     """The SVG of ``graph``: left to right as rqt_graph draws it, or top to bottom when that
     fits ``view`` at a larger scale (a long pipeline is far wider than a window, and fitted
     to it its labels would be dots)."""
-    from nodl.analysis.graph.dot import format_dot
+    from nodl.graph.dot import format_dot
 
     svg = layout_svg(format_dot(graph))
     scale = fit_scale(svg, view)

@@ -3,12 +3,12 @@
 
 from __future__ import annotations
 
-from typing import Iterator
+from collections.abc import Iterator
 
-from nodl.analysis.checks import CheckExtension
-from nodl.analysis.context import AnalysisContext
-from nodl.analysis.findings import Finding, make_finding
+from nodl.system.checks import CheckExtension
+from nodl.system.context import AnalysisContext
 from nodl.system.entities import EntityKind, Provider
+from nodl.system.findings import Finding, make_finding
 
 __all__ = ['OrphanCheck']
 
