@@ -1,12 +1,14 @@
 """The live layer's graph follower against real node processes: it sees nodes come and go
 within 100 ms of the local graph cache, settles on what is waited for (not the whole
-graph), and counts discovery from the session's start."""
+graph), counts discovery from the session's start, and (``nodl monitor``'s way) follows
+the graph in a thread of its own that tells of each change."""
 
 from __future__ import annotations
 
+import threading
 import time
 
-from nodl.live.graph_events import POLL_PERIOD, follower, graph_signature
+from nodl.live.graph_events import POLL_PERIOD, GraphFollower, follower, graph_signature
 from nodl.live.observe import list_nodes
 from nodl.live.session import ros_session
 
@@ -102,3 +104,57 @@ def test_discovery_is_watched_from_the_session_start_up_to_a_deadline() -> None:
         graph.watch_until(5.0, start + 0.3)  # ... stops watching at the deadline
         assert time.monotonic() - start < 1.5
         assert graph.watched < 1.5
+
+
+def test_a_watching_thread_tells_of_each_change_within_100_ms(ros_node) -> None:
+    """nodl monitor's follower: polled by a thread of its own (topic names every third poll,
+    service names never), which tells of every poll; a node appearing is in its counts, and
+    among the changes taken, within 100 ms of the local graph cache read directly."""
+    with ros_session() as session:
+        graph = GraphFollower(session, period=0.08, topics_every=3, services=False)
+        session.nodl_graph = graph
+        assert follower(session) is graph
+        told: list[bool] = []
+        woken = threading.Event()
+
+        def on_poll(changed: bool) -> None:
+            told.append(changed)
+            if changed:
+                woken.set()
+
+        graph.watch(on_poll)
+        try:
+            end = time.monotonic() + 5
+            while not told and time.monotonic() < end:  # the first poll
+                time.sleep(0.01)
+            assert told
+            graph.take_changes()
+            woken.clear()
+            node = ros_node('plain_node.py', 'watched', '/ge')
+            direct = followed = None
+            deadline = time.monotonic() + 15
+            while time.monotonic() < deadline and followed is None:
+                now = time.monotonic()
+                if direct is None and node.fqn in list_nodes(session):
+                    direct = now
+                if node.fqn in graph.counts:
+                    followed = now
+                time.sleep(0.002)
+            assert direct is not None and followed is not None
+            assert followed - direct <= 0.1
+            changes = graph.take_changes()
+            assert changes and all(a <= b for a, b in zip(changes, changes[1:]))
+            assert woken.is_set()
+            assert graph.take_changes() == []
+            assert graph.signature[2] is None  # no service names read
+            polls = len(told)
+            time.sleep(0.5)
+            assert 4 <= len(told) - polls <= 8  # every 80 ms, told each time
+            node.stop()
+            assert graph.wait(lambda: node.fqn not in graph.counts, time.monotonic() + 15)
+        finally:
+            graph.unwatch()
+        assert not any(t.name == 'nodl-graph-follower' for t in threading.enumerate())
+        polls = len(told)
+        time.sleep(0.2)
+        assert len(told) == polls  # stopped

@@ -65,11 +65,11 @@ def test_an_endpoint_is_converted_again_once_its_node_is_known() -> None:
     graph = _Graph()
     view = GraphView(graph)
     view._info_functions = lambda: (graph.publishers, lambda topic: [])  # type: ignore[method-assign]
-    first = view.scan(['/n'])
+    first = view.scan({'/n': 1}, ['/n'])
     assert [e.node for e in first.topics['/t']] == ['/_NODE_NAMESPACE_UNKNOWN_/_NODE_NAME_UNKNOWN_']
     assert first.of_node('/n') == ()
     graph.node_name, graph.node_namespace = 'n', '/'  # same endpoint (GID), its node now known
-    second = view.scan(['/n'])
+    second = view.scan({'/n': 1}, ['/n'])
     assert [(e.node, e.qos_dict['reliability']) for e in second.of_node('/n')] == [('/n', 'RELIABLE')]
     observed = observed_node('/n', second)
     assert observed is not None and observed.publishers[0].unobserved == ['history', 'depth']
@@ -89,20 +89,23 @@ def test_the_raw_infos_and_rclpy_s_own_methods_give_one_snapshot(
         talker = rclpy.create_node('graph_talker', namespace='/g', context=context)
         talker.create_publisher(std_msgs.msg.String, 'out', QoSProfile(
             depth=5, reliability=ReliabilityPolicy.BEST_EFFORT))
-        me = rclpy.create_node('_graph_me', context=context)
+        me = rclpy.create_node('_nodl_monitor_me', context=context)
         end = time.monotonic() + 10
         while time.monotonic() < end and not me.get_publishers_info_by_topic('/g/out'):
             time.sleep(0.05)
-        raw = GraphView(me, ['/_graph_me']).scan(['/g/graph_talker'])
+        present = {'/g/graph_talker': 1}
+        raw = GraphView(me).scan(present, ['/g/graph_talker'])
         # an rclpy whose extension lacks the raw calls (rclpy's own module keeps its own)
         from rclpy.impl import implementation_singleton
         with monkeypatch.context() as patch:
             patch.setattr(implementation_singleton, 'rclpy_implementation', object())
-            wrapped = GraphView(me, ['/_graph_me']).scan(['/g/graph_talker'])
+            wrapped = GraphView(me).scan(present, ['/g/graph_talker'])
         assert raw.topics == wrapped.topics
         assert [(e.node, e.kind, e.qos_dict['reliability']) for e in raw.topics['/g/out']] == [
             ('/g/graph_talker', 'publisher', 'BEST_EFFORT')]
-        assert '/_graph_me' not in {e.node for infos in raw.topics.values() for e in infos}
+        assert ('/g/out', ['std_msgs/msg/String']) in raw.endpoints['/g/graph_talker']['publishers']
+        # the toolkit's own nodes (the monitor's) are never the user's
+        assert '/_nodl_monitor_me' not in {e.node for infos in raw.topics.values() for e in infos}
     finally:
         rclpy.shutdown(context=context)
 

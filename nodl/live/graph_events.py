@@ -6,16 +6,27 @@ between short spins of the session's executor, every :data:`POLL_PERIOD` seconds
 change is seen within that period plus one spin (under 100 ms).  Every wait has a
 deadline.
 
-A session (:func:`~nodl.live.session.ros_session`) carries one
-:class:`GraphFollower`; every wait of the live layer spins through it
-(:func:`spin_once`), so what it knows of the graph (how many nodes hold each name) stays
-current while parameters and lifecycle states are read.  Namesakes are therefore watched
-for as long as the work lasts, and :attr:`GraphFollower.watched` says how long that was.
+A session (:func:`~nodl.live.session.ros_session`, or ``nodl monitor``'s node, see
+:func:`~nodl.live.session.open_session`) carries one :class:`GraphFollower`; every wait of
+the live layer spins through it (:func:`spin_once`), so what it knows of the graph (how
+many nodes hold each name) stays current while parameters and lifecycle states are read.
+Namesakes are therefore watched for as long as the work lasts, and
+:attr:`GraphFollower.watched` says how long that was.
+
+A long-running loop that must not wake up at every poll (an executor rebuilds its wait set
+of every entity at every wake-up: ``nodl monitor``'s steady-state budget) has the follower
+poll in a thread of its own instead (:meth:`GraphFollower.watch`), told of each poll, and
+takes the changes it found (:meth:`GraphFollower.take_changes`).  Such a follower may read
+the topic names only every few polls, and the service names not at all
+(``topics_every``, ``services``): with 50 nodes, 300 service names are three quarters of a
+poll's cost.
 """
 
 from __future__ import annotations
 
+import threading
 import time
+from collections import deque
 from typing import Any, Callable, Iterable, Iterator
 
 from nodl.naming import join_name
@@ -35,10 +46,12 @@ def _node_names(node: Any) -> list[tuple[str, str]]:
     return sorted(node.get_node_names_and_namespaces())
 
 
-def graph_signature(node: Any, nodes: Iterable[str] = ()) -> tuple[Any, ...]:
+def graph_signature(node: Any, nodes: Iterable[str] = (), *, topics: bool = True,
+                    services: bool = True) -> tuple[Any, ...]:
     """A value that changes when the local graph cache does: node names (each as often as
-    the graph holds it), topic and service names and types, and the endpoints of each of
-    ``nodes`` (fully qualified names) that is present."""
+    the graph holds it), topic and service names and types (None for those not read:
+    ``topics``, ``services``), and the endpoints of each of ``nodes`` (fully qualified
+    names) that is present."""
     from nodl.live.session import split_node_name
 
     names = _node_names(node)
@@ -57,8 +70,9 @@ def graph_signature(node: Any, nodes: Iterable[str] = ()) -> tuple[Any, ...]:
         except Exception:  # noqa: BLE001 - it vanished between two calls: the next poll sees it
             endpoints.append((fqn, None))
     return (tuple(names),
-            tuple((n, tuple(t)) for n, t in node.get_topic_names_and_types()),
-            tuple((n, tuple(t)) for n, t in node.get_service_names_and_types()),
+            tuple((n, tuple(t)) for n, t in node.get_topic_names_and_types()) if topics else None,
+            tuple((n, tuple(t)) for n, t in node.get_service_names_and_types()) if services
+            else None,
             tuple(endpoints))
 
 
@@ -69,13 +83,27 @@ class GraphFollower:
     when it last changed; :meth:`spin_once` spins the session's executor briefly, then
     polls; :meth:`changes` and :meth:`settle` wait on those changes until a deadline.
     ``started`` is when the session's discovery started (its participant's creation).
+    ``topics_every``: the topic names are read every that many polls (the first poll
+    included); ``services``: whether the service names are read (without, a service
+    added to a node is seen only through the node's followed endpoints).  :meth:`watch`
+    polls in a thread of its own instead of between spins.
     """
 
     def __init__(self, node: Any, *, started: float | None = None,
-                 period: float = POLL_PERIOD) -> None:
+                 period: float = POLL_PERIOD, topics_every: int = 1,
+                 services: bool = True) -> None:
         self.node = node
         self.period = period
+        self.topics_every = max(1, topics_every)
+        self.services = services
         self._started = time.monotonic() if started is None else started
+        self._polls = 0
+        # a watching thread and the session's own thread may both poll
+        self._lock = threading.RLock()
+        self._halt = threading.Event()
+        self._watcher: threading.Thread | None = None
+        #: When polls found a change, oldest first, until taken (:meth:`take_changes`).
+        self._change_times: deque[float] = deque(maxlen=1024)
         #: The nodes whose endpoints are part of the signature (see :meth:`follow`).
         self.followed: set[str] = set()
         self.signature: Any = None
@@ -110,19 +138,29 @@ class GraphFollower:
     def poll(self, *, force: bool = False) -> bool:
         """Read the local graph cache unless it was read less than ``period`` seconds ago
         (``force``: read it anyway); True if it changed since the last read."""
+        with self._lock:
+            now = time.monotonic()
+            if not force and now - self.polled_at < self.period:
+                return False
+            return self._poll()
+
+    def _poll(self) -> bool:
         from nodl.live.session import is_toolkit_node
 
-        now = time.monotonic()
-        if not force and now - self.polled_at < self.period:
-            return False
-        signature = graph_signature(self.node, self.followed)
+        topics = self._polls % self.topics_every == 0
+        self._polls += 1
+        signature = graph_signature(self.node, self.followed, topics=topics,
+                                    services=self.services)
         self.polled_at = time.monotonic()
-        counts: dict[str, int] = {}
-        for name, namespace in signature[0]:
-            fqn = join_name(namespace, name)
-            if not is_toolkit_node(fqn):
-                counts[fqn] = counts.get(fqn, 0) + 1
-        self.counts = counts
+        if not topics and self.signature is not None:  # not read this time: as they were
+            signature = (signature[0], self.signature[1], *signature[2:])
+        if signature[0] != self._parts.get('nodes'):
+            counts: dict[str, int] = {}
+            for name, namespace in signature[0]:
+                fqn = join_name(namespace, name)
+                if not is_toolkit_node(fqn):
+                    counts[fqn] = counts.get(fqn, 0) + 1
+            self.counts = counts
         parts = {'nodes': signature[0], 'topics': signature[1], 'services': signature[2],
                  **dict(signature[3])}
         for key in self.followed:
@@ -140,7 +178,16 @@ class GraphFollower:
         if not first or signature[0]:
             self.changed_at = self.polled_at
             self.changes_seen += 1
+            self._change_times.append(self.polled_at)
         return True
+
+    def take_changes(self) -> list[float]:
+        """When polls found the graph changed since the last call (``time.monotonic()``,
+        oldest first): for a loop that follows the graph through :meth:`watch`."""
+        taken = []
+        while self._change_times:
+            taken.append(self._change_times.popleft())
+        return taken
 
     def part(self, key: str) -> Any:
         """One part of the last poll's signature (see :attr:`part_changed_at`): the node
@@ -166,6 +213,38 @@ class GraphFollower:
     def watched(self) -> float:
         """Seconds of discovery the last poll covers (from the session's start)."""
         return max(0.0, self.polled_at - self.started)
+
+    # -- a thread of its own ----------------------------------------------------------------
+
+    def watch(self, on_poll: Callable[[bool], None]) -> None:
+        """Poll every ``period`` seconds in a thread of its own, calling ``on_poll(changed)``
+        (in that thread) after each poll, until :meth:`unwatch`: for a loop that sleeps in
+        its executor until something happens (``on_poll`` triggers a guard condition of it
+        when the graph changed) and takes the changes (:meth:`take_changes`).  The thread
+        ends by itself if reading the graph fails (the context shutting down)."""
+        if self._watcher is not None:
+            raise RuntimeError('the graph is already watched')
+        self._halt.clear()
+        self._watcher = threading.Thread(target=self._watch, args=(on_poll,),
+                                         name='nodl-graph-follower', daemon=True)
+        self._watcher.start()
+
+    def _watch(self, on_poll: Callable[[bool], None]) -> None:
+        while True:
+            try:
+                changed = self.poll(force=True)
+            except Exception:  # noqa: BLE001 - the context is shutting down: stop polling
+                return
+            on_poll(changed)
+            if self._halt.wait(self.period):
+                return
+
+    def unwatch(self) -> None:
+        """Stop the thread of :meth:`watch` (waits for it, up to a poll's time and a second)."""
+        watcher, self._watcher = self._watcher, None
+        if watcher is not None:
+            self._halt.set()
+            watcher.join(timeout=2 * self.period + 1.0)
 
     # -- waiting ---------------------------------------------------------------------------
 

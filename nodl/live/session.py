@@ -9,6 +9,7 @@ from typing import Any, Iterable, Iterator
 from contextlib import contextmanager
 
 __all__ = ['LiveError', 'NodeNotFound', 'DuplicateNode', 'require_rclpy', 'ros_session',
+           'open_session', 'close_session',
            'split_node_name', 'node_name_problem', 'OBSERVER_PREFIX',
            'HIDDEN_NODE_PREFIX', 'is_hidden_node', 'is_toolkit_node', 'without_toolkit_nodes',
            'MONITOR_NODE_NAME']
@@ -99,6 +100,53 @@ def split_node_name(name: str) -> tuple[str, str]:
     return split_name(name)
 
 
+def open_session(name: str, args: list[str], *, parameter_services: bool = False) -> Any:
+    """A node ``name`` in a private rclpy context started with ``args`` (as ``sys.argv``:
+    ``--ros-args`` and what follows), with what every live wait needs: its executor
+    (``nodl_executor``, the node added) and when its discovery started (``nodl_started``);
+    its graph follower (:func:`~nodl.live.graph_events.follower`) is made on first use.
+    rclpy installs no signal handlers (Ctrl-C and SIGTERM are the caller's).  End it with
+    :func:`close_session`.  Raises :class:`LiveError` when rclpy refuses ``args``.
+    """
+    rclpy = require_rclpy()
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.signals import SignalHandlerOptions
+
+    context = rclpy.Context()
+    try:
+        rclpy.init(context=context, args=args, signal_handler_options=SignalHandlerOptions.NO)
+    except Exception as exc:  # noqa: BLE001 - rcl's words for bad --ros-args
+        raise LiveError(f'cannot start the node {name}: {exc}') from None
+    try:
+        node = rclpy.create_node(name, context=context,
+                                 start_parameter_services=parameter_services,
+                                 enable_rosout=False)
+        executor = SingleThreadedExecutor(context=context)
+        executor.add_node(node)
+    except BaseException:
+        if context.ok():
+            rclpy.shutdown(context=context)
+        raise
+    node.nodl_executor = executor
+    #: When its discovery started (see nodl.live.observe.DISCOVERY_WINDOW).
+    node.nodl_started = time.monotonic()
+    return node
+
+
+def close_session(node: Any) -> None:
+    """Stop a session of :func:`open_session`: its graph follower's thread, the node, the
+    context (the other nodes made in it go with it)."""
+    import rclpy
+
+    graph = getattr(node, 'nodl_graph', None)
+    if graph is not None:
+        graph.unwatch()
+    context = node.context
+    node.destroy_node()
+    if context.ok():
+        rclpy.shutdown(context=context)
+
+
 @contextmanager
 def ros_session() -> Iterator[Any]:
     """Yield an observer node in a private rclpy context; everything is shut down after.
@@ -106,26 +154,9 @@ def ros_session() -> Iterator[Any]:
     The node is hidden and unique (see :data:`OBSERVER_PREFIX`); the live features
     leave it, and every other session's, out of what they report.
     """
-    rclpy = require_rclpy()
-    from rclpy.executors import SingleThreadedExecutor
-
-    context = rclpy.Context()
-    rclpy.init(context=context, args=['--ros-args', '--disable-rosout-logs',
-                                      '--log-level', 'fatal'])
-    node = None
+    node = open_session(f'{OBSERVER_PREFIX}{os.getpid()}_{next(_SESSIONS)}',
+                        ['--ros-args', '--disable-rosout-logs', '--log-level', 'fatal'])
     try:
-        node = rclpy.create_node(f'{OBSERVER_PREFIX}{os.getpid()}_{next(_SESSIONS)}',
-                                 context=context,
-                                 start_parameter_services=False,
-                                 enable_rosout=False)
-        executor = SingleThreadedExecutor(context=context)
-        executor.add_node(node)
-        node.nodl_executor = executor
-        #: When its discovery started (see nodl.live.observe.DISCOVERY_WINDOW).
-        node.nodl_started = time.monotonic()
         yield node
     finally:
-        if node is not None:
-            node.destroy_node()
-        if context.ok():
-            rclpy.shutdown(context=context)
+        close_session(node)

@@ -1,22 +1,20 @@
-"""Following the live graph: a cheap signature polled often, a full scan when it changes.
+"""The monitor's full scans of the live graph.
 
-rclpy exposes no graph guard condition, so the monitor polls the local graph cache: the
-:meth:`GraphView.signature` (node names, and every third time topic names and types: one
-or two calls into rcl, as they come, nothing converted; a topic list costs six times a
-node list) at up to 10 Hz, and a :meth:`GraphView.scan` (every node's
-endpoints, every topic's endpoint infos with QoS and type hash) when the signature
-changes, and periodically, since an endpoint recreated with another QoS leaves the names
-unchanged, and a service added to a running node changes no topic.  Service names are
-left out of the signature: with 50 nodes they are 300 names, three quarters of its cost.
+The graph is followed by the live layer's :class:`~nodl.live.graph_events.GraphFollower`
+(node names at 10 Hz, topic names every third poll: what changes when nodes or topics
+come or go), as every live verb follows it.  A :meth:`GraphView.scan` (the endpoints of
+the nodes asked for, every topic's endpoint infos with QoS, type hash and GID) is taken
+when the follower saw a change, and periodically, since an endpoint recreated with another
+QoS leaves the names unchanged, and a service added to a running node changes no topic.
 A scan converts only the endpoints it has not seen before (by GID and node name: an
-endpoint's QoS and type never change).  Nothing here spins: the caller's event loop does.
+endpoint's QoS and type never change).  Nothing here spins or polls.
 """
 
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable
+from typing import Any, Callable, Iterable, Mapping
 
 from nodl.live.observe import ACTION_INFIX, ObservedEndpoint, ObservedNode
 from nodl.live.qos import qos_from_rclpy
@@ -101,42 +99,24 @@ def _hash_text(value: Any) -> str:
 
 
 class GraphView:
-    """The graph as one rclpy ``node`` sees it, less ``own`` names (the monitor itself)."""
+    """The graph as one rclpy ``node`` sees it, less the toolkit's own nodes (the monitor
+    itself: see :func:`~nodl.live.session.is_toolkit_node`)."""
 
-    def __init__(self, node: Any, own: Iterable[str] = ()) -> None:
+    def __init__(self, node: Any) -> None:
         self.node = node
-        self.own = set(own)
         #: The endpoints converted by the last scan, by (topic, kind, GID, namespace, name).
         self._known: dict[tuple[str, str, bytes, str, str], TopicEndpoint | None] = {}
 
-    def _mine(self, fqn: str) -> bool:
-        return fqn in self.own or is_toolkit_node(fqn)
-
-    def signature(self, topics: bool = True, services: bool = False) -> tuple[Any, ...]:
-        """A cheap value that changes when nodes, (with ``topics``) topics or (with
-        ``services``) services come or go; without, services are found by the periodic
-        scans."""
-        node = self.node
-        return (sorted(node.get_node_names_and_namespaces()),
-                node.get_topic_names_and_types() if topics else None,
-                node.get_service_names_and_types() if services else None)
-
-    def counts(self) -> dict[str, int]:
-        """How many nodes of each fully qualified name the graph holds (less our own)."""
-        counts: dict[str, int] = {}
-        for name, namespace in self.node.get_node_names_and_namespaces():
-            fqn = join_name(namespace, name)
-            if not self._mine(fqn):
-                counts[fqn] = counts.get(fqn, 0) + 1
-        return counts
-
-    def scan(self, wanted: Iterable[str], everyone: bool = False) -> Snapshot:
-        """A full scan: the counts, the endpoints of the ``wanted`` nodes present (with
-        ``everyone``: of every node present), every topic's endpoint infos."""
+    def scan(self, counts: Mapping[str, int], wanted: Iterable[str],
+             everyone: bool = False) -> Snapshot:
+        """A full scan of the nodes ``counts`` holds (how many of each name: the graph
+        follower's, :attr:`~nodl.live.graph_events.GraphFollower.counts`): the endpoints
+        of the ``wanted`` nodes present (with ``everyone``: of every node present), every
+        topic's endpoint infos."""
         start = time.monotonic()
         process = time.process_time()
         node = self.node
-        snapshot = Snapshot(start, self.counts())
+        snapshot = Snapshot(start, dict(counts))
         for fqn in sorted(snapshot.counts) if everyone else wanted:
             if snapshot.counts.get(fqn, 0) < 1:
                 continue
@@ -209,7 +189,7 @@ class GraphView:
         from rclpy.topic_endpoint_info import TopicEndpointInfo
 
         owner = join_name(raw['node_namespace'], raw['node_name'])
-        if self._mine(owner):
+        if is_toolkit_node(owner):
             return None
         info = TopicEndpointInfo(**raw)
         qos, unobserved = qos_from_rclpy(info.qos_profile)

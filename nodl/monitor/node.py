@@ -5,12 +5,14 @@ The node (``_nodl_monitor``: hidden, and left out by the other live verbs) publi
 and at once when a status changes level (or gains or loses a finding).  It subscribes to
 ``/parameter_events`` (every change checked as it arrives) and, best effort, to every
 topic whose definition declares a deadline (its rate measured).  It follows the graph
-(:mod:`nodl.monitor.graph`) and calls each node's ``~/get_parameters`` service
+through the live layer's :class:`~nodl.live.graph_events.GraphFollower`, as every live
+verb does, scans it (:mod:`nodl.monitor.graph`) when it changed, and calls each node's
+``~/get_parameters`` service
 every ``liveness_period`` seconds (one node of a process in turn, all of them once one is
 silent): a node that stops answering for ``liveness_timeout`` seconds is ERROR long
 before its participant lease ends.  The rate subscriptions and liveness clients belong to
-a second hidden node that nothing waits on (taken from at each tick); the graph is polled
-by a thread that wakes the loop only on a change.  Bad input is kept
+a second hidden node that nothing waits on (taken from at each tick); the follower polls
+the graph in a thread of its own and wakes the loop only on a change.  Bad input is kept
 up with or said in ``nodl: system``: a parameter event storm is coalesced (NODL441),
 events lost are said and the parameters read again (NODL442), a graph that does not
 settle is said (NODL443), scans spaced out for the budget are said (NODL439).
@@ -28,14 +30,15 @@ it is shedding).
 from __future__ import annotations
 
 import fnmatch
-import threading
 import time
 from collections import deque
 from dataclasses import dataclass, field
 from typing import Any, Callable, Sequence
 
+from nodl.live.graph_events import GraphFollower
 from nodl.live.observe import ObservedNode, ObservedParameter
-from nodl.live.session import LiveError, MONITOR_NODE_NAME, is_hidden_node, require_rclpy
+from nodl.live.session import (LiveError, MONITOR_NODE_NAME, close_session, is_hidden_node,
+                               open_session, require_rclpy)
 from nodl.monitor.checks import (Finding, connection_findings, endpoint_findings,
                                         parameter_event_findings, rate_finding)
 from nodl.monitor.expected import DeadlineTopic, ExpectedNode, ExpectedSystem
@@ -47,8 +50,8 @@ __all__ = ['MonitorSettings', 'Monitor', 'DEFAULT_IGNORED', 'POLL_PERIOD']
 #: Nodes never reported as unexpected (besides hidden ones): launch_ros's own node and
 #: tf2's transform listener nodes.
 DEFAULT_IGNORED = ('launch_ros_*', 'transform_listener_impl_*')
-#: How often the graph's signature is polled (10 Hz, by a thread): node names each time,
-#: topic names every TOPIC_POLLS-th time.
+#: How often the graph follower polls (10 Hz, in its thread): node names each time, topic
+#: names every TOPIC_POLLS-th time, service names only with ``--once`` (see run).
 POLL_PERIOD = 0.1
 TOPIC_POLLS = 3
 #: ``--once`` watches at least this long: a participant that missed the middleware's first
@@ -176,8 +179,9 @@ class Monitor:
         self.on_change = on_change
         self.states = {fqn: _NodeState(node) for fqn, node in expected.nodes.items()}
         self.node: Any = None
-        self.context: Any = None
         self.executor: Any = None
+        #: The session's graph follower (polling in its thread while :meth:`run` runs).
+        self.graph: GraphFollower | None = None
         self.view: GraphView | None = None
         self.snapshot: Snapshot | None = None
         self.connections: dict[str, list[Finding]] = {}
@@ -188,8 +192,6 @@ class Monitor:
         self._published: dict[str, tuple[Any, ...]] = {}
         self._levels: dict[str, int] = {}
         self._once = False
-        #: Graph changes the poller thread found, oldest first (the loop takes them).
-        self._graph_changes: deque[float] = deque()
         #: When polls found the graph changed (the last CHURN_WINDOW seconds).
         self._changes: deque[float] = deque()
         self._next_scan = 0.0
@@ -216,9 +218,6 @@ class Monitor:
     def start(self) -> None:
         """Start rclpy (a private context), the node, its publisher and subscriptions."""
         rclpy = require_rclpy()
-        from rclpy.executors import SingleThreadedExecutor
-        from rclpy.signals import SignalHandlerOptions
-
         try:
             from diagnostic_msgs.msg import DiagnosticArray  # type: ignore[import-untyped]
             from rcl_interfaces.msg import ParameterEvent
@@ -226,23 +225,19 @@ class Monitor:
             raise LiveError(f'nodl monitor needs diagnostic_msgs ({exc}); install it '
                             '(pip install ros-diagnostic-msgs, or from your ROS distribution)'
                             ) from None
-        self.context = rclpy.Context()
-        try:
-            rclpy.init(context=self.context, args=['nodl_monitor', '--ros-args', *self.ros_args],
-                       signal_handler_options=SignalHandlerOptions.NO)
-        except Exception as exc:  # noqa: BLE001 - rcl's words for bad --ros-args
-            raise LiveError(f'cannot start the monitor node: {exc}') from None
         from rclpy.qos import QoSProfile, qos_profile_parameter_events
 
-        self.node = rclpy.create_node(MONITOR_NODE_NAME, context=self.context,
-                                      start_parameter_services=True, enable_rosout=False)
+        # one live session, as every live verb's (its executor, its graph follower)
+        self.node = open_session(MONITOR_NODE_NAME, ['nodl_monitor', '--ros-args', *self.ros_args],
+                                 parameter_services=True)
+        self.executor = self.node.nodl_executor
+        self.graph = GraphFollower(self.node, period=POLL_PERIOD, topics_every=TOPIC_POLLS,
+                                   services=False)
+        self.node.nodl_graph = self.graph
         self._declare_parameters()
-        self.probe = rclpy.create_node(MONITOR_NODE_NAME + '_probe', context=self.context,
+        self.probe = rclpy.create_node(MONITOR_NODE_NAME + '_probe', context=self.node.context,
                                        start_parameter_services=False, enable_rosout=False)
-        self.executor = SingleThreadedExecutor(context=self.context)
-        self.executor.add_node(self.node)
-        self.view = GraphView(self.node, [self.node.get_fully_qualified_name(),
-                                          self.probe.get_fully_qualified_name()])
+        self.view = GraphView(self.node)
         self.publisher = self.node.create_publisher(DiagnosticArray, '/diagnostics',
                                                     QoSProfile(depth=10))
         self.node.create_subscription(ParameterEvent, '/parameter_events', self._on_parameter_event,
@@ -251,17 +246,13 @@ class Monitor:
         self._subscribe_rates()
 
     def close(self) -> None:
-        """Destroy the node and shut its context down (safe to call twice)."""
-        import rclpy
-
+        """Destroy the nodes and shut the session down (safe to call twice)."""
         if self.probe is not None:
             self.probe.destroy_node()
             self.probe = None
         if self.node is not None:
-            self.node.destroy_node()
-            self.node = None
-        if self.context is not None and self.context.ok():
-            rclpy.shutdown(context=self.context)
+            node, self.node = self.node, None
+            close_session(node)
 
     def _declare_parameters(self) -> None:
         from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
@@ -341,17 +332,24 @@ class Monitor:
         """Run until ``stop()`` is true (checked at least every 0.1 s) or, with ``once``,
         until every expected node was seen and read (or ``wait`` seconds passed).  Returns
         the last statuses (published before returning)."""
-        assert self.node is not None and self.view is not None
+        assert self.node is not None and self.graph is not None
         deadline = time.monotonic() + wait if once else float('inf')
         self._once = once
         next_tick = next_publish = time.monotonic()
-        # the graph is polled by a thread that wakes the executor only when it changed (or
-        # ``stop()`` became true): every wake-up of an executor rebuilds its wait set
+        # --once's report waits for the graph to settle, and costs no steady state: it
+        # follows topic and service names at every poll
+        self.graph.topics_every = 1 if once else TOPIC_POLLS
+        self.graph.services = once
+        # the follower polls in its thread and wakes the executor only when the graph
+        # changed (or ``stop()`` became true): every wake-up of an executor rebuilds its
+        # wait set
         wake = self.node.create_guard_condition(lambda: None)
-        halt = threading.Event()
-        watcher = threading.Thread(target=self._watch, args=(wake, halt, stop),
-                                   name='nodl-monitor-graph', daemon=True)
-        watcher.start()
+
+        def on_poll(changed: bool) -> None:
+            if changed or stop():
+                wake.trigger()
+
+        self.graph.watch(on_poll)
         try:
             while not stop():
                 now = time.monotonic()
@@ -376,41 +374,12 @@ class Monitor:
                     self._publish(now)
                     next_publish = now + 1.0 / max(self.settings.publish_rate, 1e-3)
         finally:
-            halt.set()
-            watcher.join(timeout=2 * POLL_PERIOD + 1.0)
+            self.graph.unwatch()
             self.node.destroy_guard_condition(wake)
         now = time.monotonic()
         self._refresh(now, publish_changes=False)
         self._publish(now)
         return self.ordered_statuses()
-
-    def _watch(self, wake: Any, halt: threading.Event, stop: Callable[[], bool]) -> None:
-        """The graph poller (a thread): node names every POLL_PERIOD, topic names every
-        TOPIC_POLLS-th time (with ``--once``, whose report waits for the graph to settle
-        and costs no steady state: topic and service names every time); a change is
-        queued with its time and wakes the loop."""
-        assert self.view is not None
-        polls = 0
-        nodes_before: Any = None
-        names_before: Any = None
-        while True:
-            polls += 1
-            names = self._once or polls % TOPIC_POLLS == 1
-            try:
-                nodes, listed, served = self.view.signature(names, self._once)
-            except Exception:  # noqa: BLE001 - the context is shutting down: stop polling
-                return
-            changed = nodes != nodes_before
-            nodes_before = nodes
-            if names:
-                changed = changed or (listed, served) != names_before
-                names_before = (listed, served)
-            if changed:
-                self._graph_changes.append(time.monotonic())
-            if changed or stop():
-                wake.trigger()
-            if halt.wait(POLL_PERIOD):
-                return
 
     def ordered_statuses(self) -> list[Status]:
         """The statuses: the system's first, then the nodes' by name."""
@@ -439,12 +408,12 @@ class Monitor:
         return due
 
     def _follow(self, now: float, publish_at: float = float('inf')) -> None:
-        """Take the graph changes the poller queued; scan when one is wanted and due, and
+        """Take the graph changes the follower found; scan when one is wanted and due, and
         would end before the next periodic publication (``publish_at``) is due (else just
         after it: a scan of thousands of endpoints takes a while)."""
+        assert self.graph is not None
         changed = False
-        while self._graph_changes:
-            when = self._graph_changes.popleft()
+        for when in self.graph.take_changes():
             self._changes.append(when)
             self._stable_since = max(self._stable_since, when)
             changed = True
@@ -462,11 +431,13 @@ class Monitor:
             self._shedding = [w for w in self._shedding if w.split()[0] != why.split()[0]] + [why]
 
     def _scan(self, now: float) -> None:
-        assert self.view is not None
+        assert self.view is not None and self.graph is not None
         previous = self.snapshot
-        # --once reads every node's endpoints: its report waits for their discovery
-        snapshot = self.view.scan([fqn for fqn, s in self.states.items()
-                                   if s.expected.resolved is not None], everyone=self._once)
+        # --once reads every node's endpoints: its report waits for their discovery; the
+        # nodes present are those of the follower's last poll (what woke this scan)
+        snapshot = self.view.scan(self.graph.counts, [fqn for fqn, s in self.states.items()
+                                                      if s.expected.resolved is not None],
+                                  everyone=self._once)
         self.snapshot = snapshot
         self._scan_wanted = False
         self._min_scan_gap = snapshot.cost / self.settings.scan_budget
