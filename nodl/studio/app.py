@@ -20,6 +20,7 @@ from typing import Any
 from urllib.parse import parse_qs
 
 from starlette.applications import Starlette
+from starlette.concurrency import run_in_threadpool
 from starlette.requests import Request
 from starlette.responses import HTMLResponse, JSONResponse, PlainTextResponse, Response
 from starlette.routing import Mount, Route
@@ -134,8 +135,6 @@ def create_app(session: Session, token: str, port: Callable[[], int] | int) -> G
                 return JSONResponse({'ok': False, 'error': exc.message, 'diagnostics': []},
                                     status_code=400)
             # the session's work (reading definitions, analysing) runs off the event loop
-            from starlette.concurrency import run_in_threadpool
-
             return await run_in_threadpool(answer, lambda: method(data))
         return endpoint
 

@@ -14,6 +14,8 @@ import os
 from collections.abc import Mapping
 from typing import Any
 
+from nodl.writing import write_file
+
 __all__ = ['SUFFIX', 'layout_file', 'read_layout', 'write_layout']
 
 #: What the side file's name adds to the launch file's.
@@ -46,8 +48,6 @@ def read_layout(launch_file: str) -> dict[str, dict[str, float]]:
 def write_layout(launch_file: str, positions: Mapping[str, Mapping[str, Any]]) -> str:
     """Write the positions (final name -> ``{x, y}``) next to ``launch_file``; the side file's
     path.  :class:`nodl.writing.WriteError` when it cannot be written."""
-    from nodl.writing import write_file
-
     kept = {name: {'x': round(float(p['x']), 1), 'y': round(float(p['y']), 1)}
             for name, p in sorted(positions.items())}
     path = layout_file(launch_file)

@@ -12,6 +12,10 @@ from __future__ import annotations
 from typing import Any
 
 from nodl.diagnostics import Severity
+from nodl.registry.node_info import read_node_info
+from nodl.registry.registrations import list_registrations, one_run
+from nodl.system.entities import Provider
+from nodl.targets.resolve import resolve_target
 
 __all__ = ['PORT_KINDS', 'build_palette', 'matches', 'port_of']
 
@@ -30,11 +34,6 @@ def build_palette() -> list[dict[str, Any]]:
     and executable: ``{package, executable, node_name, origin, file, ports, parameters,
     description, problems}``.  A definition that does not resolve is listed with its first
     error in ``problems`` and no ports."""
-    from nodl.registry.node_info import read_node_info
-    from nodl.registry.registrations import list_registrations, one_run
-    from nodl.system.entities import Provider
-    from nodl.targets.resolve import resolve_target
-
     out: list[dict[str, Any]] = []
     with one_run():
         for registration in list_registrations(kind='node'):

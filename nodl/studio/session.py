@@ -24,8 +24,19 @@ import sys
 from collections.abc import Callable, Sequence
 from typing import Any
 
+from nodl.composer import Change, ComposerError, Composition, Kept, Remap
+from nodl.composer.ports import ports_of, verdict
+from nodl.composer.values import xml_value
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.launch.sandbox import LaunchLimits
+from nodl.naming import namespace_error, node_name_error, parse_remap_rules
+from nodl.registry.overlay import using
 from nodl.studio.guard import FolderGuard
+from nodl.studio.layout import layout_file, read_layout, write_layout
+from nodl.studio.palette import build_palette
+from nodl.system.entities import Provider
+from nodl.validation.validators import lookup
+from nodl.writing import WriteError
 
 __all__ = ['NOT_RUN_CODES', 'SUFFIXES', 'Session', 'StudioError', 'port_id']
 
@@ -74,15 +85,19 @@ def _value_text(value: Any) -> str | None:
     """A parameter value as the editor shows it (launch's typing reads it back the same)."""
     if value is None:
         return None
-    from nodl.composer.values import xml_value
+    key = (type(value).__name__, repr(value))
+    text = _VALUE_TEXTS.get(key)
+    if text is None:
+        text = _VALUE_TEXTS[key] = xml_value(value)[0]
+    return text
 
-    return xml_value(value)[0]
+
+#: Texts of values shown already (a 100-node system shows the same defaults again and again).
+_VALUE_TEXTS: dict[tuple[str, str], str] = {}
 
 
 def _constraints(definition: Any) -> str:
     """A parameter's validators (and additional constraints) in words."""
-    from nodl.validation.validators import lookup
-
     words = []
     for key, raw in (getattr(definition, 'validation', None) or {}).items():
         rule = lookup(key)
@@ -101,8 +116,6 @@ class Session:
                  roots: Sequence[str] = (), execute: bool = True,
                  definition_folders: Sequence[str] = (),
                  exporters: dict[str, Callable[..., list[str]]] | None = None) -> None:
-        from nodl.composer.composition import ComposerError, Composition
-        from nodl.launch.sandbox import LaunchLimits
 
         self.launch_file = os.path.abspath(launch_file)
         self.guard = FolderGuard([os.path.dirname(self.launch_file), *roots])
@@ -131,8 +144,6 @@ class Session:
     def palette(self) -> dict[str, Any]:
         """``{'palette': [...]}``: every definition the toolkit finds (computed once)."""
         if self._palette is None:
-            from nodl.studio.palette import build_palette
-            from nodl.targets.overlay import using
 
             with using(self.definitions):
                 self._palette = build_palette()
@@ -140,7 +151,6 @@ class Session:
 
     def _positions(self) -> dict[str, dict[str, float]]:
         if self._positions_cache is None:
-            from nodl.studio.layout import read_layout
 
             self._positions_cache = read_layout(self.launch_file) \
                 if self.guard.inside(self.launch_file) else {}
@@ -152,10 +162,6 @@ class Session:
 
     def snapshot(self) -> dict[str, Any]:
         """The state the page draws (see the module docstring)."""
-        from nodl.composer.ports import ports_of
-        from nodl.system.entities import Provider
-        from nodl.targets.overlay import using
-
         composition = self.composition
         with using(self.definitions):
             analysis = composition.analyse()
@@ -182,6 +188,7 @@ class Session:
                     'parameters': {}, 'remaps': [], 'kept': [],
                     'definition': launched.match.file if launched.match.resolved is not None
                     else None, 'included': True}, launched))
+            by_id = {n.id: n for n in composition.nodes}
             for item, launched in launched_of:
                 ports = []
                 for port in ports_of(item['id'], launched):
@@ -192,7 +199,7 @@ class Session:
                     by_entity[id(bound.instance), id(bound.entity)] = key
                     ports.append({'kind': port.kind, 'name': port.name,
                                   'final': port.final_name, 'type': port.type})
-                nodes.append(self._node(composition, item, ports))
+                nodes.append(self._node(composition, item, ports, by_id.get(item['id'])))
             edges = self._edges(analysis, by_entity)
         counts = {'error': 0, 'warning': 0, 'info': 0}
         for finding in findings:
@@ -229,8 +236,8 @@ class Session:
                                                       lone_servers=False):
             for offering in connection.offering:
                 source = by_entity.get((id(offering.instance), id(offering.entity)))
-                for using in connection.using:
-                    target = by_entity.get((id(using.instance), id(using.entity)))
+                for user in connection.using:
+                    target = by_entity.get((id(user.instance), id(user.entity)))
                     if source is None or target is None:
                         continue
                     out.append({'id': f'e:{source}>{target}', 'source': source,
@@ -239,16 +246,14 @@ class Session:
                                 'type': offering.entity.type_name})
         return out
 
-    def _node(self, composition: Any, item: dict[str, Any],
-              ports: list[dict[str, Any]]) -> dict[str, Any]:
+    def _node(self, composition: Any, item: dict[str, Any], ports: list[dict[str, Any]],
+              node: Any) -> dict[str, Any]:
         fqn = item['fqn']
         namespace, _, name = fqn.rpartition('/')
-        node = None if item.get('included') else composition.node(item['id'])
         resolved = composition.definition_of(node) if node is not None else None
         given = item.get('parameters') or {}
         parameters = []
         if resolved is not None:
-            from nodl.system.entities import Provider
 
             for entity in resolved.entities:
                 if not entity.is_parameter:
@@ -310,8 +315,6 @@ class Session:
     def add(self, data: dict[str, Any]) -> dict[str, Any]:
         """Add ``{package, executable, name, namespace}`` (a free name is chosen when the
         name is taken in that namespace)."""
-        from nodl.targets.overlay import using
-
         package, executable = _text(data, 'package'), _text(data, 'executable')
         name = _text(data, 'name', required=False) or executable
         namespace = _text(data, 'namespace', required=False) or '/'
@@ -341,8 +344,6 @@ class Session:
 
     def connect(self, data: dict[str, Any]) -> dict[str, Any]:
         """Join ports ``{a, b}`` (page port identifiers)."""
-        from nodl.targets.overlay import using
-
         with using(self.definitions):
             change = self.composition.connect(self._port_ref(data.get('a')),
                                               self._port_ref(data.get('b')))
@@ -351,8 +352,6 @@ class Session:
 
     def disconnect(self, data: dict[str, Any]) -> dict[str, Any]:
         """Part ports ``{a, b}``."""
-        from nodl.targets.overlay import using
-
         with using(self.definitions):
             change = self.composition.disconnect(self._port_ref(data.get('a')),
                                                  self._port_ref(data.get('b')))
@@ -362,8 +361,6 @@ class Session:
         """``{port}`` -> ``{'ports': {port id: {ok, verdict, reason}}}`` for every other port:
         the composer's verdict (kinds pair, same type, QoS can connect), from the last
         analysis's ports (nothing is analysed again)."""
-        from nodl.composer.ports import verdict
-
         node_id, kind, name = _split_port(data.get('port'))
         composition = self.composition
         all_ports = {n.id: composition.ports(n) for n in composition.nodes}
@@ -389,8 +386,6 @@ class Session:
     def set_parameter(self, data: dict[str, Any]) -> dict[str, Any]:
         """Set ``{node, name, value}`` (the value's text, typed as launch types it); refused,
         with the errors, when it breaks the declared type or a validator."""
-        from nodl.targets.overlay import using
-
         ref = self._node_ref(data)
         with using(self.definitions):
             change = self.composition.set_parameter(ref, _text(data, 'name'),
@@ -399,8 +394,6 @@ class Session:
 
     def rename(self, data: dict[str, Any]) -> dict[str, Any]:
         """Give ``{node}`` the ``name`` and ``namespace`` of its entry (empty: none)."""
-        from nodl.naming import namespace_error, node_name_error
-
         ref = self._node_ref(data)
         node = self.composition.node(ref)
         assert node is not None
@@ -432,7 +425,6 @@ class Session:
             node.name = name or None
             node.namespace = namespace or None
             self.composition._changed(node)
-            from nodl.composer.composition import Change
 
             change = Change([], node.id)
         answer = self._answer(change)
@@ -443,8 +435,6 @@ class Session:
 
     def set_remaps(self, data: dict[str, Any]) -> dict[str, Any]:
         """Replace ``{node}``'s own rules with ``remaps`` (``[[from, to], ...]``)."""
-        from nodl.naming import parse_remap_rules
-
         ref = self._node_ref(data)
         node = self.composition.node(ref)
         assert node is not None
@@ -465,8 +455,6 @@ class Session:
         if setter is not None:
             change = setter(ref, [(a, b) for a, b in rules])
         else:  # (see /tmp/h/studio-needs.md)
-            from nodl.composer.composition import Change
-            from nodl.composer.model import Kept, Remap
 
             kept = [r for r in node.remaps if isinstance(r, Kept)]
             node.remaps = [*kept, *(Remap(a, b) for a, b in rules)]
@@ -507,8 +495,6 @@ class Session:
         return {'ok': True, 'file': written}
 
     def _write_positions(self) -> str | None:
-        from nodl.studio.layout import layout_file, write_layout
-        from nodl.writing import WriteError
 
         side = layout_file(self.launch_file)
         problem = self.guard.check(side, 'the positions file')
@@ -572,7 +558,6 @@ class Session:
                                  "launch files' Python code never runs", file=self.launch_file,
                                  code='NODL994')
             raise StudioError(problem.message, [problem], status=403)
-        from nodl.launch.sandbox import LaunchLimits
 
         self.code_ran = True
         self.composition.limits = LaunchLimits(execute=True)
