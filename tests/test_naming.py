@@ -109,11 +109,25 @@ def test_relativize_then_expand_gives_the_name_back(name: str, namespace: str) -
 
 # -- expand_name: rcl's expansion with rcl's validation --------------------------------------
 
-from nodl.naming import (  # noqa: E402
-    InvalidNameError, InvalidRemapRuleError, NodeNames, RemapRule, expand_name, full_name_error,
-    join_name, namespace_error, node_fqn, node_name_after_remaps, node_name_error,
-    node_namespace_after_remaps, parse_remap_rule, parse_remap_rules, resolve_name, split_name,
-    topic_name_error)
+from nodl.naming import (
+    InvalidNameError,
+    InvalidRemapRuleError,
+    NodeNames,
+    RemapRule,
+    expand_name,
+    full_name_error,
+    join_name,
+    namespace_error,
+    node_fqn,
+    node_name_after_remaps,
+    node_name_error,
+    node_namespace_after_remaps,
+    parse_remap_rule,
+    parse_remap_rules,
+    resolve_name,
+    split_name,
+    topic_name_error,
+)
 
 
 @pytest.mark.parametrize('name, namespace', list(itertools.product(_NAMES, _NAMESPACES)))
@@ -359,6 +373,8 @@ _NOT_ROS_NAMES = {
     # the diagnostic aggregator's status paths: not ROS graph names being built
     ('nodl/analysis/checks/definitions.py', "f'as DIR/{node.match.package}/{node.match.key}.nodl.yaml and give --definitions DIR)',"),
     ('nodl/analysis/checks/names.py', "return expanded.startswith(names.fqn.rstrip('/') + '/') or expanded in _CONTAINER_GLOBALS"),
+    ('nodl/system/checks/definitions.py', "f'as DIR/{node.match.package}/{node.match.key}.nodl.yaml and give --definitions DIR)',"),
+    ('nodl/system/checks/names.py', "return expanded.startswith(names.fqn.rstrip('/') + '/') or expanded in _CONTAINER_GLOBALS"),
     ('nodl/extract/targets.py', 'Severity.INFO, f"component {node.plugin} is not recorded in {node.package}/{NODES_FILE}: a "'),
     ('nodl/interface_types/resolve.py', "return f'{self.package}/{self.namespace}/{self.name}'"),
     ('nodl/interface_types/resolve.py', "return sorted(f'{self.name}/{ns}/{name}' for ns, name in self.types"),

@@ -34,20 +34,42 @@ graph (already valid): they accept namespaces written without the leading
 
 from __future__ import annotations
 
-from nodl.naming.remap_rules import (RULE_KINDS, InvalidRemapRuleError, RemapArgs, RemapRule,
-                                            parse_remap_rule, parse_remap_rules)
-from nodl.naming.resolution import (NodeNames, declared_name_error, declared_names, expand, expand_name,
-                                           fully_qualified,
-                                           join_name, node_fqn, node_name_after_remaps,
-                                           node_namespace_after_remaps, relativize, resolve_name,
-                                           split_name)
-from nodl.naming.validation import (InvalidNameError, full_name_error, namespace_error,
-                                           node_name_error, normalize_namespace, topic_name_error)
+from nodl.naming.remap_rules import (
+    RULE_KINDS,
+    InvalidRemapRuleError,
+    RemapArgs,
+    RemapRule,
+    parse_remap_rule,
+    parse_remap_rules,
+)
+from nodl.naming.resolution import (
+    NodeNames,
+    declared_name_error,
+    declared_names,
+    expand,
+    expand_name,
+    fully_qualified,
+    join_name,
+    node_fqn,
+    node_name_after_remaps,
+    node_namespace_after_remaps,
+    relativize,
+    resolve_name,
+    split_name,
+)
+from nodl.naming.validation import (
+    InvalidNameError,
+    full_name_error,
+    namespace_error,
+    node_name_error,
+    normalize_namespace,
+    topic_name_error,
+)
 
 __all__ = [
-    'InvalidNameError', 'InvalidRemapRuleError', 'RemapRule', 'RemapArgs', 'RULE_KINDS',
-    'NodeNames', 'declared_name_error', 'topic_name_error', 'full_name_error', 'namespace_error', 'node_name_error',
-    'normalize_namespace', 'expand_name', 'parse_remap_rule', 'parse_remap_rules',
-    'node_name_after_remaps', 'node_namespace_after_remaps', 'node_fqn', 'resolve_name',
-    'join_name', 'split_name', 'expand', 'relativize', 'fully_qualified', 'declared_names',
+    'RULE_KINDS', 'InvalidNameError', 'InvalidRemapRuleError', 'NodeNames', 'RemapArgs', 'RemapRule',
+    'declared_name_error', 'declared_names', 'expand', 'expand_name', 'full_name_error',
+    'fully_qualified', 'join_name', 'namespace_error', 'node_fqn', 'node_name_after_remaps',
+    'node_name_error', 'node_namespace_after_remaps', 'normalize_namespace', 'parse_remap_rule',
+    'parse_remap_rules', 'relativize', 'resolve_name', 'split_name', 'topic_name_error',
 ]

@@ -9,13 +9,18 @@ backreferences (rcl does not implement them).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Iterable, Sequence, Union
+from collections.abc import Iterable, Sequence
 
 from nodl.naming.validation import ALNUM, DIGITS
 
-__all__ = ['InvalidRemapRuleError', 'RULE_KINDS', 'RemapRule', 'RemapArgs', 'parse_remap_rule',
-           'parse_remap_rules']
+__all__ = [
+    'RULE_KINDS',
+    'InvalidRemapRuleError',
+    'RemapArgs',
+    'RemapRule',
+    'parse_remap_rule',
+    'parse_remap_rules',
+]
 
 
 class InvalidRemapRuleError(ValueError):
@@ -35,9 +40,15 @@ class InvalidRemapRuleError(ValueError):
 RULE_KINDS = ('name', 'topic', 'service', 'namespace', 'node')
 
 
-@dataclass(frozen=True)
 class RemapRule:
-    """One remapping rule, as rcl parses ``[node:]match:=replacement``."""
+    """One remapping rule, as rcl parses ``[node:]match:=replacement``.
+
+    Immutable and compared by value (its fields, as a frozen dataclass would be; a plain
+    class because ``nodl validate`` loads this package and cannot afford the start-up
+    time of :mod:`dataclasses`).
+    """
+
+    __slots__ = ('kind', 'match', 'node', 'replacement', 'text')
 
     #: One of :data:`RULE_KINDS`.
     kind: str
@@ -46,9 +57,42 @@ class RemapRule:
     #: The replacement: a name, a namespace (``__ns``) or a node name (``__node``).
     replacement: str
     #: The node the rule is limited to (``node:...``), or ``None`` for every node.
-    node: str | None = None
+    node: str | None
     #: The rule as written.
-    text: str = ''
+    text: str
+
+    def __init__(self, kind: str, match: str | None, replacement: str, node: str | None = None,
+                 text: str = '') -> None:
+        # (object.__setattr__: this class's own refuses every assignment)
+        object.__setattr__(self, 'kind', kind)
+        object.__setattr__(self, 'match', match)
+        object.__setattr__(self, 'replacement', replacement)
+        object.__setattr__(self, 'node', node)
+        object.__setattr__(self, 'text', text)
+
+    def _fields(self) -> tuple[str, str | None, str, str | None, str]:
+        return (self.kind, self.match, self.replacement, self.node, self.text)
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, RemapRule) and other.__class__ is self.__class__:
+            return self._fields() == other._fields()
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(self._fields())
+
+    def __repr__(self) -> str:
+        return (f'{type(self).__name__}(kind={self.kind!r}, match={self.match!r}, '
+                f'replacement={self.replacement!r}, node={self.node!r}, text={self.text!r})')
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f'cannot assign to field {name!r}: a RemapRule is immutable')
+
+    def __delattr__(self, name: str) -> None:
+        raise AttributeError(f'cannot delete field {name!r}: a RemapRule is immutable')
+
+    def __reduce__(self) -> tuple[type[RemapRule], tuple[str, str | None, str, str | None, str]]:
+        return (type(self), self._fields())
 
     def applies_to(self, node_name: str) -> bool:
         """True if the rule is for every node or for ``node_name``."""
@@ -210,7 +254,7 @@ def parse_remap_rule(rule: str) -> RemapRule:
 
 #: What the functions taking remapping rules accept: :class:`RemapRule` objects,
 #: ``from:=to`` strings, or a command line with ``--ros-args``.
-RemapArgs = Union[Sequence[RemapRule], Sequence[str], Iterable[Union[str, RemapRule]], None]
+RemapArgs = Sequence[RemapRule] | Sequence[str] | Iterable[str | RemapRule] | None
 
 _REMAP_FLAGS = ('-r', '--remap')
 # ROS arguments that take a value (skipped with it); the others are single flags.

@@ -3,18 +3,36 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from functools import cached_property, lru_cache
+from functools import lru_cache
 
 from nodl.naming.remap_rules import RemapArgs, RemapRule, parse_remap_rules
-from nodl.naming.validation import (_VALID_FULL_NAME, TOPIC_MAX_LENGTH, InvalidNameError,
-                                           checked_namespace, full_name_error, namespace_error,
-                                           normalize_namespace, topic_name_error)
+from nodl.naming.validation import (
+    _VALID_FULL_NAME,
+    TOPIC_MAX_LENGTH,
+    InvalidNameError,
+    checked_namespace,
+    full_name_error,
+    namespace_error,
+    normalize_namespace,
+    topic_name_error,
+)
 from nodl.vocabulary import NAME_SUBSTITUTIONS
 
-__all__ = ['declared_name_error', 'expand_name', 'node_name_after_remaps', 'node_namespace_after_remaps', 'NodeNames',
-           'node_fqn', 'resolve_name', 'join_name', 'split_name', 'expand', 'relativize',
-           'fully_qualified', 'declared_names']
+__all__ = [
+    'NodeNames',
+    'declared_name_error',
+    'declared_names',
+    'expand',
+    'expand_name',
+    'fully_qualified',
+    'join_name',
+    'node_fqn',
+    'node_name_after_remaps',
+    'node_namespace_after_remaps',
+    'relativize',
+    'resolve_name',
+    'split_name',
+]
 
 
 # -- expansion (rcl_expand_topic_name) ---------------------------------------------------------
@@ -105,21 +123,62 @@ def node_namespace_after_remaps(node_name: str, namespace: str,
     return normalize_namespace(namespace)
 
 
-@dataclass(frozen=True)
 class NodeNames:
     """A node's final name and namespace with its rules: resolves names as the node does.
 
     Build it with :meth:`create` from the name and namespace a node is
     created with (``__node``/``__ns`` rules are applied), or directly from the
     final name and namespace of a running node (as the graph reports them).
+    Immutable and compared by value (name, namespace, rules), as a frozen dataclass
+    would be (a plain class: ``nodl validate`` cannot afford loading :mod:`dataclasses`).
     """
+
+    __slots__ = ('_prefixes_', '_tables', 'fqn', 'name', 'namespace', 'rules')
 
     #: The node's final name.
     name: str
     #: The node's final, absolute namespace.
     namespace: str
     #: Every rule the node was given (``__node``/``__ns`` rules are already reflected above).
-    rules: tuple[RemapRule, ...] = ()
+    rules: tuple[RemapRule, ...]
+    #: ``/namespace/name``.
+    fqn: str
+    # What follows is asked for every entity of every launched node: what depends on the
+    # node only (its checked namespace, the prefixes names expand to, its rules' expanded
+    # match sides) is computed once, when first asked, and kept beside the fields (not
+    # compared, not shown).
+    _prefixes_: tuple[str, str, str] | None
+    _tables: tuple[tuple[dict[str, RemapRule], str | None], ...] | None
+
+    def __init__(self, name: str, namespace: str, rules: tuple[RemapRule, ...] = ()) -> None:
+        # (object.__setattr__: this class's own refuses every assignment)
+        object.__setattr__(self, 'name', name)
+        object.__setattr__(self, 'namespace', namespace)
+        object.__setattr__(self, 'rules', rules)
+        object.__setattr__(self, 'fqn', join_name(namespace, name))
+        object.__setattr__(self, '_prefixes_', None)
+        object.__setattr__(self, '_tables', None)
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, NodeNames) and other.__class__ is self.__class__:
+            return (self.name, self.namespace, self.rules) == (other.name, other.namespace, other.rules)
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash((self.name, self.namespace, self.rules))
+
+    def __repr__(self) -> str:
+        return (f'{type(self).__name__}(name={self.name!r}, namespace={self.namespace!r}, '
+                f'rules={self.rules!r})')
+
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f'cannot assign to field {name!r}: NodeNames are immutable')
+
+    def __delattr__(self, name: str) -> None:
+        raise AttributeError(f'cannot delete field {name!r}: NodeNames are immutable')
+
+    def __reduce__(self) -> tuple[type[NodeNames], tuple[str, str, tuple[RemapRule, ...]]]:
+        return (type(self), (self.name, self.namespace, self.rules))
 
     @classmethod
     def create(cls, node_name: str, namespace: str, remap_args: RemapArgs = None) -> NodeNames:
@@ -130,17 +189,9 @@ class NodeNames:
         rules = parse_remap_rules(remap_args) if remap_args else []  # (most nodes: none)
         namespace = checked_namespace(node_name, namespace)
         if not rules:  # most launched nodes: nothing renames them, and both names are checked
+            names = cls(node_name, namespace, ())
             under = namespace if namespace == '/' else namespace + '/'
-            fqn = under + node_name  # (join_name's result for a checked namespace)
-            if cls is not NodeNames:
-                names = cls(node_name, namespace, ())
-                object.__setattr__(names, '_prefixes_', (namespace, fqn, under))
-                return names
-            # A frozen dataclass's __init__ sets each field through object.__setattr__: the
-            # fields and what is kept beside them are put in the new object's __dict__ at once.
-            names = object.__new__(cls)
-            names.__dict__.update(name=node_name, namespace=namespace, rules=(),
-                                  _prefixes_=(namespace, fqn, under), fqn=fqn)
+            object.__setattr__(names, '_prefixes_', (namespace, names.fqn, under))
             return names
         final_name = node_name_after_remaps(node_name, rules)
         # rcl_node_init: the __ns rule's node scope is compared with the name after __node
@@ -152,18 +203,6 @@ class NodeNames:
                 return cls(final_name, rule.replacement, tuple(rules))
         return cls(final_name, namespace, tuple(rules))
 
-    # What follows is asked for every entity of every launched node: what depends on the
-    # node only (its checked namespace, the prefixes names expand to, its rules' expanded
-    # match sides) is computed once and kept in the instance's __dict__ (the dataclass is
-    # frozen, and these are not fields: equality and repr are unchanged).
-
-    # (kept in the instance's __dict__ under its own name, where reading it again is a plain
-    # attribute look-up: every check asks every node's)
-    @cached_property
-    def fqn(self) -> str:
-        """``/namespace/name``."""
-        return join_name(self.namespace, self.name)
-
     def _checked_namespace(self) -> str:
         """The node's namespace, its name and namespace checked once (:func:`expand_name`
         checks them for every name; a node expands many)."""
@@ -172,7 +211,7 @@ class NodeNames:
     def _prefixes(self) -> tuple[str, str, str]:
         """``(checked namespace, what '~' stands for, what a relative name is put under)``;
         raises :class:`InvalidNameError` if the node's name or namespace is invalid."""
-        prefixes: tuple[str, str, str] | None = self.__dict__.get('_prefixes_')
+        prefixes = self._prefixes_
         if prefixes is None:
             namespace = checked_namespace(self.name, self.namespace)
             under = namespace if namespace == '/' else namespace + '/'
@@ -182,7 +221,7 @@ class NodeNames:
 
     def _expanded(self, name: str) -> str:
         """:func:`_expand` of a ``name`` :func:`topic_name_error` accepts, for this node."""
-        prefixes = self.__dict__.get('_prefixes_') or self._prefixes()
+        prefixes = self._prefixes_ or self._prefixes()
         if '{' in name:
             return _expand(name, self.name, prefixes[0])
         first = name[0]
@@ -206,7 +245,7 @@ class NodeNames:
     def _rule_for_expanded(self, expanded: str, service: bool) -> RemapRule | None:
         if not self.rules:
             return None
-        tables = self.__dict__.get('_rule_tables') or self._rule_tables()
+        tables = self._tables or self._rule_tables()
         found, failing = tables[1 if service else 0]
         rule = found.get(expanded)
         if rule is None and failing is not None:
@@ -231,7 +270,7 @@ class NodeNames:
                         break
             tables.append((found, failing))
         out = tuple(tables)
-        object.__setattr__(self, '_rule_tables', out)
+        object.__setattr__(self, '_tables', out)
         return out
 
     def topic_remaps(self) -> dict[str, str]:
@@ -258,7 +297,7 @@ class NodeNames:
         if problem:
             raise InvalidNameError('topic name', name, problem)
         # (the prefixes asked even for an absolute name: they check the node's own names)
-        prefixes = self.__dict__.get('_prefixes_') or self._prefixes()
+        prefixes = self._prefixes_ or self._prefixes()
         if under > 0:
             resolved = prefixes[under] + tail
         elif under:

@@ -9,8 +9,15 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 
-__all__ = ['InvalidNameError', 'topic_name_error', 'full_name_error', 'namespace_error',
-           'node_name_error', 'normalize_namespace', 'checked_namespace']
+__all__ = [
+    'InvalidNameError',
+    'checked_namespace',
+    'full_name_error',
+    'namespace_error',
+    'node_name_error',
+    'normalize_namespace',
+    'topic_name_error',
+]
 
 #: rmw's limits (``RMW_TOPIC_MAX_NAME_LENGTH`` and friends).
 TOPIC_MAX_LENGTH = 255 - 8
