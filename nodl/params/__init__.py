@@ -1,6 +1,6 @@
 """Parameter files and node definitions, without ROS.
 
-* :func:`~nodl.params.defaults.defaults_yaml`: a node's defaults as a
+* :func:`~nodl.plan.defaults_file.defaults_yaml` (from the shared plan): a node's defaults as a
   ready ``ros__parameters`` file (``nodl params DEFINITION -o FILE``);
 * :func:`~nodl.params.check.check_parameter_files`: parameter files
   checked against a node's definition (``nodl params check``): node keys and
@@ -16,6 +16,6 @@ starts a generated or runtime node.
 from __future__ import annotations
 
 from nodl.params.check import check_parameter_files, check_launch_parameters
-from nodl.params.defaults import defaults_yaml
+from nodl.plan.defaults_file import defaults_yaml
 
 __all__ = ['check_parameter_files', 'check_launch_parameters', 'defaults_yaml']

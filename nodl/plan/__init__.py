@@ -7,4 +7,6 @@
 * :mod:`nodl.plan.identifiers` -- names to identifiers of a target language,
   collision-free and keyword-free (the plan's struct fields, generated code,
   scaffolded packages).
+* :mod:`nodl.plan.defaults_file` -- a node's parameter defaults as a ready
+  ``ros__parameters`` file (``nodl params DEFINITION``, the packages ``nodl new`` writes).
 """

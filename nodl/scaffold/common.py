@@ -207,7 +207,7 @@ def _launch(package: str, nodes: list[NodeSource]) -> str:
 
 def _params(node: NodeSource) -> str:
     from nodl.naming import join_name
-    from nodl.params.defaults import defaults_yaml
+    from nodl.plan.defaults_file import defaults_yaml
 
     text = defaults_yaml(node.node, join_name('/', node.executable))
     # the parameter file's note on a required parameter becomes a placeholder to uncomment

@@ -2,18 +2,19 @@
 
 from __future__ import annotations
 
+import json
+import re
 from typing import Any
 
 from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, plan_parameters
-from nodl.system import ResolvedNode, Provider
+from nodl.system import Provider, ResolvedNode
+from nodl.text_safety import json_escapes, visible
 
 __all__ = ['defaults_yaml', 'yaml_scalar']
 
 
 def yaml_scalar(value: Any, base: str) -> str:
     """``value`` in YAML flow style, typed as rcl will type it (a double is always written with a point)."""
-    import json
-
     if isinstance(value, list):
         return '[' + ', '.join(yaml_scalar(v, base) for v in value) + ']'
     if isinstance(value, bool):
@@ -22,16 +23,12 @@ def yaml_scalar(value: Any, base: str) -> str:
         text = repr(float(value))
         return {'inf': '.inf', '-inf': '-.inf', 'nan': '.nan'}.get(text, text)
     if isinstance(value, str):
-        from nodl.text_safety import json_escapes
-
         # a double-quoted YAML string; what a YAML reader would fold or show raw is escaped
         return json_escapes(json.dumps(value, ensure_ascii=False))
     return repr(value)
 
 
 def _comment(text: str) -> str:
-    from nodl.text_safety import visible
-
     return visible(' '.join(text.split()), one_line=True)
 
 
@@ -65,8 +62,6 @@ def defaults_yaml(node: ResolvedNode, fqn: str, *, include_base: bool = False) -
 
 
 def _key(text: str) -> str:
-    import re
-
     return text if re.fullmatch(r'[A-Za-z_/*~][A-Za-z0-9_/*~.-]*', text) else yaml_scalar(text, 'string')
 
 
