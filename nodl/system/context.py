@@ -6,36 +6,16 @@ so that checks stay linear in the size of the system.
 
 from __future__ import annotations
 
-import fnmatch
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from nodl.system.connections import System
 from nodl.system.instance import NodeInstance
 from nodl.system.launched import SystemNode
+from nodl.system.settings import SETTINGS_KEYS, AnalysisSettings
 from nodl.targets.drafts import DraftGap
 
 __all__ = ['SETTINGS_KEYS', 'AnalysisContext', 'AnalysisSettings']
-
-#: The keys of the ``[analyse]`` table of ``nodl.toml`` (``[tool.nodl.analyse]`` in
-#: ``pyproject.toml``) and what each holds.
-SETTINGS_KEYS = {
-    'multiple_publishers_allow': 'a list of topics (fnmatch patterns such as "/tf" or '
-                                 '"/diagnostics*") that several nodes may publish',
-}
-
-
-@dataclass(frozen=True)
-class AnalysisSettings:
-    """Settings of the checks (from the configuration, see :data:`SETTINGS_KEYS`)."""
-
-    #: Topics several nodes may publish without a ``multiple-publishers`` finding.
-    multiple_publishers_allow: tuple[str, ...] = ()
-
-    def publishers_allowed(self, topic: str) -> bool:
-        """True if ``topic`` is on the allow list."""
-        return any(fnmatch.fnmatchcase(topic, pattern) for pattern in self.multiple_publishers_allow)
-
 
 @dataclass
 class AnalysisContext:

@@ -1,4 +1,4 @@
-"""The analysis settings of a project: the ``analyse`` table of its configuration.
+"""The settings of the system checks: the ``analyse`` table of a project's configuration.
 
 In ``nodl.toml``::
 
@@ -6,43 +6,53 @@ In ``nodl.toml``::
     multiple_publishers_allow = ["/tf", "/diagnostics*"]
 
 or ``[tool.nodl.analyse]`` in ``pyproject.toml``; the configuration found upward
-from the launch file applies (the same file as ``ignore`` / ``error``).
+from the launch file applies (the same file as ``ignore`` / ``error``).  The
+configuration checks the table itself (:func:`nodl.config.analyse_table`, so a wrong
+table fails every verb alike); this module makes the checks' settings of it.
 """
 
 from __future__ import annotations
 
+import fnmatch
 import os
+from dataclasses import dataclass
 
-from nodl.config import ConfigError
-from nodl.system.context import SETTINGS_KEYS, AnalysisSettings
+from nodl.config import (
+    ANALYSE_KEYS,
+    ANALYSE_TABLE,
+    _table,
+    analyse_table,
+    find_config_file,
+)
 
-__all__ = ['TABLE', 'load_settings', 'settings_from_table']
+__all__ = ['SETTINGS_KEYS', 'TABLE', 'AnalysisSettings', 'load_settings', 'settings_from_table']
 
 #: The configuration key holding the analysis settings.
-TABLE = 'analyse'
+TABLE = ANALYSE_TABLE
+#: The keys of the ``[analyse]`` table of ``nodl.toml`` (``[tool.nodl.analyse]`` in
+#: ``pyproject.toml``) and what each holds.
+SETTINGS_KEYS = ANALYSE_KEYS
+
+
+@dataclass(frozen=True)
+class AnalysisSettings:
+    """Settings of the checks (from the configuration, see :data:`SETTINGS_KEYS`)."""
+
+    #: Topics several nodes may publish without a ``multiple-publishers`` finding.
+    multiple_publishers_allow: tuple[str, ...] = ()
+
+    def publishers_allowed(self, topic: str) -> bool:
+        """True if ``topic`` is on the allow list."""
+        return any(fnmatch.fnmatchcase(topic, pattern) for pattern in self.multiple_publishers_allow)
 
 
 def settings_from_table(table: object, where: str) -> AnalysisSettings:
     """The settings of an ``analyse`` table (ConfigError naming ``where`` if it is wrong)."""
-    if not isinstance(table, dict):
-        raise ConfigError(f"{where}: error: '{TABLE}' must be a table")
-    for key, value in table.items():
-        if key not in SETTINGS_KEYS:
-            import difflib
-
-            close = difflib.get_close_matches(str(key), list(SETTINGS_KEYS), n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else \
-                f'; expected {", ".join(SETTINGS_KEYS)}'
-            raise ConfigError(f"{where}: error: unknown key '{TABLE}.{key}'{hint}")
-        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-            raise ConfigError(f"{where}: error: '{TABLE}.{key}' must be {SETTINGS_KEYS[key]}")
-    return AnalysisSettings(tuple(table.get('multiple_publishers_allow', ())))
+    return AnalysisSettings(**analyse_table(table, where))
 
 
 def load_settings(launch_file: str) -> AnalysisSettings:
     """The settings that apply to ``launch_file`` (defaults if no configuration has any)."""
-    from nodl.config import _table, find_config_file
-
     config = find_config_file(os.path.dirname(os.path.abspath(launch_file)))
     if config is None:
         return AnalysisSettings()
