@@ -3,16 +3,21 @@
 :class:`StudioServer` binds the socket itself (port 0: a free one), so that the address
 printed is the one served, and runs uvicorn on it in the calling thread
 (:meth:`StudioServer.run`) or in a thread of its own (:meth:`StudioServer.start`, for
-tests and benchmarks).  uvicorn handles SIGINT and SIGTERM: the server stops taking
-requests, finishes the one under way and returns.
+tests and benchmarks).  SIGINT (Ctrl-C) and SIGTERM stop it: it stops taking requests,
+finishes those under way and returns.
 """
 
 from __future__ import annotations
 
+import contextlib
+import signal
 import socket
 import threading
 import time
+from collections.abc import Iterator
 from typing import Any
+
+import uvicorn
 
 __all__ = ['HOST', 'StudioServer', 'bind']
 
@@ -34,17 +39,24 @@ def bind(port: int = 0) -> socket.socket:
     return sock
 
 
+class _Server(uvicorn.Server):
+    """uvicorn's server without its own signal handling (it raises the signal again once
+    stopped, so that the process would end killed): :meth:`StudioServer.run` handles them."""
+
+    @contextlib.contextmanager
+    def capture_signals(self) -> Iterator[None]:
+        yield
+
+
 class StudioServer:
     """An ASGI application served by uvicorn on a socket bound to loopback."""
 
     def __init__(self, app: Any, sock: socket.socket) -> None:
-        import uvicorn
-
         self.sock = sock
         config = uvicorn.Config(app, log_level='warning', access_log=False, lifespan='off',
                                 server_header=False, date_header=False, proxy_headers=False,
                                 timeout_graceful_shutdown=3)
-        self.server = uvicorn.Server(config)
+        self.server = _Server(config)
         self._thread: threading.Thread | None = None
 
     @property
@@ -58,10 +70,19 @@ class StudioServer:
         return str(self.sock.getsockname()[0])
 
     def run(self) -> None:
-        """Serve until Ctrl-C or SIGTERM (uvicorn installs the handlers)."""
+        """Serve until Ctrl-C or SIGTERM: the first stops taking requests and returns once
+        the requests under way are answered; a second one stops at once."""
+        def on_signal(number: int, frame: Any) -> None:
+            if self.server.should_exit:
+                self.server.force_exit = True
+            self.server.should_exit = True
+
+        previous = {s: signal.signal(s, on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
         try:
             self.server.run(sockets=[self.sock])
         finally:
+            for number, handler in previous.items():
+                signal.signal(number, handler)
             self.sock.close()
 
     def start(self, timeout: float = 10.0) -> None:

@@ -9,8 +9,9 @@ from nodl.cli.verb import EXIT_OK, EXIT_USAGE, Verb
 
 
 class StudioVerb(Verb):
-    """Compose a system in the browser: a local web application that edits a launch file
-    through the composer (nodl system) and analyses it on every change."""
+    """Compose a system in the browser: a local web application that edits a launch file.
+
+    It edits through the composer (as nodl system does) and analyses on every change."""
 
     failure = None
 
