@@ -9,6 +9,9 @@ Directories are scanned the way colcon crawls a workspace:
   skipped, and so are hidden directories (``.git``) and, directly under a
   scanned directory, colcon's ``build``, ``install`` and ``log`` (their
   copies are not the sources);
+* the files taken are those whose names end as a frontend says its files do
+  (``SUFFIXES`` of :mod:`nodl.frontends`: ``*.nodl.yaml``, ``*.nodl.yml`` and
+  ``*.nodl.json`` for the built-in YAML/JSON frontend, and a plug-in's own);
 * only regular files (or links to them) are taken: a named pipe called
   ``x.nodl.yaml`` would block the scan, so it is skipped with a note;
 * a directory that cannot be read is reported, never silently skipped.
@@ -22,14 +25,27 @@ import os
 import stat
 from collections import namedtuple
 
+from nodl.frontends.frontend import frontend_suffixes
+
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Iterable, Iterator
+    from collections.abc import Iterable, Iterator
 
-__all__ = ['NODL_SUFFIXES', 'STDIN', 'IGNORE_MARKERS', 'BUILD_OUTPUT_DIRS', 'Target',
-           'find_nodl_files', 'iter_nodl_files', 'special_file_kind', 'tidy_path', 'describe_os_error']
+__all__ = [
+    'BUILD_OUTPUT_DIRS',
+    'IGNORE_MARKERS',
+    'NODL_SUFFIXES',
+    'STDIN',
+    'Target',
+    'describe_os_error',
+    'find_nodl_files',
+    'iter_nodl_files',
+    'special_file_kind',
+    'tidy_path',
+]
 
-#: What a directory search looks for.
+#: What a directory search looks for besides what frontend plug-ins add (the built-in
+#: YAML/JSON frontend's ``SUFFIXES``).
 NODL_SUFFIXES = ('.nodl.yaml', '.nodl.yml', '.nodl.json')
 #: The path that means standard input.
 STDIN = '-'
@@ -91,9 +107,11 @@ def find_nodl_files(paths: Iterable[str]) -> list[Target]:
 def iter_nodl_files(paths: Iterable[str]) -> Iterator[Target]:
     """Expand paths, lazily: files are taken whatever their extension,
     directories are searched recursively for ``*.nodl.yaml``, ``*.nodl.yml``
-    and ``*.nodl.json`` (see the module documentation for what a scan skips),
-    and ``-`` is standard input.  Paths that cannot be used become targets
-    with a problem, so that every other path is still processed."""
+    and ``*.nodl.json`` and the files of frontend plug-ins (see the module
+    documentation for what a scan skips), and ``-`` is standard input.  Paths
+    that cannot be used become targets with a problem, so that every other
+    path is still processed."""
+    suffixes: tuple[str, ...] | None = None
     for raw in paths:
         if raw == STDIN:
             yield Target(STDIN)
@@ -104,12 +122,14 @@ def iter_nodl_files(paths: Iterable[str]) -> Iterator[Target]:
             yield Target(raw, _no_such(raw, exc))
             continue
         if stat.S_ISDIR(st.st_mode):
+            if suffixes is None:
+                suffixes = NODL_SUFFIXES + tuple(s for s in frontend_suffixes() if s not in NODL_SUFFIXES)
             found = False
-            for target in _scan(raw, st):
+            for target in _scan(raw, st, suffixes):
                 found = found or (target.problem is None and target.skipped is None)
                 yield target
             if not found:
-                yield Target(raw, f'no NoDL files ({", ".join("*" + s for s in NODL_SUFFIXES)}) '
+                yield Target(raw, f'no NoDL files ({", ".join("*" + s for s in suffixes)}) '
                                   'found in this directory')
             continue
         kind = special_file_kind(st.st_mode)
@@ -153,7 +173,7 @@ def describe_os_error(exc: OSError) -> str:
 
 
 
-def _scan(root: str, root_stat: os.stat_result) -> Iterator[Target]:
+def _scan(root: str, root_stat: os.stat_result, suffixes: tuple[str, ...]) -> Iterator[Target]:
     """Depth-first, sorted, each real directory once (by device and inode)."""
     visited = {(root_stat.st_dev, root_stat.st_ino)}
     pending = [(root, True)]
@@ -190,7 +210,7 @@ def _scan(root: str, root_stat: os.stat_result) -> Iterator[Target]:
                 visited.add(key)
                 subdirs.append(entry.path)
                 continue
-            if not name.endswith(NODL_SUFFIXES):
+            if not name.endswith(suffixes):
                 continue
             try:
                 st = entry.stat()

@@ -32,7 +32,7 @@ __all__ = [
     'ENDPOINT_KINDS', 'KIND_NAMESPACES', 'TOPIC_SECTIONS', 'SERVICE_SECTIONS', 'ACTION_SECTIONS',
     'sections_of_kind', 'section_for_role', 'legacy_roles',
     # document kinds
-    'Kind', 'NODE_KEYS', 'INTERFACE_KEYS',
+    'Kind', 'NODE_KEYS', 'INTERFACE_KEYS', 'INCLUDE_KEYS',
     # ament index
     'NODE_RESOURCE', 'INTERFACE_RESOURCE', 'LEGACY_RESOURCE', 'NODE_INFO_RESOURCE', 'REFERENCE_RESOURCE',
     'RESOURCE_TYPES',
@@ -148,6 +148,10 @@ class Kind(str, enum.Enum):
 NODE_KEYS: tuple[str, ...] = ('base', 'main', 'mixins')
 #: Keys of the entities of an interface definition.
 INTERFACE_KEYS: tuple[str, ...] = ('parameters',) + SECTION_KEYS
+#: The reference implementation's key for composition, in both its spellings: a document
+#: with it (and no base, main or mixins) is a node definition in the ``include`` dialect
+#: (see :mod:`nodl.frontends.include`).
+INCLUDE_KEYS: tuple[str, ...] = ('include', 'includes')
 
 
 # --------------------------------------------------------------------------

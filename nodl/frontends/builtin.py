@@ -30,7 +30,7 @@ from nodl.frontends.include import (
     remapped,
 )
 from nodl.frontends.yaml_json import ParsedDocument
-from nodl.validation.kinds import NODE_KEYS
+from nodl.vocabulary import NODE_KEYS
 
 __all__ = [
     'DIALECTS',

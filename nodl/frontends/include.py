@@ -26,7 +26,7 @@ from typing import Any
 from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.frontends.remapped import RemappedDocument
 from nodl.frontends.yaml_json import ParsedDocument
-from nodl.validation.kinds import INCLUDE_KEYS, NODE_KEYS
+from nodl.vocabulary import INCLUDE_KEYS, NODE_KEYS
 
 __all__ = [
     'BASE_DESCRIPTIONS',

@@ -2,18 +2,13 @@
 
 from __future__ import annotations
 
-from nodl.vocabulary import INTERFACE_KEYS, NODE_KEYS, Kind
+from nodl.vocabulary import INCLUDE_KEYS, INTERFACE_KEYS, NODE_KEYS, Kind
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from typing import Any
 
 __all__ = ['Kind', 'detect_kind', 'KIND_REASONS', 'NODE_KEYS', 'INTERFACE_KEYS', 'INCLUDE_KEYS']
-
-#: The reference implementation's key for composition, in both its spellings: a document
-#: with it (and no base, main or mixins) is a node definition in the ``include`` dialect
-#: (see :mod:`nodl.frontends.include`).
-INCLUDE_KEYS = ('include', 'includes')
 
 
 #: Why :func:`detect_kind` decides on each kind, for messages.
