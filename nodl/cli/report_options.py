@@ -1,11 +1,19 @@
 """``--format NAME`` for every verb that reports: its choices are the registered reporters.
 
-A verb calls :func:`add_format_argument` in ``add_arguments`` and
-:func:`reporter_for` in ``main``.  For a verb that reports diagnostics the
-choices are the names registered under ``nodl.reporters`` (read from the
-installed metadata, nothing imported); only the reporter ``--format`` names is
-loaded, when the verb reports.  A verb with another kind of result
-(``nodl list``) offers only the reporters that can show it.
+A verb calls :func:`add_format_argument` in ``add_arguments``,
+:func:`reporter_for` in ``main`` and :func:`write_report` to write what it
+found.  For a verb that reports diagnostics the choices are the names
+registered under ``nodl.reporters`` (read from the installed metadata, nothing
+imported); only the reporter ``--format`` names is loaded, when the verb
+reports.  A verb with another kind of result (``nodl list``) offers only the
+reporters that can show it.
+
+This module is the one place the command line turns results into output:
+:func:`write_report` (a report, on a stream or into a file, its summary apart
+for a machine format), :func:`write_report_file` (a second report in a named
+format, as ``nodl check --junit FILE`` writes) and :func:`show_diagnostics`
+(the diagnostics a verb whose output is a document shows a person on standard
+error, as the ``text`` reporter renders them).
 """
 
 from __future__ import annotations
@@ -15,11 +23,13 @@ import sys
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import TextIO
+    from typing import Iterable, TextIO
 
+    from nodl.diagnostics import Diagnostic
     from nodl.reporting.reporters import Report, ReporterExtension
 
-__all__ = ['BUILTIN_FORMATS', 'reporter_names', 'add_format_argument', 'reporter_for', 'write_report']
+__all__ = ['BUILTIN_FORMATS', 'reporter_names', 'add_format_argument', 'reporter_for', 'load_reporter',
+           'write_report', 'write_report_file', 'show_diagnostics']
 
 GROUP = 'nodl.reporters'
 #: The built-in reporters, in the order --help lists them; plug-ins follow by name.
@@ -52,15 +62,21 @@ def add_format_argument(parser: argparse.ArgumentParser, help: str, *, kind: str
                         help=f'{help} (default: text; one of: {", ".join(choices)})')
 
 
+def load_reporter(name: str) -> ReporterExtension | None:
+    """The reporter registered as ``name``, loaded now (None when it cannot be loaded: the
+    plug-in machinery has warned about it)."""
+    from nodl.plugins import instantiate_extensions
+
+    found: ReporterExtension | None = instantiate_extensions(GROUP, names=[name]).get(name)
+    return found
+
+
 def reporter_for(args: argparse.Namespace, prog: str,
                  kind: str = 'diagnostics') -> ReporterExtension | None:
     """The reporter ``--format`` names, loaded now; None (after one line on standard error)
     when it cannot be loaded or cannot show a result of ``kind``: a usage error."""
-    from nodl.plugins import instantiate_extensions
-
     name = args.format
-    found = instantiate_extensions(GROUP, names=[name])
-    reporter: ReporterExtension | None = found.get(name)
+    reporter = load_reporter(name)
     if reporter is None:
         print(f"{prog}: error: --format {name}: the reporter '{name}' could not be loaded (see the "
               'warning about it; give another --format)', file=sys.stderr)
@@ -73,9 +89,44 @@ def reporter_for(args: argparse.Namespace, prog: str,
 
 
 def write_report(reporter: ReporterExtension, report: Report, out: TextIO | None = None,
-                 err: TextIO | None = None) -> None:
-    """Write ``report`` as ``reporter`` renders it on ``out`` (standard output); a machine format's
-    summary goes apart, on ``err`` (standard error), for the person watching."""
-    (out or sys.stdout).write(reporter.report(report))
+                 err: TextIO | None = None, *, path: str | None = None) -> None:
+    """Write ``report`` as ``reporter`` renders it on ``out`` (standard output), or into the file
+    ``path`` (atomically: a report is always replaceable; a failure is a
+    :class:`~nodl.writing.WriteError`); a machine format's summary goes apart, on ``err``
+    (standard error), for the person watching."""
+    text = reporter.report(report)
+    if path is not None:
+        from nodl.cli.output import write_file
+
+        write_file(path, text)
+    else:
+        (out or sys.stdout).write(text)
     if not reporter.FOR_PEOPLE and report.summary:
         print(report.summary, file=err or sys.stderr)
+
+
+def write_report_file(name: str, report: Report, path: str) -> None:
+    """Write ``report`` into the file ``path`` (atomically) in the registered format ``name``:
+    a report besides the one ``--format`` prints, such as ``nodl check --junit FILE``.  A
+    format that cannot be loaded is a :class:`~nodl.writing.WriteError` (NODL030), as a
+    file that cannot be written is."""
+    reporter = load_reporter(name)
+    if reporter is None:
+        from nodl.diagnostics import Diagnostic, Severity
+        from nodl.writing import WriteError
+
+        raise WriteError(Diagnostic(Severity.ERROR, f"not written: the reporter '{name}' could not "
+                                    'be loaded (see the warning about it)', file=path,
+                                    code='NODL030'))
+    from nodl.cli.output import write_file
+
+    write_file(path, reporter.report(report))
+
+
+def show_diagnostics(diagnostics: Iterable[Diagnostic], stream: TextIO | None = None) -> None:
+    """Show a person ``diagnostics`` on ``stream`` (standard error) as the ``text`` reporter
+    renders them: what a verb whose output is a document (a definition, a parameter file,
+    generated code) found on the way."""
+    from nodl.reporting import format_text
+
+    (stream or sys.stderr).write(format_text(diagnostics))

@@ -253,7 +253,6 @@ class AnalyseVerb(Verb):
         if reporter is None:
             return EXIT_USAGE
         result = report.analysis_report(analysis, args.verbose)
-        text = reporter.report(result)
         if args.log:
             from nodl.analysis.log import format_log
 
@@ -266,12 +265,9 @@ class AnalyseVerb(Verb):
             except GraphError as exc:
                 print(f'{prog}: error: --graph {args.graph}: {exc}', file=sys.stderr)
                 return EXIT_USAGE
-        if args.output:
-            write_file(args.output, text)
-        else:
-            sys.stdout.write(text)
-        if not reporter.FOR_PEOPLE:  # the verdict for a person, apart
-            print(result.summary, file=sys.stderr)
+        from nodl.cli.report_options import write_report
+
+        write_report(reporter, result, path=args.output)  # a machine format: the verdict apart
         if analysis.unreadable:
             return EXIT_USAGE
         return EXIT_FAILURE if analysis.errors else EXIT_OK

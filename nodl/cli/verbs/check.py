@@ -71,10 +71,9 @@ class CheckVerb(Verb):
         from nodl.cli.diagnostic_options import DiagnosticPolicy, PolicyError
         from nodl.diagnostics import ValidationError
         from nodl.live.check import check_node
-        from nodl.cli.report_options import reporter_for, write_report
+        from nodl.cli.report_options import reporter_for, show_diagnostics, write_report
         from nodl.live.report import check_report
         from nodl.live.session import LiveError
-        from nodl.reporting import format_text
 
         problem = definition_problem(args.definition)
         if problem is not None:
@@ -103,7 +102,7 @@ class CheckVerb(Verb):
                                 parameters=not args.no_parameters,
                                 client_library=args.client_library, watch=args.watch)
         except ValidationError as exc:
-            sys.stderr.write(format_text(exc.diagnostics))
+            show_diagnostics(exc.diagnostics)
             return EXIT_USAGE
         except OSError as exc:
             from nodl.files import describe_os_error
@@ -128,8 +127,7 @@ class CheckVerb(Verb):
                 return EXIT_USAGE
         # A definition in the reference's include dialect says so once, as in every verb (NODL851).
         dialect = [d for d in result.composed.diagnostics if d.code == 'NODL851']
-        if dialect:
-            sys.stderr.write(format_text(dialect))
+        show_diagnostics(dialect)
         try:  # conformance is decided after the overrides (of the file a package registers, too)
             result = result.with_overrides(policy.overrides_for(result.definition))
         except PolicyError as exc:
@@ -137,9 +135,7 @@ class CheckVerb(Verb):
             return EXIT_USAGE
         write_report(reporter, check_report(result, args.verbose))  # a machine format: the verdict
         if args.junit:  # a report: replaced atomically; a failure is one line, exit status 2
-            from nodl.cli.output import write_file
+            from nodl.cli.report_options import write_report_file
 
-            from nodl.reporting.reporters import JUnitReporter
-
-            write_file(args.junit, JUnitReporter().report(check_report(result)))
+            write_report_file('junit', check_report(result), args.junit)
         return EXIT_OK if result.conforms else EXIT_FAILURE

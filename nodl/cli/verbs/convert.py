@@ -7,6 +7,11 @@ import sys
 
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from nodl.diagnostics import Diagnostic
+    from nodl.reporting.junit import JUnitCase
+
 #: ``--from`` values: the legacy XML formats and the dialects of :mod:`nodl.dialects`.
 LEGACY = 'legacy-xml'
 
@@ -42,24 +47,44 @@ class ConvertVerb(Verb):
                             help='replace files nodl did not write, or converted files edited since')
         parser.add_argument('--from', dest='source_format', choices=(LEGACY, *DIALECTS),
                             help='the format of the inputs (default: recognised by content)')
+        from nodl.cli.report_options import add_format_argument
+
+        add_format_argument(parser, 'how to print the diagnostics: a registered reporter (json: '
+                                    'each input with what was written; junit: one test case per '
+                                    'input)')
 
     def main(self, args: argparse.Namespace) -> int:
+        from nodl.cli.report_options import reporter_for, write_report
+        from nodl.reporting import Tally, plural
+        from nodl.reporting.reporters import Report
+
+        reporter = reporter_for(args, 'nodl convert')
+        if reporter is None:
+            return EXIT_USAGE
         #: Files written from generate_parameter_library inputs (interface definitions).
         self._interfaces: set[str] = set()
-        from nodl.reporting import Tally, format_text, plural
-
         out = sys.stdout
         tally = Tally()
         unreadable = failed = False
         written = 0
+        inputs: list[dict[str, object]] = []  # the JSON payload: each input, what it gave
+        cases: list[tuple[str, list[Diagnostic], bool, bool]] = []  # a JUnit test case per input
+        reported: list[Diagnostic] = []  # every diagnostic, for the machine formats
         for result in self._convert(args):
+            inputs.append({'file': result.path, 'readable': result.readable,
+                           'converted': result.readable and not result.errors,
+                           'written': list(result.written),
+                           'diagnostics': [d.to_dict() for d in result.diagnostics]})
             if not result.readable:
                 unreadable = True
-                for path in result.written:  # before an output could not be written
-                    out.write(f'wrote {path}\n')
+                cases.append((result.path, list(result.diagnostics), True, True))
+                reported += result.diagnostics
                 written += len(result.written)
-                out.write(format_text(result.diagnostics[:-1] if not result.problem else
-                                      result.diagnostics))
+                if reporter.FOR_PEOPLE:  # before an output could not be written
+                    for path in result.written:
+                        out.write(f'wrote {path}\n')
+                out.write(reporter.unit(result.diagnostics[:-1] if not result.problem else
+                                        result.diagnostics))
                 if result.problem:  # the input could not be read
                     print(f'{result.path}: error: {result.problem}', file=sys.stderr)
                 else:  # an output not written or not replaced: its own coded line
@@ -67,19 +92,27 @@ class ConvertVerb(Verb):
                 continue
             tally.files += 1
             tally.add(result.diagnostics)
-            out.write(format_text(result.diagnostics))
+            reported += result.diagnostics
+            cases.append((result.path, list(result.diagnostics), bool(result.errors), False))
+            out.write(reporter.unit(result.diagnostics))
+            if reporter.FOR_PEOPLE:
+                if result.errors:
+                    out.write(f'{result.path}: not converted (nothing written)\n')
+                for path in result.written:
+                    out.write(f'wrote {path}\n')
             if result.errors:
                 failed = True
-                out.write(f'{result.path}: not converted (nothing written)\n')
-            for path in result.written:
-                out.write(f'wrote {path}\n')
             written += len(result.written)
         interfaces = len(self._interfaces)
         kinds = plural(written - interfaces, 'node definition')
         if interfaces:
             kinds += f', {plural(interfaces, "interface definition")}'
-        out.write(f'{plural(tally.files, "file")} read, {kinds} '
-                  f'written, {plural(tally.errors, "error")}, {plural(tally.warnings, "warning")}\n')
+        summary = (f'{plural(tally.files, "file")} read, {kinds} written, '
+                   f'{plural(tally.errors, "error")}, {plural(tally.warnings, "warning")}')
+        # the text was shown input by input: only the summary is left
+        write_report(reporter, Report('nodl convert', reported, summary=summary,
+                                      text=f'{summary}\n', payload=inputs,
+                                      cases=lambda: _junit_cases(cases)), out)
         if unreadable:
             return EXIT_USAGE
         return EXIT_FAILURE if failed else EXIT_OK
@@ -104,3 +137,9 @@ class ConvertVerb(Verb):
                     self._interfaces.update(result.written)
         order = {path: index for index, path in enumerate(args.files)}
         return sorted(results, key=lambda r: order.get(r.path, 0))
+
+
+def _junit_cases(cases: list[tuple[str, list[Diagnostic], bool, bool]]) -> list[JUnitCase]:
+    from nodl.reporting.junit import JUnitCase
+
+    return [JUnitCase(*case) for case in cases]

@@ -18,6 +18,10 @@ class DepsVerb(Verb):
         from nodl.cli.arguments import add_definitions_argument
 
         add_definitions_argument(parser)
+        from nodl.cli.report_options import add_format_argument
+
+        add_format_argument(parser, 'output format: a registered reporter that can show a listing '
+                                    '(json: {"files": [...], "diagnostics": [...]})', kind='listing')
         parser.epilog = ('One path per line, relative to the folder of FILE, as written in '
                          '`mixins` (normalised). Build systems install them next to the node '
                          'file, as ament_nodl_register_node does; references to other packages '
@@ -34,8 +38,13 @@ class DepsVerb(Verb):
     def _main(self, args: argparse.Namespace) -> int:
         import os
 
+        from nodl.cli.report_options import reporter_for, show_diagnostics, write_report
         from nodl.packaging import package_dependencies
+        from nodl.reporting.reporters import Report
 
+        reporter = reporter_for(args, 'nodl deps', 'listing')
+        if reporter is None:
+            return EXIT_USAGE
         if not os.path.isfile(args.file):
             print(f'nodl deps: {args.file}: no such file', file=sys.stderr)
             return EXIT_USAGE
@@ -46,11 +55,11 @@ class DepsVerb(Verb):
 
             print(f'nodl deps: {args.file}: {describe_os_error(exc)}', file=sys.stderr)
             return EXIT_USAGE
-        for path in paths:
-            sys.stdout.write(path + '\n')
-        if problems:
-            from nodl.reporting import format_text
-
-            sys.stderr.write(format_text(problems))
-            return EXIT_FAILURE
-        return EXIT_OK
+        # for people: the paths on standard output (what CMake reads), the problems on standard error
+        write_report(reporter, Report('nodl deps', problems, kind='listing',
+                                      text=''.join(f'{path}\n' for path in paths),
+                                      payload=lambda: {'files': paths,
+                                                       'diagnostics': [d.to_dict() for d in problems]}))
+        if reporter.FOR_PEOPLE:
+            show_diagnostics(problems)
+        return EXIT_FAILURE if problems else EXIT_OK

@@ -50,7 +50,7 @@ class DocVerb(Verb):
         import os
 
         from nodl.cli.arguments import launch_limits
-        from nodl.reporting import format_text
+        from nodl.cli.report_options import show_diagnostics
         from nodl.targets.overlay import active
 
         prog = 'nodl doc'
@@ -69,7 +69,7 @@ class DocVerb(Verb):
         docs = collect(args.target, client_library=args.client_library,
                        launch_arguments=arguments, limits=launch_limits(args),
                        definitions=active())
-        sys.stderr.write(format_text(docs.diagnostics))
+        show_diagnostics(docs.diagnostics)
         if not docs.pages:
             return EXIT_FAILURE
         from nodl.doc.writer import render_files
@@ -79,7 +79,7 @@ class DocVerb(Verb):
             from nodl.doc.check import check_files
 
             problems = check_files(files, args.output, args.format)
-            sys.stderr.write(format_text(problems))
+            show_diagnostics(problems)
             return EXIT_FAILURE if problems or docs.failed else EXIT_OK
         from nodl.writing import outputs_are_inputs
 
@@ -91,7 +91,7 @@ class DocVerb(Verb):
         from nodl.doc.writer import write_files
 
         written, problems = write_files(files, args.output, force=args.force)
-        sys.stderr.write(format_text(problems))
+        show_diagnostics(problems)
         for path in written:
             print(path)
         return EXIT_FAILURE if problems or docs.failed else EXIT_OK

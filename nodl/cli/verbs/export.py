@@ -40,7 +40,8 @@ class ExportVerb(Verb):
 
         from nodl.dialects.export import parameters_of_file, parameters_of_registered
         from nodl.dialects.genparamlib import IDENTIFIER, export_genparamlib
-        from nodl.reporting import format_text, without_info
+        from nodl.cli.report_options import show_diagnostics
+        from nodl.reporting import without_info
 
         if len(args.definition) == 1:
             path = args.definition[0]
@@ -68,11 +69,11 @@ class ExportVerb(Verb):
                   'generate_parameter_library namespace must be; give one with --namespace',
                   file=sys.stderr)
             return EXIT_USAGE
-        sys.stderr.write(format_text(without_info(source.diagnostics)))
+        show_diagnostics(without_info(source.diagnostics))
         if source.parameters is None:  # not registered: 2, as for a missing file; invalid: 1
             return failure_status(source.diagnostics)
         exported = export_genparamlib(source.parameters, namespace, source.source)
-        sys.stderr.write(format_text(exported.diagnostics))
+        show_diagnostics(exported.diagnostics)
         text = exported.text(f'generate_parameter_library parameters of {source.source}, '
                              'written by nodl export')
         if args.output == '-':

@@ -53,7 +53,8 @@ class GenerateVerb(Verb):
             GenerateOptions, GenerationError, check_options, default_class_name, default_node_name,
             load_generators, write_files)
         from nodl.generate.definition import resolve_target, target_name
-        from nodl.reporting import format_text, without_info
+        from nodl.cli.report_options import show_diagnostics
+        from nodl.reporting import without_info
 
         if len(args.target) > 2:
             print('nodl generate: error: give a definition FILE or PACKAGE EXECUTABLE', file=sys.stderr)
@@ -72,7 +73,7 @@ class GenerateVerb(Verb):
             namespace=args.namespace, component=args.component)
         problems = check_options(options, getattr(generator, 'LANGUAGE', '') or args.language)
         if problems:  # before reading the definition: a usage error
-            sys.stderr.write(format_text(problems))
+            show_diagnostics(problems)
             return EXIT_USAGE
         try:
             node, diagnostics, _ = resolve_target(args.target, generator.CLIENT_LIBRARY or None)
@@ -87,7 +88,7 @@ class GenerateVerb(Verb):
             return EXIT_USAGE
         shown = without_info(diagnostics)
         if shown:
-            sys.stderr.write(format_text(shown))
+            show_diagnostics(shown)
         if node is None:
             return EXIT_FAILURE
         try:

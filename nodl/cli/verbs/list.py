@@ -34,7 +34,7 @@ class ListVerb(Verb):
         import os
 
         from nodl.cli.arguments import definitions_failed, load_definitions
-        from nodl.cli.report_options import reporter_for
+        from nodl.cli.report_options import reporter_for, write_report
         from nodl.reporting.reporters import Report
         from nodl.registry.registrations import list_registrations
         from nodl.targets.overlay import using
@@ -60,8 +60,8 @@ class ListVerb(Verb):
         entries = [{'package': r.package, 'name': r.name, 'kind': r.kind, 'file': r.file,
                     'origin': o.source, 'folder': o.folder, 'provenance': o.made_by}
                    for r, o in zip(found, origins)]
-        sys.stdout.write(reporter.report(Report('nodl list', kind='listing', text=''.join(lines),
-                                                payload=entries)))
+        write_report(reporter, Report('nodl list', kind='listing', text=''.join(lines),
+                                      payload=entries))
         if not reporter.FOR_PEOPLE:
             return status
         if not found:

@@ -49,7 +49,7 @@ class NewVerb(Verb):
             'at build time (ament_nodl_generate_cpp).')
 
     def main(self, args: argparse.Namespace) -> int:
-        from nodl.reporting import format_text
+        from nodl.cli.report_options import show_diagnostics
         from nodl.scaffold import (
             ScaffoldError, authorship, check_package_name, load_nodes, plan_package, write_package)
 
@@ -68,7 +68,7 @@ class NewVerb(Verb):
             report = write_package(plan, args.output, update=args.update, force=args.force)
         except ScaffoldError as exc:
             if exc.diagnostics:
-                sys.stderr.write(format_text(exc.diagnostics))
+                show_diagnostics(exc.diagnostics)
                 print(f'nodl new: error: {exc}', file=sys.stderr)
                 return EXIT_FAILURE
             print(f'nodl new: error: {exc}', file=sys.stderr)

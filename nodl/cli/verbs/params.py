@@ -7,6 +7,12 @@ import sys
 
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
+TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+if TYPE_CHECKING:
+    from nodl.diagnostics import Diagnostic
+    from nodl.reporting.junit import JUnitCase
+    from nodl.reporting.reporters import ReporterExtension
+
 
 class ParamsVerb(Verb):
     """Write a node's parameter defaults as a parameter file, or check parameter files without ROS."""
@@ -40,6 +46,10 @@ class ParamsVerb(Verb):
         from nodl.cli.arguments import add_launch_code_arguments
 
         add_launch_code_arguments(parser)
+        from nodl.cli.report_options import add_format_argument
+
+        add_format_argument(parser, 'check: how to print the diagnostics: a registered reporter '
+                                    '(junit: one test case per parameter file)')
         parser.epilog = ('Node keys match as rcl matches them (/** any number of name tokens, /* one); '
                          'values are typed as rcl types them and checked as strictly as a node does: '
                          'the type exactly, every validator; required parameters must be set.')
@@ -57,8 +67,9 @@ class ParamsVerb(Verb):
 
     @staticmethod
     def _resolve(target: list[str]) -> tuple[object, int]:
+        from nodl.cli.report_options import show_diagnostics
         from nodl.generate.definition import resolve_target
-        from nodl.reporting import format_text, without_info
+        from nodl.reporting import without_info
 
         if len(target) > 2:
             print('nodl params: error: give a definition FILE or PACKAGE EXECUTABLE', file=sys.stderr)
@@ -74,9 +85,7 @@ class ParamsVerb(Verb):
                 why = why if why.startswith(f'{name}:') else f'{name}: {why}'  # the path once
             print(f'nodl params: error: {why}', file=sys.stderr)
             return None, EXIT_USAGE
-        shown = without_info(diagnostics)
-        if shown:
-            sys.stderr.write(format_text(shown))
+        show_diagnostics(without_info(diagnostics))
         return node, EXIT_OK if node is not None else EXIT_FAILURE
 
     @staticmethod
@@ -101,9 +110,10 @@ class ParamsVerb(Verb):
     def _defaults(self, args: argparse.Namespace) -> int:
         from nodl.params import defaults_yaml
 
-        if args.definition or args.launch:
-            print('nodl params: error: --definition and --launch belong to "nodl params check"',
-                  file=sys.stderr)
+        if args.definition or args.launch or args.format != 'text':
+            option = '--format' if args.format != 'text' else '--definition and --launch'
+            print(f'nodl params: error: {option} belong{"s" * (option == "--format")} to '
+                  '"nodl params check"', file=sys.stderr)
             return EXIT_USAGE
         node, status = self._resolve(args.args)
         if node is None:
@@ -128,9 +138,8 @@ class ParamsVerb(Verb):
         return EXIT_OK
 
     def _check(self, args: argparse.Namespace) -> int:
-        from nodl.diagnostics import Severity
+        from nodl.cli.report_options import reporter_for
         from nodl.params import check_launch_parameters, check_parameter_files
-        from nodl.reporting import format_text
 
         files = args.args[1:]
         import os
@@ -144,6 +153,9 @@ class ParamsVerb(Verb):
         if (args.definition is None) == (args.launch is None):
             print('nodl params check: error: give exactly one of --definition and --launch',
                   file=sys.stderr)
+            return EXIT_USAGE
+        reporter = reporter_for(args, 'nodl params check')
+        if reporter is None:
             return EXIT_USAGE
         if args.definition is not None:
             if not files:
@@ -169,14 +181,39 @@ class ParamsVerb(Verb):
 
             diagnostics = check_launch_parameters(args.launch, files, arguments,
                                                   limits=launch_limits(args))
-        if diagnostics:
-            sys.stdout.write(format_text(diagnostics))
-        errors = sum(1 for d in diagnostics if d.severity is Severity.ERROR)
-        if not errors:  # success says so, in one line
-            from nodl.reporting import plural
+        return _report(reporter, files, diagnostics)
 
-            warnings = sum(1 for d in diagnostics if d.severity is Severity.WARNING)
-            checked = plural(len(files), 'parameter file') if files else 'the parameter files'
-            print(f'nodl params check: {checked} checked: no errors'
-                  + (f', {plural(warnings, "warning")}' if warnings else ''))
-        return EXIT_FAILURE if errors else EXIT_OK
+
+def _report(reporter: ReporterExtension, files: list[str], diagnostics: list[Diagnostic]) -> int:
+    """Write the check's report (text: the diagnostics, then one line when there is no error;
+    JUnit: a test case per parameter file); the exit status."""
+    from nodl.cli.report_options import write_report
+    from nodl.diagnostics import Severity
+    from nodl.reporting import format_text, plural
+    from nodl.reporting.reporters import Report
+
+    errors = sum(1 for d in diagnostics if d.severity is Severity.ERROR)
+    warnings = sum(1 for d in diagnostics if d.severity is Severity.WARNING)
+    checked = plural(len(files), 'parameter file') if files else 'the parameter files'
+    counts = f', {plural(warnings, "warning")}' if warnings else ''
+    if errors:
+        summary = f'nodl params check: {checked} checked: {plural(errors, "error")}{counts}'
+    else:  # success says so, in one line (the only summary the text shows)
+        summary = f'nodl params check: {checked} checked: no errors{counts}'
+    text = format_text(diagnostics) + ('' if errors else f'{summary}\n')
+    write_report(reporter, Report('nodl params check', diagnostics, summary=summary, text=text,
+                                  cases=lambda: _cases(files, diagnostics)))
+    return EXIT_FAILURE if errors else EXIT_OK
+
+
+def _cases(files: list[str], diagnostics: list[Diagnostic]) -> list[JUnitCase]:
+    """A JUnit test case per parameter file given (then per other file a diagnostic is about:
+    the files a launch file gives), failed when it holds an error."""
+    from nodl.diagnostics import Severity
+    from nodl.reporting.junit import JUnitCase
+
+    by_file: dict[str, list[Diagnostic]] = {file: [] for file in files}
+    for d in diagnostics:
+        by_file.setdefault(d.file, []).append(d)
+    return [JUnitCase(file, found, any(d.severity is Severity.ERROR for d in found))
+            for file, found in by_file.items()]

@@ -322,7 +322,8 @@ def _report(diagnostics: list[Diagnostic], args: argparse.Namespace, options: An
             stream: Any = None, reporter: Any = None) -> list[Diagnostic]:
     """Show ``diagnostics`` after the overrides, without infos: on standard error as text, or
     on ``stream`` as ``reporter`` renders them (``--check``'s report)."""
-    from nodl.reporting import format_text, without_info
+    from nodl.cli.report_options import show_diagnostics, write_report
+    from nodl.reporting import without_info
     from nodl.reporting.reporters import Report
 
     shown: list[Diagnostic] = []
@@ -333,9 +334,9 @@ def _report(diagnostics: list[Diagnostic], args: argparse.Namespace, options: An
         shown += options.apply(file, group)
     shown = without_info(shown)
     if stream is not None and reporter is not None:
-        stream.write(reporter.report(Report('nodl policy', shown)))
+        write_report(reporter, Report('nodl policy', shown), stream)
     else:
-        sys.stderr.write(format_text(shown))
+        show_diagnostics(shown)
     return shown
 
 

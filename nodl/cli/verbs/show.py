@@ -57,7 +57,8 @@ class ShowVerb(Verb):
     def _show(self, args: argparse.Namespace) -> int:
         import os
 
-        from nodl.reporting import format_text, without_info
+        from nodl.cli.report_options import show_diagnostics
+        from nodl.reporting import without_info
         from nodl.show import render, show_file, show_registered
 
         if len(args.target) == 1 and args.target[0].startswith('nodl://'):
@@ -78,7 +79,7 @@ class ShowVerb(Verb):
             print('nodl show: error: expected FILE or PACKAGE EXECUTABLE', file=sys.stderr)
             return EXIT_USAGE
         problems = without_info(shown.diagnostics)
-        sys.stderr.write(format_text(problems))
+        show_diagnostics(problems)
         if shown.interface is None:  # not registered: 2, as for a missing file; invalid: 1
             return failure_status(problems)
         provenance = shown.provenance
