@@ -108,7 +108,7 @@ class AnalyseVerb(Verb):
                 return EXIT_USAGE
         try:
             policy = DiagnosticPolicy(args, prog)
-            from nodl.analysis.settings import load_settings
+            from nodl.system.settings import load_settings
 
             settings = load_settings(args.launch_file)
         except (PolicyError, ConfigError) as exc:
@@ -197,7 +197,7 @@ class AnalyseVerb(Verb):
         start = os.path.dirname(os.path.abspath(files[0])) if files else os.getcwd()
         try:
             policy = DiagnosticPolicy(args, prog)
-            from nodl.analysis.settings import load_settings
+            from nodl.system.settings import load_settings
 
             settings = load_settings(os.path.join(start, 'definitions'))
         except (PolicyError, ConfigError) as exc:
@@ -208,7 +208,7 @@ class AnalyseVerb(Verb):
         definitions = load_definitions(args, prog, start, report=False)
         if isinstance(definitions, int):
             return definitions
-        from nodl.analysis.system import analyse_definitions
+        from nodl.system.run import analyse_definitions
 
         try:
             analysis = analyse_definitions(targets, args.name, remaps=args.remap,
@@ -258,7 +258,7 @@ class AnalyseVerb(Verb):
 
             write_file(args.log, format_log(analysis))
         if graph_format is not None:
-            from nodl.analysis.graph import GraphError, render_graph
+            from nodl.graph import GraphError, render_graph
 
             try:
                 write_file(args.graph, render_graph(analysis, graph_format))
