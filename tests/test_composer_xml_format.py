@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import pytest
-
 from composer_helpers import EXAMPLE, LAUNCH
+
 from nodl.composer.formats import read_document, render
 from nodl.composer.model import ComposedNode, Group, Kept, Param, Remap
 from nodl.composer.xml_format import ReadError, node_xml, read_xml
@@ -22,7 +22,7 @@ def test_items_editable_and_kept() -> None:
     kinds = [(type(i).__name__, getattr(i, 'what', getattr(i, 'name', None))) for i in doc.items]
     assert kinds == [('Kept', '<arg>'), ('Kept', '<include>'), ('ComposedNode', 'talker'),
                      ('ComposedNode', 'listener'), ('ComposedNode', 'quiet'), ('Group', None)]
-    talker, listener, quiet, group = doc.items[2:]
+    talker, _, quiet, group = doc.items[2:]
     assert isinstance(talker, ComposedNode) and talker.editable
     assert talker.params == [Param('rate', 5.0, '<param name="rate" value="5.0"/>', '\n    ')]
     assert talker.style['attrs'] == [('output', 'screen')]

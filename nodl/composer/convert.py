@@ -2,7 +2,8 @@
 
 Nodes, containers, names, namespaces (the groups pushing literal namespaces), parameter
 values and remapping rules are written anew in the other format; pieces kept verbatim
-belong to the source format's language and are left out.
+(and read-only nodes, whose conditions or substitutions they are) belong to the source
+format's language and are left out.
 """
 
 from __future__ import annotations
@@ -40,6 +41,8 @@ def convert_document(doc: Document, kind: str) -> Document:
     def place(items: list[Item], target: list[Item], indent: str, first_bare: bool) -> None:
         for item in items:
             if isinstance(item, ComposedNode):
+                if not item.editable:
+                    continue  # its condition or substitutions are the source format's
                 node = _fresh(item)
                 node.indent = indent
                 node.gap = indent if first_bare and not target else '\n' + indent

@@ -12,14 +12,14 @@ from __future__ import annotations
 import os
 from typing import TYPE_CHECKING, Any
 
-from nodl.composer.model import Kept, Param, Remap
+from nodl.composer.model import Param, Remap
 from nodl.composer.ports import ports_of
 
 if TYPE_CHECKING:
     from nodl.composer.composition import Composition
     from nodl.reporting.reporters import Report
 
-__all__ = ['show_text', 'show_report']
+__all__ = ['show_report', 'show_text']
 
 
 def _value(value: Any) -> str:
@@ -28,16 +28,17 @@ def _value(value: Any) -> str:
     return python_value(value)
 
 
-def show_text(composition: 'Composition', verbose: bool = False) -> str:
+def show_text(composition: Composition, verbose: bool = False) -> str:
     """The composition for people (see the module docstring)."""
     from nodl.text_safety import visible
 
     analysis = composition.analyse()
     nodes = composition.nodes
     kept = composition.document.kept()
-    lines = [f'{composition.path} ({composition.format}): {len(nodes)} node'
-             f'{"s" if len(nodes) != 1 else ""}, {len(kept)} part{"s" if len(kept) != 1 else ""} '
-             'kept as written']
+    head = (f'{composition.path} ({composition.format}): {len(nodes)} node'
+            f'{"s" if len(nodes) != 1 else ""}, {len(kept)} part{"s" if len(kept) != 1 else ""} '
+            'kept as written')
+    lines = [head]
     for node in nodes:
         indent = '    ' if node.kind == 'composable' else '  '
         state = '' if node.editable else f'  read-only: {node.read_only_reason}'
@@ -81,12 +82,12 @@ def show_text(composition: 'Composition', verbose: bool = False) -> str:
     return visible("\n".join(lines)) + "\n"
 
 
-def _fqn(composition: 'Composition', node_id: str) -> str:
+def _fqn(composition: Composition, node_id: str) -> str:
     node = composition.node(node_id)
     return composition.fqn(node) if node is not None else node_id
 
 
-def show_report(composition: 'Composition', verbose: bool, tool: str) -> 'Report':
+def show_report(composition: Composition, verbose: bool, tool: str) -> Report:
     """The report of ``nodl system show``."""
     from nodl.reporting.reporters import Report
 

@@ -11,6 +11,9 @@ if TYPE_CHECKING:
 
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
+#: Codes that mean what the command names is not there (exit status 2, as a missing file).
+_NOT_FOUND = ('NODL970', 'NODL971')
+
 #: operation -> its help line.
 OPERATIONS = {
     'new': 'start an empty launch file (its format by its ending: .launch.xml, .launch.yaml, '
@@ -47,7 +50,10 @@ class SystemVerb(Verb):
 
     @staticmethod
     def _common(sub: argparse.ArgumentParser, name: str) -> None:
-        from nodl.cli.arguments import add_definitions_argument, add_launch_code_arguments
+        from nodl.cli.arguments import (
+            add_definitions_argument,
+            add_launch_code_arguments,
+        )
         from nodl.cli.report_options import add_format_argument
 
         add_definitions_argument(sub)
@@ -185,7 +191,9 @@ class SystemVerb(Verb):
         status = EXIT_OK
         if not change.ok:
             summary = f'{prog}: nothing changed'
-            status = EXIT_FAILURE
+            # a node or endpoint that is not there is a usage error, as a missing file
+            status = EXIT_USAGE if any(d.code in _NOT_FOUND for d in change.diagnostics) \
+                else EXIT_FAILURE
         elif args.dry_run:
             sys.stdout.write(composition.render())
             summary = f'{done}; not written (--dry-run)'
@@ -195,7 +203,7 @@ class SystemVerb(Verb):
             diagnostics += problems
             if problems:
                 summary = f'{prog}: not saved'
-                status = EXIT_USAGE if any(d.code == 'NODL030' for d in problems) else EXIT_FAILURE
+                status = EXIT_USAGE
             else:
                 summary = f'{done}; {args.file} saved'
         payload = {'operation': args.operation, 'file': args.file, **change.to_dict(),
