@@ -1,44 +1,20 @@
 """Targets: every way to name a definition, resolved once, with its provenance.
 
-* :mod:`~nodl.registry.overlay`: definitions folders (overlays) laid out by
-  package, their layout checked, and the folders in force for a run;
+* the definitions folders (overlays) it looks in first are the registry's
+  (:mod:`nodl.registry.overlay`);
 * :mod:`~nodl.targets.resolve`: ``FILE``, ``PACKAGE EXECUTABLE`` and
   ``nodl://PACKAGE/NAME`` -> a definition, looked up in the definitions folders
   (``--definitions`` > ``NODL_PATH`` > ``nodl.toml``) before the ament index, with
   where it came from (index, overlay, extracted, described);
+* :mod:`~nodl.targets.drafts`: what an extracted draft still leaves open (``# GAP``);
 * :mod:`~nodl.targets.placement`: definitions placed as nodes by name
   (``nodl policy`` and ``nodl analyse DEFINITION...``).
-
-Names are imported lazily, like the package's other ``__init__`` modules: the index
-imports :mod:`~nodl.registry.overlay` alone.
 """
 
 from __future__ import annotations
 
-import importlib
+from nodl.targets.placement import Definition, instances_from_definitions
+from nodl.targets.resolve import Provenance, Target, gather_definitions, provenance_of, resolve_target
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any
-
-_EXPORTS = {
-    'Definitions': 'overlay', 'DefinitionFolder': 'overlay', 'read_folder': 'overlay',
-    'Provenance': 'resolve', 'Target': 'resolve', 'gather_definitions': 'resolve',
-    'resolve_target': 'resolve', 'provenance_of': 'resolve',
-    'Definition': 'placement', 'instances_from_definitions': 'placement',
-}
-
-__all__ = sorted(_EXPORTS)
-
-
-def __getattr__(name: str) -> Any:
-    module = _EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f'module {__name__!r} has no attribute {name!r}')
-    value = getattr(importlib.import_module(f'{__name__}.{module}'), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(list(globals()) + __all__)
+__all__ = ['Definition', 'Provenance', 'Target', 'gather_definitions', 'instances_from_definitions',
+           'provenance_of', 'resolve_target']
