@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.extract.model import PARAMETERS, Entity, ExtractedNode, Extraction, Gap, Location
+from nodl.vocabulary import ROS_PARAMETER_TYPE_NAMES
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
@@ -702,10 +703,9 @@ def _declared_name(node: Any) -> str | None:
 _INT_TYPES = {'int', 'int64_t', 'int32_t', 'int16_t', 'int8_t', 'long', 'longlong', 'short', 'uint8_t',
               'uint16_t', 'uint32_t', 'uint64_t', 'size_t', 'unsigned', 'unsignedint', 'std::int64_t',
               'std::int32_t', 'std::size_t'}
-_PARAM_ENUM = {'PARAMETER_BOOL': 'bool', 'PARAMETER_INTEGER': 'int', 'PARAMETER_DOUBLE': 'double',
-               'PARAMETER_STRING': 'string', 'PARAMETER_BYTE_ARRAY': 'byte_array',
-               'PARAMETER_BOOL_ARRAY': 'bool_array', 'PARAMETER_INTEGER_ARRAY': 'int_array',
-               'PARAMETER_DOUBLE_ARRAY': 'double_array', 'PARAMETER_STRING_ARRAY': 'string_array'}
+#: ``rclcpp::ParameterType`` constant -> parameter type (the vocabulary's table; ``PARAMETER_NOT_SET``
+#: declares no type).
+_PARAM_ENUM = {name: word for word, name in ROS_PARAMETER_TYPE_NAMES.items() if word != 'none'}
 
 
 def _param_type(cpp: str) -> str | None:

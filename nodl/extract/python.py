@@ -31,6 +31,7 @@ from operator import attrgetter
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.extract.model import PARAMETERS, Entity, ExtractedNode, Extraction, Gap, Location
 from nodl.extract.writer import check_entities
+from nodl.vocabulary import PARAMETER_TYPE_BY_NUMBER, ROS_PARAMETER_TYPE_NAMES
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
@@ -1000,11 +1001,10 @@ class _QoSReader:
         return total
 
 
-_PARAMETER_TYPE_WORDS = {
-    'BOOL': 'bool', 'INTEGER': 'int', 'DOUBLE': 'double', 'STRING': 'string', 'BYTE_ARRAY': 'byte_array',
-    'BOOL_ARRAY': 'bool_array', 'INTEGER_ARRAY': 'int_array', 'DOUBLE_ARRAY': 'double_array',
-    'STRING_ARRAY': 'string_array', 'NOT_SET': 'none',
-}
+#: ``Parameter.Type`` member (rclpy) -> parameter type: rcl's ``ParameterType`` constants
+#: without their ``PARAMETER_`` prefix (the vocabulary's table).
+_PARAMETER_TYPE_WORDS = {name.removeprefix('PARAMETER_'): word
+                         for word, name in ROS_PARAMETER_TYPE_NAMES.items()}
 
 
 def _type_of_value(value: Any) -> str | None:
@@ -1601,8 +1601,7 @@ class PythonExtractor:
             if arg == 'type':
                 word = _parameter_type_symbol(resolved)
                 if word is None and isinstance(resolved, int):
-                    word = ['none', 'bool', 'int', 'double', 'string', 'byte_array', 'bool_array', 'int_array',
-                            'double_array', 'string_array'][resolved] if 0 <= resolved <= 9 else None
+                    word = PARAMETER_TYPE_BY_NUMBER.get(resolved)
                 out['type'] = word
             elif arg in ('read_only', 'description', 'additional_constraints', 'dynamic_typing', 'name'):
                 out[arg] = resolved
