@@ -46,17 +46,18 @@ def set_parameter(composition: Composition, ref: ComposedNode | str, name: str,
     if problem is not None:
         return Change([problem], node.id)
     path, line = composition.path, node.line
+    column = len(node.indent) + 1 if line else 0
     try:
         value = typed_value(text)
     except ValueError as exc:
-        return Change([Diagnostic(Severity.ERROR, f'{name}: {exc}', code='NODL977', file=path, line=line)],
+        return Change([Diagnostic(Severity.ERROR, f'{name}: {exc}', code='NODL977', file=path, line=line, column=column)],
                       node.id)
     diagnostics: list[Diagnostic] = []
     resolved = composition.definition_of(node)
     if resolved is None:
         diagnostics.append(Diagnostic(
             Severity.WARNING, f'{node.label}: no definition is found, so {name} = {text} is '
-            'written unchecked', code='NODL985', file=path, line=line))
+            'written unchecked', code='NODL985', file=path, line=line, column=column))
     else:
         plans = parameter_plans(resolved)
         plan = plans.get(name)
@@ -67,7 +68,7 @@ def set_parameter(composition: Composition, ref: ComposedNode | str, name: str,
             return Change([Diagnostic(
                 Severity.ERROR, f"{composition.fqn(node)} ({node.label}) declares no parameter "
                 f"'{name}'{did_you_mean(name, declared)} (it declares: "
-                f"{', '.join(declared) or 'none'})", code='NODL978', file=path, line=line)], node.id)
+                f"{', '.join(declared) or 'none'})", code='NODL978', file=path, line=line, column=column)], node.id)
         if plan.ros_type == 'PARAMETER_STRING' and not isinstance(value, str):
             value = text  # a string parameter: the text is the string ('3', 'true')
         problems = check_value(plan, value)
@@ -76,10 +77,9 @@ def set_parameter(composition: Composition, ref: ComposedNode | str, name: str,
             if plan.ros_type == 'PARAMETER_DOUBLE' and isinstance(value, int) \
                     and not isinstance(value, bool):
                 hint = f' (write {value}.0 for a double)'
-            accepts = f'; it {plan.constraints_text}' if plan.constraints_text else ''
             return Change([Diagnostic(
-                Severity.ERROR, f'{name} = {text} is refused: {"; ".join(problems)}{hint} '
-                f'({plan.type_name}{accepts})', code='NODL977', file=path, line=line)], node.id)
+                Severity.ERROR, f'{name} = {text} is refused: {"; ".join(problems)}{hint}',
+                code='NODL977', file=path, line=line, column=column)], node.id)
     _write(node, name, value)
     composition._changed(node)
     return Change(diagnostics, node.id)
