@@ -30,6 +30,7 @@ other frontends read it.
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Iterable
 from typing import Any, Protocol
 
@@ -37,6 +38,7 @@ from nodl.diagnostics import Diagnostic, Severity
 from nodl.frontends.source import SourceText
 from nodl.frontends.yaml_json import ParsedDocument, parse_document
 from nodl.plugins import (
+    BLOCKLIST_VARIABLE,
     EXTENSION_POINTS,
     EntryPointSpec,
     ExtensionPoint,
@@ -146,7 +148,7 @@ class FrontendExtension(ExtensionPoint):
 
 
 class _Loaded:
-    def __init__(self, key: tuple[EntryPointSpec, ...], frontends: dict[str, FrontendExtension],
+    def __init__(self, key: tuple[tuple[str, ...], str], frontends: dict[str, FrontendExtension],
                  broken: list[PluginError]) -> None:
         self.key = key
         self.frontends = frontends
@@ -155,27 +157,29 @@ class _Loaded:
         self.unreported = list(broken)
 
 
-#: The frontends of the entry points found last (loaded again when they change).
+#: The frontends loaded last, for the ``sys.path`` and blocklist they were found with.
 _loaded: _Loaded | None = None
 
 
 def load_frontends() -> tuple[dict[str, FrontendExtension], list[PluginError]]:
     """The frontends (by entry point name, highest priority first) and the broken plug-ins.
 
-    Loaded once per process, again when the entry points found change.
+    Loaded once per process, again when ``sys.path`` or the blocklist changes (what
+    :func:`nodl.plugins.iter_entry_points` finds depends on nothing else).
     """
     frontends, loaded = _frontends()
-    return dict(frontends), list(loaded.broken) if loaded is not None else []
+    return dict(frontends), list(loaded.broken)
 
 
-def _frontends() -> tuple[dict[str, FrontendExtension], _Loaded | None]:
+def _frontends() -> tuple[dict[str, FrontendExtension], _Loaded]:
     global _loaded
-    key = tuple(iter_entry_points(FRONTEND_GROUP))
+    # Asked once per document read: the key is cheap to build (not the entry points themselves).
+    key = (tuple(sys.path), os.environ.get(BLOCKLIST_VARIABLE, ''))
     if _loaded is None or _loaded.key != key:
         broken: list[PluginError] = []
-        if key or iter_entry_points(FRONTEND_GROUP, include_blocked=True):
+        if iter_entry_points(FRONTEND_GROUP, include_blocked=True):
             found = instantiate_extensions(FRONTEND_GROUP, on_error=broken.append)
-        else:
+        else:  # no distribution declares the group: a source tree without its metadata
             found = _builtins()
         _loaded = _Loaded(key, found, broken)
     return _loaded.frontends, _loaded
@@ -215,7 +219,7 @@ def read_document(source: SourceText, *, installed: bool = False) -> Reading:
     """
     frontends, loaded = _frontends()
     notes: list[Diagnostic] = []
-    if loaded is not None and loaded.unreported:
+    if loaded.unreported:
         notes = [_broken(source.file, e.name, e.value, e.error) for e in loaded.unreported]
         loaded.unreported = []
     given = FrontendInput(source, installed=installed)
