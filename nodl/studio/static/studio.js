@@ -55,26 +55,33 @@
   }
 
   function defaultPositions(nodes, known) {
-    // Unplaced nodes: a column per namespace, side by side, in the order they come.
-    var out = {}, columns = {}, order = [], x0 = 0;
-    Object.keys(known).forEach(function (k) { x0 = Math.max(x0, known[k].x + 2 * PORT_W + 120); });
+    // Nodes without a kept position: each namespace's as a block of columns about as wide
+    // as tall, the blocks in rows (as many per row as rows), right of the placed nodes.
+    var out = {}, groups = {}, order = [], x0 = 0, cellW = 2 * PORT_W + 90, gap = 150;
+    Object.keys(known).forEach(function (k) { x0 = Math.max(x0, known[k].x + cellW + gap); });
     nodes.forEach(function (n) {
       if (known[n.id]) { return; }
       var ns = n.namespace || '/';
-      if (!columns[ns]) { columns[ns] = []; order.push(ns); }
-      columns[ns].push(n);
+      if (!groups[ns]) { groups[ns] = []; order.push(ns); }
+      groups[ns].push(n);
     });
-    var x = x0, colHeight = 760;
-    order.forEach(function (ns) {
-      var y = 0, startX = x;
-      columns[ns].forEach(function (n) {
-        var rows = Math.max(1, rowsOf(n));
-        var h = rows * PORT_H + 56;
-        if (y > 0 && y + h > colHeight) { y = 0; x += 2 * PORT_W + 90; }
-        out[n.id] = {x: x, y: y + h / 2};
-        y += h + 16;
+    var perRow = Math.max(1, Math.ceil(Math.sqrt(order.length)));
+    var x = x0, y = 0, rowHeight = 0;
+    order.forEach(function (ns, g) {
+      var members = groups[ns];
+      var heights = members.map(function (n) { return Math.max(1, rowsOf(n)) * PORT_H + 56; });
+      var total = heights.reduce(function (a, b) { return a + b + 16; }, 0);
+      var cols = Math.max(1, Math.round(Math.sqrt(total / cellW)));
+      var limit = total / cols, cx = 0, cy = 0, width = cellW, height = 0;
+      members.forEach(function (n, i) {
+        if (cy > 0 && cy + heights[i] > limit + 40) { cy = 0; cx += cellW; width += cellW; }
+        out[n.id] = {x: x + cx, y: y + cy + heights[i] / 2};
+        cy += heights[i] + 16;
+        height = Math.max(height, cy);
       });
-      x = Math.max(x, startX) + 2 * PORT_W + 150;
+      rowHeight = Math.max(rowHeight, height);
+      x += width + gap;
+      if ((g + 1) % perRow === 0) { x = x0; y += rowHeight + gap; rowHeight = 0; }
     });
     return out;
   }
@@ -213,6 +220,7 @@
     });
     cy.on('tapstart', 'node.port', function (evt) {
       var port = evt.target;
+      cy.userPanningEnabled(false);  // the drag draws an edge: the drawing must not move
       studio.compatible = null;
       markCompatible(port);
       studio.eh.start(port);
@@ -228,6 +236,7 @@
       });
     });
     cy.on('ehstop', function () {
+      cy.userPanningEnabled(true);
       cy.nodes('.port').removeClass('compatible incompatible');
     });
     cy.on('tap', 'node.instance', function (evt) { select(evt.target.id()); });
@@ -530,7 +539,8 @@
   function show(state, fit) {
     var first = !studio.state;
     studio.state = state;
-    $('file').textContent = state.file;
+    $('file').textContent = state.file.split('/').slice(-2).join('/');
+    $('file').title = state.file;
     $('dirty').hidden = !state.dirty;
     draw(state, fit || first);
     showCounts(state);
