@@ -24,8 +24,19 @@ from conftest import FIXTURES, NodeProcess
 from nodl import ValidationError, dump_nodl
 from nodl.live.check import CheckResult, check_node, load_definition
 from nodl.live.describe import describe_node, render_description
-from nodl.live.report import format_check_json, format_check_junit, format_check_text
+from nodl.live.report import check_report, format_check_text
 from nodl.live.session import NodeNotFound
+from nodl.reporting.reporters import JsonReporter, JUnitReporter
+
+
+def _json(result: CheckResult) -> str:
+    """The check's JSON report, as ``nodl check --format json`` writes it."""
+    return JsonReporter().report(check_report(result))
+
+
+def _junit(result: CheckResult) -> str:
+    """The check's JUnit report, as ``nodl check --format junit`` writes it."""
+    return JUnitReporter().report(check_report(result))
 
 
 @pytest.fixture(scope='module')
@@ -90,7 +101,7 @@ def test_check_watches_for_namesakes_while_it_works_and_says_how_long(full: Node
     assert result.watched is not None and result.watched >= 1.0
     text = format_check_text(result)
     assert text.splitlines()[1].startswith('/chk/full: namesakes watched for ')
-    assert json.loads(format_check_json(result))['namesakes_watched'] == round(result.watched, 2)
+    assert json.loads(_json(result))['namesakes_watched'] == round(result.watched, 2)
     # by default, past the 3 s periodic announcements: nothing more to suggest
     default = check_node(full.fqn, path, timeout=15)
     assert default.watched is not None and default.watched >= 3.5
@@ -176,12 +187,12 @@ def test_reports_of_the_edited_copy(edited: CheckResult) -> None:
     assert 'unverifiable' not in '\n'.join(text.splitlines()[:-1])  # listed with -v only
     assert 'info: unverifiable:' in format_check_text(edited, verbose=True)
 
-    data = json.loads(format_check_json(edited))
+    data = json.loads(_json(edited))
     assert data['node'] == '/chk/full' and data['conforms'] is False
     assert sorted(d['kind'] for d in data['differences'] if d['severity'] == 'error') == \
         ['extra', 'missing', 'parameter_type', 'qos', 'read_only', 'type']
 
-    suite = ET.fromstring(format_check_junit(edited))
+    suite = ET.fromstring(_junit(edited))
     assert suite.tag == 'testsuite'
     failures = {(case.get('classname'), case.get('name')): [f.get('type') for f in case.iter('failure')]
                 for case in suite.iter('testcase')}
@@ -337,12 +348,12 @@ def test_the_rclcpp_base_is_checked_when_asked_for(full: NodeProcess, described)
     assert result.client_library == ('rclcpp', 'as requested')
     assert format_check_text(result).splitlines()[0] == (
         '/chk/full: client library: rclcpp (as requested)')
-    assert json.loads(format_check_json(result))['client_library'] == {
+    assert json.loads(_json(result))['client_library'] == {
         'name': 'rclcpp', 'reason': 'as requested'}
     # the difference points at the declaration, in the rclcpp part of the base
     location = result.drift[0].location
     assert location is not None and location.file.endswith(os.path.join('rclcpp', 'node.nodl.yaml'))
-    assert result.drift[0].to_diagnostic().file == location.file
+    assert (result.drift[0].file, result.drift[0].line) == (location.file, location.line)
     default = check_node(full.fqn, path, timeout=15)
     assert default.conforms
     assert default.client_library == ('rclpy', 'the default; choose with --client-library')
@@ -374,7 +385,7 @@ def test_drift_diagnostics_point_at_the_declarations(edited: CheckResult) -> Non
     from nodl.diagnostics import Severity
 
     path = Path(edited.definition)
-    by_kind = {d.kind: edited.diagnostic(d) for d in edited.differences
+    by_kind = {d.kind: d for d in edited.differences
                if d.kind != 'unverifiable'}
     assert {k: d.code for k, d in by_kind.items()} == {
         'extra': 'NODL402', 'missing': 'NODL401', 'type': 'NODL403', 'qos': 'NODL404',
@@ -400,13 +411,14 @@ def test_drift_in_a_mixin_and_an_override_are_located_in_their_layers(full: Node
     located = FIXTURES / 'live' / 'located'
     path, mixin = located / 'full_located.nodl.yaml', located / 'full_mixin.nodl.yaml'
     result = check_node(full.fqn, path, timeout=15)
-    found = {(d.kind, d.name): result.diagnostic(d) for d in result.differences
+    found = {(d.kind, d.name): d for d in result.differences
              if d.kind != 'unverifiable'}
     assert sorted(found) == [('extra', '/chk/measurement'), ('missing', '/chk/full/heartbeat'),
                              ('value', 'gain')]
     missing = found[('missing', '/chk/full/heartbeat')]
     assert (Path(missing.file), missing.line) == (mixin, _line_of(mixin, 'name: ~/heartbeat'))
-    assert 'declared in full_mixin.nodl.yaml' in missing.message
+    assert missing.layer == 'full_mixin.nodl.yaml'
+    assert 'declared in full_mixin.nodl.yaml' in missing.headline()
     value = found[('value', 'gain')]
     assert (Path(value.file), value.line) == (path, _line_of(path, '    gain:'))
     assert [(Path(f), line, text) for f, line, _, text in value.related] == [
@@ -424,7 +436,7 @@ def test_overrides_decide_conformance(edited: CheckResult) -> None:
     assert len(quiet.ignored) == 6 and not edited.ignored  # the original is unchanged
     assert [d.kind for d in quiet.differences if d.severity == 'warning'] == ['value']
     assert '6 ignored' in format_check_text(quiet).splitlines()[-1]
-    assert json.loads(format_check_json(quiet))['ignored'] == 6
+    assert json.loads(_json(quiet))['ignored'] == 6
     # a promoted warning is drift; the command line (stronger) wins over what came before
     strict = quiet.with_overrides(Overrides(error=['NODL407']))
     assert not strict.conforms

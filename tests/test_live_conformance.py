@@ -114,9 +114,19 @@ def test_synthetic_observation_matches_the_fixture_definition(composed) -> None:
     assert all(d.severity == 'info' for d in differences)
 
 
-def test_compare_accepts_a_bare_interface(composed) -> None:
-    assert [repr(d) for d in compare(composed.interface, conforming())] == \
-        [repr(d) for d in compare(composed, conforming())]
+def test_every_difference_is_a_diagnostic_placed_in_the_definitions_files(composed) -> None:
+    from nodl.diagnostics import Diagnostic
+
+    observed = conforming()
+    observed.publishers.append(_ep('/base/debug', 'std_msgs/msg/String', {}))
+    differences = compare(composed, observed)
+    assert differences and all(isinstance(d, Diagnostic) for d in differences)
+    files = {str(LIVE / 'drive_node.nodl.yaml'), str(LIVE / 'drive_health.nodl.yaml')}
+    for d in differences:
+        assert d.code and d.line > 0 and d.column > 0, d
+        assert d.file in files or d.file.endswith('.nodl.yaml'), d  # the base's file, in the package
+    extra = _only(differences, 'extra')
+    assert extra.location is None and extra.file == str(LIVE / 'drive_node.nodl.yaml')  # main's section
 
 
 # -- missing and extra -----------------------------------------------------------------------
@@ -368,7 +378,7 @@ def test_value_breaking_a_validator_is_a_warning_not_drift(composed, name: str, 
     assert validator in d.message and 'current value' in d.message
     assert 'default_value' not in d.message
     assert conforms(differences)
-    assert str(d).startswith('warning: value: ')
+    assert d.brief().startswith('warning: value: ')
 
 
 def test_values_within_the_validators_give_no_warning(composed) -> None:
@@ -483,22 +493,39 @@ def test_remapped_node_conforms_only_with_its_remaps(composed) -> None:
 # -- Difference and conforms -----------------------------------------------------------------
 
 
-def test_difference_text_and_dict() -> None:
-    d = Difference('qos', 'publishers', '/base/status', "publisher '/base/status' durability: "
-                   'declared TRANSIENT_LOCAL, observed VOLATILE', declared='TRANSIENT_LOCAL',
-                   observed='VOLATILE', layer='main')
-    assert str(d) == ("error: qos: publisher '/base/status' durability: declared TRANSIENT_LOCAL, "
-                      'observed VOLATILE (declared in main) [NODL404]')
+def test_a_difference_is_a_coded_diagnostic_with_its_values() -> None:
+    import pickle
+
+    from nodl.diagnostics import Diagnostic, Severity
+    from nodl.live.conformance import LiveDiagnostic
+    from nodl.location import Location
+
+    d = LiveDiagnostic('qos', 'publishers', '/base/status', "publisher '/base/status' durability: "
+                       'declared TRANSIENT_LOCAL, observed VOLATILE', declared='TRANSIENT_LOCAL',
+                       observed='VOLATILE', layer='main', location=Location('robot.nodl.yaml', 7, 5))
+    assert isinstance(d, Diagnostic) and Difference is LiveDiagnostic  # the former name, kept
+    assert (d.severity, d.code, d.path, d.file, d.line, d.column) == (
+        Severity.ERROR, 'NODL404', ('publishers', '/base/status'), 'robot.nodl.yaml', 7, 5)
+    assert d.brief() == ("error: qos: publisher '/base/status' durability: declared TRANSIENT_LOCAL, "
+                         'observed VOLATILE (declared in main) [NODL404]')
+    assert str(d) == ("robot.nodl.yaml:7:5: error: publisher '/base/status' durability: declared "
+                      'TRANSIENT_LOCAL, observed VOLATILE [publishers["/base/status"]] [NODL404]')
     assert d.to_dict() == {'kind': 'qos', 'code': 'NODL404', 'severity': 'error', 'section': 'publishers',
                            'name': '/base/status', 'declared': 'TRANSIENT_LOCAL',
-                           'observed': 'VOLATILE', 'layer': 'main', 'message': d.message}
-    extra = Difference('extra', 'publishers', '/x', "publisher '/x' is observed but not declared")
-    assert str(extra) == "error: extra: publisher '/x' is observed but not declared [NODL402]"
-    # The same difference as a Diagnostic: lossless (kind, message, layer, section, name, code).
-    diagnostic = d.to_diagnostic('robot.nodl.yaml')
-    assert (diagnostic.severity, diagnostic.code, diagnostic.path, diagnostic.file) == (
-        'error', 'NODL404', ('publishers', '/base/status'), 'robot.nodl.yaml')
-    assert diagnostic.message == str(d)[len('error: '):-len(' [NODL404]')]
+                           'observed': 'VOLATILE', 'layer': 'main', 'message': d.message,
+                           'file': 'robot.nodl.yaml', 'line': 7, 'column': 5, 'related': []}
+    extra = LiveDiagnostic('extra', 'publishers', '/x', "publisher '/x' is observed but not declared")
+    assert extra.brief() == "error: extra: publisher '/x' is observed but not declared [NODL402]"
+    assert (extra.location, extra.file, extra.line) == (None, '<definition>', 0)  # not placed yet
+    # immutable values: replace keeps what it is; pickled (a child process) and hashed whole
+    unverifiable = LiveDiagnostic('unverifiable', 's', 'n', 'm', declared={'depth': 1})
+    promoted = unverifiable.replace(severity='error')
+    assert isinstance(promoted, LiveDiagnostic) and promoted.promoted and not unverifiable.promoted
+    assert (promoted.kind, promoted.declared, promoted.code) == ('unverifiable', {'depth': 1}, 'NODL408')
+    assert pickle.loads(pickle.dumps(promoted)) == promoted
+    assert hash(promoted) == hash(promoted.replace())
+    with pytest.raises(AttributeError):
+        d.kind = 'missing'  # type: ignore[misc]
 
 
 @pytest.mark.parametrize('kinds, expected', [
@@ -526,11 +553,27 @@ def test_compare_does_not_modify_its_inputs(composed) -> None:
 # -- JUnit report: each difference on the declaration it is about ----------------------------
 
 
+def _junit(result: Any) -> str:
+    """The check's JUnit report, as ``nodl check --format junit`` writes it."""
+    from nodl.live.report import check_report
+    from nodl.reporting.reporters import JUnitReporter
+
+    return JUnitReporter().report(check_report(result))
+
+
+def _json(result: Any) -> str:
+    """The check's JSON report, as ``nodl check --format json`` writes it."""
+    from nodl.live.report import check_report
+    from nodl.reporting.reporters import JsonReporter
+
+    return JsonReporter().report(check_report(result))
+
+
+
 def test_junit_attributes_differences_to_declared_entities(composed) -> None:
     import xml.etree.ElementTree as ET
 
     from nodl.live.check import CheckResult
-    from nodl.live.report import format_check_junit
 
     observed = conforming()
     # '/{node}/heartbeat' goes missing; cmd_vel is remapped to cmd_in and has the wrong type
@@ -541,7 +584,7 @@ def test_junit_attributes_differences_to_declared_entities(composed) -> None:
     rules = parse_remaps(['cmd_vel:=cmd_in'], NAME, NAMESPACE)
     result = CheckResult('/base/drive', str(LIVE / 'drive_node.nodl.yaml'),
                          compare(composed, observed, rules), composed, observed, rules)
-    suite = ET.fromstring(format_check_junit(result))
+    suite = ET.fromstring(_junit(result))
     cases = {(c.get('classname'), c.get('name')): c for c in suite.iter('testcase')}
     failures = {k: [f.get('type') for f in c.iter('failure')] for k, c in cases.items()}
     assert failures[('publishers', '/{node}/heartbeat')] == ['missing']
@@ -568,7 +611,6 @@ def test_junit_failure_comes_before_the_notes_of_the_same_entity(composed) -> No
     import xml.etree.ElementTree as ET
 
     from nodl.live.check import CheckResult
-    from nodl.live.report import format_check_junit
 
     observed = conforming()
     odom = _endpoint(observed, 'publishers', '/base/drive/odom')
@@ -577,7 +619,7 @@ def test_junit_failure_comes_before_the_notes_of_the_same_entity(composed) -> No
     odom.qos['reliability'] = 'BEST_EFFORT'  # ... and drift, on one entity
     result = CheckResult('/base/drive', 'drive_node.nodl.yaml', compare(composed, observed),
                          composed, observed)
-    suite = ET.fromstring(format_check_junit(result))
+    suite = ET.fromstring(_junit(result))
     case = next(c for c in suite.iter('testcase') if c.get('name') == '~/odom')
     assert [e.tag for e in case] == ['failure', 'system-out']
     assert 'history' in case.find('system-out').text
@@ -585,7 +627,7 @@ def test_junit_failure_comes_before_the_notes_of_the_same_entity(composed) -> No
 
 def test_reports_of_a_synthetic_check_match_golden(composed, golden) -> None:
     from nodl.live.check import CheckResult
-    from nodl.live.report import format_check_json, format_check_junit, format_check_text
+    from nodl.live.report import format_check_text
 
     observed = conforming()
     observed.publishers = [e for e in observed.publishers if e.name != '/base/status']
@@ -610,9 +652,9 @@ def test_reports_of_a_synthetic_check_match_golden(composed, golden) -> None:
 
     package = os.path.dirname(nodl.__file__) + os.sep
     here = str(LIVE) + os.sep
-    golden.check(format_check_json(result).replace(package, '<nodl>/').replace(
+    golden.check(_json(result).replace(package, '<nodl>/').replace(
         here, '<live>/'), expected / 'drive_check.json')
-    golden.check(format_check_junit(result), expected / 'drive_check.junit.xml')
+    golden.check(_junit(result), expected / 'drive_check.junit.xml')
 
 
 # -- remaps through the naming module (rcl's rules) ------------------------------------------

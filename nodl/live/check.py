@@ -2,19 +2,20 @@
 
 from __future__ import annotations
 
+import copy
 import os
 from typing import Iterable
 
 from nodl.composition import ComposedNode
 from nodl.composition.client_library import ClientLibraryChoice
-from nodl.diagnostics import Diagnostic, Severity, ValidationError
-from nodl.live.conformance import Difference, Remaps, compare, conforms
-from nodl.naming import NodeNames
+from nodl.diagnostics import Severity, ValidationError
+from nodl.live.conformance import LiveDiagnostic, Remaps, compare, conforms, place
 from nodl.live.observe import DISCOVERY_WINDOW, ObservedNode, observe_node, recount
 from nodl.live.session import DuplicateNode
+from nodl.location import Location
 from nodl.model import ENDPOINT_SECTIONS
+from nodl.naming import NodeNames
 from nodl.overrides import Overrides
-from nodl.system.entities import Entity, Location
 from nodl.system.resolved import ResolvedNode
 
 __all__ = ['CheckResult', 'load_definition', 'check_node', 'base_mismatch', 'RECHECK']
@@ -24,12 +25,10 @@ RECHECK = 1.0
 
 
 class CheckResult:
-    """The outcome of one check."""
+    """The outcome of one check: the node's differences from its definition, as diagnostics."""
 
-    def __init__(self, fqn: str, definition: str, differences: list[Difference],
-                 composed: ResolvedNode | ComposedNode, observed: ObservedNode,
-                 remaps: Remaps = None) -> None:
-        resolved = composed if isinstance(composed, ResolvedNode) else ResolvedNode(composed)
+    def __init__(self, fqn: str, definition: str, differences: list[LiveDiagnostic],
+                 resolved: ResolvedNode, observed: ObservedNode, remaps: Remaps = None) -> None:
         #: The declared node, resolved (entities with their layers, providers and locations).
         self.resolved = resolved
         composed = resolved.composed
@@ -42,6 +41,8 @@ class CheckResult:
         self.names: NodeNames | None = remaps if isinstance(remaps, NodeNames) else None
         #: The definition's file.
         self.definition = definition
+        #: Every (not ignored) difference: a coded diagnostic placed at the declaration of
+        #: its entity (see :func:`nodl.live.conformance.place`).
         self.differences = differences
         self.composed = composed
         self.observed = observed
@@ -51,10 +52,9 @@ class CheckResult:
         #: The ``--ignore`` / ``--error`` codes applied (see :meth:`with_overrides`).
         self.overrides = Overrides()
         #: The differences the overrides silenced (not in :attr:`differences`).
-        self.ignored: list[Difference] = []
+        self.ignored: list[LiveDiagnostic] = []
         #: Seconds of discovery namesakes were watched for (none was seen meanwhile).
         self.watched: float | None = observed.watched
-        self._by_location: dict[Location, Entity] | None = None
 
     @property
     def client_library(self) -> ClientLibraryChoice | None:
@@ -65,16 +65,19 @@ class CheckResult:
                                    self.resolved.client_library_reason)
 
     @property
+    def diagnostics(self) -> list[LiveDiagnostic]:
+        """Every (not ignored) difference, in order: :attr:`differences`, which are diagnostics."""
+        return list(self.differences)
+
+    @property
     def conforms(self) -> bool:
         """True if no difference is drift (decided after the overrides, if any were applied)."""
         return conforms(self.differences)
 
     @property
-    def drift(self) -> list[Difference]:
+    def drift(self) -> list[LiveDiagnostic]:
         """Only the differences that are drift (errors: drift kinds and promoted codes)."""
-        return [d for d in self.differences if d.severity == 'error']
-
-    # -- overrides -----------------------------------------------------------------------------
+        return [d for d in self.differences if d.severity is Severity.ERROR]
 
     def with_overrides(self, overrides: Overrides) -> CheckResult:
         """This result with codes silenced or promoted (``--ignore`` / ``--error``).
@@ -85,20 +88,17 @@ class CheckResult:
         what remains.  The base hint goes when every difference it explained
         is ignored.
         """
-        import copy
-
-        kept: list[Difference] = []
+        kept: list[LiveDiagnostic] = []
         ignored = list(self.ignored)
         of_base = {id(d) for d in self.base_differences}
-        base_kept: list[Difference] = []
+        base_kept: list[LiveDiagnostic] = []
         for d in self.differences:
             if d.code in overrides.ignore:
                 ignored.append(d)
                 continue
             new = d
-            if d.code in overrides.error and d.severity != 'error':
-                new = copy.copy(d)
-                new.promoted = True
+            if d.code in overrides.error and d.severity is not Severity.ERROR:
+                new = d.replace(severity=Severity.ERROR)
             kept.append(new)
             if id(d) in of_base:
                 base_kept.append(new)
@@ -111,61 +111,13 @@ class CheckResult:
             out.base_hint = None
         return out
 
-    # -- diagnostics ---------------------------------------------------------------------------
-
-    def _entity_at(self, location: Location) -> Entity | None:
-        if self._by_location is None:
-            self._by_location = {e.location: e for e in self.resolved.entities}
-        return self._by_location.get(location)
-
-    def location_of(self, difference: Difference) -> Location:
-        """Where a difference points: the declaration of its entity (in the layer that
-        declared it: the main file, a mixin file or the base's file); for what is observed
-        but not declared, the section of ``main`` it would belong in (else ``main``, else
-        line 1 of the definition)."""
-        if difference.location is not None:
-            return difference.location
-        main = next((layer for layer in reversed(self.resolved.layers) if layer.role == 'main'),
-                    None)
-        if main is not None:
-            placed = main.place(Diagnostic(Severity.INFO, '', (difference.section,), anchor='key'))
-            if placed.line and not placed.file.startswith('<'):
-                return Location(placed.file, placed.line, placed.column)
-        return Location(self.definition, 1, 1)
-
-    def related_of(self, difference: Difference) -> tuple[tuple[str, int, int, str], ...]:
-        """The other layers that declare the difference's entity (those it overrides),
-        as ``(file, line, column, message)``."""
-        if difference.location is None:
-            return ()
-        entity = self._entity_at(difference.location)
-        if entity is None or len(entity.declared_in) < 2:
-            return ()
-        trace = self.composed.declarations.get((entity.section, entity.name), [])
-        anchor = 'key' if entity.is_parameter else 'value'
-        out = []
-        for declaration in trace[:-1]:
-            placed = declaration.layer.place(Diagnostic(Severity.INFO, '', declaration.path,
-                                                        anchor=anchor))
-            out.append((placed.file, placed.line, placed.column,
-                        f'overrides the declaration in {declaration.layer.label}'))
-        return tuple(out)
-
-    def diagnostic(self, difference: Difference) -> Diagnostic:
-        """One difference as a coded :class:`~nodl.diagnostics.Diagnostic`, placed at
-        :meth:`location_of` with the layers it overrides as related locations."""
-        file, line, column = self.location_of(difference)
-        return difference.to_diagnostic(file, line, column).replace(
-            related=self.related_of(difference))
-
-    @property
-    def diagnostics(self) -> list[Diagnostic]:
-        """Every (not ignored) difference as a diagnostic, in order (see :meth:`diagnostic`)."""
-        return [self.diagnostic(d) for d in self.differences]
+    def location_of(self, difference: LiveDiagnostic) -> Location:
+        """Where a difference points (see :func:`nodl.live.conformance.place`)."""
+        return Location(difference.file, difference.line, difference.column)
 
 
 def base_mismatch(composed: ComposedNode, observed: ObservedNode,
-                  differences: list[Difference]) -> tuple[str | None, list[Difference]]:
+                  differences: list[LiveDiagnostic]) -> tuple[str | None, list[LiveDiagnostic]]:
     """The one-line summary of a base mismatch, and the differences it accounts for.
 
     A node that serves the lifecycle services but is declared ``base: node``
@@ -290,10 +242,10 @@ def _refuse_namesakes(observed: ObservedNode) -> None:
 
 
 def _type_skew(session: object, composed: ResolvedNode, observed: ObservedNode,
-               names: NodeNames) -> list[Difference]:
-    """The version-skew differences of the observed topic endpoints (one index per run)."""
+               names: NodeNames) -> list[LiveDiagnostic]:
+    """The version-skew differences of the observed endpoints (one index per run), placed."""
     from nodl.interface_types import interface_index
     from nodl.live.type_skew import declared_locations, type_skew
 
-    return type_skew(session, observed, interface_index(),
-                     declared_locations(composed, observed, names))
+    return place(type_skew(session, observed, interface_index(),
+                           declared_locations(composed, observed, names)), composed)

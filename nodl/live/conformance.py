@@ -1,39 +1,41 @@
-"""``check``: does a running node conform to its (composed) definition?
+"""``check``: does a running node conform to its resolved definition?
 
 Declared names are resolved as the node resolves them (expanded against its
 name and namespace and remapped with its rules, by :mod:`nodl.naming`),
-then compared with what the graph reports.  Each difference has a kind:
+then compared with what the graph reports.  Every difference is a coded
+:class:`~nodl.diagnostics.Diagnostic` (a :class:`LiveDiagnostic`), placed at
+the declaration of its entity, and has a kind:
 
-* ``missing`` (declared, not observed) and ``extra`` (observed, not declared);
-* ``type`` (same name, another interface type);
-* ``qos`` (one per policy, declared against observed);
-* ``parameter_type`` and ``read_only``;
-* ``value`` (a warning: the current value breaks the declared validators);
-* ``unverifiable`` (listed, never failing): what the middleware cannot
-  report, such as service QoS or a topic's history on some middlewares.
+* ``missing`` (declared, not observed; NODL401) and ``extra`` (observed, not
+  declared; NODL402);
+* ``type`` (same name, another interface type; NODL403);
+* ``qos`` (one per policy, declared against observed; NODL404);
+* ``parameter_type`` and ``read_only`` (NODL405, NODL406);
+* ``value`` (a warning: the current value breaks the declared validators; NODL407);
+* ``unverifiable`` (an info, never failing): what the middleware cannot
+  report, such as service QoS or a topic's history on some middlewares (NODL408).
 
 Each difference names the layer that declared the entity (base, mixin
-reference or main).
+reference or main) and is located where that layer declares it, the other
+layers that declare it being its related locations; what is observed but not
+declared points at the section of ``main`` it would belong in.
 """
 
 from __future__ import annotations
 
 from typing import Any, Iterable, Mapping, Union
 
-from nodl.composition import ComposedNode
-from nodl.system.entities import Location
-
-TYPE_CHECKING = False
-if TYPE_CHECKING:
-    from nodl.system.resolved import ResolvedNode
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.live.observe import ObservedNode
+from nodl.location import Location
 from nodl.model import ENDPOINT_SECTIONS, QOS_POLICIES, Interface
 from nodl.naming import InvalidNameError, NodeNames, expand
+from nodl.system.entities import Entity
+from nodl.system.resolved import ResolvedNode
 from nodl.vocabulary import SECTION_WORDS, SERVICE_SECTIONS, TOPIC_SECTIONS
 
-__all__ = ['Difference', 'DRIFT_KINDS', 'KIND_CODES', 'compare', 'parse_remaps', 'conforms',
-           'Remaps', 'final_name']
+__all__ = ['LiveDiagnostic', 'Difference', 'DRIFT_KINDS', 'KIND_CODES', 'compare', 'place',
+           'parse_remaps', 'conforms', 'Remaps', 'final_name']
 
 #: Kinds that make a node non-conforming.
 DRIFT_KINDS = ('missing', 'extra', 'type', 'qos', 'parameter_type', 'read_only', 'version_skew')
@@ -47,69 +49,120 @@ KIND_CODES = {
     'version_skew': 'NODL420', 'skew_unverifiable': 'NODL421', 'services_unverifiable': 'NODL422',
 }
 
+#: Where a difference points before it is placed (:func:`place`).
+UNPLACED = '<definition>'
 
-class Difference:
-    """One difference between the declared and the observed interface."""
 
-    __slots__ = ('kind', 'section', 'name', 'declared', 'observed', 'layer', 'message', 'location',
-                 'promoted')
+def _severity_of(kind: str) -> Severity:
+    if kind in DRIFT_KINDS:
+        return Severity.ERROR
+    return Severity.WARNING if kind == 'value' else Severity.INFO
+
+
+class LiveDiagnostic(Diagnostic):
+    """One difference between a running node and its definition: a coded diagnostic.
+
+    Its ``path`` is ``(section, name)`` (the entity's final name, as observed),
+    its ``code`` that of its ``kind`` (:data:`KIND_CODES`), its ``message``
+    the difference in words; besides, it keeps the ``declared`` and ``observed``
+    values, the ``layer`` that declared the entity and the entity's declaration
+    (``location``; None for what is not declared).  Where it points (``file``,
+    ``line``, ``column``, ``related``) is set by :func:`place`.  Severity:
+    error for drift, warning for a bad value, info for what cannot be verified
+    (``promoted``: an error because ``--error CODE`` said so).
+    """
+
+    __slots__ = ('kind', 'declared', 'observed', 'layer', 'location')
+    _FIELDS: tuple[str, ...] = (*Diagnostic._FIELDS, *__slots__)  # type: ignore[assignment]
+
+    kind: str
+    declared: Any
+    observed: Any
+    layer: str | None
+    location: Location | None
 
     def __init__(self, kind: str, section: str, name: str, message: str, *,
                  declared: Any = None, observed: Any = None, layer: str | None = None,
                  location: Location | None = None, promoted: bool = False) -> None:
-        self.kind = kind
-        self.section = section
-        self.name = name
-        self.declared = declared
-        self.observed = observed
-        self.layer = layer
-        self.message = message
-        #: Where the entity is declared (file, line, column), when checked against a
-        #: resolved node; None for what is observed but not declared.
-        self.location = location
-        #: True when ``--error CODE`` (or a configuration) made this difference an error.
-        self.promoted = promoted
+        file, line, column = location if location is not None else (UNPLACED, 0, 0)
+        super().__init__(Severity.ERROR if promoted else _severity_of(kind), message,
+                         (section, name), file, line, column, code=KIND_CODES[kind])
+        set_ = object.__setattr__
+        set_(self, 'kind', kind)
+        set_(self, 'declared', declared)
+        set_(self, 'observed', observed)
+        set_(self, 'layer', layer)
+        set_(self, 'location', location)
+
+    def replace(self, **changes: Any) -> LiveDiagnostic:
+        """A copy with some fields changed (a promoted severity, a place)."""
+        new = object.__new__(type(self))
+        for field in self._FIELDS:
+            value = changes.pop(field, getattr(self, field))
+            if field == 'severity':
+                value = Severity(value)
+            elif field in ('path', 'related'):
+                value = tuple(value)
+            object.__setattr__(new, field, value)
+        if changes:
+            raise TypeError(f'unknown fields: {", ".join(sorted(changes))}')
+        return new
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (_rebuild, (type(self), {f: getattr(self, f) for f in self._FIELDS}))
+
+    def __hash__(self) -> int:  # the declared and observed values may not be hashable
+        return hash(tuple(getattr(self, f) for f in Diagnostic._FIELDS))
 
     @property
-    def severity(self) -> str:
-        """``error`` for drift (or a promoted code), ``warning`` for a bad value, ``info`` for
-        unverifiable."""
-        if self.kind in DRIFT_KINDS or self.promoted:
-            return 'error'
-        return 'warning' if self.kind == 'value' else 'info'
+    def section(self) -> str:
+        """The section of the entity (``publishers``, ``parameters``, ...)."""
+        return str(self.path[0])
 
     @property
-    def code(self) -> str:
-        """The stable diagnostic code of this kind of difference (``NODL401`` ...)."""
-        return KIND_CODES[self.kind]
+    def name(self) -> str:
+        """The entity's name as the node uses it (final, for endpoints)."""
+        return str(self.path[1])
 
-    def to_diagnostic(self, file: str | None = None, line: int = 0, column: int = 0) -> Diagnostic:
-        """The same difference as a :class:`~nodl.diagnostics.Diagnostic`.
+    @property
+    def promoted(self) -> bool:
+        """True when ``--error CODE`` (or a configuration) made this difference an error."""
+        return self.severity is Severity.ERROR and _severity_of(self.kind) is not Severity.ERROR
 
-        ``file`` (and a position, when known) is the definition; without one,
-        the difference's ``location`` (the entity's declaration) is used, else
-        ``<definition>``.  The path is ``(section, name)``; the layer, if any, is
-        in the message as in the text output.
-        """
-        if file is None:
-            file, line, column = self.location if self.location is not None else (
-                '<definition>', 0, 0)
+    def headline(self) -> str:
+        """``kind: message (declared in LAYER)``: the difference in one phrase."""
         layer = f' (declared in {self.layer})' if self.layer else ''
-        return Diagnostic(Severity(self.severity), f'{self.kind}: {self.message}{layer}',
-                          (self.section, self.name), file, line, column, code=self.code)
+        return f'{self.kind}: {self.message}{layer}'
+
+    def brief(self) -> str:
+        """``severity: kind: message (declared in LAYER) [CODE]``: the line ``nodl check`` prints
+        after the node's name."""
+        return f'{self.severity}: {self.headline()} [{self.code}]'
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready mapping."""
-        return {'kind': self.kind, 'code': self.code, 'severity': self.severity, 'section': self.section,
-                'name': self.name, 'declared': self.declared, 'observed': self.observed,
-                'layer': self.layer, 'message': self.message}
-
-    def __str__(self) -> str:
-        layer = f' (declared in {self.layer})' if self.layer else ''
-        return f'{self.severity}: {self.kind}: {self.message}{layer} [{self.code}]'
+        """A JSON-ready mapping: the kind, code, severity, section, name, declared and observed
+        values, layer and message, then where it points (file, line, column, related)."""
+        return {'kind': self.kind, 'code': self.code, 'severity': self.severity.value,
+                'section': self.section, 'name': self.name, 'declared': self.declared,
+                'observed': self.observed, 'layer': self.layer, 'message': self.message,
+                'file': self.file, 'line': self.line, 'column': self.column,
+                'related': [{'file': f, 'line': li, 'column': c, 'message': m}
+                            for f, li, c, m in self.related]}
 
     def __repr__(self) -> str:
-        return f'Difference({self.kind!r}, {self.section!r}, {self.name!r})'
+        return f'LiveDiagnostic({self.kind!r}, {self.section!r}, {self.name!r})'
+
+
+def _rebuild(cls: type[LiveDiagnostic], fields: dict[str, Any]) -> LiveDiagnostic:
+    new = object.__new__(cls)
+    for field, value in fields.items():
+        object.__setattr__(new, field, value)
+    return new
+
+
+#: The name the live comparison's results had before they were diagnostics (kept for
+#: the callers that build them: nodl.live.type_skew, nodl.monitor).
+Difference = LiveDiagnostic
 
 
 #: How a node's names are remapped: its :class:`~nodl.naming.NodeNames` (exact: what
@@ -150,7 +203,7 @@ def final_name(name: str, section: str, observed: ObservedNode, remaps: Remaps =
     return remaps.get(full, full) if remaps else full
 
 
-def conforms(differences: Iterable[Difference]) -> bool:
+def conforms(differences: Iterable[LiveDiagnostic]) -> bool:
     """True if no difference is drift (an error: a drift kind, or a promoted code)."""
     return not any(d.severity == 'error' for d in differences)
 
@@ -160,13 +213,13 @@ def _word(section: str) -> str:
 
 
 def _compare_qos(section: str, name: str, declared: Any, observed: dict[str, Any] | None,
-                 unobserved: list[str], layer: str | None) -> list[Difference]:
-    out: list[Difference] = []
+                 unobserved: list[str], layer: str | None) -> list[LiveDiagnostic]:
+    out: list[LiveDiagnostic] = []
     if declared is None:
         return out
     word = _word(section)
     if observed is None:
-        return [Difference('unverifiable', section, name, f"QoS of {word} '{name}' could not be "
+        return [LiveDiagnostic('unverifiable', section, name, f"QoS of {word} '{name}' could not be "
                            'read from the graph', declared=declared.to_dict(), layer=layer)]
     for policy in QOS_POLICIES:
         want = getattr(declared, policy)
@@ -177,7 +230,7 @@ def _compare_qos(section: str, name: str, declared: Any, observed: dict[str, Any
         if policy in unobserved or want in ('SYSTEM_DEFAULT', 'BEST_AVAILABLE'):
             why = ('the middleware does not report it' if policy in unobserved
                    else f'{want} is resolved by the middleware')
-            out.append(Difference('unverifiable', section, name,
+            out.append(LiveDiagnostic('unverifiable', section, name,
                                   f"{word} '{name}' {policy}: declared {want}, {why}",
                                   declared=want, layer=layer))
             continue
@@ -185,37 +238,37 @@ def _compare_qos(section: str, name: str, declared: Any, observed: dict[str, Any
         if policy.endswith('_ns') and have is None:
             have = 0  # not reported = infinite / none, which 0 means in NoDL
         if have != want:
-            out.append(Difference('qos', section, name, f"{word} '{name}' {policy}: declared "
+            out.append(LiveDiagnostic('qos', section, name, f"{word} '{name}' {policy}: declared "
                                   f'{want}, observed {have}', declared=want, observed=have,
                                   layer=layer))
     return out
 
 
-def _compare_parameters(declared: Interface, observed: ObservedNode) -> list[Difference]:
+def _compare_parameters(declared: Interface, observed: ObservedNode) -> list[LiveDiagnostic]:
     from nodl.validation.parameters import check_parameter
 
-    out: list[Difference] = []
+    out: list[LiveDiagnostic] = []
     params = declared.parameters or {}
     if observed.parameters is None:
         if params:
-            out.append(Difference('unverifiable', 'parameters', '*', 'parameters could not be read '
+            out.append(LiveDiagnostic('unverifiable', 'parameters', '*', 'parameters could not be read '
                                   'from the node, so none was checked'))
         return out
     for name, param in params.items():
         real = observed.parameters.get(name)
         if real is None:
-            out.append(Difference('missing', 'parameters', name,
+            out.append(LiveDiagnostic('missing', 'parameters', name,
                                   f"parameter '{name}' is declared but the node has no such parameter",
                                   declared=param.type, layer=param.origin))
             continue
         if real.type != param.type and not (param.type_spec and real.type == param.type_spec.base):
-            out.append(Difference('parameter_type', 'parameters', name,
+            out.append(LiveDiagnostic('parameter_type', 'parameters', name,
                                   f"parameter '{name}': declared type {param.type}, observed "
                                   f'{real.type}', declared=param.type, observed=real.type,
                                   layer=param.origin))
             continue
         if bool(param.read_only) != real.read_only:
-            out.append(Difference('read_only', 'parameters', name,
+            out.append(LiveDiagnostic('read_only', 'parameters', name,
                                   f"parameter '{name}': declared read_only {param.read_only}, "
                                   f'observed {real.read_only}', declared=param.read_only,
                                   observed=real.read_only, layer=param.origin))
@@ -226,74 +279,126 @@ def _compare_parameters(declared: Interface, observed: ObservedNode) -> list[Dif
             for problem in problems:
                 if problem.path == ('default_value',):
                     message = problem.message.replace('default_value', 'current value', 1)
-                    out.append(Difference('value', 'parameters', name, f"parameter '{name}': {message}",
+                    out.append(LiveDiagnostic('value', 'parameters', name, f"parameter '{name}': {message}",
                                           declared=param.validation, observed=real.value,
                                           layer=param.origin))
     for name in sorted(set(observed.parameters) - set(params)):
         if name.startswith('qos_overrides.'):
             continue
-        out.append(Difference('extra', 'parameters', name,
+        out.append(LiveDiagnostic('extra', 'parameters', name,
                               f"parameter '{name}' is not declared", observed=observed.parameters[name].type))
     return out
 
 
-def compare(composed: ResolvedNode | ComposedNode | Interface, observed: ObservedNode,
-            remaps: Remaps = None) -> list[Difference]:
-    """Every difference between a declared interface and an observed node.
+def compare(resolved: ResolvedNode, observed: ObservedNode,
+            remaps: Remaps = None) -> list[LiveDiagnostic]:
+    """Every difference between a resolved node and an observed node, placed (see :func:`place`).
 
-    ``composed``: the resolved node (then each difference about a declared
-    entity carries the ``location`` of its declaration), a composition, or a
-    plain interface.  ``remaps``: the node's :class:`~nodl.naming.NodeNames`
-    (its final name and rules), or a mapping of expanded topic names (see
-    :func:`final_name`).
+    ``remaps``: the node's :class:`~nodl.naming.NodeNames` (its final name and
+    rules), or a mapping of expanded topic names (see :func:`final_name`).
     """
-    from nodl.system.resolved import ResolvedNode
-
-    if isinstance(composed, ComposedNode):
-        composed = ResolvedNode(composed)
-    declared = composed.interface if isinstance(composed, ResolvedNode) else composed
-    # declaration (the merged model object) -> where it is written
-    where = ({id(e.definition): e.location for e in composed.entities}
-             if isinstance(composed, ResolvedNode) else {})
-    out: list[Difference] = []
+    declared = resolved.interface
+    # declaration (the merged model object) -> its entity (where it is written, which layers)
+    entities = {id(e.definition): e for e in resolved.entities}
+    out: list[tuple[LiveDiagnostic, Entity | None]] = []
     for section in ENDPOINT_SECTIONS:
         word = _word(section)
         wanted: dict[str, Any] = {}
-        for entity in declared.endpoints(section):
-            wanted[final_name(entity.name, section, observed, remaps)] = entity
+        for endpoint in declared.endpoints(section):
+            wanted[final_name(endpoint.name, section, observed, remaps)] = endpoint
         seen = {e.name: e for e in getattr(observed, section)}
-        for full, entity in wanted.items():
-            first = len(out)
-            _compare_endpoint(section, word, full, entity, seen.get(full), out)
-            for difference in out[first:]:
-                difference.location = where.get(id(entity))
+        for full, endpoint in wanted.items():
+            entity = entities.get(id(endpoint))
+            out += [(d, entity) for d in _compare_endpoint(section, word, full, endpoint,
+                                                           seen.get(full))]
         for full in sorted(set(seen) - set(wanted)):
-            out.append(Difference('extra', section, full, f"{word} '{full}' ({seen[full].type}) is "
-                                  'observed but not declared', observed=seen[full].type))
-    first = len(out)
-    out += _compare_parameters(declared, observed)
-    for difference in out[first:]:
-        param = (declared.parameters or {}).get(difference.name)
-        difference.location = where.get(id(param)) if param is not None else None
-    return out
+            out.append((LiveDiagnostic('extra', section, full, f"{word} '{full}' "
+                                       f'({seen[full].type}) is observed but not declared',
+                                       observed=seen[full].type), None))
+    parameters = declared.parameters or {}
+    for difference in _compare_parameters(declared, observed):
+        param = parameters.get(difference.name)
+        out.append((difference, entities.get(id(param)) if param is not None else None))
+    places = _Places(resolved)
+    return [places.place(d, entity) for d, entity in out]
 
 
-def _compare_endpoint(section: str, word: str, full: str, entity: Any, real: Any,
-                      out: list[Difference]) -> None:
+def place(differences: Iterable[LiveDiagnostic], resolved: ResolvedNode) -> list[LiveDiagnostic]:
+    """Each difference placed in ``resolved``'s files: at the declaration of its entity (its
+    ``location``), the other layers that declare the entity (those it overrides) as related
+    locations; for what is not declared, at the section of ``main`` it would belong in (else
+    ``main``, else line 1 of the definition).  For differences found outside :func:`compare`
+    (the version skew of :mod:`nodl.live.type_skew`)."""
+    places = _Places(resolved)
+    return [places.place(d) for d in differences]
+
+
+class _Places:
+    """Where the differences about one resolved node point (each section placed once)."""
+
+    def __init__(self, resolved: ResolvedNode) -> None:
+        self.resolved = resolved
+        self._sections: dict[str, Location] = {}
+        self._by_location: dict[Location, Entity] | None = None
+
+    def place(self, difference: LiveDiagnostic, entity: Entity | None = None) -> LiveDiagnostic:
+        if entity is not None:
+            location: Location | None = entity.location
+        else:
+            location = difference.location
+            if location is not None:
+                if self._by_location is None:
+                    self._by_location = {e.location: e for e in self.resolved.entities}
+                entity = self._by_location.get(location)
+        if location is None:
+            return difference.replace(location=None, related=(), **self._section(difference.section))
+        return difference.replace(location=location, file=location.file, line=location.line,
+                                  column=location.column, related=self._related(entity))
+
+    def _section(self, section: str) -> dict[str, Any]:
+        found = self._sections.get(section)
+        if found is None:
+            found = Location(self.resolved.file, 1, 1)
+            main = next((layer for layer in reversed(self.resolved.layers)
+                         if layer.role == 'main'), None)
+            if main is not None:
+                placed = main.place(Diagnostic(Severity.INFO, '', (section,), anchor='key'))
+                if placed.line and not placed.file.startswith('<'):
+                    found = Location(placed.file, placed.line, placed.column)
+            self._sections[section] = found
+        return {'file': found.file, 'line': found.line, 'column': found.column}
+
+    def _related(self, entity: Entity | None) -> tuple[tuple[str, int, int, str], ...]:
+        """The other layers that declare ``entity`` (those it overrides), as
+        ``(file, line, column, message)``."""
+        if entity is None or len(entity.declared_in) < 2:
+            return ()
+        trace = self.resolved.composed.declarations.get((entity.section, entity.name), [])
+        anchor = 'key' if entity.is_parameter else 'value'
+        out = []
+        for declaration in trace[:-1]:
+            placed = declaration.layer.place(Diagnostic(Severity.INFO, '', declaration.path,
+                                                        anchor=anchor))
+            out.append((placed.file, placed.line, placed.column,
+                        f'overrides the declaration in {declaration.layer.label}'))
+        return tuple(out)
+
+
+def _compare_endpoint(section: str, word: str, full: str, entity: Any,
+                      real: Any) -> list[LiveDiagnostic]:
     """The differences between one declared endpoint and what is observed under its name."""
     if real is None:
-        out.append(Difference('missing', section, full, f"{word} '{full}' ({entity.type}) is "
-                              'declared but not observed', declared=entity.type,
-                              layer=entity.origin))
-        return
+        return [LiveDiagnostic('missing', section, full, f"{word} '{full}' ({entity.type}) is "
+                               'declared but not observed', declared=entity.type,
+                               layer=entity.origin)]
     if real.type != entity.type:
-        out.append(Difference('type', section, full, f"{word} '{full}': declared type "
-                              f'{entity.type}, observed {real.type}', declared=entity.type,
-                              observed=real.type, layer=entity.origin))
-        return
+        return [LiveDiagnostic('type', section, full, f"{word} '{full}': declared type "
+                               f'{entity.type}, observed {real.type}', declared=entity.type,
+                               observed=real.type, layer=entity.origin)]
     if section in TOPIC_SECTIONS:
-        out += _compare_qos(section, full, entity.qos, real.qos, real.unobserved, entity.origin)
-    elif section in SERVICE_SECTIONS and entity.qos is not None:
-        out.append(Difference('unverifiable', section, full, f"{word} '{full}' QoS: the "
-                              'middleware does not report service QoS',
-                              declared=entity.qos.to_dict(), layer=entity.origin))
+        return _compare_qos(section, full, entity.qos, real.qos, real.unobserved, entity.origin)
+    if section in SERVICE_SECTIONS and entity.qos is not None:
+        return [LiveDiagnostic('unverifiable', section, full, f"{word} '{full}' QoS: the "
+                               'middleware does not report service QoS',
+                               declared=entity.qos.to_dict(), layer=entity.origin)]
+    return []

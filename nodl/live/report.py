@@ -1,4 +1,11 @@
-"""Check results for people (text), tools (JSON), CI (JUnit XML) and code scanning (SARIF).
+"""A check's result as every reporter reads it: :func:`check_report`.
+
+The differences are diagnostics already (:class:`~nodl.live.conformance.LiveDiagnostic`,
+placed at their declarations); this module says the rest: the text for
+people (:func:`format_check_text`: a line per difference after the node's
+name, then the verdict), the JSON payload (:func:`check_payload`) and a JUnit
+test case per checked entity (:func:`check_cases`).  The ``nodl.reporters``
+(text, JSON, SARIF, JUnit and plug-ins) render the :class:`~nodl.reporting.reporters.Report`.
 
 Every report shows the result as it stands after ``--ignore`` / ``--error``
 (:meth:`~nodl.live.check.CheckResult.with_overrides`): ignored
@@ -9,17 +16,15 @@ from __future__ import annotations
 
 from typing import Any
 
+from nodl.diagnostics import Diagnostic
 from nodl.live.check import CheckResult
+from nodl.live.conformance import LiveDiagnostic, final_name
 from nodl.live.observe import watched_line
+from nodl.reporting.junit import JUnitCase, JUnitFailure
+from nodl.reporting.reporters import Report
 from nodl.vocabulary import SECTION_KEYS
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from nodl.reporting.junit import JUnitCase
-    from nodl.reporting.reporters import Report
-
-__all__ = ['format_check_text', 'format_check_json', 'format_check_junit', 'format_check_sarif',
-           'check_payload', 'check_cases', 'check_report']
+__all__ = ['format_check_text', 'check_payload', 'check_cases', 'check_report']
 
 
 def format_check_text(result: CheckResult, verbose: bool = False) -> str:
@@ -36,7 +41,7 @@ def format_check_text(result: CheckResult, verbose: bool = False) -> str:
     for d in result.differences:
         if (d.severity == 'info' and not verbose) or any(d is f for f in folded):
             continue
-        lines.append(f'{result.fqn}: {d}')
+        lines.append(f'{result.fqn}: {d.brief()}')
     drift = len(result.drift)
     unverifiable = sum(1 for d in result.differences
                        if d.kind == 'unverifiable' and d.severity == 'info')
@@ -54,22 +59,6 @@ def format_check_text(result: CheckResult, verbose: bool = False) -> str:
     return '\n'.join(lines) + '\n'
 
 
-def _difference_dict(result: CheckResult, difference: Any) -> dict[str, Any]:
-    data: dict[str, Any] = difference.to_dict()
-    placed = result.diagnostic(difference)
-    data.update(file=placed.file, line=placed.line, column=placed.column,
-                related=[{'file': f, 'line': li, 'column': c, 'message': m}
-                         for f, li, c, m in placed.related])
-    return data
-
-
-def format_check_json(result: CheckResult) -> str:
-    """The JSON report (:func:`check_payload`)."""
-    from nodl.reporting.reporters import JsonReporter
-
-    return JsonReporter().report(check_report(result))
-
-
 def check_payload(result: CheckResult) -> dict[str, Any]:
     """``{"node", "definition", "conforms", "ignored", "namesakes_watched", "differences": [...]}``.
 
@@ -78,42 +67,21 @@ def check_payload(result: CheckResult) -> dict[str, Any]:
     it points (``file``, ``line``, ``column``, ``related``); ``ignored`` counts
     the differences the overrides silenced.
     """
-    data: dict[str, Any] = {'node': result.fqn, 'definition': result.definition,
-                            'conforms': result.conforms,
-                            'base_hint': result.base_hint,
-                            'client_library': (result.client_library._asdict()
-                                               if result.client_library is not None else None),
-                            'ignored': len(result.ignored),
-                            'namesakes_watched': (round(result.watched, 2)
-                                                  if result.watched is not None else None),
-                            'differences': [_difference_dict(result, d)
-                                            for d in result.differences]}
-    return data
-
-
-def format_check_sarif(result: CheckResult) -> str:
-    """A SARIF 2.1.0 log: one rule per code, one result per difference, located at the
-    entity's declaration (see :meth:`~nodl.live.check.CheckResult.location_of`); each
-    message starts with the node's name."""
-    from nodl.reporting.reporters import SarifReporter
-
-    return SarifReporter().report(check_report(result))
-
-
-def format_check_junit(result: CheckResult) -> str:
-    """A JUnit XML report: one test case per checked entity (:func:`check_cases`)."""
-    from nodl.reporting.reporters import JUnitReporter
-
-    return JUnitReporter().report(check_report(result))
+    return {'node': result.fqn, 'definition': result.definition,
+            'conforms': result.conforms,
+            'base_hint': result.base_hint,
+            'client_library': (result.client_library._asdict()
+                               if result.client_library is not None else None),
+            'ignored': len(result.ignored),
+            'namesakes_watched': (round(result.watched, 2)
+                                  if result.watched is not None else None),
+            'differences': [d.to_dict() for d in result.differences]}
 
 
 def check_cases(result: CheckResult) -> list[JUnitCase]:
     """One JUnit test case per checked entity, in its section's class: each error difference
     is a failure of its kind, the others the case's output."""
-    from nodl.live.conformance import final_name
-    from nodl.reporting.junit import JUnitCase, JUnitFailure
-
-    cases: dict[tuple[str, str], list[Any]] = {}
+    cases: dict[tuple[str, str], list[LiveDiagnostic]] = {}
     # A difference names the entity as observed (expanded, remapped): find its declaration.
     declared_as: dict[tuple[str, str], tuple[str, str]] = {}
     for section in SECTION_KEYS:
@@ -126,22 +94,22 @@ def check_cases(result: CheckResult) -> list[JUnitCase]:
     for d in result.differences:
         key = declared_as.get((d.section, d.name), (d.section, d.name))
         cases.setdefault(key, []).append(d)
-    return [JUnitCase(name, [result.diagnostic(d) for d in diffs],
-                      any(d.severity == 'error' for d in diffs), classname=section,
-                      failures=[JUnitFailure(d.kind, d.message, str(d))
+    return [JUnitCase(name, diffs, any(d.severity == 'error' for d in diffs), classname=section,
+                      failures=[JUnitFailure(d.kind, d.message, d.brief())
                                 for d in diffs if d.severity == 'error'],
-                      output=[str(d) for d in diffs if d.severity != 'error'])
+                      output=[d.brief() for d in diffs if d.severity != 'error'])
             for (section, name), diffs in sorted(cases.items())]
 
 
 def check_report(result: CheckResult, verbose: bool = False) -> Report:
     """The check as every reporter reads it: its differences as diagnostics located at the
-    entity's declaration, each message starting with the node's name (see
-    :meth:`~nodl.live.check.CheckResult.location_of`), the JSON payload, a test case per
+    entity's declaration, each message the difference's headline after the node's name
+    (``/ns/node: missing: ... (declared in main)``), the JSON payload, a test case per
     checked entity, the text report and its verdict line."""
-    from nodl.reporting.reporters import Report
-
     return Report(f'nodl check {result.fqn}',
-                  [d.replace(message=f'{result.fqn}: {d.message}') for d in result.diagnostics],
-                  summary=format_check_text(result).splitlines()[-1], text=lambda: format_check_text(result, verbose),
+                  [Diagnostic(d.severity, f'{result.fqn}: {d.headline()}', d.path, d.file, d.line,
+                              d.column, code=d.code, related=d.related)
+                   for d in result.differences],
+                  summary=format_check_text(result).splitlines()[-1],
+                  text=lambda: format_check_text(result, verbose),
                   payload=lambda: check_payload(result), cases=lambda: check_cases(result))

@@ -6,13 +6,23 @@ import os
 from typing import TYPE_CHECKING, Iterable
 
 if TYPE_CHECKING:
+    from nodl.diagnostics import Diagnostic
     from nodl.live.check import CheckResult
 
 __all__ = ['NodeDrift', 'assert_conforms']
 
 
 class NodeDrift(AssertionError):
-    """A running node does not conform to its definition; the message lists every difference."""
+    """A running node does not conform to its definition; the message lists every difference.
+
+    :attr:`result` is the check's :class:`~nodl.live.check.CheckResult` and
+    :attr:`diagnostics` its differences, each a coded diagnostic placed at the
+    declaration it concerns (for a test's own assertions or report)."""
+
+    def __init__(self, message: str, result: CheckResult | None = None) -> None:
+        super().__init__(message)
+        self.result = result
+        self.diagnostics: list[Diagnostic] = list(result.differences) if result is not None else []
 
 
 def assert_conforms(node: str, definition: str | os.PathLike[str] | tuple[str, str], *,
@@ -50,5 +60,5 @@ def assert_conforms(node: str, definition: str | os.PathLike[str] | tuple[str, s
         overrides = overrides_for(result.definition).then(overrides)
     result = result.with_overrides(overrides)
     if not result.conforms:
-        raise NodeDrift(format_check_text(result))
+        raise NodeDrift(format_check_text(result), result)
     return result

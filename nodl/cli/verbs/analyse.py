@@ -61,7 +61,6 @@ class AnalyseVerb(Verb):
         import os
 
         from nodl.cli.diagnostic_options import DiagnosticPolicy, PolicyError
-        from nodl.cli.output import write_file
         from nodl.config import ConfigError
 
         prog = 'nodl analyse'
