@@ -34,14 +34,14 @@ Other entries (zip files) are asked through :mod:`importlib.metadata` itself.
 
 from __future__ import annotations
 
+import contextlib
+import importlib
 import os
 import re
 import sys
 from collections import namedtuple
-
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any, Callable, Iterable
+from collections.abc import Callable, Iterable
+from typing import Any
 
 __all__ = [
     'BLOCKLIST_VARIABLE',
@@ -157,8 +157,6 @@ class EntryPointSpec(namedtuple('EntryPointSpec', ['name', 'value', 'group', 'di
 
     def load(self) -> Any:
         """Import the module and return the named attribute."""
-        import importlib
-
         module_name, _, attr = self.value.partition(':')
         obj: Any = importlib.import_module(module_name.strip())
         for part in attr.strip().split('.') if attr.strip() else ():
@@ -187,9 +185,29 @@ _META_SUFFIXES = ('.dist-info', '.egg-info')
 
 
 class _Scan:
+    """What was found on ``sys.path``: each distribution's ``entry_points.txt``, in path order.
+
+    A group's entry points are parsed when it is first asked for, from the texts that name
+    it: a command loads a group or two, and the ROS 2 wheels bring about ninety such files
+    that declare none of the toolkit's groups.
+    """
+
     def __init__(self, paths: tuple[str, ...]) -> None:
         self.paths = paths
-        self.groups: dict[str, list[EntryPointSpec]] = {}
+        #: (distribution, text of its entry_points.txt), the first distribution of a name only.
+        self.texts: list[tuple[str, str]] = []
+        self._groups: dict[str, list[EntryPointSpec]] = {}
+
+    def group(self, group: str) -> list[EntryPointSpec]:
+        """The entry points of ``group``, in the order of the distributions."""
+        found = self._groups.get(group)
+        if found is None:
+            found = []
+            for distribution, text in self.texts:
+                if group in text:
+                    found += _parse_entry_points(text, distribution).get(group, ())
+            self._groups[group] = found
+        return found
 
 
 #: The process-wide cache: what was found on ``sys.path`` as it was then.
@@ -203,7 +221,8 @@ def _dist_name(meta_dir: str) -> str:
     return _NORMALIZE.sub('-', name).lower()
 
 
-def _parse_entry_points(text: str, distribution: str, into: dict[str, list[EntryPointSpec]]) -> None:
+def _parse_entry_points(text: str, distribution: str) -> dict[str, list[EntryPointSpec]]:
+    into: dict[str, list[EntryPointSpec]] = {}
     group = None
     for raw in text.splitlines():
         line = raw.strip()
@@ -218,10 +237,13 @@ def _parse_entry_points(text: str, distribution: str, into: dict[str, list[Entry
         into.setdefault(group, []).append(
             EntryPointSpec(name.strip(), value.strip(), group, distribution)
         )
+    return into
 
 
-def _scan_archive(entry: str, seen: set[str], into: dict[str, list[EntryPointSpec]]) -> None:
+def _scan_archive(entry: str, seen: set[str], into: list[tuple[str, str]]) -> None:
     """Distributions inside a zip file on ``sys.path``, through importlib.metadata."""
+    # (imported here, the one import not at the top: importlib.metadata costs the command line
+    # ~10 ms of start-up, and zip files holding distributions are rare on sys.path)
     import importlib.metadata
 
     for dist in importlib.metadata.distributions(path=[entry]):
@@ -229,7 +251,7 @@ def _scan_archive(entry: str, seen: set[str], into: dict[str, list[EntryPointSpe
         if not name or name in seen:
             continue
         seen.add(name)
-        _parse_entry_points(dist.read_text('entry_points.txt') or '', name, into)
+        into.append((name, dist.read_text('entry_points.txt') or ''))
 
 
 def _scan(paths: Iterable[str]) -> _Scan:
@@ -240,10 +262,8 @@ def _scan(paths: Iterable[str]) -> _Scan:
             names = sorted(os.listdir(entry or '.'))
         except OSError:
             if os.path.isfile(entry):
-                try:
-                    _scan_archive(entry, seen, scan.groups)
-                except Exception:  # noqa: BLE001 - an unreadable archive holds no plugins
-                    pass
+                with contextlib.suppress(Exception):  # an unreadable archive holds no plugins
+                    _scan_archive(entry, seen, scan.texts)
             continue
         for name in names:
             if not name.endswith(_META_SUFFIXES):
@@ -257,7 +277,7 @@ def _scan(paths: Iterable[str]) -> _Scan:
                     text = f.read()
             except OSError:
                 continue
-            _parse_entry_points(text, dist, scan.groups)
+            scan.texts.append((dist, text))
     return scan
 
 
@@ -283,7 +303,7 @@ def iter_entry_points(group: str, *, include_blocked: bool = False) -> list[Entr
     if _cache is None or _cache.paths != tuple(sys.path):
         _cache = _scan(sys.path)
     result: dict[str, EntryPointSpec] = {}
-    for spec in _cache.groups.get(group, ()):
+    for spec in _cache.group(group):
         result.setdefault(spec.name, spec)
     if include_blocked:
         return list(result.values())

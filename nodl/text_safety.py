@@ -30,10 +30,7 @@ live here, in one place:
 from __future__ import annotations
 
 import re
-
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any
+from typing import Any
 
 __all__ = ['UNSAFE', 'BIDI_CONTROLS', 'first_unsafe', 'is_bidi_control', 'describe_character',
            'escape_character', 'visible', 'xml_escape', 'python_escapes', 'line_column',
@@ -51,8 +48,9 @@ _NOT_XML = frozenset(chr(c) for c in range(0x20)) - {'\t', '\n', '\r'}
 _XML_REFERENCED = re.compile('[\r\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]')
 _XML_MARKUP = {'&': '&amp;', '<': '&lt;', '>': '&gt;'}
 _XML_QUOTES = {'"': '&quot;', "'": '&apos;'}
-_C0_NAMES = ('NUL SOH STX ETX EOT ENQ ACK BEL BACKSPACE TAB LINE-FEED VT FORM-FEED CARRIAGE-RETURN '
-             'SO SI DLE DC1 DC2 DC3 DC4 NAK SYN ETB CAN EM SUB ESCAPE FS GS RS US').split()
+_C0_NAMES = ('NUL', 'SOH', 'STX', 'ETX', 'EOT', 'ENQ', 'ACK', 'BEL', 'BACKSPACE', 'TAB', 'LINE-FEED', 'VT',
+             'FORM-FEED', 'CARRIAGE-RETURN', 'SO', 'SI', 'DLE', 'DC1', 'DC2', 'DC3', 'DC4', 'NAK', 'SYN',
+             'ETB', 'CAN', 'EM', 'SUB', 'ESCAPE', 'FS', 'GS', 'RS', 'US')
 # A YAML or JSON double-quoted escape: the escape letter -> the character it stands for, and the
 # hexadecimal escapes with their number of digits.
 _SIMPLE_ESCAPES = {'0': '\0', 'a': '\a', 'b': '\b', 't': '\t', '\t': '\t', 'n': '\n', 'v': '\v',

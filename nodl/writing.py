@@ -41,14 +41,16 @@ carrying one coded :class:`~nodl.diagnostics.Diagnostic`.
 
 from __future__ import annotations
 
+import contextlib
+import errno
+import hashlib
 import os
 import stat
+import tempfile
+from collections.abc import Iterable
 
 from nodl.diagnostics import Diagnostic, Severity
-
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Iterable
+from nodl.write_error import WriteError
 
 __all__ = ['WriteError', 'MARKER_TAG', 'comment_style', 'mark', 'unmark', 'marker_state',
            'check_replaceable', 'write_file', 'write_marked', 'marked_text', 'output_is_input',
@@ -73,18 +75,6 @@ _STYLES: tuple[tuple[str, str], ...] = (
 _MARKER_WINDOW = 3
 
 
-class WriteError(Exception):
-    """A file was not written (or not replaced); :attr:`diagnostic` says which and why.
-
-    The message is the diagnostic's one line: ``FILE: error: message [CODE]``.
-    """
-
-    def __init__(self, diagnostic: Diagnostic) -> None:
-        super().__init__(str(diagnostic))
-        #: The coded diagnostic (NODL030-NODL034, NODL708), at the file concerned.
-        self.diagnostic = diagnostic
-
-
 def _error(path: str, code: str, message: str) -> WriteError:
     return WriteError(Diagnostic(Severity.ERROR, message, file=path, code=code))
 
@@ -100,7 +90,6 @@ def comment_style(path: str) -> str | None:
 
 
 def _marker_line(text: str, style: str) -> str:
-    import hashlib
 
     start, end = _COMMENTS[style]
     digest = hashlib.sha256(text.encode('utf-8', 'surrogatepass')).hexdigest()
@@ -152,7 +141,6 @@ def mark(text: str, style: str) -> str:
 
 def marker_state(text: str) -> str:
     """``'valid'`` (marked, unchanged since), ``'edited'`` (marked, changed since) or ``'absent'``."""
-    import hashlib
 
     found = _find_marker(text)
     if found is None:
@@ -208,7 +196,6 @@ def _place_problem(path: str) -> Diagnostic | None:
 def write_problem(path: str, exc: OSError, existed: bool | None) -> Diagnostic:
     """The NODL030 diagnostic of a write of ``path`` that failed with ``exc`` (``existed``: whether
     a previous file was kept; None for a device or FIFO, which keeps nothing)."""
-    import errno
 
     reason = exc.strerror or type(exc).__name__
     if exc.errno == errno.EFBIG:
@@ -265,7 +252,6 @@ def write_file(path: str, data: str | bytes, *, mode: int | None = None,
     if mode is None:
         mode = stat.S_IMODE(status.st_mode) if status is not None and stat.S_ISREG(status.st_mode) \
             else _umask_mode()
-    import tempfile
 
     try:
         fd, temporary = tempfile.mkstemp(prefix=f'.{os.path.basename(path)}.', suffix='.nodl-tmp',
@@ -284,10 +270,8 @@ def write_file(path: str, data: str | bytes, *, mode: int | None = None,
             os.close(fd)
         os.replace(temporary, path)
     except OSError as exc:
-        try:
+        with contextlib.suppress(OSError):
             os.unlink(temporary)
-        except OSError:
-            pass
         raise WriteError(write_problem(path, exc, status is not None)) from None
     _sync_folder(folder)
 

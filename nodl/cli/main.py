@@ -4,8 +4,10 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
+from nodl import __version__
 from nodl.cli.runner import HelpFormatter, add_verbs, run_verb
 
 __all__ = ['main', 'build_parser']
@@ -16,7 +18,6 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog='nodl', formatter_class=HelpFormatter,
         description='NoDL toolkit: validate, compose and inspect ROS 2 node definitions.')
-    from nodl import __version__
     parser.add_argument('--version', action='version', version=f'%(prog)s {__version__}')
     add_verbs(parser, argv=argv)
     return parser
@@ -26,9 +27,8 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of ``nodl``; returns the exit code."""
     if argv is None:
         argv = sys.argv[1:]
-        import os
-
         if os.environ.get('_ARGCOMPLETE'):  # a shell asks for completions (argcomplete)
+            # (loaded only then: completion is not part of running a verb)
             from nodl.cli.completion import autocomplete
 
             autocomplete(build_parser)

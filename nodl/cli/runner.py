@@ -3,14 +3,22 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import os
 import sys
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any
-
-from nodl.cli.verb import (EXIT_BROKEN_PIPE, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_USAGE,
-                                  exit_status_epilog, help_text)
+from nodl.cli.output import COLOR_CHOICES, OutputError, guarded_streams
+from nodl.cli.verb import (
+    EXIT_BROKEN_PIPE,
+    EXIT_INTERNAL,
+    EXIT_INTERRUPTED,
+    EXIT_USAGE,
+    VerbExtension,
+    exit_status_epilog,
+    help_text,
+)
+from nodl.plugins import instantiate_extensions, iter_entry_points, take_plugin_errors
+from nodl.write_error import WriteError
 
 __all__ = ['VERB_GROUP', 'HelpFormatter', 'add_verbs', 'add_common_arguments', 'run_verb']
 
@@ -28,8 +36,6 @@ class HelpFormatter(argparse.RawDescriptionHelpFormatter):
     def __init__(self, prog: str, indent_increment: int = 2, max_help_position: int = 24,
                  width: int | None = None) -> None:
         if width is None:
-            import os
-
             try:
                 width = int(os.environ.get('COLUMNS', '0'))
             except ValueError:
@@ -44,21 +50,19 @@ class HelpFormatter(argparse.RawDescriptionHelpFormatter):
 
 
 def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb',
-              argv: list[str] | None = None) -> dict[str, Any]:
+              argv: list[str] | None = None) -> dict[str, VerbExtension]:
     """Add one sub-command per verb plugin; a broken plugin is reported and skipped.
 
     With ``argv``, verbs are added on demand: when its first argument names
     a verb, only that verb is loaded and given a parser (what ros2cli does
     too); otherwise, for help or a mistyped verb, every verb is.
     """
-    from nodl.plugins import instantiate_extensions, iter_entry_points
-
     wanted = None
     if argv:
         first = next((a for a in argv if not a.startswith('-')), None)
         if first is not None and first in {e.name for e in iter_entry_points(VERB_GROUP)}:
             wanted = [first]
-    verbs: dict[str, Any] = {}
+    verbs: dict[str, VerbExtension] = {}
     # An explicit prog spares argparse building a help formatter on every run.
     subparsers = parser.add_subparsers(title='verbs', metavar='VERB', dest=dest,
                                        prog=parser.prog)
@@ -84,8 +88,6 @@ def add_verbs(parser: argparse.ArgumentParser, dest: str = '_verb',
 
 def add_common_arguments(parser: argparse.ArgumentParser) -> None:
     """The options every verb has (``--color``)."""
-    from nodl.cli.output import COLOR_CHOICES
-
     if any('--color' in a.option_strings for a in parser._actions):
         return  # the verb declares its own
     parser.add_argument('--color', choices=COLOR_CHOICES, default='auto',
@@ -104,9 +106,6 @@ def run_verb(parser: argparse.ArgumentParser, args: argparse.Namespace, dest: st
     if verb is None:
         parser.print_help()
         return EXIT_USAGE
-    from nodl.cli.output import OutputError, guarded_streams
-    from nodl.writing import WriteError
-
     with guarded_streams(getattr(args, 'color', 'auto')) as (out, _):
         try:
             try:
@@ -125,10 +124,8 @@ def run_verb(parser: argparse.ArgumentParser, args: argparse.Namespace, dest: st
             _report(f'error: {exc}')
             return EXIT_USAGE
         except WriteError as exc:  # a file not written or not replaced: its own coded line
-            try:
+            with contextlib.suppress(OSError):
                 sys.stderr.write(f'{exc.diagnostic}\n')
-            except OSError:
-                pass
             return EXIT_USAGE
         except Exception as exc:  # noqa: BLE001 - the last line of defence
             name = type(verb).__name__
@@ -146,10 +143,6 @@ def _warn_plugin(error: object) -> None:
 
 def _show_plugin_errors() -> None:
     """The plugins (resolvers, generators, ...) the library skipped while the verb ran."""
-    if 'nodl.plugins' not in sys.modules:
-        return  # nothing was loaded through it (and importing it costs start-up time)
-    from nodl.plugins import take_plugin_errors
-
     for error in take_plugin_errors():
         try:
             print(error, file=sys.stderr)
@@ -168,8 +161,6 @@ def _report(line: str) -> None:
 
 def _silence_stdout() -> None:
     """Point standard output at /dev/null, so that Python's own flush at exit cannot fail again."""
-    import os
-
     try:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.__stdout__.fileno())  # type: ignore[union-attr]

@@ -9,13 +9,9 @@ time: the library is imported inside :meth:`VerbExtension.main`.
 from __future__ import annotations
 
 import argparse
+from collections.abc import Iterable
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Iterable
-
-    from nodl.diagnostics import Diagnostic
-
+from nodl.diagnostics import Diagnostic
 from nodl.plugins import EXTENSION_POINTS, ExtensionPoint
 
 __all__ = ['VerbExtension', 'Verb', 'EXIT_OK', 'EXIT_FAILURE', 'EXIT_USAGE', 'EXIT_INTERNAL', 'EXIT_INTERRUPTED',

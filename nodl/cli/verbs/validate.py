@@ -6,12 +6,8 @@ import argparse
 import sys
 
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
-
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from nodl.diagnostics import Diagnostic
-    from nodl.reporting.junit import JUnitCase
-
+from nodl.diagnostics import Diagnostic, Severity
+from nodl.reporting.junit import JUnitCase
 
 #: The code of a path that cannot be read (see nodl.codes).
 UNREADABLE_CODE = 'NODL020'
@@ -75,7 +71,6 @@ class ValidateVerb(Verb):
         from nodl.checking import failed, iter_check_paths
         from nodl.cli.diagnostic_options import DiagnosticPolicy, PolicyError
         from nodl.cli.output import Progress
-        from nodl.diagnostics import Diagnostic, Severity
         from nodl.cli.report_options import reporter_for, write_report
         from nodl.reporting import Tally, plural, summary_line, without_info
         from nodl.reporting.reporters import Report
@@ -158,6 +153,4 @@ class ValidateVerb(Verb):
 
 
 def _junit_cases(cases: list[tuple[str, list[Diagnostic], bool, bool]]) -> list[JUnitCase]:
-    from nodl.reporting.junit import JUnitCase
-
     return [JUnitCase(*case) for case in cases]
