@@ -28,7 +28,7 @@ What the studio needs to know:
   ports; call it while dragging).  :meth:`~Composition.analyse` runs ``nodl analyse``'s
   analysis once per change (cached until the next change); :meth:`~Composition.to_dict`
   runs it unless ``analyse=False``.  A Python launch file is analysed by running it in the
-  launch sandbox: give ``limits=LaunchLimits(run_code=False)`` for ``--no-exec``; the
+  launch sandbox: give ``limits=LaunchLimits(execute=False)`` for ``--no-exec``; the
   composer itself only parses Python, it never runs it.
 * **Read-only parts.**  A node whose entry is not declarative (a condition, substitutions in
   its package/name/namespace) has ``editable: false`` and ``read_only_reason``; kept pieces
