@@ -28,6 +28,7 @@ from typing import Any
 from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.frontends.remapped import RemappedDocument
 from nodl.frontends.yaml_json import ParsedDocument
+from nodl.validation.messages import described, show
 from nodl.vocabulary import INTERFACE_KEYS, NODE_KEYS
 
 __all__ = [
@@ -110,8 +111,6 @@ def _leaves(value: Any, names: list[str], out: list[str]) -> None:
 def _walk(mapping: dict[Any, Any], names: list[str], path: DocPath, parameters: dict[str, Any],
           origins: dict[str, DocPath], skipped: list[str], first_map: list[DocPath],
           out: list[Diagnostic]) -> None:
-    from nodl.validation.messages import described, show
-
     for key, value in mapping.items():
         here = path + (key,)
         if not isinstance(key, str):

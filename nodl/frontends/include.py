@@ -26,6 +26,7 @@ from typing import Any
 from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.frontends.remapped import RemappedDocument
 from nodl.frontends.yaml_json import ParsedDocument
+from nodl.validation.messages import described, show
 from nodl.vocabulary import INCLUDE_KEYS, NODE_KEYS
 
 __all__ = [
@@ -107,8 +108,6 @@ def _entry_error(message: str, path: DocPath, anchor: str = 'value') -> Diagnost
 
 def _reference(entry: Any, path: DocPath, out: list[Diagnostic]) -> str | None:
     """The ``ref`` of one include entry, or None (with an error)."""
-    from nodl.validation.messages import described, show
-
     if isinstance(entry, str):
         out.append(_entry_error(f"an include entry is a mapping {{ref: URI}}; write "
                                 f"'- ref: {entry}'", path))
@@ -145,8 +144,6 @@ def uri_problem(ref: str) -> str | None:
     the scheme has a resolver, and what its body must look like, is decided
     when the reference is resolved (and, for ``nodl://``, by the mixin rules).
     """
-    from nodl.validation.messages import show
-
     if _URI.fullmatch(ref):
         return None
     shown = show(ref)
@@ -181,8 +178,6 @@ def read_include(data: dict[str, Any], announce: bool = True) -> IncludeReading:
     warning that names the dialect (for such an installed document, which its
     user cannot convert).  The ``codegen`` block is kept, as the node's ``codegen``.
     """
-    from nodl.validation.messages import described
-
     present = [key for key in INCLUDE_KEYS if key in data]
     key = present[0] if present else INCLUDE_KEYS[0]
     out: list[Diagnostic] = []
