@@ -4,13 +4,11 @@ from __future__ import annotations
 
 import os
 import sys
-
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Iterable, Iterator
+from typing import Iterable, Iterator
 
 from nodl.diagnostics import Diagnostic, has_errors
 from nodl.files import STDIN, iter_nodl_files
+from nodl.frontends.source import MAX_BYTES
 from nodl.loading import Report, check_source
 from nodl.validation.kinds import Kind
 
@@ -137,8 +135,6 @@ def _with_types(report: Report, diagnostics: list[Diagnostic], index: object,
 
 def _read_pipe_if_written(path: str) -> bytes | None:
     """A named pipe's content if a writer has it open; None if opening it would wait for one."""
-    from nodl.frontends.source import MAX_BYTES
-
     fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     try:
         try:

@@ -9,10 +9,9 @@ all and raises :class:`ValidationError` once, carrying every one.
 from __future__ import annotations
 
 import enum
+from typing import TYPE_CHECKING, Any, Iterable, Sequence, Union
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any, Iterable, Sequence, Union
+from nodl.text_safety import visible
 
 __all__ = [
     'Severity',
@@ -63,7 +62,6 @@ def format_path(path: DocPath) -> str:
         else:
             quoted = part.replace('\\', '\\\\').replace('"', '\\"')
             if not quoted.isprintable():  # a path is shown on one line: no control or bidi character
-                from nodl.text_safety import visible
                 quoted = visible(quoted, one_line=True)
             out.append(f'["{quoted}"]')
     return ''.join(out)

@@ -19,10 +19,7 @@ This module is used by every verb that reports diagnostics (``validate``,
 from __future__ import annotations
 
 import re
-
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Iterable
+from typing import Iterable
 
 from nodl.diagnostics import Diagnostic, Severity
 

@@ -4,8 +4,15 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
+from typing import TYPE_CHECKING
 
-TYPE_CHECKING = False
+from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
+from nodl.config import ConfigError
+from nodl.diagnostics import Severity
+from nodl.reporting import format_text
+from nodl.vocabulary import CLIENT_LIBRARIES
+
 if TYPE_CHECKING:
     from typing import Callable
 
@@ -59,8 +66,6 @@ def add_client_library_argument(parser: argparse.ArgumentParser, default: str | 
 
     ``default`` says, for the help, what happens without the option.
     """
-    from nodl.vocabulary import CLIENT_LIBRARIES
-
     default = default or ("from the package's build type for a registered node, ament_python -> "
                           f'rclpy, ament_cmake -> rclcpp; else {CLIENT_LIBRARIES[0]}')
     parser.add_argument('--client-library', choices=CLIENT_LIBRARIES, default=None,
@@ -143,10 +148,6 @@ def load_definitions(args: argparse.Namespace, prog: str, start: str | None = No
     configuration that cannot be used, is printed and gives exit status 2 (returned instead).
     With ``report``, what is wrong with the folders' layouts is printed on standard error
     (:func:`definitions_failed` says whether that is an error)."""
-    import sys
-
-    from nodl.cli.verb import EXIT_USAGE
-    from nodl.config import ConfigError
     from nodl.targets.resolve import gather_definitions
 
     given: list[str] = getattr(args, 'definitions', None) or []
@@ -161,16 +162,12 @@ def load_definitions(args: argparse.Namespace, prog: str, start: str | None = No
         print(exc, file=sys.stderr)
         return EXIT_USAGE
     if report and definitions.diagnostics:
-        from nodl.reporting import format_text
-
         sys.stderr.write(format_text(definitions.diagnostics))
     return definitions
 
 
 def definitions_failed(definitions: Definitions) -> bool:
     """True when a definitions folder's layout has errors (the verb then exits 1 at least)."""
-    from nodl.diagnostics import Severity
-
     return any(d.severity is Severity.ERROR for d in definitions.diagnostics)
 
 
@@ -179,7 +176,6 @@ def run_with_definitions(args: argparse.Namespace, prog: str, run: Callable[[], 
     """``run()`` with the definitions folders of :func:`load_definitions` in force (every
     look-up of a registered definition consults them first): its exit status, made 1 at
     least when a folder's layout has errors."""
-    from nodl.cli.verb import EXIT_FAILURE, EXIT_OK
     from nodl.registry.overlay import using
 
     definitions = load_definitions(args, prog, start)

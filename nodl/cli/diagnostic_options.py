@@ -10,8 +10,12 @@ usage errors (:class:`PolicyError`, exit status 2), reported on one line.
 from __future__ import annotations
 
 import argparse
+import os
+from typing import TYPE_CHECKING
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from nodl.config import ConfigCache, ConfigError
+from nodl.overrides import Overrides, apply_overrides, parse_code_list
+
 if TYPE_CHECKING:
     from nodl.config import ConfigCache
     from nodl.diagnostics import Diagnostic
@@ -38,8 +42,6 @@ def _codes(values: list[str], option: str, verb: str) -> list[str]:
     if not values:
         return []  # the usual case: the catalogue is not even imported
     from nodl.codes import close_codes
-    from nodl.overrides import parse_code_list
-
     codes, unknown = parse_code_list(values)
     if unknown:
         close = close_codes(unknown[0])
@@ -52,8 +54,6 @@ class DiagnosticPolicy:
     """What the command line and the configuration files say about codes."""
 
     def __init__(self, args: argparse.Namespace, verb: str, use_config: bool = True) -> None:
-        from nodl.overrides import Overrides
-
         ignore = _codes(getattr(args, 'ignore', None) or [], '--ignore', verb)
         error = _codes(getattr(args, 'error', None) or [], '--error', verb)
         both = sorted(set(ignore) & set(error))
@@ -67,12 +67,8 @@ class DiagnosticPolicy:
         """The overrides for diagnostics of ``file`` (None: only the command line's)."""
         if not self.use_config or file is None or file.startswith('<'):
             return self.command_line
-        import os
-
         if not os.path.exists(file):
             return self.command_line
-        from nodl.config import ConfigCache, ConfigError
-
         if self._configs is None:
             self._configs = ConfigCache()
         try:
@@ -86,6 +82,4 @@ class DiagnosticPolicy:
         overrides = self.overrides_for(file)
         if not overrides or not diagnostics:
             return diagnostics
-        from nodl.overrides import apply_overrides
-
         return apply_overrides(diagnostics, overrides)

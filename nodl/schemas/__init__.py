@@ -12,8 +12,9 @@ import copy
 import json
 import os
 from functools import lru_cache
+from pathlib import Path
+from typing import TYPE_CHECKING
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from pathlib import Path
     from typing import Any
@@ -36,8 +37,6 @@ def _file_name(kind: str) -> str:
 
 def schema_path(kind: str) -> Path:
     """The path of the shipped schema file for ``kind``."""
-    from pathlib import Path
-
     return Path(_HERE, _file_name(kind))
 
 
