@@ -85,12 +85,12 @@ def _connections(communication: str, names: Iterable[str],
                  ) -> dict[str, Connection]:
     """The connections of ``communication`` called ``names``, by name in that order, from
     each side's endpoint (or list of endpoints) by name."""
-    new = tuple.__new__  # Connection(...) without its Python-level __new__, per connection
+    make = Connection._make
     made = {}
     for name in names:
         offers, uses = offering.get(name), using.get(name)
         # (written out rather than a helper: twice per connection)
-        made[name] = new(Connection, (
+        made[name] = make((
             communication, name,
             () if offers is None else tuple(offers) if type(offers) is list else (offers,),
             () if uses is None else tuple(uses) if type(uses) is list else (uses,)))
