@@ -18,7 +18,7 @@ from nodl.composer.values import (
 from nodl.launch.params import get_typed_value, type_from_identifier
 
 VALUES = [0.4, 3, -7, True, False, 'hello', '3', 'true', '', 'a b: c', 1e-05, 1e20,
-          [1, 2], [0.5, 1.5], ['a', 'b'], ['1', '2'], [True, False], 'x"<&>\'y']
+          [1, 2], [0.5, 1.5], ['a', 'b'], ['1', '2'], [True, False], 'x"<&>\'y', 'two\nlines: {a}']
 
 
 def test_typed_as_launch_types_a_value() -> None:
@@ -45,6 +45,10 @@ def test_yaml_spelling_reads_back(value) -> None:  # type: ignore[no-untyped-def
     elif isinstance(raw, list) and data_type is not None:
         raw = [get_typed_value(x, data_type[1]) if isinstance(x, str) else x for x in raw]
     assert same_value(raw, value), (yaml_value_text(value), type_, raw)
+
+
+def test_yaml_spelling_is_one_line() -> None:
+    assert yaml_value_text('two\nlines') == '"two\\nlines"'
 
 
 @pytest.mark.parametrize('value', VALUES, ids=repr)

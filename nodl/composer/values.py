@@ -65,8 +65,11 @@ def _flow_text(value: Any) -> str:
     if isinstance(value, str):
         import yaml
 
-        return str(yaml.safe_dump(value, default_flow_style=True, width=1 << 30)).strip() \
+        text = str(yaml.safe_dump(value, default_flow_style=True, width=1 << 30)).strip() \
             .removesuffix('\n...').removesuffix('...').strip()
+        if '\n' in text:  # one line always: a double-quoted scalar with escapes
+            text = str(yaml.safe_dump(value, default_style='"', width=1 << 30)).strip()
+        return text
     return _scalar_text(value)
 
 
