@@ -110,15 +110,19 @@ def test_example_system_opens_edits_and_saves_cleanly(tmp_path: Path) -> None:
     change = c.connect('/rover/teleop:cmd_vel', '/rover/safety_controller:cmd_vel_in')
     assert change.ok and change.remaps == [{'node': 'n4', 'from': 'cmd_vel_in', 'to': 'cmd_vel'}]
     assert c.set_parameter('/rover/battery_monitor', 'capacity_ah', '30.0').ok
+    # into the group whose namespace is a launch argument's value
+    assert c.add('rover_tools', 'dashboard', 'dashboard2', group='g1').ok
     assert c.save() == []
     text = path.read_text(encoding='utf-8')
     # only the two edited entries changed; everything else is as written
     changed = [line for line in text.splitlines() if line not in original.splitlines()]
     assert changed == ['      <param name="capacity_ah" value="30.0"/>',
-                       '      <remap from="cmd_vel_in" to="cmd_vel"/>']
+                       '      <remap from="cmd_vel_in" to="cmd_vel"/>',
+                       '    <node pkg="rover_tools" exec="dashboard" name="dashboard2"/>']
     after = analyse_launch(str(path), definitions=folders)
     nodes = _system(after.nodes)
     assert nodes['/rover/safety_controller']['rules'] == ['cmd_vel_in:=cmd_vel']
     assert nodes['/rover/battery_monitor']['parameters']['capacity_ah'] == 30.0
+    assert nodes['/rover/dashboard2']['runs'] == ('rover_tools', 'dashboard')
     kinds = {f.kind for f in after.findings}
     assert {f.kind for f in reference.findings} - kinds <= {'unused-remap'}

@@ -12,7 +12,7 @@ from __future__ import annotations
 import os
 from typing import TYPE_CHECKING, Any
 
-from nodl.composer.model import Param, Remap
+from nodl.composer.model import Group, Param, Remap
 from nodl.composer.ports import ports_of
 
 if TYPE_CHECKING:
@@ -39,6 +39,12 @@ def show_text(composition: Composition, verbose: bool = False) -> str:
             f'{"s" if len(nodes) != 1 else ""}, {len(kept)} part{"s" if len(kept) != 1 else ""} '
             'kept as written')
     lines = [head]
+    groups = [g for g, _ in composition.document.walk() if isinstance(g, Group)]
+    for group in groups:
+        pushed = group.namespace or ('(a namespace only the running launch knows)'
+                                     if group.namespace_unknown else '(no namespace)')
+        lines.append(f'  group [{group.id}] {pushed}' +
+                     ('  (conditional)' if group.conditional else ''))
     for node in nodes:
         indent = '    ' if node.kind == 'composable' else '  '
         state = '' if node.editable else f'  read-only: {node.read_only_reason}'

@@ -84,6 +84,9 @@ class SystemVerb(Verb):
         sub.add_argument('--container', metavar='NAME',
                          help='load it as a composable node into the container NAME (made when '
                               'the file has none of that name)')
+        sub.add_argument('--group', metavar='ID',
+                         help="add it into the group of that id (show lists them: g1, g2...), "
+                              "e.g. one that pushes a namespace given by a launch argument")
         sub.add_argument('--plugin', metavar='CLASS',
                          help='the composable node class (default: the one its registration '
                               'records)')
@@ -162,7 +165,7 @@ class SystemVerb(Verb):
         if operation == 'add':
             change = composition.add(args.package, args.executable, args.name,
                                      namespace=args.namespace, container=args.container,
-                                     plugin=args.plugin)
+                                     plugin=args.plugin, group=args.group)
             node = composition.node(change.node) if change.node else None
             where = composition.fqn(node) if node is not None else args.name
             return change, f'added {where} ({args.package} {args.executable})'
