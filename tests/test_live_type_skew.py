@@ -55,7 +55,7 @@ def test_a_modified_installed_message_is_a_skew_naming_the_field(
     assert not result.conforms
     message = skew[0].message
     assert "field 'revision' (int32) is in the installed definition, not in the running node's" in message
-    diagnostic = result.diagnostic(skew[0])
+    diagnostic = skew[0]  # a coded diagnostic, placed at the declaration
     assert diagnostic.code == 'NODL420' and diagnostic.file == str(definition) and diagnostic.line > 1
     # the check can be told not to compare hashes
     assert not [d for d in check_node(typed.fqn, definition, timeout=15, types=False).differences
@@ -78,7 +78,7 @@ def test_an_action_built_against_another_version_is_caught_by_its_hidden_parts(
     # the goal service's request (the hashes of the DDS topics beneath it)
     assert 'its request (test_msgs/action/Fibonacci_SendGoal_Request) differs' in message
     assert 'Fibonacci_GetResult' not in message and 'GoalStatusArray' not in message
-    diagnostic = result.diagnostic(skew[0])
+    diagnostic = skew[0]  # a coded diagnostic, placed at the declaration
     assert diagnostic.code == 'NODL420' and diagnostic.file == str(definition) and diagnostic.line > 1
     assert not result.conforms
 
