@@ -55,9 +55,10 @@ def graph_signature(node: Any, nodes: Iterable[str] = (), *, topics: bool = True
     from nodl.live.session import split_node_name
 
     names = _node_names(node)
-    present = {join_name(ns, n) for n, ns in names}
+    wanted = set(nodes)
+    present = {join_name(ns, n) for n, ns in names} if wanted else set()
     endpoints: list[tuple[str, Any]] = []
-    for fqn in sorted(set(nodes) & present):
+    for fqn in sorted(wanted & present):
         namespace, name = split_node_name(fqn)
         try:
             endpoints.append((fqn, tuple(

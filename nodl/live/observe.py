@@ -22,7 +22,7 @@ from nodl.vocabulary import PARAMETER_TYPE_BY_NUMBER, SERVICE_SECTIONS, TOPIC_SE
 __all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
            'wait_for_node', 'list_nodes', 'count_nodes', 'ACTION_INFIX', 'DISCOVERY_WINDOW',
            'settle_nodes', 'observe_settled', 'read_parameters', 'read_lifecycle_states',
-           'NAMESAKE_WATCH', 'namesake_warning', 'watched_line', 'recount']
+           'NAMESAKE_WATCH', 'namesake_warning', 'watched_line', 'recount', 'ParameterRead']
 
 ACTION_INFIX = '/_action/'
 #: How long a session must have been discovering before the graph is taken as complete.
@@ -261,10 +261,12 @@ def _parameter_table(names: list[str], values: Any, descriptors: Any
     return found
 
 
-class _ParameterRead:
+class ParameterRead:
     """One node's parameters read step by step while something else is waited for:
     ``list_parameters``, then ``get_parameters`` and ``describe_parameters`` together, each
-    sent as soon as its server is discovered; :meth:`step` after each spin."""
+    sent as soon as its server is discovered; :meth:`step` after each spin (of the executor
+    that spins ``node``), :meth:`result` once it is done, :meth:`close` always.  Used by
+    :func:`observe_node` and by ``nodl monitor`` (its initial reads)."""
 
     def __init__(self, node: Any, fqn: str, deadline: float) -> None:
         from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
@@ -341,7 +343,7 @@ def _observe(node: Any, fqn: str, timeout: float, parameters: bool, quiet: float
     remaining = max(0.5, timeout - (time.monotonic() - start))
     # the parameters are read while the endpoints settle (each call sent once its server
     # is discovered)
-    reading = _ParameterRead(node, fqn, start + max(1.0, timeout)) if parameters else None
+    reading = ParameterRead(node, fqn, start + max(1.0, timeout)) if parameters else None
     try:
         raw = _settle(node, name, namespace, fqn, remaining, quiet,
                       reading.step if reading is not None else None)

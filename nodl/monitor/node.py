@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Sequence
 
 from nodl.live.graph_events import GraphFollower
-from nodl.live.observe import ObservedNode, ObservedParameter
+from nodl.live.observe import ObservedNode, ObservedParameter, ParameterRead
 from nodl.live.session import (LiveError, MONITOR_NODE_NAME, close_session, is_hidden_node,
                                open_session, require_rclpy)
 from nodl.monitor.checks import (Finding, connection_findings, endpoint_findings,
@@ -63,6 +63,8 @@ ONCE_SCAN_PERIOD = 0.5
 #: How often timers (grace, liveness, rates) are evaluated (a scan and a parameter event
 #: refresh the statuses at once).
 TICK = 0.5
+#: Seconds a parameter read (list, get, describe) may take before it is asked again.
+READ_TIMEOUT = 5.0
 #: The largest history a rate subscription keeps between two drains.
 _MAX_RATE_DEPTH = 10000
 #: A node's status is refreshed for its parameter events at most this often: the first
@@ -130,9 +132,8 @@ class _NodeState:
     params_buffer: list[tuple[str, str, Any, bool]] = field(default_factory=list)
     event_findings: dict[str, list[Finding]] = field(default_factory=dict)
     endpoint_findings: list[Finding] = field(default_factory=list)
-    clients: dict[str, Any] = field(default_factory=dict)
-    #: The parameter read's clients are no longer needed (destroyed at the next tick).
-    release_clients: bool = False
+    #: The parameter read under way (its clients on the monitor's node), None when none.
+    reading: ParameterRead | None = None
     #: The liveness client (``~/get_parameters``, on the probe node: polled, not waited on).
     liveness: Any = None
     #: The sequence number of the liveness request awaiting its answer.
@@ -140,7 +141,6 @@ class _NodeState:
     ping_sent: float = 0.0
     not_answering_since: float | None = None
     last_answer: float | None = None
-    read_started: float = 0.0
     #: When its parameter events arrived in the last second (storm detection).
     event_times: deque[float] = field(default_factory=deque)
     #: The most events it sent in one second during the current storm, and when the storm
@@ -358,6 +358,7 @@ class Monitor:
                 self.executor.spin_once(timeout_sec=max(0.0, min(
                     next_tick, next_publish, deadline, self._next_flush(),
                     self._scan_at(now, next_publish)) - now))
+                self._step_reads()
                 now = time.monotonic()
                 self._flush_events(now)
                 if now >= next_publish:  # before a scan that could make it late
@@ -493,13 +494,14 @@ class Monitor:
 
     def _new_instance(self, state: _NodeState) -> None:
         """A (new) process holds the name: read its parameters again."""
+        self._stop_reading(state)
         state.parameters = None
         state.params_state = 'unread'
         state.event_findings.clear()
         state.not_answering_since = None
 
     def _drop_clients(self, state: _NodeState) -> None:
-        self._release_clients(state)
+        self._stop_reading(state)
         if state.liveness is not None:
             self.probe.destroy_client(state.liveness)
             state.liveness = None
@@ -516,19 +518,11 @@ class Monitor:
         return observed is not None and any(e.name == f'{fqn}/get_parameters'
                                             for e in observed.service_servers)
 
-    def _release_clients(self, state: _NodeState) -> None:
+    def _stop_reading(self, state: _NodeState) -> None:
         """Destroy the parameter read's clients (the executor waits on each of them)."""
-        for client in state.clients.values():
-            self.node.destroy_client(client)
-        state.clients.clear()
-        state.release_clients = False
-
-    def _client(self, state: _NodeState, kind: Any, service: str) -> Any:
-        client = state.clients.get(service)
-        if client is None:
-            client = self.node.create_client(kind, f'{state.expected.fqn}/{service}')
-            state.clients[service] = client
-        return client
+        if state.reading is not None:
+            state.reading.close()
+            state.reading = None
 
     def _tick(self, now: float) -> None:
         due = self._liveness_due(now)
@@ -538,8 +532,6 @@ class Monitor:
             if state.lost_at is not None and state.params_state == 'read' \
                     and now - state.lost_at > STORM_HOLD:
                 state.lost_at = None
-            if state.release_clients:
-                self._release_clients(state)
             if not state.count or state.expected.resolved is None:
                 continue
             if state.observed is None:
@@ -552,8 +544,6 @@ class Monitor:
                 state.params_state = 'unread'
             if state.params_state == 'unread':
                 self._read_parameters(state, now)
-            elif state.params_state == 'reading' and now - state.read_started > 5.0:
-                state.params_state = 'unread'  # no answer: ask again
             self._liveness(state, now, state.expected.fqn in due)
 
     def _liveness_due(self, now: float) -> set[str]:
@@ -615,44 +605,36 @@ class Monitor:
                 state.ping_sent = now
 
     def _read_parameters(self, state: _NodeState, now: float) -> None:
-        from rcl_interfaces.srv import DescribeParameters, GetParameters, ListParameters
-
-        from nodl.live.observe import _parameter_table
-
-        lister = self._client(state, ListParameters, 'list_parameters')
-        getter = self._client(state, GetParameters, 'get_parameters')
-        describer = self._client(state, DescribeParameters, 'describe_parameters')
-        if not (lister.service_is_ready() and getter.service_is_ready()
-                and describer.service_is_ready()):
-            return
+        """Start reading the node's parameters, as every live verb reads them
+        (:class:`~nodl.live.observe.ParameterRead`: each call sent once its server is
+        discovered); :meth:`_step_reads` follows it after each wake-up.  Without every
+        answer within READ_TIMEOUT seconds, it is asked again at the next tick."""
+        self._stop_reading(state)
+        state.reading = ParameterRead(self.node, state.expected.fqn, now + READ_TIMEOUT)
         state.params_state = 'reading'
-        state.read_started = now
+        state.reading.step()
 
-        def listed(future: Any) -> None:
-            result = future.result()
-            if result is None or state.params_state != 'reading':
-                return
-            names = sorted(result.result.names)
-            values = getter.call_async(GetParameters.Request(names=names))
-            descriptors = describer.call_async(DescribeParameters.Request(names=names))
-
-            def both(_: Any) -> None:
-                if not (values.done() and descriptors.done()) or state.params_state != 'reading':
-                    return
-                if values.result() is None or descriptors.result() is None:
-                    return
-                state.parameters = _parameter_table(names, values.result(), descriptors.result())
-                state.params_state = 'read'
-                for name, type_name, value, changed in state.params_buffer:
-                    self._apply_parameter(state, name, type_name, value, changed)
-                state.params_buffer.clear()
-                state.release_clients = True
-                self._refresh(time.monotonic())
-
-            values.add_done_callback(both)
-            descriptors.add_done_callback(both)
-
-        lister.call_async(ListParameters.Request()).add_done_callback(listed)
+    def _step_reads(self) -> None:
+        """Send what the parameter reads under way can send; take those done (their events
+        buffered meanwhile applied after), and refresh the statuses at once."""
+        done = False
+        for state in self.states.values():
+            reading = state.reading
+            if reading is None or not reading.step():
+                continue
+            parameters = reading.result()
+            self._stop_reading(state)
+            if parameters is None:
+                state.params_state = 'unread'  # no answer in time: asked again
+                continue
+            state.parameters = parameters
+            state.params_state = 'read'
+            for name, type_name, value, changed in state.params_buffer:
+                self._apply_parameter(state, name, type_name, value, changed)
+            state.params_buffer.clear()
+            done = True
+        if done:
+            self._refresh(time.monotonic())
 
     def _on_parameter_event(self, event: Any, info: Any) -> None:
         """Check one parameter event as it arrives (the callback takes the message info:
