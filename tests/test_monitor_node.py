@@ -565,3 +565,31 @@ def test_a_process_s_turn_falls_only_on_nodes_that_can_be_called() -> None:
     assert {fqn for due in turns for fqn in due} == {'/p/a', '/p/c', '/q/alone'}
     monitor.states['/p/c'].not_answering_since = 0.0  # silent: all of its process called
     assert monitor._liveness_due(0.5) == {'/p/a', '/p/c', '/q/alone'}
+
+
+@pytest.mark.parametrize('ros_args, says', [
+    (['-p', 'publish_rate:=0.0'], 'invalid monitor parameter: publish_rate must be greater than 0'),
+    (['-r'], 'cannot start the node _nodl_monitor: '),
+])
+def test_a_monitor_that_cannot_start_says_why_and_leaves_nothing_running(
+        ros_args: list[str], says: str) -> None:
+    """The monitor's session (open_session, as every live verb's) refuses what rcl or its own
+    parameters refuse with a LiveError for the user, and close() ends what was started."""
+    import threading
+
+    from nodl.live.session import LiveError
+    from nodl.monitor.expected import expected_from_definitions
+    from nodl.monitor.node import Monitor
+    from nodl.targets.placement import Definition
+
+    monitor = Monitor(expected_from_definitions([Definition(file=str(SENSOR))], ['/s']),
+                      ros_args=ros_args)
+    try:
+        with pytest.raises(LiveError) as raised:
+            monitor.start()
+        assert str(raised.value).startswith(says)
+    finally:
+        monitor.close()
+        monitor.close()  # twice is safe
+    assert monitor.node is None and monitor.probe is None
+    assert not any(t.name == 'nodl-graph-follower' for t in threading.enumerate())

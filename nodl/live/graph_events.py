@@ -146,7 +146,7 @@ class GraphFollower:
             return self._poll()
 
     def _poll(self) -> bool:
-        from nodl.live.session import is_toolkit_node
+        from nodl.live.session import count_node_names
 
         topics = self._polls % self.topics_every == 0
         self._polls += 1
@@ -156,12 +156,7 @@ class GraphFollower:
         if not topics and self.signature is not None:  # not read this time: as they were
             signature = (signature[0], self.signature[1], *signature[2:])
         if signature[0] != self._parts.get('nodes'):
-            counts: dict[str, int] = {}
-            for name, namespace in signature[0]:
-                fqn = join_name(namespace, name)
-                if not is_toolkit_node(fqn):
-                    counts[fqn] = counts.get(fqn, 0) + 1
-            self.counts = counts
+            self.counts = count_node_names(signature[0])
         parts = {'nodes': signature[0], 'topics': signature[1], 'services': signature[2],
                  **dict(signature[3])}
         for key in self.followed:

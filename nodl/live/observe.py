@@ -14,8 +14,8 @@ from typing import Any, Callable
 from nodl.live.graph_events import ANSWERS, follower, spin_once
 from nodl.live.qos import qos_from_rclpy
 from nodl.naming import join_name
-from nodl.live.session import (LiveError, NodeNotFound, is_toolkit_node,
-                                      ros_session, split_node_name, without_toolkit_nodes)
+from nodl.live.session import (LiveError, NodeNotFound, count_node_names, ros_session,
+                               split_node_name, without_toolkit_nodes)
 from nodl.validation.messages import did_you_mean
 from nodl.vocabulary import PARAMETER_TYPE_BY_NUMBER, SERVICE_SECTIONS, TOPIC_SECTIONS
 
@@ -102,12 +102,7 @@ def list_nodes(node: Any) -> list[str]:
     Hidden nodes (``_name``) other than the toolkit's are listed: each verb says
     what it does with them.
     """
-    names = []
-    for name, namespace in node.get_node_names_and_namespaces():
-        fqn = join_name(namespace, name)
-        if not is_toolkit_node(fqn):
-            names.append(fqn)
-    return sorted(set(names))
+    return sorted(count_nodes(node))
 
 
 def count_nodes(node: Any) -> dict[str, int]:
@@ -116,12 +111,7 @@ def count_nodes(node: Any) -> dict[str, int]:
     A name held more than once is a name several nodes share (usually in
     several processes): the graph cannot tell their endpoints apart.
     """
-    counts: dict[str, int] = {}
-    for name, namespace in node.get_node_names_and_namespaces():
-        fqn = join_name(namespace, name)
-        if not is_toolkit_node(fqn):
-            counts[fqn] = counts.get(fqn, 0) + 1
-    return counts
+    return count_node_names(node.get_node_names_and_namespaces())
 
 
 def wait_for_node(node: Any, fqn: str, timeout: float) -> None:

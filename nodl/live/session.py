@@ -9,7 +9,7 @@ from typing import Any, Iterable, Iterator
 from contextlib import contextmanager
 
 __all__ = ['LiveError', 'NodeNotFound', 'DuplicateNode', 'require_rclpy', 'ros_session',
-           'open_session', 'close_session',
+           'open_session', 'close_session', 'count_node_names',
            'split_node_name', 'node_name_problem', 'OBSERVER_PREFIX',
            'HIDDEN_NODE_PREFIX', 'is_hidden_node', 'is_toolkit_node', 'without_toolkit_nodes',
            'MONITOR_NODE_NAME']
@@ -37,6 +37,19 @@ def is_toolkit_node(fqn: str) -> bool:
     """Whether ``/namespace/name`` is one of the toolkit's own observer nodes (any process's),
     or a ``nodl monitor`` node."""
     return fqn.rpartition('/')[2].startswith(_TOOLKIT_PREFIXES)
+
+
+def count_node_names(names: Iterable[tuple[str, str]]) -> dict[str, int]:
+    """How many nodes of each fully qualified name ``names`` holds (``(name, namespace)``
+    pairs, as ``get_node_names_and_namespaces`` lists them), the toolkit's own left out."""
+    from nodl.naming import join_name
+
+    counts: dict[str, int] = {}
+    for name, namespace in names:
+        fqn = join_name(namespace, name)
+        if not is_toolkit_node(fqn):
+            counts[fqn] = counts.get(fqn, 0) + 1
+    return counts
 
 
 def without_toolkit_nodes(infos: Iterable[Any]) -> list[Any]:

@@ -2,8 +2,10 @@
 
 * :mod:`~nodl.monitor.expected`: the expected system, from the analysis of a
   launch file or from definitions placed by name (as ``nodl analyse`` computes it);
-* :mod:`~nodl.monitor.graph`: following the live graph (a cheap signature
-  polled at up to 10 Hz, a full scan when it changes or periodically);
+* :mod:`~nodl.monitor.graph`: full scans of the live graph (every endpoint with
+  QoS, type hash and GID), taken when the live layer's graph follower
+  (:mod:`~nodl.live.graph_events`, polling at 10 Hz in a thread of its own) saw a
+  change, and periodically;
 * :mod:`~nodl.monitor.checks`: what is checked (nodes, endpoints as ``nodl
   check`` decides them, connections, parameters, rates) as coded findings;
 * :mod:`~nodl.monitor.status`: ``diagnostic_msgs/DiagnosticStatus`` building and
