@@ -489,3 +489,20 @@ def test_a_planted_folder_link_redirects_no_verb(tmp_path: Path) -> None:
     assert run.returncode == 2
     assert f'not written: {out / "demo_pkg"} is a symbolic link to {elsewhere}' in run.stdout + run.stderr
     assert list(elsewhere.iterdir()) == []
+
+
+def test_writing_loads_no_tempfile_and_makes_private_new_temporaries(tmp_path: Path) -> None:
+    """nodl.writing makes its temporary files itself (tempfile would cost every command that
+    may write ~4 ms of start-up): new (O_EXCL, never through a link), mode 0o600, beside the target."""
+    from nodl.writing import _create_temporary
+
+    done = subprocess.run([sys.executable, '-c', 'import sys, nodl.writing; print("tempfile" in sys.modules)'],
+                          capture_output=True, text=True, timeout=60, cwd=REPO)
+    assert done.stdout.strip() == 'False', done.stderr
+    fd, first = _create_temporary(str(tmp_path), 'out.yaml')
+    os.close(fd)
+    fd, second = _create_temporary(str(tmp_path), 'out.yaml')
+    os.close(fd)
+    assert first != second and os.path.dirname(first) == str(tmp_path)
+    assert os.path.basename(first).startswith('.out.yaml.') and first.endswith('.nodl-tmp')
+    assert stat.S_IMODE(os.stat(first).st_mode) == 0o600
