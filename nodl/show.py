@@ -23,7 +23,7 @@ __all__ = ['Shown', 'show_file', 'show_registered', 'show_reference', 'render']
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from nodl.system.resolved import ResolvedNode
+    from nodl.composition.resolved import ResolvedNode
     from nodl.registry.overlay import Definitions
     from nodl.targets.resolve import Provenance
 
@@ -77,7 +77,7 @@ def show_file(path: str, client_library: str | None = None) -> Shown:
     OSError if ``path`` cannot be read)."""
     from pathlib import Path
 
-    from nodl.system.resolved import resolve_report
+    from nodl.composition.resolved import resolve_report
 
     report = check_source(Path(path), file=path)
     if report.has_errors():

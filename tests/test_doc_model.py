@@ -11,7 +11,7 @@ from nodl.doc.blocks import Code, Heading, Link, Table, text_of
 from nodl.doc.model import NodeSource, node_page, qos_words, value_text
 from nodl.interface_types.resolve import interface_index
 from nodl.model.qos import QoSProfile
-from nodl.system.resolved import resolve_node
+from nodl.composition.resolved import resolve_node
 from nodl.validation.validators import lookup
 
 TALKER = FIXTURES / 'doc' / 'talker.nodl.yaml'

@@ -155,7 +155,7 @@ def test_a_whole_node_with_hostile_descriptions_parses(tmp_path: Path) -> None:
     running node's descriptors would give them): the generated header, source and user stub
     hold none of them raw, and libclang parses them with no diagnostic."""
     from nodl.loading import Report, check_source
-    from nodl.system.resolved import resolve_report
+    from nodl.composition.resolved import resolve_report
     from nodl.text_safety import UNSAFE
     from nodl.validation.kinds import Kind
 

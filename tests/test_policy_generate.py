@@ -11,7 +11,7 @@ from nodl.policy.model import ACCESS_OF_KIND
 from nodl.policy.schema_check import read_policy
 from nodl.policy.targets import Definition, instances_from_definitions
 from nodl.policy.writer import write_policy
-from nodl.system.entities import Location
+from nodl.composition.entities import Location
 
 REPO = Path(__file__).parent.parent
 POLICY = Path('tests/fixtures/policy')

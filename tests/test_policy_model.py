@@ -4,7 +4,7 @@ import pytest
 
 from nodl.policy.model import (ACCESS_OF_KIND, PERMISSIONS, Grant, Policy, Profile, Source,
                                       permission_list)
-from nodl.system.entities import EntityKind
+from nodl.composition.entities import EntityKind
 
 
 def test_every_endpoint_kind_has_its_access():

@@ -11,12 +11,14 @@ import subprocess
 import sys
 
 from conftest import FIXTURES, REPO
+
+from nodl.composition.entities import Location
+from nodl.composition.resolved import ResolvedNode
 from nodl.diagnostics import Severity
 from nodl.registry.legacy import compose_legacy, legacy_files, legacy_registrations
 from nodl.registry.registrations import Registration
 from nodl.show import show_registered
-from nodl.system.entities import Location
-from nodl.system.resolved import ResolvedNode, resolve_registered
+from nodl.targets.resolve import resolve_registered
 
 PREFIX = str(FIXTURES / 'index' / 'legacy')
 LEGACY_PKG = os.path.join(PREFIX, 'share', 'legacy_pkg', 'legacy_pkg.nodl.xml')

@@ -430,7 +430,7 @@ def _hostile_nodes(build_type: str) -> list:  # type: ignore[type-arg]
     NODL219/NODL220 errors dropped), as a running node's descriptors give such text."""
     from nodl.loading import Report, check_source
     from nodl.scaffold import BUILD_TYPES, NodeSource
-    from nodl.system.resolved import resolve_report
+    from nodl.composition.resolved import resolve_report
     from nodl.validation.kinds import Kind
 
     path = str(FIXTURES / 'scaffold' / 'hostile_text.nodl.yaml')

@@ -373,7 +373,7 @@ class Composition:
         return set_parameter(self, node, name, text)
 
     def definition_of(self, node: ComposedNode) -> Any:
-        """The resolved definition of the node (:class:`~nodl.system.resolved.ResolvedNode`),
+        """The resolved definition of the node (:class:`~nodl.composition.resolved.ResolvedNode`),
         looked up as the analysis looks it up, or None."""
         match = self.match_of(node)
         return match.resolved if match is not None else None

@@ -8,7 +8,7 @@ with the same ``from``.  Rules the entry does not own (``set_remap``, ``SetRemap
 ``-r`` in its arguments) come first in rcl's order; when one of them still decides the name,
 nothing is written and the refusal says which rule would make the names meet.  Whether the
 names meet is computed with the node's own rules as rcl would apply them
-(:class:`nodl.system.instance.NodeInstance`), not guessed.
+(:class:`nodl.composition.instance.NodeInstance`), not guessed.
 """
 
 from __future__ import annotations
@@ -73,7 +73,7 @@ def _final_with(composition: Composition, node: ComposedNode, port: Port,
     """The port's final name if the node's own rules were ``remaps`` (None: not computable,
     e.g. a kept rule is among them)."""
     from nodl.naming import parse_remap_rule
-    from nodl.system.instance import NodeInstance
+    from nodl.composition.instance import NodeInstance
 
     launched = composition.analyse().node(node.id)
     if launched is None or launched.match.resolved is None or \

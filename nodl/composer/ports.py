@@ -1,6 +1,6 @@
 """Ports: a node's endpoints with their final names, and whether two of them can be joined.
 
-A port is one endpoint of a node instance (:class:`nodl.system.instance.InstanceEntity`):
+A port is one endpoint of a node instance (:class:`nodl.composition.instance.InstanceEntity`):
 its kind (publisher, subscription, service server or client, action server or client), the
 name its definition declares, the final name it has in the composition, its interface type
 and QoS.  :func:`verdict` says whether two ports can be joined, and why not: the kinds must
@@ -117,7 +117,7 @@ def find_port(ports: list[Port], text: str) -> list[Port]:
 
 
 def _same_type(first: str, second: str, communication: str) -> bool:
-    from nodl.system.entities import InterfaceType
+    from nodl.composition.entities import InterfaceType
 
     try:
         return InterfaceType.parse(first, communication) == InterfaceType.parse(second, communication)

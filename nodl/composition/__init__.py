@@ -3,7 +3,12 @@
 from nodl.composition.compose import ComposedNode, compose, compose_report
 from nodl.composition.layers import Layer
 from nodl.composition.resolvers import (
-    ResolutionError, ResolveContext, Resolved, Resolver, load_resolvers)
+    ResolutionError,
+    ResolveContext,
+    Resolved,
+    Resolver,
+    load_resolvers,
+)
 
 __all__ = ['ComposedNode', 'Layer', 'ResolutionError', 'ResolveContext', 'Resolved', 'Resolver',
            'compose', 'compose_report', 'load_resolvers']

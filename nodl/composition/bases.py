@@ -20,9 +20,12 @@ import os
 from functools import lru_cache
 from typing import Any
 
+from nodl import ament_index
 from nodl.composition.layers import Layer
 from nodl.diagnostics import Diagnostic, DocPath
-from nodl.model import Base, Interface
+from nodl.loading import check_source
+from nodl.model import ENDPOINT_SECTIONS, Base, Interface
+from nodl.validation.kinds import Kind
 from nodl.vocabulary import CLIENT_LIBRARIES
 
 __all__ = ['BASES_DIR', 'CLIENT_LIBRARIES', 'DEFAULT_CLIENT_LIBRARY', 'base_file', 'base_files',
@@ -64,9 +67,6 @@ def base_files(base: Base | str, client_library: str = DEFAULT_CLIENT_LIBRARY) -
 
 @lru_cache(maxsize=None)
 def _report(path: str):  # type: ignore[no-untyped-def]
-    from nodl.loading import check_source
-    from nodl.validation.kinds import Kind
-
     with open(path, 'rb') as f:
         report = check_source(f.read(), kind=Kind.INTERFACE, file=path)
     if report.has_errors():  # a broken installation, not a user error
@@ -97,8 +97,6 @@ class _Assembled:
 def _assemble(base: Base, client_library: str) -> tuple[dict[str, Any], _Assembled]:
     """The assembled base as the mapping a file holds (a fresh model is made from it per
     layer: cheaper than a deep copy), and where each of its entities is written."""
-    from nodl.model import ENDPOINT_SECTIONS
-
     placer = _Assembled()
     result = Interface(nodl_version=2)
     descriptions = []
@@ -145,8 +143,6 @@ def shared_base_layer(base: Base | str, client_library: str = DEFAULT_CLIENT_LIB
     (an analysis of a launched system: every node of that base then shares one layer, and
     the merged copies and resolved entities derived from it, see :attr:`Layer.shared`); a
     fresh layer outside one.  Composition reads a base layer and never edits it."""
-    from nodl import ament_index
-
     name, library = Base(base), check_client_library(client_library)
 
     def make() -> Layer:

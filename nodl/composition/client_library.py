@@ -12,8 +12,8 @@ from __future__ import annotations
 import os
 from typing import NamedTuple
 
-from nodl.composition.bases import DEFAULT_CLIENT_LIBRARY, check_client_library
 from nodl import ament_index
+from nodl.composition.bases import DEFAULT_CLIENT_LIBRARY, check_client_library
 from nodl.vocabulary import BUILD_TYPE_LIBRARIES
 
 __all__ = ['ClientLibraryChoice', 'BUILD_TYPE_LIBRARIES', 'choose_client_library',

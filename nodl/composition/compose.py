@@ -10,17 +10,28 @@ searched; the referenced file's own diagnostics follow with their positions.
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import os
 from typing import Callable, Sequence
 
 from nodl.composition.bases import (
-    DEFAULT_CLIENT_LIBRARY, check_client_library, shared_base_layer)
+    DEFAULT_CLIENT_LIBRARY,
+    check_client_library,
+    shared_base_layer,
+)
 from nodl.composition.layers import MAIN, Layer
 from nodl.composition.merge import Declaration, merge_traced
 from nodl.composition.resolvers import (
-    ResolutionError, ResolveContext, Resolver, load_resolvers, package_root, scheme_of)
+    ResolutionError,
+    ResolveContext,
+    Resolver,
+    load_resolvers,
+    package_root,
+    scheme_of,
+)
 from nodl.diagnostics import Diagnostic, DocPath, Severity, ValidationError
-from nodl.dialects import INCLUDE
+from nodl.frontends.builtin import INCLUDE
 from nodl.frontends.source import Source
 from nodl.loading import Report, check_source
 from nodl.model import Interface, Node
@@ -41,7 +52,7 @@ class ComposedNode:
     """A node definition with its layers resolved and merged.
 
     Consumers that need each entity's kind, provider or source location ask
-    the resolved node built on it (:func:`nodl.system.resolve_node`).
+    the resolved node built on it (:func:`nodl.composition.resolved.resolve_node`).
     """
 
     def __init__(self, node: Node, file: str, layers: list[Layer], interface: Interface,
@@ -241,8 +252,6 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None,
         bases = [b for b, _ in tree.bases] + ([node.base.value] if node.base is not None else [])
         strongest = 'lifecycle_node' if 'lifecycle_node' in bases else 'node'
         if node.base is None or node.base.value != strongest:
-            import dataclasses
-
             node = dataclasses.replace(node, base=Base(strongest))
     if node.base is not None:
         layers.insert(0, shared_base_layer(node.base, client_library))
@@ -254,8 +263,6 @@ def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None,
     if any(d.severity is Severity.ERROR for d in merged.diagnostics):
         return None, diagnostics
     if node.codegen is not None:  # the node's code generator settings, as written (not merged)
-        import copy
-
         merged.interface.codegen = copy.deepcopy(node.codegen)
     return ComposedNode(node, report.file, layers, merged.interface, diagnostics,
                         merged.declarations, client_library), diagnostics

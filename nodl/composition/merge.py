@@ -19,10 +19,11 @@ overridden one.
 from __future__ import annotations
 
 import copy
+import dataclasses
 from typing import Any, NamedTuple, Sequence
 
-from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.composition.layers import Layer
+from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.model import ENDPOINT_SECTIONS, Interface
 from nodl.model.interface import ActionEndpoint, ServiceEndpoint, TopicEndpoint
 from nodl.model.parameter import ParameterDefinition
@@ -75,8 +76,6 @@ def _stamp(entity: Any, label: str) -> Any:
 
 def _slotted(cls: type) -> tuple[str, ...] | None:
     """The fields of a slotted dataclass of the model without a base class, else None."""
-    import dataclasses
-
     if cls.__bases__ != (object,) or not dataclasses.is_dataclass(cls) or '__dict__' in dir(cls):
         return None
     fields = tuple(f.name for f in dataclasses.fields(cls))

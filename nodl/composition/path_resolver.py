@@ -10,7 +10,11 @@ from __future__ import annotations
 import os
 
 from nodl.composition.resolvers import (
-    ResolutionError, ResolveContext, Resolved, ResolverExtension)
+    ResolutionError,
+    ResolveContext,
+    Resolved,
+    ResolverExtension,
+)
 from nodl.frontends.source import read_limited
 
 __all__ = ['PathResolver']

@@ -15,7 +15,12 @@ import os
 import re
 from typing import Callable, NamedTuple, Protocol
 
-from nodl.plugins import EXTENSION_POINTS, ExtensionPoint, PluginError, instantiate_extensions
+from nodl.plugins import (
+    EXTENSION_POINTS,
+    ExtensionPoint,
+    PluginError,
+    instantiate_extensions,
+)
 
 __all__ = ['RESOLVER_GROUP', 'ResolveContext', 'Resolved', 'ResolutionError', 'Resolver',
            'ResolverExtension',

@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from nodl.system.entities import Provider
+from nodl.composition.entities import Provider
 from nodl.system.run import Analysis
 
 __all__ = [

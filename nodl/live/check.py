@@ -16,7 +16,7 @@ from nodl.location import Location
 from nodl.model import ENDPOINT_SECTIONS
 from nodl.naming import NodeNames
 from nodl.overrides import Overrides
-from nodl.system.resolved import ResolvedNode
+from nodl.composition.resolved import ResolvedNode
 
 __all__ = ['CheckResult', 'load_definition', 'check_node', 'base_mismatch', 'RECHECK']
 

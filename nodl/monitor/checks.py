@@ -14,7 +14,7 @@ from typing import Any, Iterable
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.live.conformance import Difference
-from nodl.system.entities import Location
+from nodl.composition.entities import Location
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from typing import Any, Mapping, Sequence
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.system.entities import Location
+from nodl.composition.entities import Location
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from nodl.system.run import Analysis
     from nodl.launch.sandbox import LaunchLimits
     from nodl.naming import NodeNames
-    from nodl.system.resolved import ResolvedNode
+    from nodl.composition.resolved import ResolvedNode
     from nodl.targets.overlay import Definitions
     from nodl.targets.placement import Definition
 

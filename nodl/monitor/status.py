@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, Iterable
 
 from nodl.diagnostics import Diagnostic
 from nodl.monitor.checks import Finding
-from nodl.system.entities import Location
+from nodl.composition.entities import Location
 
 if TYPE_CHECKING:
     from nodl.reporting.reporters import Report

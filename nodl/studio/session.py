@@ -34,7 +34,7 @@ from nodl.registry.overlay import using
 from nodl.studio.guard import FolderGuard
 from nodl.studio.layout import layout_file, read_layout, write_layout
 from nodl.studio.palette import build_palette
-from nodl.system.entities import Provider
+from nodl.composition.entities import Provider
 from nodl.validation.validators import lookup
 from nodl.writing import WriteError
 

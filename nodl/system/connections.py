@@ -12,8 +12,8 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from typing import NamedTuple
 
-from nodl.system.entities import Entity, EntityKind, Provider
-from nodl.system.instance import InstanceEntity, NodeInstance, instances_named
+from nodl.composition.entities import Entity, EntityKind, Provider
+from nodl.composition.instance import InstanceEntity, NodeInstance, instances_named
 
 __all__ = ['Connection', 'System']
 

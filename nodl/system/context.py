@@ -10,7 +10,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from nodl.system.connections import System
-from nodl.system.instance import NodeInstance
+from nodl.composition.instance import NodeInstance
 from nodl.system.launched import SystemNode
 from nodl.system.settings import SETTINGS_KEYS, AnalysisSettings
 from nodl.targets.drafts import DraftGap

@@ -15,7 +15,7 @@ from typing import Any
 
 from nodl.codes import default_severity
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.system.entities import Location
+from nodl.composition.entities import Location
 
 __all__ = ['KINDS', 'KIND_OF_CODE', 'Finding', 'make_finding']
 

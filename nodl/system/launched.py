@@ -7,7 +7,7 @@ launched node's one description all the way to its instance: :func:`build_node` 
 the name its registration records, else its executable's name, with a warning), its
 remapping rules parsed as rcl parses them, the parameter values it receives (its parameter
 sources resolved against its final name, a later value winning) and, when it has a
-definition, its :class:`~nodl.system.instance.NodeInstance` with every endpoint's final
+definition, its :class:`~nodl.composition.instance.NodeInstance` with every endpoint's final
 name.  Every location is the record's own (:class:`~nodl.location.Location`): nothing is
 copied or rebuilt on the way.
 """
@@ -29,7 +29,7 @@ from nodl.naming import (
     parse_remap_rule,
 )
 from nodl.system.findings import Finding, make_finding
-from nodl.system.instance import NodeInstance
+from nodl.composition.instance import NodeInstance
 from nodl.system.matching import Match
 from nodl.targets.resolve import Provenance
 

@@ -19,7 +19,8 @@ from dataclasses import dataclass, field
 from nodl.diagnostics import Diagnostic
 from nodl.launch.model import LaunchedNode
 from nodl.registry import node_info, registrations
-from nodl.system.resolved import ResolvedNode, resolve_registered
+from nodl.composition.resolved import ResolvedNode
+from nodl.targets.resolve import resolve_registered
 
 # Imported here, not in the functions: an import statement costs a few microseconds each
 # time it runs, for every launched node.  The index functions are called through their

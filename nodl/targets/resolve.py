@@ -16,16 +16,22 @@ from __future__ import annotations
 
 import os
 import re
+from pathlib import Path
 from typing import Iterable, Mapping, NamedTuple, Sequence
 
+from nodl.composition.client_library import choose_client_library
+from nodl.composition.resolved import ResolvedNode, resolve_report
+from nodl.composition.resolvers import ResolutionError, ResolveContext
+from nodl.config import definitions_of, find_config_file
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.loading import check_source
+from nodl.registry.nodl_resolver import AmentIndexResolver
 from nodl.registry.overlay import Definitions, read_folders, using
+from nodl.registry.registrations import compose_registered, find_node
+from nodl.reporting import plural
+from nodl.validation.kinds import Kind
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from nodl.system.resolved import ResolvedNode
-
-__all__ = ['Provenance', 'Target', 'gather_definitions', 'provenance_of', 'made_by',
+__all__ = ['Provenance', 'Target', 'gather_definitions', 'provenance_of', 'made_by', 'resolve_registered',
            'resolve_target', 'resolve_reference', 'coverage_line', 'NODL_PATH']
 
 #: The environment variable listing definitions folders.
@@ -101,8 +107,6 @@ def gather_definitions(given: Sequence[str] = (), *, environ: Mapping[str, str] 
     value = (environ if environ is not None else os.environ).get(NODL_PATH, '')
     roots += [(folder, NODL_PATH) for folder in value.split(os.pathsep) if folder]
     if use_config:
-        from nodl.config import definitions_of, find_config_file
-
         config = find_config_file(start or os.getcwd())
         if config is not None:
             roots += [(folder, config) for folder in definitions_of(config)]
@@ -134,9 +138,6 @@ def resolve_target(target: Sequence[str] | str, *, client_library: str | None = 
     parts = [target] if isinstance(target, str) else list(target)
     with using(definitions):
         if len(parts) == 2:
-            from nodl.registry.registrations import find_node
-            from nodl.system.resolved import resolve_registered
-
             registration = find_node(parts[0], parts[1], prefixes)
             node, diagnostics, source = resolve_registered(
                 parts[0], parts[1], client_library=client_library, prefixes=prefixes)
@@ -145,12 +146,6 @@ def resolve_target(target: Sequence[str] | str, *, client_library: str | None = 
             return Target(node, diagnostics, source, provenance)
         if len(parts) != 1:
             raise ValueError('give a definition FILE or PACKAGE EXECUTABLE')
-        from pathlib import Path
-
-        from nodl.loading import check_source
-        from nodl.system.resolved import resolve_report
-        from nodl.validation.kinds import Kind
-
         path = parts[0]
         if not os.path.isfile(path):
             raise OSError(f"{path}: {'is a directory' if os.path.isdir(path) else 'no such file'}")
@@ -165,9 +160,6 @@ def resolve_reference(reference: str, *, prefixes: list[str] | None = None,
                       ) -> tuple[str | bytes | None, str, list[Diagnostic]]:
     """The interface definition ``nodl://PACKAGE/NAME``: ``(text or None, file, diagnostics)``,
     looked up in the definitions folders, then the ament index ``prefixes``."""
-    from nodl.registry.nodl_resolver import AmentIndexResolver
-    from nodl.composition.resolvers import ResolutionError, ResolveContext
-
     with using(definitions):
         try:
             resolved = AmentIndexResolver().resolve(
@@ -192,8 +184,6 @@ def coverage_line(sources: Iterable[Provenance | str]) -> str:
     given by path; the others whenever some node was looked up by package), and of those,
     how many files ``nodl extract`` or ``nodl describe`` wrote (drafts to review; known from
     a :class:`Provenance`, not from a bare source name)."""
-    from nodl.reporting import plural
-
     counts = {key: 0 for key, _ in _COVERAGE}
     drafts: dict[str, dict[str, int]] = {key: {} for key, _ in _COVERAGE}
     total = 0
@@ -212,3 +202,23 @@ def coverage_line(sources: Iterable[Provenance | str]) -> str:
                              if drafts[key].get(how))
             parts.append(f'{counts[key]} {words}' + (f' ({made})' if made else ''))
     return plural(total, 'node') + (': ' + ', '.join(parts) if parts else '')
+
+
+def resolve_registered(package: str, executable: str, *, client_library: str | None = None,
+                       prefixes: list[str] | None = None
+                       ) -> tuple[ResolvedNode | None, list[Diagnostic], str]:
+    """Resolve the node definition registered for ``package``'s ``executable``.
+
+    The client library defaults to the one of the package's build type
+    (``ament_python`` -> rclpy, ``ament_cmake`` -> rclcpp; else rclpy).  The
+    definition, its package and its ``nodl://`` mixins are all looked up in ``prefixes``
+    (default ``AMENT_PREFIX_PATH``).  Returns ``(resolved or None, diagnostics, source
+    file)``; never raises for a missing or broken registration (ValueError for an unknown
+    client library).
+    """
+    choice = choose_client_library(client_library, package, prefixes)
+    composed, diagnostics, source = compose_registered(package, executable, prefixes,
+                                                       client_library=choice.name)
+    if composed is None:
+        return None, diagnostics, source
+    return ResolvedNode(composed, choice.reason), diagnostics, source

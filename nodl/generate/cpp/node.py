@@ -19,7 +19,7 @@ from nodl.generate.cpp.text import (
     comment_lines, interface_cpp, interface_header, string_literal)
 from nodl.plan.identifiers import CPP_KEYWORDS, IdentifierScope, snake_case
 from nodl.plan.parameter_plan import ParametersPlan
-from nodl.system.entities import Entity, EntityKind, InterfaceType
+from nodl.composition.entities import Entity, EntityKind, InterfaceType
 
 __all__ = ['CppEndpoint', 'CppNode', 'plan_node', 'render_header', 'render_source',
            'dependencies', 'LIFECYCLE_HOOKS', 'RESERVED_METHODS']

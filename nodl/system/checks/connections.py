@@ -10,9 +10,9 @@ from typing import Any
 from nodl.model.qos import QOS_POLICIES
 from nodl.system.checks import CheckExtension
 from nodl.system.context import AnalysisContext
-from nodl.system.entities import Provider
+from nodl.composition.entities import Provider
 from nodl.system.findings import Finding, make_finding
-from nodl.system.instance import InstanceEntity
+from nodl.composition.instance import InstanceEntity
 
 __all__ = ['MultiplePublishersCheck', 'QoSCheck', 'TypeMismatchCheck']
 

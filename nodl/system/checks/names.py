@@ -8,7 +8,7 @@ from typing import Any
 from nodl.naming import RemapRule
 from nodl.system.checks import CheckExtension
 from nodl.system.context import AnalysisContext
-from nodl.system.entities import Location
+from nodl.composition.entities import Location
 from nodl.system.findings import Finding, make_finding
 from nodl.system.launched import SystemNode
 

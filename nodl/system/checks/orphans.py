@@ -7,7 +7,7 @@ from collections.abc import Iterator
 
 from nodl.system.checks import CheckExtension
 from nodl.system.context import AnalysisContext
-from nodl.system.entities import EntityKind, Provider
+from nodl.composition.entities import EntityKind, Provider
 from nodl.system.findings import Finding, make_finding
 
 __all__ = ['OrphanCheck']

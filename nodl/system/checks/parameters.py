@@ -25,7 +25,7 @@ from nodl.launch.params import RuntimeValue
 from nodl.model.parameter_types import TypeSpec
 from nodl.system.checks import CheckExtension
 from nodl.system.context import AnalysisContext
-from nodl.system.entities import EntityKind
+from nodl.composition.entities import EntityKind
 from nodl.system.findings import Finding, make_finding
 
 __all__ = ['ParameterCheck', 'launch_value_fits', 'launch_value_verdict', 'value_type_words']

@@ -1,11 +1,10 @@
-"""Entity kinds, providers, interface types and locations (nodl.system.entities)."""
+"""Entity kinds, providers, interface types and locations (nodl.composition.entities)."""
 
 from __future__ import annotations
 
 import pytest
 
-from nodl.model.parameter_types import TypeSpec
-from nodl.system.entities import (
+from nodl.composition.entities import (
     PROVIDER_OF_ROLE,
     EntityKind,
     InterfaceType,
@@ -13,6 +12,7 @@ from nodl.system.entities import (
     Provider,
     parse_entity_type,
 )
+from nodl.model.parameter_types import TypeSpec
 from nodl.vocabulary import SECTIONS
 
 

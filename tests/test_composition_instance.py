@@ -1,4 +1,4 @@
-"""Node instances (nodl.system.instance): final names, remaps, parameters.
+"""Node instances (nodl.composition.instance): final names, remaps, parameters.
 
 The final names are compared with what a real rclpy node, started with the
 same name, namespace and remapping rules, shows in the ROS graph.

@@ -1,4 +1,4 @@
-"""The resolved node (nodl.system.resolved): entities, providers, layers, locations."""
+"""The resolved node (nodl.composition.resolved): entities, providers, layers, locations."""
 
 from __future__ import annotations
 
