@@ -9,7 +9,7 @@ timeout passes), instead of a fixed discovery window.  Each observed node is des
 with its final names turned back into the names its executable declares (its remaps
 undone, ``~/x`` under the node, relative under its namespace), and the instances of
 one executable are merged into one definition, filed as the overlay layout says
-(:mod:`nodl.targets.overlay`):
+(:mod:`nodl.registry.overlay`):
 
 * ``DIR/<package>/<executable>.nodl.yaml`` for a node started as a process;
 * ``DIR/<package>/<class_in_snake_case>.nodl.yaml`` for a composable node, and its
@@ -46,7 +46,7 @@ TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.system.launched import SystemNode
     from nodl.launch.sandbox import LaunchLimits
-    from nodl.targets.overlay import Definitions
+    from nodl.registry.overlay import Definitions
 
 __all__ = ['OverlayFile', 'LaunchDescription', 'Instance', 'describe_launch', 'merge_instances',
            'render_merged']
@@ -190,7 +190,7 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
 
     result = LaunchDescription(launch_file)
     if definitions:  # the folder written is refreshed by this run, not read by it
-        from nodl.targets.overlay import Definitions
+        from nodl.registry.overlay import Definitions
 
         written = os.path.realpath(directory)
         definitions = Definitions([f for f in definitions.folders
@@ -599,7 +599,7 @@ def _write(result: LaunchDescription, directory: str, format: str, force: bool,
     """Write the definitions and ``nodes.yaml`` files into ``directory``: every path is checked
     first (none of ``inputs``, the files the analysis read: NODL033; none through a folder
     that is a symbolic link leading outside ``directory``: NODL708), so a refusal writes nothing."""
-    from nodl.targets.overlay import NODES_FILE
+    from nodl.registry.overlay import NODES_FILE
     from nodl.writing import WriteError, check_within, output_is_input, write_marked
 
     suffix = '.nodl.json' if format == 'json' else '.nodl.yaml'

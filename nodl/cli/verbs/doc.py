@@ -51,7 +51,7 @@ class DocVerb(Verb):
 
         from nodl.cli.arguments import launch_limits
         from nodl.cli.report_options import show_diagnostics
-        from nodl.targets.overlay import active
+        from nodl.registry.overlay import active
 
         prog = 'nodl doc'
         arguments: dict[str, str] = {}

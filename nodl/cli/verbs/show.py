@@ -45,7 +45,7 @@ class ShowVerb(Verb):
             print(f'nodl show: error: {problem}', file=sys.stderr)
             return EXIT_USAGE
         from nodl.cli.arguments import definitions_failed, load_definitions
-        from nodl.targets.overlay import using
+        from nodl.registry.overlay import using
 
         definitions = load_definitions(args, 'nodl show')
         if isinstance(definitions, int):
