@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from nodl.launch.sandbox import LaunchLimits
     from nodl.naming import NodeNames
     from nodl.composition.resolved import ResolvedNode
-    from nodl.targets.overlay import Definitions
+    from nodl.registry.overlay import Definitions
     from nodl.targets.placement import Definition
 
 __all__ = ['DeadlineTopic', 'ExpectedNode', 'ExpectedSystem', 'expected_from_launch',
