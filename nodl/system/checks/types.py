@@ -53,7 +53,9 @@ class TypeDefinitionCheck(CheckExtension):
                 continue  # one endpoint, or several type names (type-mismatch says so)
             by_hash: dict[str, list[tuple[object, str]]] = {}
             for endpoint in endpoints:
-                seen = _prefixes_of(endpoint.entity.location.file, prefixes)
+                # (with one prefix every node sees it: no need to place the declaration)
+                seen = _prefixes_of(endpoint.entity.location.file, prefixes) \
+                    if len(prefixes) > 1 else prefixes
                 try:
                     found = type_hash(interface_index(prefixes=seen), endpoint.entity.type_name)
                 except (LookupError, InterfaceFileError):
