@@ -30,8 +30,8 @@ from nodl.live.observe import ObservedNode
 from nodl.location import Location
 from nodl.model import ENDPOINT_SECTIONS, QOS_POLICIES, Interface
 from nodl.naming import InvalidNameError, NodeNames, expand
-from nodl.system.entities import Entity
-from nodl.system.resolved import ResolvedNode
+from nodl.composition.entities import Entity
+from nodl.composition.resolved import ResolvedNode
 from nodl.vocabulary import SECTION_WORDS, SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['LiveDiagnostic', 'Difference', 'DRIFT_KINDS', 'KIND_CODES', 'compare', 'place',
@@ -83,10 +83,14 @@ class LiveDiagnostic(Diagnostic):
 
     def __init__(self, kind: str, section: str, name: str, message: str, *,
                  declared: Any = None, observed: Any = None, layer: str | None = None,
-                 location: Location | None = None, promoted: bool = False) -> None:
-        file, line, column = location if location is not None else (UNPLACED, 0, 0)
+                 location: Location | None = None, promoted: bool = False,
+                 at: Location | None = None,
+                 related: Iterable[tuple[str, int, int, str]] = ()) -> None:
+        # where it points: ``at`` (a place of its own), else the declaration, else not yet placed
+        file, line, column = at or location or (UNPLACED, 0, 0)
         super().__init__(Severity.ERROR if promoted else _severity_of(kind), message,
-                         (section, name), file, line, column, code=KIND_CODES[kind])
+                         (section, name), file, line, column, code=KIND_CODES[kind],
+                         related=related)
         set_ = object.__setattr__
         set_(self, 'kind', kind)
         set_(self, 'declared', declared)
@@ -113,6 +117,19 @@ class LiveDiagnostic(Diagnostic):
 
     def __hash__(self) -> int:  # the declared and observed values may not be hashable
         return hash(tuple(getattr(self, f) for f in Diagnostic._FIELDS))
+
+    def placed(self, location: Location | None, at: Location | None,
+               related: tuple[tuple[str, int, int, str], ...] = ()) -> LiveDiagnostic:
+        """A copy about the entity declared at ``location`` (None: not declared), pointing
+        at ``at`` (else at ``location``), with ``related`` locations."""
+        file, line, column = at or location or (UNPLACED, 0, 0)
+        new = object.__new__(type(self))
+        for field in self._FIELDS:
+            object.__setattr__(new, field, getattr(self, field))
+        for field, value in (('location', location), ('file', file), ('line', line),
+                             ('column', column), ('related', related)):
+            object.__setattr__(new, field, value)
+        return new
 
     @property
     def section(self) -> str:
@@ -300,7 +317,8 @@ def compare(resolved: ResolvedNode, observed: ObservedNode,
     declared = resolved.interface
     # declaration (the merged model object) -> its entity (where it is written, which layers)
     entities = {id(e.definition): e for e in resolved.entities}
-    out: list[tuple[LiveDiagnostic, Entity | None]] = []
+    places = _Places(resolved)
+    out: list[LiveDiagnostic] = []
     for section in ENDPOINT_SECTIONS:
         word = _word(section)
         wanted: dict[str, Any] = {}
@@ -308,19 +326,22 @@ def compare(resolved: ResolvedNode, observed: ObservedNode,
             wanted[final_name(endpoint.name, section, observed, remaps)] = endpoint
         seen = {e.name: e for e in getattr(observed, section)}
         for full, endpoint in wanted.items():
-            entity = entities.get(id(endpoint))
-            out += [(d, entity) for d in _compare_endpoint(section, word, full, endpoint,
-                                                           seen.get(full))]
-        for full in sorted(set(seen) - set(wanted)):
-            out.append((LiveDiagnostic('extra', section, full, f"{word} '{full}' "
-                                       f'({seen[full].type}) is observed but not declared',
-                                       observed=seen[full].type), None))
+            found = _compare_endpoint(section, word, full, endpoint, seen.get(full))
+            if found:
+                entity = entities.get(id(endpoint))
+                out += [places.place(d, entity) for d in found]
+        extra = sorted(set(seen) - set(wanted))
+        if extra:  # pointing at the section of main they would belong in
+            at = places.section(section)
+            out += [LiveDiagnostic('extra', section, full, f"{word} '{full}' ({seen[full].type}) "
+                                   'is observed but not declared', observed=seen[full].type, at=at)
+                    for full in extra]
     parameters = declared.parameters or {}
     for difference in _compare_parameters(declared, observed):
         param = parameters.get(difference.name)
-        out.append((difference, entities.get(id(param)) if param is not None else None))
-    places = _Places(resolved)
-    return [places.place(d, entity) for d, entity in out]
+        out.append(places.place(difference,
+                                entities.get(id(param)) if param is not None else None))
+    return out
 
 
 def place(differences: Iterable[LiveDiagnostic], resolved: ResolvedNode) -> list[LiveDiagnostic]:
@@ -351,11 +372,11 @@ class _Places:
                     self._by_location = {e.location: e for e in self.resolved.entities}
                 entity = self._by_location.get(location)
         if location is None:
-            return difference.replace(location=None, related=(), **self._section(difference.section))
-        return difference.replace(location=location, file=location.file, line=location.line,
-                                  column=location.column, related=self._related(entity))
+            return difference.placed(None, self.section(difference.section))
+        return difference.placed(location, None, self._related(entity))
 
-    def _section(self, section: str) -> dict[str, Any]:
+    def section(self, section: str) -> Location:
+        """Where ``section`` of ``main`` is written (else ``main``, else the definition's line 1)."""
         found = self._sections.get(section)
         if found is None:
             found = Location(self.resolved.file, 1, 1)
@@ -366,7 +387,7 @@ class _Places:
                 if placed.line and not placed.file.startswith('<'):
                     found = Location(placed.file, placed.line, placed.column)
             self._sections[section] = found
-        return {'file': found.file, 'line': found.line, 'column': found.column}
+        return found
 
     def _related(self, entity: Entity | None) -> tuple[tuple[str, int, int, str], ...]:
         """The other layers that declare ``entity`` (those it overrides), as
