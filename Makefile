@@ -57,10 +57,10 @@ $(DEPS): pyproject.toml $(CONSTRAINTS) tools/lock.in $(if $(STALE_VENV),FORCE)
 
 FORCE:
 
-$(STUDIO_VENDOR): $(DEPS) $(STUDIO_WEB)/package.json $(STUDIO_WEB)/package-lock.json nodl/studio/vendor.py
+$(STUDIO_VENDOR): $(DEPS) $(STUDIO_WEB)/package.json $(STUDIO_WEB)/package-lock.json nodl/studio/vendor.py nodl/cli/verbs/studio.py
 	@command -v npm >/dev/null 2>&1 || { echo "make: nodl studio needs npm (Node.js) to install its browser libraries: apt-get install npm"; exit 2; }
 	npm ci --prefix $(STUDIO_WEB) --no-audit --no-fund --loglevel=error
-	$(BIN)/python -m nodl.studio.vendor $(STUDIO_WEB)/node_modules
+	$(BIN)/python -c 'import sys; from nodl.cli.verbs.studio import copy_vendor_main; sys.exit(copy_vendor_main())' $(STUDIO_WEB)/node_modules
 	touch $@
 
 $(STAMP): $(DEPS) $(SOURCES) $(STUDIO_VENDOR)

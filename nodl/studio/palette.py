@@ -11,10 +11,10 @@ from __future__ import annotations
 
 from typing import Any
 
+from nodl.composition.entities import Provider
 from nodl.diagnostics import Severity
 from nodl.registry.node_info import read_node_info
 from nodl.registry.registrations import list_registrations, one_run
-from nodl.composition.entities import Provider
 from nodl.targets.resolve import resolve_target
 
 __all__ = ['PORT_KINDS', 'build_palette', 'matches', 'port_of']

@@ -27,6 +27,7 @@ from typing import Any
 from nodl.composer import Change, ComposerError, Composition, Kept, Remap
 from nodl.composer.ports import ports_of, verdict
 from nodl.composer.values import xml_value
+from nodl.composition.entities import Provider
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch.sandbox import LaunchLimits
 from nodl.naming import namespace_error, node_name_error, parse_remap_rules
@@ -34,7 +35,6 @@ from nodl.registry.overlay import using
 from nodl.studio.guard import FolderGuard
 from nodl.studio.layout import layout_file, read_layout, write_layout
 from nodl.studio.palette import build_palette
-from nodl.composition.entities import Provider
 from nodl.validation.validators import lookup
 from nodl.writing import WriteError
 

@@ -2,8 +2,9 @@
 
 They come from the npm registry (``nodl/studio/web/package.json`` and its lock, exact
 versions) and are copied into ``nodl/studio/static/vendor/`` (not committed) by
-``make install``, which runs ``npm ci --prefix nodl/studio/web`` and then this module
-(``python -m nodl.studio.vendor``).  The installed package ships the copies.
+``make install``, which runs ``npm ci --prefix nodl/studio/web`` and then :func:`copy_vendor`
+(through :func:`nodl.cli.verbs.studio.copy_vendor_main`).  The installed package ships the
+copies.
 
 edgehandles' browser build expects lodash's ``memoize`` and ``throttle`` as ``window._``;
 their npm packages are CommonJS modules, so each is copied wrapped in a function that
@@ -13,7 +14,6 @@ hands its ``module.exports`` to ``window._`` (the file's text is otherwise uncha
 from __future__ import annotations
 
 import os
-import sys
 from pathlib import Path
 from typing import NamedTuple
 
@@ -90,22 +90,3 @@ def copy_vendor(node_modules: Path, folder: Path | None = None) -> list[Path]:
         if licence.is_file():
             write_file(os.fspath(target / f'LICENSE.{name}'), licence.read_text(encoding='utf-8'))
     return written
-
-
-def main(argv: list[str] | None = None) -> int:
-    """``python -m nodl.studio.vendor [NODE_MODULES]``: copy the files (Makefile step)."""
-    args = sys.argv[1:] if argv is None else argv
-    modules = Path(args[0]) if args else _HERE / 'web' / 'node_modules'
-    try:
-        written = copy_vendor(modules)
-    except OSError as exc:
-        print(f'nodl.studio.vendor: {exc}; run `npm ci --prefix nodl/studio/web` first',
-              file=sys.stderr)
-        return 2
-    for path in written:
-        print(path)
-    return 0
-
-
-if __name__ == '__main__':  # pragma: no cover
-    sys.exit(main())

@@ -121,3 +121,24 @@ def _port(text: str) -> int:
     if not 0 <= value <= 65535:
         raise argparse.ArgumentTypeError(f'{value} is not a port number (0 to 65535)')
     return value
+
+
+def copy_vendor_main(argv: list[str] | None = None) -> int:
+    """``python -c 'from nodl.cli.verbs.studio import copy_vendor_main; copy_vendor_main()'
+    NODE_MODULES``: copy the studio's browser libraries from npm's ``node_modules`` into the
+    package (the Makefile's step after ``npm ci``); exit status 2 when one is missing."""
+    from pathlib import Path
+
+    from nodl.studio.vendor import copy_vendor
+
+    args = sys.argv[1:] if argv is None else argv
+    try:
+        written = copy_vendor(Path(args[0]) if args else
+                              Path(__file__).resolve().parents[2] / 'studio' / 'web' / 'node_modules')
+    except OSError as exc:
+        print(f'nodl studio: cannot copy its browser libraries: {exc}; run '
+              '`npm ci --prefix nodl/studio/web` first', file=sys.stderr)
+        return EXIT_USAGE
+    for path in written:
+        print(path)
+    return EXIT_OK
