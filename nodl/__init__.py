@@ -90,18 +90,53 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from nodl.composition.compose import ComposedNode, compose
     from nodl.diagnostics import Diagnostic, Severity, ValidationError
     from nodl.loading import (
-        Document, Report, check_source, dump_nodl, load_interface, load_node, load_nodl,
-        load_parameter, model_from_data, validate_interface, validate_node, validate_parameter)
+        Document,
+        Report,
+        check_source,
+        dump_nodl,
+        load_interface,
+        load_node,
+        load_nodl,
+        load_parameter,
+        model_from_data,
+        validate_interface,
+        validate_node,
+        validate_parameter,
+    )
     from nodl.model import (
-        ActionEndpoint, Base, Interface, Node, ParameterDefinition, QoSProfile, ServiceEndpoint,
-        TopicEndpoint)
-    from nodl.naming import (InvalidNameError, InvalidRemapRuleError, NodeNames, RemapRule,
-                                    expand_name, node_fqn, parse_remap_rules, resolve_name)
+        ActionEndpoint,
+        Base,
+        Interface,
+        Node,
+        ParameterDefinition,
+        QoSProfile,
+        ServiceEndpoint,
+        TopicEndpoint,
+    )
+    from nodl.naming import (
+        InvalidNameError,
+        InvalidRemapRuleError,
+        NodeNames,
+        RemapRule,
+        expand_name,
+        node_fqn,
+        parse_remap_rules,
+        resolve_name,
+    )
     from nodl.qos_compat import check_qos_compatible
     from nodl.schemas import bundled_schema, load_schema
     from nodl.system import (
-        Connection, Entity, EntityKind, InterfaceType, Location, NodeInstance, Provider,
-        ResolvedNode, System, resolve_node)
+        Connection,
+        Entity,
+        EntityKind,
+        InterfaceType,
+        Location,
+        NodeInstance,
+        Provider,
+        ResolvedNode,
+        System,
+        resolve_node,
+    )
     from nodl.validation.kinds import Kind, detect_kind
 
 

@@ -12,9 +12,10 @@ they hold, is the registry's (:mod:`nodl.registry`).
 from __future__ import annotations
 
 import os
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
-from typing import Any, Callable, Iterator, NamedTuple, TypeVar
+from typing import Any, NamedTuple, TypeVar
 
 __all__ = ['Resource', 'prefix_paths', 'get_resource', 'get_resources', 'package_prefix',
            'package_share_directory', 'resource_file', 'snapshot', 'in_snapshot', 'remembered']

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Iterable, Iterator
+from collections.abc import Iterable, Iterator
 
 from nodl.diagnostics import Diagnostic, has_errors
 from nodl.files import STDIN, iter_nodl_files

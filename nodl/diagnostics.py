@@ -9,7 +9,8 @@ all and raises :class:`ValidationError` once, carrying every one.
 from __future__ import annotations
 
 import enum
-from typing import TYPE_CHECKING, Any, Iterable, Sequence, Union
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING, Any
 
 from nodl.text_safety import visible
 
@@ -24,7 +25,7 @@ __all__ = [
 
 #: A location inside a document: mapping keys and sequence indices.
 if TYPE_CHECKING:
-    DocPath = tuple[Union[str, int], ...]
+    DocPath = tuple[str | int, ...]
 else:
     DocPath = tuple
 
@@ -127,7 +128,7 @@ class Diagnostic:
         fields = ', '.join(f'{f}={getattr(self, f)!r}' for f in self._FIELDS)
         return f'Diagnostic({fields})'
 
-    def replace(self, **changes: Any) -> 'Diagnostic':
+    def replace(self, **changes: Any) -> Diagnostic:
         """A copy with some fields changed."""
         values = {f: getattr(self, f) for f in self._FIELDS}
         values.update(changes)
@@ -138,7 +139,7 @@ class Diagnostic:
         """The document path as text (``main.publishers[0].type``)."""
         return format_path(self.path)
 
-    def at(self, file: str, line: int, column: int) -> 'Diagnostic':
+    def at(self, file: str, line: int, column: int) -> Diagnostic:
         """Return a copy placed at ``file:line:column``."""
         return self.replace(file=file, line=line, column=column)
 

@@ -19,7 +19,7 @@ This module is used by every verb that reports diagnostics (``validate``,
 from __future__ import annotations
 
 import re
-from typing import Iterable
+from collections.abc import Iterable
 
 from nodl.diagnostics import Diagnostic, Severity
 

@@ -30,7 +30,8 @@ play no part.
 
 from __future__ import annotations
 
-from typing import Any, Mapping, NamedTuple
+from collections.abc import Mapping
+from typing import Any, NamedTuple
 
 from nodl.model.qos import QoSProfile
 from nodl.vocabulary import QOS_DURATIONS, QOS_ENUMS, QOS_KEYS

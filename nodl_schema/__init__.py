@@ -24,20 +24,25 @@ import importlib.util
 import sys
 import types
 import warnings
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 import nodl
 from nodl_schema.ament_resolver import AmentIndexResolver
 from nodl_schema.composition import (
-    ResolutionError, Resolver, get_resolvers, register_resolver, resolver_registered,
-    unregister_resolver)
+    ResolutionError,
+    Resolver,
+    get_resolvers,
+    register_resolver,
+    resolver_registered,
+    unregister_resolver,
+)
 from nodl_schema.local_resolver import LocalResolver
 from nodl_schema.validation import ValidationError, load_schema, validate
 
 TYPE_CHECKING = False  # the loader needs pydantic: imported on first use (see __getattr__)
 if TYPE_CHECKING:
-    from nodl_schema.loader import (
-        dump_nodl, load_nodl, load_nodl_with_doc_tree, parse_nodl, resolve_document)
+    from nodl_schema.loader import dump_nodl, load_nodl, load_nodl_with_doc_tree, parse_nodl, resolve_document
     from nodl_schema.rewrite import rewrite_references
 
 #: The reference implementation's ``__all__``, and :class:`ValidationError`.

@@ -17,7 +17,7 @@ from pathlib import Path
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import IO, Any, Union
+    from typing import IO, Any
 
 from nodl_schema.composition import ResolutionError, merge_documents, resolve
 from nodl_schema.models import NodlDocument
@@ -83,7 +83,7 @@ def resolve_document(doc: NodlDocument, origin: Path | None = None) -> DocumentT
                         resolved_includes=[follow(r.ref, [], origin) for r in doc.include or ()])
 
 
-def parse_nodl(data: Union[str, bytes, IO[str], IO[bytes]]) -> NodlDocument:
+def parse_nodl(data: str | bytes | IO[str] | IO[bytes]) -> NodlDocument:
     """Read YAML or JSON text (a str, bytes or a file object) as a validated document.
 
     Raises :class:`nodl_schema.ValidationError` (a :class:`ValueError`) for text
@@ -121,7 +121,7 @@ def load_nodl_with_doc_tree(source: Path) -> tuple[NodlDocument, DocumentTree]:
     return merge_documents(tree.flatten()), tree
 
 
-def dump_nodl(doc: Union[NodlDocument, dict[str, Any]], *, format: str = 'yaml') -> str:
+def dump_nodl(doc: NodlDocument | dict[str, Any], *, format: str = 'yaml') -> str:
     """A document (model or plain dict) as ``yaml`` or ``json`` text.
 
     Fields that are None are left out; validators are written by their key

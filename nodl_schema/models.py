@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import enum
 import re
-from typing import Any, Optional, Union
+from typing import Any, Optional
 
 try:
     from pydantic.v1 import BaseModel, Extra, Field, validator
@@ -109,13 +109,13 @@ class QosProfile(_Strict):
     """QoS settings; durations in nanoseconds."""
 
     history: History
-    depth: Optional[int] = Field(None, ge=1, description='Queue depth (with KEEP_LAST).')
+    depth: int | None = Field(None, ge=1, description='Queue depth (with KEEP_LAST).')
     reliability: Reliability
-    durability: Optional[Durability] = None
-    deadline_ns: Optional[int] = Field(None, ge=0)
-    lifespan_ns: Optional[int] = Field(None, ge=0)
-    liveliness: Optional[Liveliness] = None
-    liveliness_lease_duration_ns: Optional[int] = Field(None, ge=0)
+    durability: Durability | None = None
+    deadline_ns: int | None = Field(None, ge=0)
+    lifespan_ns: int | None = Field(None, ge=0)
+    liveliness: Liveliness | None = None
+    liveliness_lease_duration_ns: int | None = Field(None, ge=0)
 
 
 class TopicEndpoint(_Strict):
@@ -124,7 +124,7 @@ class TopicEndpoint(_Strict):
     name: str = Field(..., regex=_NAME)
     type: str = Field(..., regex=_TYPE)
     qos: QosProfile
-    description: Optional[str] = None
+    description: str | None = None
 
 
 class ServiceEndpoint(_Strict):
@@ -132,8 +132,8 @@ class ServiceEndpoint(_Strict):
 
     name: str = Field(..., regex=_NAME)
     type: str = Field(..., regex=_TYPE)
-    qos: Optional[QosProfile] = None
-    description: Optional[str] = None
+    qos: QosProfile | None = None
+    description: str | None = None
 
 
 class ActionEndpoint(_Strict):
@@ -141,12 +141,12 @@ class ActionEndpoint(_Strict):
 
     name: str = Field(..., regex=_NAME)
     type: str = Field(..., regex=_TYPE)
-    description: Optional[str] = None
+    description: str | None = None
 
 
 _Numbers = Optional[list[float]]
-_Comparison = Optional[Union[list[float], float]]
-_Size = Optional[Union[list[int], int]]
+_Comparison = Optional[list[float] | float]
+_Size = Optional[list[int] | int]
 
 
 class Validation(_Strict):
@@ -157,28 +157,28 @@ class Validation(_Strict):
     gt__: _Comparison = Field(None, alias='gt<>')
     lt_eq__: _Comparison = Field(None, alias='lt_eq<>')
     gt_eq__: _Comparison = Field(None, alias='gt_eq<>')
-    one_of__: Optional[list[list[Any]]] = Field(None, alias='one_of<>')
+    one_of__: list[list[Any]] | None = Field(None, alias='one_of<>')
     bounds: _Numbers = None
     lt: _Comparison = None
     gt: _Comparison = None
     lt_eq: _Comparison = None
     gt_eq: _Comparison = None
-    one_of: Optional[list[list[Any]]] = None
-    not_empty__: Optional[list[Any]] = Field(None, alias='not_empty<>')
-    not_empty: Optional[list[Any]] = None
+    one_of: list[list[Any]] | None = None
+    not_empty__: list[Any] | None = Field(None, alias='not_empty<>')
+    not_empty: list[Any] | None = None
     fixed_size__: _Size = Field(None, alias='fixed_size<>')
     size_gt__: _Size = Field(None, alias='size_gt<>')
     size_lt__: _Size = Field(None, alias='size_lt<>')
     fixed_size: _Size = None
     size_gt: _Size = None
     size_lt: _Size = None
-    unique__: Optional[list[Any]] = Field(None, alias='unique<>')
-    subset_of__: Optional[list[list[Any]]] = Field(None, alias='subset_of<>')
+    unique__: list[Any] | None = Field(None, alias='unique<>')
+    subset_of__: list[list[Any]] | None = Field(None, alias='subset_of<>')
     element_bounds__: _Numbers = Field(None, alias='element_bounds<>')
     lower_element_bounds__: _Comparison = Field(None, alias='lower_element_bounds<>')
     upper_element_bounds__: _Comparison = Field(None, alias='upper_element_bounds<>')
-    unique: Optional[list[Any]] = None
-    subset_of: Optional[list[list[Any]]] = None
+    unique: list[Any] | None = None
+    subset_of: list[list[Any]] | None = None
     element_bounds: _Numbers = None
     lower_element_bounds: _Comparison = None
     upper_element_bounds: _Comparison = None
@@ -194,12 +194,12 @@ class Validation(_Strict):
 class ParameterDefinition(_Strict):
     """A parameter: its type, default, description, whether it is read-only, and validators."""
 
-    type: Union[ScalarType, ArrayType, str]
-    default_value: Optional[Any] = None
-    description: Optional[str] = ''
-    read_only: Optional[bool] = False
-    additional_constraints: Optional[str] = ''
-    validation: Optional[Validation] = None
+    type: ScalarType | ArrayType | str
+    default_value: Any | None = None
+    description: str | None = ''
+    read_only: bool | None = False
+    additional_constraints: str | None = ''
+    validation: Validation | None = None
 
     @validator('type')
     def _fixed_size_type(cls, value: Any) -> Any:
@@ -214,16 +214,16 @@ class NodlDocument(_Strict):
     """A NoDL document: one node's interface, and the documents it includes."""
 
     nodl_version: int = Field(2, const=True)
-    description: Optional[str] = None
-    codegen: Optional[dict[str, dict[str, Any]]] = None
-    include: Optional[list[Reference]] = None
-    parameters: Optional[dict[str, ParameterDefinition]] = None
-    publishers: Optional[list[TopicEndpoint]] = None
-    subscriptions: Optional[list[TopicEndpoint]] = None
-    service_servers: Optional[list[ServiceEndpoint]] = None
-    service_clients: Optional[list[ServiceEndpoint]] = None
-    action_servers: Optional[list[ActionEndpoint]] = None
-    action_clients: Optional[list[ActionEndpoint]] = None
+    description: str | None = None
+    codegen: dict[str, dict[str, Any]] | None = None
+    include: list[Reference] | None = None
+    parameters: dict[str, ParameterDefinition] | None = None
+    publishers: list[TopicEndpoint] | None = None
+    subscriptions: list[TopicEndpoint] | None = None
+    service_servers: list[ServiceEndpoint] | None = None
+    service_clients: list[ServiceEndpoint] | None = None
+    action_servers: list[ActionEndpoint] | None = None
+    action_clients: list[ActionEndpoint] | None = None
 
 
 def _data(doc: NodlDocument) -> dict[str, Any]:

@@ -14,7 +14,7 @@ from nodl.reporting import format_text
 from nodl.vocabulary import CLIENT_LIBRARIES
 
 if TYPE_CHECKING:
-    from typing import Callable
+    from collections.abc import Callable
 
     from nodl.launch.sandbox import LaunchLimits
     from nodl.registry.overlay import Definitions
@@ -121,7 +121,7 @@ def add_launch_code_arguments(parser: argparse.ArgumentParser) -> None:
                             f'process (default: {DEFAULT_MEMORY_MIB:g})')
 
 
-def launch_limits(args: argparse.Namespace) -> 'LaunchLimits':
+def launch_limits(args: argparse.Namespace) -> LaunchLimits:
     """The :class:`~nodl.launch.sandbox.LaunchLimits` the options of
     :func:`add_launch_code_arguments` give."""
     from nodl.launch.sandbox import LaunchLimits

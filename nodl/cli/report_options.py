@@ -23,7 +23,8 @@ import sys
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Iterable, TextIO
+    from collections.abc import Iterable
+    from typing import TextIO
 
     from nodl.diagnostics import Diagnostic
     from nodl.reporting.reporters import Report, ReporterExtension

@@ -17,7 +17,7 @@ description says so), as rclcpp cannot run here.
 from __future__ import annotations
 
 import os
-from functools import lru_cache
+from functools import cache
 from typing import Any
 
 from nodl import ament_index
@@ -65,7 +65,7 @@ def base_files(base: Base | str, client_library: str = DEFAULT_CLIENT_LIBRARY) -
     return [_path(stem) for stem in parts]
 
 
-@lru_cache(maxsize=None)
+@cache
 def _report(path: str):  # type: ignore[no-untyped-def]
     with open(path, 'rb') as f:
         report = check_source(f.read(), kind=Kind.INTERFACE, file=path)
@@ -93,7 +93,7 @@ class _Assembled:
         return placed
 
 
-@lru_cache(maxsize=None)
+@cache
 def _assemble(base: Base, client_library: str) -> tuple[dict[str, Any], _Assembled]:
     """The assembled base as the mapping a file holds (a fresh model is made from it per
     layer: cheaper than a deep copy), and where each of its entities is written."""

@@ -13,7 +13,7 @@ from __future__ import annotations
 import copy
 import dataclasses
 import os
-from typing import Callable, Sequence
+from collections.abc import Callable, Sequence
 
 from nodl.composition.bases import (
     DEFAULT_CLIENT_LIBRARY,

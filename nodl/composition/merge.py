@@ -20,7 +20,8 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-from typing import Any, NamedTuple, Sequence
+from collections.abc import Sequence
+from typing import Any, NamedTuple
 
 from nodl.composition.layers import Layer
 from nodl.diagnostics import Diagnostic, DocPath, Severity

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import os
 import re
-from typing import Callable, NamedTuple, Protocol
+from collections.abc import Callable
+from typing import NamedTuple, Protocol
 
 from nodl.plugins import (
     EXTENSION_POINTS,

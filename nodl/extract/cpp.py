@@ -36,7 +36,8 @@ from nodl.vocabulary import ROS_PARAMETER_TYPE_NAMES
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Iterable
+    from collections.abc import Iterable
+    from typing import Any
 
     from nodl.extract.cmake import CMakeTargets
     from nodl.model.qos import QoSProfile
@@ -106,7 +107,7 @@ _POLICY_WORDS = {
 }
 
 
-def qos_of_name(name: str) -> 'QoSProfile | None':
+def qos_of_name(name: str) -> QoSProfile | None:
     """The profile a named QoS stands for (``rclcpp::SensorDataQoS``,
     ``rmw_qos_profile_sensor_data``...), None for a name that is not one."""
     from nodl.model.qos import QoSProfile
@@ -119,7 +120,7 @@ def qos_of_name(name: str) -> 'QoSProfile | None':
                       durability=durability, lifespan_ns=lifespan)
 
 
-def _depth_qos(depth: int) -> 'QoSProfile':
+def _depth_qos(depth: int) -> QoSProfile:
     from nodl.model.qos import QoSProfile
 
     return QoSProfile(history='KEEP_LAST', depth=depth, reliability='RELIABLE', durability='VOLATILE')
@@ -487,7 +488,7 @@ class _Reader:
             return owner
         return self._class_named(owner, owner)
 
-    def run(self, targets: 'CMakeTargets | None', package: str | None) -> Extraction:
+    def run(self, targets: CMakeTargets | None, package: str | None) -> Extraction:
         self.collect()
         nodes: dict[str, ExtractedNode] = {}
         for name, klass in self.classes.items():
@@ -553,7 +554,7 @@ class _Reader:
                     self.instantiations.setdefault(match.group(1).lstrip(':'), []).append(
                         (path, call.child_by_field_name('arguments')))
 
-    def _map_executable(self, node: ExtractedNode, targets: 'CMakeTargets | None') -> None:
+    def _map_executable(self, node: ExtractedNode, targets: CMakeTargets | None) -> None:
         registered = self.registered.get(node.name)
         if node.made_by == 'class' and (registered is not None or (
                 targets is not None and targets.library_of_plugin(node.name) is not None)):
@@ -1085,7 +1086,7 @@ class _Scan:
             return profile
         return _Unknown(_RUNTIME, self.r.loc(where))
 
-    def apply(self, qos: 'QoSProfile', method: str, args: Any, where: Any) -> Any:
+    def apply(self, qos: QoSProfile, method: str, args: Any, where: Any) -> Any:
         items = [a for a in args.named_children if a.type != 'comment'] if args is not None else []
         if method in _POLICY_WORDS and method not in ('keep_last', 'automatic', 'manual_by_topic'):
             word = _POLICY_WORDS[method]
@@ -1526,7 +1527,7 @@ def _policy(text: str) -> str | None:
 
 
 def _tf_qos(depth: int, latched: bool) -> Any:
-    def make() -> 'QoSProfile':
+    def make() -> QoSProfile:
         profile = _depth_qos(depth)
         if latched:
             profile.durability = 'TRANSIENT_LOCAL'
@@ -1839,7 +1840,7 @@ def _sources(paths: Iterable[str], reader: _Reader) -> list[str]:
     return out
 
 
-def extract_cpp(paths: Iterable[str], *, package: str | None = None, targets: 'CMakeTargets | None' = None,
+def extract_cpp(paths: Iterable[str], *, package: str | None = None, targets: CMakeTargets | None = None,
                 relative_to: str | None = None) -> Extraction:
     """Extract the rclcpp nodes of the C++ sources ``paths`` (files, or folders searched for
     ``.cpp``/``.hpp``... files) read together, as one package's sources.

@@ -201,7 +201,7 @@ class Extraction:
             out += node.diagnostics
         return out
 
-    def extend(self, other: 'Extraction') -> None:
+    def extend(self, other: Extraction) -> None:
         """Add another extraction's nodes, diagnostics and files to this one."""
         self.nodes += other.nodes
         self.diagnostics += other.diagnostics

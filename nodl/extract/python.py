@@ -35,7 +35,8 @@ from nodl.vocabulary import PARAMETER_TYPE_BY_NUMBER, ROS_PARAMETER_TYPE_NAMES
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Callable, Iterable, Iterator
+    from collections.abc import Callable, Iterable, Iterator
+    from typing import Any
 
     from nodl.model.qos import QoSProfile
 
@@ -190,7 +191,7 @@ class _CallValue:
 
     __slots__ = ('callee', 'call', 'scope')
 
-    def __init__(self, callee: str, call: ast.Call, scope: '_Scope') -> None:
+    def __init__(self, callee: str, call: ast.Call, scope: _Scope) -> None:
         self.callee = callee
         self.call = call
         self.scope = scope
@@ -1077,7 +1078,7 @@ class _NodeBuilder:
 
     __slots__ = ('extractor', 'node', 'visited')
 
-    def __init__(self, extractor: 'PythonExtractor', node: ExtractedNode) -> None:
+    def __init__(self, extractor: PythonExtractor, node: ExtractedNode) -> None:
         self.extractor = extractor
         self.node = node
         self.visited: set[tuple[int, int]] = set()

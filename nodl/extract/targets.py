@@ -25,7 +25,8 @@ from nodl.extract.model import ExtractedNode, Extraction
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Callable, Iterable
+    from collections.abc import Callable, Iterable
+    from typing import Any
 
     from nodl.extract.cmake import CMakeTargets
 

@@ -16,7 +16,8 @@ from nodl.extract.model import PARAMETERS, Entity, ExtractedNode, Gap, Location
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Iterable
+    from collections.abc import Iterable
+    from typing import Any
 
 __all__ = ['GAP_MARKER', 'check_entities', 'entity_data', 'draft_data', 'draft_text', 'show_path']
 

@@ -26,7 +26,8 @@ from __future__ import annotations
 
 import os
 import re
-from typing import TYPE_CHECKING, Any, Iterable, NamedTuple, Sequence
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from nodl.diagnostics import Diagnosed, Diagnostic, Severity
 from nodl.frontends.xml_reader import XmlAttribute, XmlElement, XmlTree, load_xml

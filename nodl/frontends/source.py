@@ -13,7 +13,8 @@ from stat import S_ISDIR, S_ISREG
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import IO, Any, Callable, Union
+    from collections.abc import Callable
+    from typing import IO, Any, Union
 
 from nodl.diagnostics import Diagnostic, Severity
 

@@ -26,7 +26,7 @@ from nodl.plugins import EXTENSION_POINTS, ExtensionPoint, PluginError, instanti
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Callable, Sequence
+    from collections.abc import Callable, Sequence
 
     from nodl.diagnostics import Diagnostic
     from nodl.system import ResolvedNode
@@ -129,8 +129,8 @@ def check_options(options: GenerateOptions, language: str = '') -> list[Diagnost
     ``class_name`` (an ASCII identifier, not a keyword of ``language``: it names classes and
     files), ``namespace`` (C++: identifiers separated by ``::``, no keywords)."""
     from nodl.diagnostics import Diagnostic, Severity
-    from nodl.plan.identifiers import CPP_KEYWORDS, KEYWORDS, is_identifier
     from nodl.naming.validation import node_name_error
+    from nodl.plan.identifiers import CPP_KEYWORDS, KEYWORDS, is_identifier
 
     problems: list[str] = []
     why = node_name_error(options.node_name)
@@ -168,8 +168,7 @@ def write_files(files: Sequence[GeneratedFile], out_dir: str, *, check: bool = F
     link to a place outside: :func:`nodl.writing.check_within`),
     NODL031/NODL032 for a file that is not nodl's to replace, NODL030 when a write fails.
     """
-    from nodl.writing import (
-        WriteError, check_replaceable, check_within, marked_text, write_marked)
+    from nodl.writing import WriteError, check_replaceable, check_within, marked_text, write_marked
 
     planned: list[tuple[str, str]] = []
     for item in files:

@@ -6,7 +6,7 @@ node definition as a file or as an installed package's executable.
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 from nodl.diagnostics import Diagnostic
 from nodl.system import ResolvedNode

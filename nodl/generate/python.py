@@ -16,14 +16,19 @@ dependency on the toolkit.  Output is deterministic.
 
 from __future__ import annotations
 
-from typing import Any
-
+from nodl.composition.entities import Entity, EntityKind, InterfaceType
 from nodl.generate import GeneratedFile, GenerateOptions, GenerationError, GeneratorExtension
+from nodl.generate.python_text import (
+    LINE_LENGTH,
+    comment,
+    docstring,
+    literal,
+    mark_long_lines,
+    python_value,
+    validator_expression,
+)
 from nodl.plan.identifiers import PYTHON_KEYWORDS, IdentifierScope
 from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, StructPlan, plan_parameters
-from nodl.generate.python_text import (
-    LINE_LENGTH, comment, docstring, literal, mark_long_lines, python_value, validator_expression)
-from nodl.composition.entities import Entity, EntityKind, InterfaceType
 from nodl.vocabulary import QOS_DURATIONS, QOS_ENUMS
 
 TYPE_CHECKING = False

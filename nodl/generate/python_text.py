@@ -11,9 +11,9 @@ keep each expression in agreement with the table's predicate).
 from __future__ import annotations
 
 import re
-
 import textwrap
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 from nodl.text_safety import python_escapes, visible
 

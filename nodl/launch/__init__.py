@@ -11,10 +11,13 @@ receives, as rcl (processes) and launch_ros (composable nodes) resolve them.
 from __future__ import annotations
 
 from nodl.launch.evaluate import load_launch
-from nodl.launch.model import (LaunchArgument, LaunchedNode, LaunchResult, ParameterSource,
-                                      SourceLocation)
-from nodl.launch.overrides import (ParameterOverride, match_composable_parameter_keys,
-                                          match_parameter_file_nodes, parameter_overrides)
+from nodl.launch.model import LaunchArgument, LaunchedNode, LaunchResult, ParameterSource, SourceLocation
+from nodl.launch.overrides import (
+                                      ParameterOverride,
+                                      match_composable_parameter_keys,
+                                      match_parameter_file_nodes,
+                                      parameter_overrides,
+)
 from nodl.launch.params import load_parameter_file
 
 __all__ = ['load_launch', 'LaunchResult', 'LaunchedNode', 'LaunchArgument', 'ParameterSource',

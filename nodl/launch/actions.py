@@ -14,8 +14,7 @@ from typing import Any
 from nodl.launch.conditions import Condition
 from nodl.launch.errors import LaunchProblem, SubstitutionTooLarge, too_large_message
 from nodl.launch.model import LaunchArgument, SourceLocation
-from nodl.launch.substitutions import (Deferred, Oversized, check_joined_size, normalize, perform,
-                                              perform_bounded)
+from nodl.launch.substitutions import Deferred, Oversized, check_joined_size, normalize, perform, perform_bounded
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:

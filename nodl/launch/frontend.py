@@ -7,8 +7,9 @@ Both markup frontends build :class:`Entity` objects and call :func:`build_descri
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import partial
-from typing import TYPE_CHECKING, Any, Callable, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch import actions as A

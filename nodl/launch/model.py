@@ -15,6 +15,7 @@ from typing import Any, NamedTuple
 
 from nodl.diagnostics import Diagnosed, Diagnostic
 from nodl.location import Location
+
 # A place in a launch file (1-based line and column, 0 when unknown) is the toolkit's one
 # Location, made once by the reader and carried unchanged to the launched node's instance and
 # its findings; SourceLocation is its name in the launch reader.
@@ -45,7 +46,7 @@ class LaunchRemap(tuple):  # type: ignore[type-arg]
 
     source: SourceLocation
 
-    def __new__(cls, src: str, dst: str, source: SourceLocation) -> 'LaunchRemap':
+    def __new__(cls, src: str, dst: str, source: SourceLocation) -> LaunchRemap:
         self = super().__new__(cls, (src, dst))
         self.source = source
         return self

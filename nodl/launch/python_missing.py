@@ -392,8 +392,13 @@ def action_arguments(cls: type, args: tuple[Any, ...], kwargs: dict[str, Any]) -
                                                                                         dict[str, Any]]:
     """The arguments of a stand-in action, with what came from a missing module made into
     what the action reads as a run-time value (call only when :func:`stubs_active`)."""
-    from nodl.launch.ros_actions import (RUN_TIME_KEYWORD, ComposableNode, ComposableNodeContainer,
-                                                LoadComposableNodes, Node)
+    from nodl.launch.ros_actions import (
+        RUN_TIME_KEYWORD,
+        ComposableNode,
+        ComposableNodeContainer,
+        LoadComposableNodes,
+        Node,
+    )
 
     if issubclass(cls, A.DeclareLaunchArgument):
         args = tuple(_plain(a) for a in args)

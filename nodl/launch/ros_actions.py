@@ -18,7 +18,8 @@ in the record's ``run_time``: the node is analysed with what is known.
 from __future__ import annotations
 
 import os
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 from nodl.launch.actions import Action
 from nodl.launch.conditions import Condition

@@ -39,7 +39,8 @@ import pickle
 import signal
 import sys
 import time
-from typing import Any, Callable, NamedTuple
+from collections.abc import Callable
+from typing import Any, NamedTuple
 
 from nodl.diagnostics import Severity
 from nodl.launch.model import SourceLocation

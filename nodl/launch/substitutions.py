@@ -23,8 +23,13 @@ if TYPE_CHECKING:
 
     from nodl.launch.context import LaunchContext
 
-from nodl.launch.errors import (MAX_SUBSTITUTION_CHARS, LaunchProblem, SubstitutionTooLarge, Unevaluable,
-                                       too_large_message)
+from nodl.launch.errors import (
+    MAX_SUBSTITUTION_CHARS,
+    LaunchProblem,
+    SubstitutionTooLarge,
+    Unevaluable,
+    too_large_message,
+)
 
 __all__ = [
     'Substitution', 'TextSubstitution', 'LaunchConfiguration', 'EnvironmentVariable',
@@ -433,7 +438,7 @@ class PathJoinSubstitution(Substitution):
         check_joined_size(texts, os.sep)  # the joined path is no longer than this
         return os.path.join(*texts)
 
-    def __truediv__(self, other: Any) -> 'PathJoinSubstitution':
+    def __truediv__(self, other: Any) -> PathJoinSubstitution:
         joined = PathJoinSubstitution([])
         joined.parts = [*self.parts, normalize(other)]
         return joined

@@ -20,8 +20,14 @@ locations point into the XML file.
 from __future__ import annotations
 
 from nodl.legacy.convert import (
-    Converted, FileConversion, convert_file, convert_files, convert_legacy, render_converted,
-    seconds_to_ns)
+    Converted,
+    FileConversion,
+    convert_file,
+    convert_files,
+    convert_legacy,
+    render_converted,
+    seconds_to_ns,
+)
 
 __all__ = ['Converted', 'FileConversion', 'convert_file', 'convert_files', 'convert_legacy',
            'render_converted', 'seconds_to_ns']

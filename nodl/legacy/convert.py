@@ -26,12 +26,19 @@ from __future__ import annotations
 
 import os
 import re
-from typing import TYPE_CHECKING, Any, Iterable, Sequence
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING, Any
 
 from nodl.diagnostics import Diagnostic, DocPath, Severity, has_errors
 from nodl.frontends.legacy_xml import (
-    LEGACY_ONLY_QOS_VALUES, LegacyDocument, LegacyEndpoint, LegacyNode, LegacyQoS, legacy_document_from_tree,
-    package_exports_from_tree)
+    LEGACY_ONLY_QOS_VALUES,
+    LegacyDocument,
+    LegacyEndpoint,
+    LegacyNode,
+    LegacyQoS,
+    legacy_document_from_tree,
+    package_exports_from_tree,
+)
 from nodl.frontends.xml_reader import XmlTree, load_xml
 from nodl.legacy.converted import Converted, Origins, origin_of
 from nodl.vocabulary import ENDPOINT_KINDS, KIND_NAMESPACES, QOS_DURATIONS, SECTION_KEYS
@@ -482,8 +489,7 @@ def _convert(path: str, out_dir: str, taken: dict[str, str], force: bool = False
             planned[key] = item
     if has_errors(diagnostics):
         return [], _sorted(diagnostics)
-    from nodl.writing import (
-        WriteError, check_replaceable, check_within, marked_text, output_is_input, write_marked)
+    from nodl.writing import WriteError, check_replaceable, check_within, marked_text, output_is_input, write_marked
 
     written: list[str] = []
     texts = {key: render_converted(item) for key, item in planned.items()}

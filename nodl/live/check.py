@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import copy
 import os
-from typing import Iterable
+from collections.abc import Iterable
 
 from nodl.composition import ComposedNode
 from nodl.composition.client_library import ClientLibraryChoice
+from nodl.composition.resolved import ResolvedNode
 from nodl.diagnostics import Severity, ValidationError
 from nodl.live.conformance import LiveDiagnostic, Remaps, compare, conforms, place
 from nodl.live.observe import DISCOVERY_WINDOW, ObservedNode, observe_node, recount
@@ -16,7 +17,6 @@ from nodl.location import Location
 from nodl.model import ENDPOINT_SECTIONS
 from nodl.naming import NodeNames
 from nodl.overrides import Overrides
-from nodl.composition.resolved import ResolvedNode
 
 __all__ = ['CheckResult', 'load_definition', 'check_node', 'base_mismatch', 'RECHECK']
 
@@ -196,7 +196,6 @@ def check_node(fqn: str, definition: str | os.PathLike[str] | tuple[str, str], *
     import time
 
     from nodl.live.session import ros_session
-
     from nodl.naming import parse_remap_rules
 
     composed = load_definition(definition, client_library)

@@ -21,10 +21,8 @@ from typing import Any
 
 from nodl.composition.bases import base_layer
 from nodl.composition.client_library import ClientLibraryChoice
-from nodl.live.observe import (DISCOVERY_WINDOW, ObservedNode, ObservedParameter,
-                                      observe_node, recount, watched_line)
-from nodl.model import (
-    ENDPOINT_SECTIONS, Base, Interface, Node, ParameterDefinition, QoSProfile)
+from nodl.live.observe import DISCOVERY_WINDOW, ObservedNode, ObservedParameter, observe_node, recount, watched_line
+from nodl.model import ENDPOINT_SECTIONS, Base, Interface, Node, ParameterDefinition, QoSProfile
 from nodl.naming import NodeNames, declared_names, expand, relativize
 from nodl.vocabulary import QOS_KEYS, SERVICE_SECTIONS, TOPIC_SECTIONS
 

@@ -31,22 +31,30 @@ from __future__ import annotations
 import dataclasses
 import os
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any, Mapping
+from typing import Any
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.live.describe import Description, annotate_yaml, describe_observed
-from nodl.live.observe import (ObservedNode, count_nodes, list_nodes, observe_settled,
-                                      read_lifecycle_states, read_parameters, settle_nodes)
+from nodl.live.observe import (
+    ObservedNode,
+    count_nodes,
+    list_nodes,
+    observe_settled,
+    read_lifecycle_states,
+    read_parameters,
+    settle_nodes,
+)
 from nodl.live.session import is_hidden_node, ros_session
 from nodl.model import ENDPOINT_SECTIONS, Base, Interface, Node, ParameterDefinition
 from nodl.vocabulary import TOPIC_SECTIONS
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from nodl.system.launched import SystemNode
     from nodl.launch.sandbox import LaunchLimits
     from nodl.registry.overlay import Definitions
+    from nodl.system.launched import SystemNode
 
 __all__ = ['OverlayFile', 'LaunchDescription', 'Instance', 'describe_launch', 'merge_instances',
            'render_merged']
@@ -60,7 +68,7 @@ class Instance:
     """One launched node as observed: the analysis's record, and what was seen."""
 
     #: The analysed launched node (final name, namespace, remaps, parameters, entry).
-    launched: 'SystemNode'
+    launched: SystemNode
     observed: ObservedNode
     description: Description
 
@@ -130,7 +138,7 @@ class LaunchDescription:
         return [d for d in self.diagnostics if d.severity is Severity.ERROR]
 
 
-def _diagnostic(code: str, severity: Severity, message: str, launched: 'SystemNode | None',
+def _diagnostic(code: str, severity: Severity, message: str, launched: SystemNode | None,
                 launch_file: str, related: list[tuple[str, int, int, str]] | None = None
                 ) -> Diagnostic:
     if launched is not None:
@@ -145,7 +153,7 @@ def _related(instance: Instance, message: str) -> tuple[str, int, int, str]:
     return (str(loc.file), int(loc.line), int(loc.column), message)
 
 
-def _group_key(launched: 'SystemNode') -> tuple[str, str, str | None] | None:
+def _group_key(launched: SystemNode) -> tuple[str, str, str | None] | None:
     """``(package, key, plugin)`` a launched node is filed under, or None if unknown."""
     from nodl.registry.node_info import plugin_key
 
@@ -162,9 +170,9 @@ def _group_key(launched: 'SystemNode') -> tuple[str, str, str | None] | None:
 def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, directory: str, *,
                     timeout: float = 5.0, parameters: bool = True, format: str = 'yaml',
                     client_library: str | None = None, force: bool = False,
-                    limits: 'LaunchLimits | None' = None, prefixes: list[str] | None = None,
+                    limits: LaunchLimits | None = None, prefixes: list[str] | None = None,
                     quiet: float = QUIET, types: bool = True,
-                    definitions: 'Definitions | None' = None,
+                    definitions: Definitions | None = None,
                     missing: bool = False) -> LaunchDescription:
     """Describe the running system ``launch_file`` (with launch ``arguments``) started into
     the definitions folder ``directory`` (see the module docstring).
@@ -185,8 +193,7 @@ def describe_launch(launch_file: str, arguments: Mapping[str, str] | None, direc
     no definition covers (neither the ament index ``prefixes`` nor ``definitions``); the
     others are :attr:`LaunchDescription.left_out`, not waited for.
     """
-    from nodl.system.run import analyse_launch
-    from nodl.system.run import LAUNCH_KIND
+    from nodl.system.run import LAUNCH_KIND, analyse_launch
 
     result = LaunchDescription(launch_file)
     if definitions:  # the folder written is refreshed by this run, not read by it

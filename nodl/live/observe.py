@@ -8,14 +8,21 @@ services, which are then not listed as plain topics or services.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any
 
 from nodl.live.graph_events import ANSWERS, follower, spin_once
 from nodl.live.qos import qos_from_rclpy
+from nodl.live.session import (
+    LiveError,
+    NodeNotFound,
+    count_node_names,
+    ros_session,
+    split_node_name,
+    without_toolkit_nodes,
+)
 from nodl.naming import join_name
-from nodl.live.session import (LiveError, NodeNotFound, count_node_names, ros_session,
-                               split_node_name, without_toolkit_nodes)
 from nodl.validation.messages import did_you_mean
 from nodl.vocabulary import PARAMETER_TYPE_BY_NUMBER, SERVICE_SECTIONS, TOPIC_SECTIONS
 

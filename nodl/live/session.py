@@ -5,8 +5,9 @@ from __future__ import annotations
 import itertools
 import os
 import time
-from typing import Any, Iterable, Iterator
+from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
+from typing import Any
 
 __all__ = ['LiveError', 'NodeNotFound', 'DuplicateNode', 'require_rclpy', 'ros_session',
            'open_session', 'close_session', 'count_node_names',

@@ -28,7 +28,13 @@ __all__ = ['ActionEndpoint', 'Base', 'ENDPOINT_SECTIONS', 'Endpoint', 'Interface
 
 if TYPE_CHECKING:  # pragma: no cover
     from nodl.model.interface import (
-        ENDPOINT_SECTIONS, ActionEndpoint, Endpoint, Interface, ServiceEndpoint, TopicEndpoint)
+        ENDPOINT_SECTIONS,
+        ActionEndpoint,
+        Endpoint,
+        Interface,
+        ServiceEndpoint,
+        TopicEndpoint,
+    )
     from nodl.model.node import Base, Mixin, Node
     from nodl.model.parameter import ParameterDefinition
     from nodl.model.qos import QOS_POLICIES, QoSProfile

@@ -25,7 +25,7 @@ class TopicEndpoint:
     origin: str | None = field(default=None, compare=False, repr=False)
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> 'TopicEndpoint':
+    def from_dict(cls, data: dict[str, Any]) -> TopicEndpoint:
         """Build from a validated mapping."""
         return cls(data['name'], data['type'], QoSProfile.from_dict(data['qos']),
                    data.get('description'))
@@ -50,7 +50,7 @@ class ServiceEndpoint:
     origin: str | None = field(default=None, compare=False, repr=False)
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> 'ServiceEndpoint':
+    def from_dict(cls, data: dict[str, Any]) -> ServiceEndpoint:
         """Build from a validated mapping."""
         qos = data.get('qos')
         return cls(data['name'], data['type'], QoSProfile.from_dict(qos) if qos else None,
@@ -76,7 +76,7 @@ class ActionEndpoint:
     origin: str | None = field(default=None, compare=False, repr=False)
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> 'ActionEndpoint':
+    def from_dict(cls, data: dict[str, Any]) -> ActionEndpoint:
         """Build from a validated mapping."""
         return cls(data['name'], data['type'], data.get('description'))
 
@@ -117,7 +117,7 @@ class Interface:
     codegen: dict[str, dict[str, Any]] | None = None
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> 'Interface':
+    def from_dict(cls, data: dict[str, Any]) -> Interface:
         """Build from a validated mapping."""
         iface = cls(data.get('nodl_version', 2), data.get('description'))
         codegen = data.get('codegen')

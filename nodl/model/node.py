@@ -40,7 +40,7 @@ class Node:
     codegen: dict[str, dict[str, Any]] | None = None
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> 'Node':
+    def from_dict(cls, data: dict[str, Any]) -> Node:
         """Build from a validated mapping."""
         base = data.get('base')
         mixins = data.get('mixins')

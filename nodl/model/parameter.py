@@ -32,7 +32,7 @@ class ParameterDefinition:
         return parse_type(self.type)
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> 'ParameterDefinition':
+    def from_dict(cls, data: dict[str, Any]) -> ParameterDefinition:
         """Build from a validated mapping."""
         return cls(
             data['type'],

@@ -7,9 +7,8 @@ ROS 2 parameter type): scalars, arrays, and fixed-size forms
 
 from __future__ import annotations
 
-from collections import namedtuple
-
 import re
+from collections import namedtuple
 
 from nodl.vocabulary import ALL_TYPE_WORDS, ARRAY_TYPES, FIXED_BASES, SCALAR_TYPES
 

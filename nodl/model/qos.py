@@ -24,7 +24,7 @@ class QoSProfile:
     liveliness_lease_duration_ns: int | None = None
 
     @classmethod
-    def from_dict(cls, data: dict[str, Any]) -> 'QoSProfile':
+    def from_dict(cls, data: dict[str, Any]) -> QoSProfile:
         """Build from a validated mapping."""
         return cls(**data)
 

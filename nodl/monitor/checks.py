@@ -9,12 +9,13 @@ monitor's own findings are NODL430-440 (see :mod:`nodl.codes`).
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any, Iterable
+from typing import Any
 
+from nodl.composition.entities import Location
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.live.conformance import Difference
-from nodl.composition.entities import Location
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -85,13 +86,13 @@ def endpoint_findings(differences: Iterable[Difference]) -> list[Finding]:
     return out
 
 
-def _qos_text(endpoint: 'TopicEndpoint') -> str:
+def _qos_text(endpoint: TopicEndpoint) -> str:
     qos = endpoint.qos_dict
     return ', '.join(f'{k} {qos[k]}' for k in ('reliability', 'durability', 'deadline_ns')
                      if k in qos)
 
 
-def connection_findings(topics: dict[str, list['TopicEndpoint']]) -> dict[str, list[Finding]]:
+def connection_findings(topics: dict[str, list[TopicEndpoint]]) -> dict[str, list[Finding]]:
     """Per node (fully qualified name): the problems of the connections it takes part in.
 
     * NODL552: the endpoints of a topic disagree on its type;
@@ -152,7 +153,7 @@ def connection_findings(topics: dict[str, list['TopicEndpoint']]) -> dict[str, l
     return out
 
 
-def parameter_event_findings(expected: 'ExpectedNode', name: str, type_name: str,
+def parameter_event_findings(expected: ExpectedNode, name: str, type_name: str,
                              value: Any, changed: bool) -> list[Finding]:
     """What a parameter event (``name`` set to ``value`` of ``type_name``; ``changed``: it
     held a value before) says that the current value alone does not: a parameter the
@@ -168,7 +169,7 @@ def parameter_event_findings(expected: 'ExpectedNode', name: str, type_name: str
                     f'(to {value!r}, {type_name})', where)]
 
 
-def rate_finding(deadline: 'DeadlineTopic', count: int, window: float, tolerance: float
+def rate_finding(deadline: DeadlineTopic, count: int, window: float, tolerance: float
                  ) -> Finding | None:
     """The rate of a topic with a declared deadline, measured as ``count`` messages in the
     last ``window`` seconds: ERROR (NODL435) when nothing arrived, WARN (NODL436) below

@@ -10,20 +10,21 @@ rules.
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Mapping, Sequence
+from typing import Any
 
-from nodl.diagnostics import Diagnostic, Severity
 from nodl.composition.entities import Location
+from nodl.diagnostics import Diagnostic, Severity
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from nodl.system.launched import SystemNode
-    from nodl.system.run import Analysis
+    from nodl.composition.resolved import ResolvedNode
     from nodl.launch.sandbox import LaunchLimits
     from nodl.naming import NodeNames
-    from nodl.composition.resolved import ResolvedNode
     from nodl.registry.overlay import Definitions
+    from nodl.system.launched import SystemNode
+    from nodl.system.run import Analysis
     from nodl.targets.placement import Definition
 
 __all__ = ['DeadlineTopic', 'ExpectedNode', 'ExpectedSystem', 'expected_from_launch',
@@ -59,9 +60,9 @@ class ExpectedNode:
     #: Where it is launched (the launch entry) or the definition placed.
     location: Location
     #: Its resolved definition (None: monitored for presence only).
-    resolved: 'ResolvedNode | None' = None
+    resolved: ResolvedNode | None = None
     #: Its final name, namespace and remapping rules (how declared names resolve).
-    names: 'NodeNames | None' = None
+    names: NodeNames | None = None
     #: Why it has no definition, when it has none.
     no_definition: str = ''
     #: Publishers with a declared deadline.
@@ -86,7 +87,7 @@ class ExpectedSystem:
     unreadable: bool = False
 
 
-def _deadlines(resolved: 'ResolvedNode', names: 'NodeNames') -> list[DeadlineTopic]:
+def _deadlines(resolved: ResolvedNode, names: NodeNames) -> list[DeadlineTopic]:
     from nodl.naming import InvalidNameError
 
     where = {id(e.definition): e.location for e in resolved.entities}
@@ -104,7 +105,7 @@ def _deadlines(resolved: 'ResolvedNode', names: 'NodeNames') -> list[DeadlineTop
     return out
 
 
-def _hardware_id(node: 'SystemNode') -> str:
+def _hardware_id(node: SystemNode) -> str:
     entry = node.entry
     what = entry.executable or entry.plugin or '?'
     if not entry.package:
@@ -112,7 +113,7 @@ def _hardware_id(node: 'SystemNode') -> str:
     return f'{entry.package}/{what}'
 
 
-def expected_from_analysis(analysis: 'Analysis', source: str) -> ExpectedSystem:
+def expected_from_analysis(analysis: Analysis, source: str) -> ExpectedSystem:
     """The expected system of an analysis (:func:`~nodl.system.run.analyse_launch` or
     :func:`~nodl.system.run.analyse_definitions`).
 
@@ -152,8 +153,8 @@ def expected_from_analysis(analysis: 'Analysis', source: str) -> ExpectedSystem:
 
 
 def expected_from_launch(launch_file: str, arguments: Mapping[str, str] | None = None, *,
-                         client_library: str | None = None, limits: 'LaunchLimits | None' = None,
-                         definitions: 'Definitions | None' = None,
+                         client_library: str | None = None, limits: LaunchLimits | None = None,
+                         definitions: Definitions | None = None,
                          prefixes: list[str] | None = None, settings: Any = None) -> ExpectedSystem:
     """The expected system of the launch file ``launch_file`` with launch ``arguments``."""
     from nodl.system.run import analyse_launch
@@ -164,9 +165,9 @@ def expected_from_launch(launch_file: str, arguments: Mapping[str, str] | None =
     return expected_from_analysis(analysis, launch_file)
 
 
-def expected_from_definitions(targets: Sequence['Definition'], names: Sequence[str] = (), *,
+def expected_from_definitions(targets: Sequence[Definition], names: Sequence[str] = (), *,
                               remaps: Sequence[str] = (), client_library: str | None = None,
-                              definitions: 'Definitions | None' = None,
+                              definitions: Definitions | None = None,
                               prefixes: list[str] | None = None,
                               settings: Any = None) -> ExpectedSystem:
     """The expected system of definitions placed by name (the i-th of ``names`` places the

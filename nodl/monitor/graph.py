@@ -13,8 +13,9 @@ endpoint's QoS and type never change).  Nothing here spins or polls.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable, Mapping
+from typing import Any
 
 from nodl.live.observe import ACTION_INFIX, ObservedEndpoint, ObservedNode
 from nodl.live.qos import qos_from_rclpy

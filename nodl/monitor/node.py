@@ -32,15 +32,14 @@ from __future__ import annotations
 import fnmatch
 import time
 from collections import deque
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Callable, Sequence
+from typing import Any
 
 from nodl.live.graph_events import GraphFollower
 from nodl.live.observe import ObservedNode, ObservedParameter, ParameterRead
-from nodl.live.session import (LiveError, MONITOR_NODE_NAME, close_session, is_hidden_node,
-                               open_session, require_rclpy)
-from nodl.monitor.checks import (Finding, connection_findings, endpoint_findings,
-                                        parameter_event_findings, rate_finding)
+from nodl.live.session import MONITOR_NODE_NAME, LiveError, close_session, is_hidden_node, open_session, require_rclpy
+from nodl.monitor.checks import Finding, connection_findings, endpoint_findings, parameter_event_findings, rate_finding
 from nodl.monitor.expected import DeadlineTopic, ExpectedNode, ExpectedSystem
 from nodl.monitor.graph import GraphView, Snapshot, discovered, observed_node
 from nodl.monitor.status import SYSTEM, Status, status_name, to_message

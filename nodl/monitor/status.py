@@ -11,12 +11,13 @@ then facts (``state``, ``definition``, ``instances``, ``restarts``, measured rat
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Iterable
+from typing import TYPE_CHECKING, Any
 
+from nodl.composition.entities import Location
 from nodl.diagnostics import Diagnostic
 from nodl.monitor.checks import Finding
-from nodl.composition.entities import Location
 
 if TYPE_CHECKING:
     from nodl.reporting.reporters import Report

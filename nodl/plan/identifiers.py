@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import keyword
 import re
-from typing import Iterable, Mapping
+from collections.abc import Iterable, Mapping
 
 __all__ = [
     'CPP_KEYWORDS',

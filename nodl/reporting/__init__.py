@@ -4,7 +4,7 @@ from __future__ import annotations
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Iterable
+    from collections.abc import Iterable
 
 from nodl.diagnostics import Diagnostic, Severity
 

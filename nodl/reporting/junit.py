@@ -13,7 +13,8 @@ import re
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Iterable, NamedTuple, Sequence
+    from collections.abc import Iterable, Sequence
+    from typing import NamedTuple
 
 from nodl.diagnostics import Diagnostic
 from nodl.text_safety import visible

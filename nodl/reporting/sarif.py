@@ -15,7 +15,8 @@ import os
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Iterable
+    from collections.abc import Iterable
+    from typing import Any
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.text_safety import visible
@@ -32,8 +33,8 @@ _SEVERITY_LEVELS = {'error': 'error', 'warning': 'warning', 'info': 'note'}
 
 def _uri(name: str) -> tuple[str, str | None] | None:
     """``(uri, uriBaseId)`` of a file name; None for names that are not files."""
-    from urllib.parse import quote
     from pathlib import Path
+    from urllib.parse import quote
 
     if not name or name.startswith('<'):
         return None

@@ -11,7 +11,7 @@ from __future__ import annotations
 import copy
 import json
 import os
-from functools import lru_cache
+from functools import cache, lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -40,7 +40,7 @@ def schema_path(kind: str) -> Path:
     return Path(_HERE, _file_name(kind))
 
 
-@lru_cache(maxsize=None)
+@cache
 def _load(file_name: str) -> dict[str, Any]:
     with open(os.path.join(_HERE, file_name), encoding='utf-8') as f:
         schema: dict[str, Any] = json.load(f)

@@ -14,8 +14,8 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from nodl.codes import default_severity
-from nodl.diagnostics import Diagnostic, Severity
 from nodl.composition.entities import Location
+from nodl.diagnostics import Diagnostic, Severity
 
 __all__ = ['KINDS', 'KIND_OF_CODE', 'Finding', 'make_finding']
 

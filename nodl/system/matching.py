@@ -16,10 +16,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from nodl.composition.resolved import ResolvedNode
 from nodl.diagnostics import Diagnostic
 from nodl.launch.model import LaunchedNode
 from nodl.registry import node_info, registrations
-from nodl.composition.resolved import ResolvedNode
 from nodl.targets.resolve import resolve_registered
 
 # Imported here, not in the functions: an import statement costs a few microseconds each

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from typing import Any
@@ -11,8 +10,7 @@ from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.validation.interfaces import check_interface
 from nodl.validation.kinds import Kind
 from nodl.validation.names import check_parameter_name, check_ros_name
-from nodl.validation.parameters import (
-    check_parameter, check_parameter_type, check_validator_name)
+from nodl.validation.parameters import check_parameter, check_parameter_type, check_validator_name
 from nodl.validation.references import check_reference
 from nodl.validation.structure import Check, SchemaCompiler
 from nodl.validation.types import check_action_type, check_msg_type, check_srv_type

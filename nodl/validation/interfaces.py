@@ -12,8 +12,7 @@ TYPE_CHECKING = False  # typing costs the command line start-up time; only type 
 if TYPE_CHECKING:
     from typing import Any
 
-from nodl.diagnostics import Diagnostic, DocPath, Severity
-from nodl.diagnostics import format_path
+from nodl.diagnostics import Diagnostic, DocPath, Severity, format_path
 from nodl.validation.characters import check_text_fields
 from nodl.validation.messages import show
 from nodl.validation.parameters import check_parameter

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Iterable
+    from collections.abc import Iterable
+    from typing import Any
 
 from nodl.diagnostics import DocPath
 

@@ -28,12 +28,12 @@ import re
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Callable
+    from collections.abc import Callable
+    from typing import Any
 
 from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.schemas import load_schema_file
-from nodl.validation.messages import (
-    described, did_you_mean, kind_of, one_of, show, subject)
+from nodl.validation.messages import described, did_you_mean, kind_of, one_of, show, subject
 
 __all__ = ['Check', 'FormatCheck', 'SchemaCompiler']
 

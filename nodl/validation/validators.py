@@ -25,7 +25,7 @@ from nodl.vocabulary import PARAMETER_TYPES
 
 TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
-    from typing import Any, Callable
+    from typing import Any
 
     from nodl.model.parameter_types import TypeSpec
 

@@ -122,7 +122,6 @@ class AnalyseVerb(Verb):
             return definitions
 
         from nodl.analysis import analyse_launch
-
         from nodl.cli.arguments import launch_limits
 
         analysis = analyse_launch(args.launch_file, arguments, client_library=args.client_library,
@@ -231,9 +230,9 @@ class AnalyseVerb(Verb):
 
         ``inputs``: files read besides the analysis's own (the launch file, the configuration);
         an output naming any file read is refused before anything is written (NODL033)."""
+        from nodl.analysis import report
         from nodl.cli.diagnostic_options import PolicyError
         from nodl.cli.output import write_file
-        from nodl.analysis import report
         from nodl.writing import outputs_are_inputs
 
         clash = outputs_are_inputs((('-o', args.output), ('--log', args.log),

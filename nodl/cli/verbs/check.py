@@ -69,9 +69,9 @@ class CheckVerb(Verb):
     def _main(self, args: argparse.Namespace) -> int:
         from nodl.cli.arguments import definition_problem
         from nodl.cli.diagnostic_options import DiagnosticPolicy, PolicyError
+        from nodl.cli.report_options import reporter_for, show_diagnostics, write_report
         from nodl.diagnostics import ValidationError
         from nodl.live.check import check_node
-        from nodl.cli.report_options import reporter_for, show_diagnostics, write_report
         from nodl.live.report import check_report
         from nodl.live.session import LiveError
 

@@ -34,8 +34,7 @@ class DocVerb(Verb):
                             help='replace files nodl did not write, or pages edited since')
         parser.add_argument('--arg', action='append', default=[], metavar='NAME:=VALUE',
                             help="a launch argument for a launch file target (repeatable)")
-        from nodl.cli.arguments import (add_client_library_argument, add_definitions_argument,
-                                               add_launch_code_arguments)
+        from nodl.cli.arguments import add_client_library_argument, add_definitions_argument, add_launch_code_arguments
 
         add_client_library_argument(parser)
         add_definitions_argument(parser)

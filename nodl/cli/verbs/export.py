@@ -38,9 +38,9 @@ class ExportVerb(Verb):
     def main(self, args: argparse.Namespace) -> int:
         import os
 
+        from nodl.cli.report_options import show_diagnostics
         from nodl.dialects.export import parameters_of_file, parameters_of_registered
         from nodl.dialects.genparamlib import IDENTIFIER, export_genparamlib
-        from nodl.cli.report_options import show_diagnostics
         from nodl.reporting import without_info
 
         if len(args.definition) == 1:

@@ -49,11 +49,17 @@ class GenerateVerb(Verb):
     def _main(self, args: argparse.Namespace) -> int:
         import os
 
-        from nodl.generate import (
-            GenerateOptions, GenerationError, check_options, default_class_name, default_node_name,
-            load_generators, write_files)
-        from nodl.generate.definition import resolve_target, target_name
         from nodl.cli.report_options import show_diagnostics
+        from nodl.generate import (
+            GenerateOptions,
+            GenerationError,
+            check_options,
+            default_class_name,
+            default_node_name,
+            load_generators,
+            write_files,
+        )
+        from nodl.generate.definition import resolve_target, target_name
         from nodl.reporting import without_info
 
         if len(args.target) > 2:

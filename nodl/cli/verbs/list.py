@@ -35,9 +35,9 @@ class ListVerb(Verb):
 
         from nodl.cli.arguments import definitions_failed, load_definitions
         from nodl.cli.report_options import reporter_for, write_report
-        from nodl.reporting.reporters import Report
-        from nodl.registry.registrations import list_registrations
         from nodl.registry.overlay import using
+        from nodl.registry.registrations import list_registrations
+        from nodl.reporting.reporters import Report
         from nodl.targets.resolve import Provenance
 
         reporter = reporter_for(args, 'nodl list', 'listing')

@@ -19,9 +19,12 @@ class MonitorVerb(Verb):
     failure = 'with --once: a status is ERROR'
 
     def add_arguments(self, parser: argparse.ArgumentParser) -> None:
-        from nodl.cli.arguments import (add_client_library_argument,
-                                               add_definitions_argument,
-                                               add_launch_code_arguments, node_name)
+        from nodl.cli.arguments import (
+            add_client_library_argument,
+            add_definitions_argument,
+            add_launch_code_arguments,
+            node_name,
+        )
 
         parser.add_argument('launch_file', metavar='LAUNCH_FILE | DEFINITION',
                             help='the launch file that starts the system, or node definitions '

@@ -50,8 +50,7 @@ class NewVerb(Verb):
 
     def main(self, args: argparse.Namespace) -> int:
         from nodl.cli.report_options import show_diagnostics
-        from nodl.scaffold import (
-            ScaffoldError, authorship, check_package_name, load_nodes, plan_package, write_package)
+        from nodl.scaffold import ScaffoldError, authorship, check_package_name, load_nodes, plan_package, write_package
 
         sources: list[list[str]] = []
         for group in args.sources:

@@ -341,10 +341,9 @@ def _report(diagnostics: list[Diagnostic], args: argparse.Namespace, options: An
 
 
 def _check(args: argparse.Namespace, expected: Any, options: Any, failed: bool) -> int:
+    from nodl.cli.report_options import reporter_for
     from nodl.diagnostics import Severity
     from nodl.policy.check import check_policy_file
-
-    from nodl.cli.report_options import reporter_for
 
     reporter = reporter_for(args, 'nodl policy')
     if reporter is None:

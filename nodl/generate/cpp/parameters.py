@@ -11,14 +11,13 @@ rejected value gives is the table's ``requirement`` prose.
 
 from __future__ import annotations
 
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 from nodl.generate import GenerationError
-from nodl.generate.cpp.text import (
-    comment_lines, cpp_type, cpp_value, element_value, string_literal)
+from nodl.generate.cpp.text import comment_lines, cpp_type, cpp_value, element_value, string_literal
 from nodl.plan.identifiers import CPP_KEYWORDS, IdentifierScope, is_identifier, pascal_case
-from nodl.plan.parameter_plan import (
-    ParameterPlan, ParametersPlan, StructPlan, ValidatorPlan, plan_parameters)
+from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, StructPlan, ValidatorPlan, plan_parameters
 
 __all__ = ['CPP_PREDICATES', 'cpp_parameter_plan', 'field_type', 'struct_lines', 'predicate',
            'custom_signature', 'custom_declarations', 'declare_lines', 'validate_lines',

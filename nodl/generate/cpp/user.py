@@ -9,10 +9,10 @@ every value.
 
 from __future__ import annotations
 
+from nodl.composition.entities import EntityKind
 from nodl.generate.cpp import parameters as cparams
 from nodl.generate.cpp.node import CppNode
 from nodl.generate.cpp.text import comment_lines
-from nodl.composition.entities import EntityKind
 
 __all__ = ['render_user_source']
 
