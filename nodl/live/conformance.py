@@ -23,15 +23,16 @@ declared points at the section of ``main`` it would belong in.
 
 from __future__ import annotations
 
-from typing import Any, Iterable, Mapping, Union
+from collections.abc import Iterable, Mapping
+from typing import Any, Union
 
+from nodl.composition.entities import Entity
+from nodl.composition.resolved import ResolvedNode
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.live.observe import ObservedNode
 from nodl.location import Location
 from nodl.model import ENDPOINT_SECTIONS, QOS_POLICIES, Interface
 from nodl.naming import InvalidNameError, NodeNames, expand
-from nodl.composition.entities import Entity
-from nodl.composition.resolved import ResolvedNode
 from nodl.vocabulary import SECTION_WORDS, SERVICE_SECTIONS, TOPIC_SECTIONS
 
 __all__ = ['LiveDiagnostic', 'Difference', 'DRIFT_KINDS', 'KIND_CODES', 'compare', 'place',
