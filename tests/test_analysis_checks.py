@@ -149,7 +149,7 @@ def _rclpy_verdict(type_name: str, params_file: Path) -> str:
                 node.declare_parameter('x', 0, ParameterDescriptor(dynamic_typing=True))
             else:
                 node.declare_parameter('x', getattr(Parameter.Type, _RCLPY_TYPES[type_name]))
-            node.get_parameter('x').value
+            _ = node.get_parameter('x').value
             return 'accepted'
         except InvalidParameterTypeException:
             return 'refused'

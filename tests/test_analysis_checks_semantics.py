@@ -206,7 +206,8 @@ def test_actions_and_services_connect_by_final_name(tmp_path: Path) -> None:
     nodes = {
         'server': {'action_servers': [_action('dock'), _action('fib'), _action('goto')],
                    'service_servers': [_service('get_map'), _service('reset', 'std_srvs/srv/Trigger')]},
-        'client': {'action_clients': [_action('dock'), _action('undock'), _action('fib', 'test_msgs/action/NestedMessage'),
+        'client': {'action_clients': [_action('dock'), _action('undock'),
+                                      _action('fib', 'test_msgs/action/NestedMessage'),
                                       _action('go'), _action('go2'), _action('go3'), _action('go4')],
                    'service_clients': [_service('map'), _service('map2'), _service('map3'),
                                        _service('reset'), _service('lost')]},

@@ -52,7 +52,7 @@ def _fleet(robots: int = 10, workers: int = 7, stages: int = 1, prefix: str = '/
             add('worker', f'{robot}/worker{w}')
     remaps = []
     if stages > 1:   # filter<i> reads what filter<i-1> writes
-        for r in range(robots):
+        for _r in range(robots):
             for stage in range(stages):
                 source = 'raw' if stage == 0 else f'stage{stage - 1}'
                 target = 'filtered' if stage == stages - 1 else f'stage{stage}'
@@ -218,7 +218,7 @@ def test_labels_and_page_text_show_control_and_bidi_characters() -> None:
 
 # ---- the page in a real browser (headless Chromium at 1280x800: tests/browser.py) ----
 
-from browser import assert_fits, browser, open_page  # noqa: F401  (browser: a fixture)
+from browser import assert_fits, browser, open_page  # noqa: E402,F401  (browser: a fixture)
 
 
 def _view(driver) -> list[float]:  # type: ignore[no-untyped-def]

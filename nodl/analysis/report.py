@@ -48,6 +48,7 @@ from nodl.system.findings import KINDS
 from nodl.system.launched import SystemNode, node_provenance
 from nodl.system.run import LAUNCH_KIND, Analysis
 from nodl.targets.resolve import coverage_line
+from nodl.text_safety import visible
 
 __all__ = [
     'analysis_report',
@@ -93,8 +94,6 @@ def summary(analysis: Analysis) -> str:
 def format_text(analysis: Analysis, verbose: bool = False) -> str:
     """One ``FILE:LINE:COL: severity: message [CODE]`` line per finding (info with
     ``verbose``), then the summary line."""
-    from nodl.text_safety import visible
-
     lines = [visible(str(f), one_line=True) for f in analysis.findings
              if verbose or f.severity is not Severity.INFO]
     if verbose:  # which file served each node, and from where

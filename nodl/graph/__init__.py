@@ -16,11 +16,11 @@ SVG and HTML are laid out by ``graphviz-pure`` (the ``graph`` extra:
 
 from __future__ import annotations
 
-from nodl.graph.model import GraphError
-
-TYPE_CHECKING = False
-if TYPE_CHECKING:
-    from nodl.system.run import Analysis
+from nodl.graph.dot import format_dot
+from nodl.graph.html import format_html
+from nodl.graph.layout import layout_graph
+from nodl.graph.model import GraphError, build_graph
+from nodl.system.run import Analysis
 
 __all__ = ['FORMATS', 'GraphError', 'render_graph']
 
@@ -30,19 +30,12 @@ FORMATS = ('dot', 'svg', 'html')
 
 def render_graph(analysis: Analysis, format: str) -> str:
     """The picture of ``analysis`` as ``dot``, ``svg`` or ``html`` text."""
-    from nodl.graph.dot import format_dot
-    from nodl.graph.model import build_graph
-
     if format not in FORMATS:
         raise GraphError(f"unknown graph format '{format}'; expected one of {', '.join(FORMATS)}")
     graph = build_graph(analysis)
     if format == 'dot':
         return format_dot(graph)
-    from nodl.graph.layout import layout_graph
-
     svg = layout_graph(graph)
     if format == 'svg':
         return svg
-    from nodl.graph.html import format_html
-
     return format_html(graph, svg, analysis)

@@ -140,8 +140,8 @@ def grid_edges(graph: Graph, rankdir: str = 'LR') -> list[tuple[str, str, bool]]
                                                            * across / along))))
         chains = [items[i:i + per_chain] for i in range(0, len(items), per_chain)]
         for chain in chains:
-            out.extend((a.tail, b.head, False) for a, b in zip(chain, chain[1:]))
-        out.extend((a[0].head, b[0].head, True) for a, b in zip(chains, chains[1:]))
+            out.extend((a.tail, b.head, False) for a, b in zip(chain, chain[1:], strict=False))
+        out.extend((a[0].head, b[0].head, True) for a, b in zip(chains, chains[1:], strict=False))
         return _Item(chains[0][0].head, chains[0][-1].tail,
                      max(sum(i.along for i in chain) for chain in chains),
                      sum(max(i.across for i in chain) for chain in chains)), all_lonely

@@ -3,15 +3,14 @@
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 import sys
 
-from nodl.graph.model import GraphError
-
-TYPE_CHECKING = False
-if TYPE_CHECKING:
-    from nodl.graph.model import Graph
+from nodl.files import describe_os_error
+from nodl.graph.dot import format_dot
+from nodl.graph.model import Graph, GraphError
 
 __all__ = [
     'LAYOUT_PROGRAM',
@@ -53,8 +52,6 @@ def layout_svg(dot: str) -> str:
     except subprocess.TimeoutExpired:
         raise GraphError(f'{LAYOUT_PROGRAM} took longer than {TIMEOUT:.0f} s') from None
     except OSError as exc:
-        from nodl.files import describe_os_error
-
         raise GraphError(f'cannot run {program}: {describe_os_error(exc)}') from None
     if done.returncode != 0:
         message = done.stderr.decode('utf-8', 'replace').strip().splitlines()
@@ -65,8 +62,6 @@ def layout_svg(dot: str) -> str:
 
 def fit_scale(svg: str, view: tuple[float, float] = VIEW) -> float:
     """How much ``svg`` (its ``viewBox``, in points) is scaled to fit ``view`` (CSS pixels)."""
-    import re
-
     found = re.search(r'viewBox="[-\d.]+ [-\d.]+ ([\d.]+) ([\d.]+)"', svg)
     if found is None:
         return 1.0
@@ -78,8 +73,6 @@ def layout_graph(graph: Graph, view: tuple[float, float] = VIEW) -> str:
     """The SVG of ``graph``: left to right as rqt_graph draws it, or top to bottom when that
     fits ``view`` at a larger scale (a long pipeline is far wider than a window, and fitted
     to it its labels would be dots)."""
-    from nodl.graph.dot import format_dot
-
     svg = layout_svg(format_dot(graph))
     scale = fit_scale(svg, view)
     if scale >= 1.0:   # shown at its natural size already

@@ -9,11 +9,11 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
-from nodl.system.connections import System
 from nodl.composition.instance import NodeInstance
+from nodl.system.connections import System
 from nodl.system.launched import SystemNode
 from nodl.system.settings import SETTINGS_KEYS, AnalysisSettings
-from nodl.targets.drafts import DraftGap
+from nodl.targets.drafts import DraftGap, draft_gaps
 
 __all__ = ['SETTINGS_KEYS', 'AnalysisContext', 'AnalysisSettings']
 
@@ -62,8 +62,6 @@ class AnalysisContext:
         read once, on first use)."""
         gaps = self._gaps
         if gaps is None:
-            from nodl.targets.drafts import draft_gaps
-
             by_file: dict[str, list[DraftGap]] = {}
             gaps = self._gaps = {}
             for node in self.analysed():

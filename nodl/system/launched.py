@@ -17,6 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from nodl.composition.instance import NodeInstance
 from nodl.launch.model import LaunchedNode, remap_source
 from nodl.launch.overrides import parameter_overrides
 from nodl.launch.params import RuntimeValue
@@ -29,7 +30,6 @@ from nodl.naming import (
     parse_remap_rule,
 )
 from nodl.system.findings import Finding, make_finding
-from nodl.composition.instance import NodeInstance
 from nodl.system.matching import Match
 from nodl.targets.resolve import Provenance
 
@@ -222,7 +222,7 @@ def build_node(entry: LaunchedNode, match: Match, findings: list[Finding]) -> Sy
                 ()))
     rules: list[RemapRule] = []
     rule_locations: list[Location] = []
-    for index, pair in enumerate(entry.remaps):
+    for pair in entry.remaps:
         source, target = pair
         place = remap_source(pair, where)
         try:

@@ -7,12 +7,13 @@ import operator
 from collections.abc import Iterator
 from typing import Any
 
+from nodl.composition.entities import Provider
+from nodl.composition.instance import InstanceEntity
 from nodl.model.qos import QOS_POLICIES
+from nodl.qos_compat import check_qos_compatible
 from nodl.system.checks import CheckExtension
 from nodl.system.context import AnalysisContext
-from nodl.composition.entities import Provider
 from nodl.system.findings import Finding, make_finding
-from nodl.composition.instance import InstanceEntity
 
 __all__ = ['MultiplePublishersCheck', 'QoSCheck', 'TypeMismatchCheck']
 
@@ -145,8 +146,6 @@ class QoSCheck(CheckExtension):
 
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """One finding per incompatible (or doubtful) publisher/subscription pair."""
-        from nodl.qos_compat import check_qos_compatible
-
         verdicts: dict[tuple[Any, Any], Any] = {}
 
         def verdict_of(pub_qos: Any, sub_qos: Any) -> Any:

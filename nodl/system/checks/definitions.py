@@ -5,9 +5,11 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
+from nodl.registry.registrations import describe_missing
 from nodl.system.checks import CheckExtension
 from nodl.system.context import AnalysisContext
 from nodl.system.findings import Finding, make_finding
+from nodl.targets.drafts import describe
 
 __all__ = ['NoDefinitionCheck']
 
@@ -21,8 +23,6 @@ class NoDefinitionCheck(CheckExtension):
 
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """One finding per node without a registered definition."""
-        from nodl.registry.registrations import describe_missing
-
         reasons: dict[tuple[str, str], str] = {}
         for node in context.nodes:
             if node.match.file is not None or node.entry.role == 'container':
@@ -44,8 +44,6 @@ def _draft_gaps(context: AnalysisContext) -> Iterator[Finding]:
     """One ``draft-gaps`` finding per node whose definition is an extracted draft with entities
     still under ``# GAP``: the analysis sees only the rest of the node, so what it says about
     those entities (orphans, QoS, types) cannot be judged."""
-    from nodl.targets.drafts import describe
-
     for node in context.analysed():
         gaps = context.gaps_of(node)
         if not gaps:

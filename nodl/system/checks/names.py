@@ -5,10 +5,10 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import Any
 
-from nodl.naming import RemapRule
+from nodl.composition.entities import Location
+from nodl.naming import NodeNames, RemapRule
 from nodl.system.checks import CheckExtension
 from nodl.system.context import AnalysisContext
-from nodl.composition.entities import Location
 from nodl.system.findings import Finding, make_finding
 from nodl.system.launched import SystemNode
 
@@ -172,8 +172,6 @@ def _left_out(given: list[tuple[SystemNode, RemapRule]], context: AnalysisContex
     hosts = {n.fqn for n, _ in given if n.entry.role == 'container'}
     if not hosts:
         return []
-    from nodl.naming import NodeNames
-
     have = {id(n) for n, _ in given}
     rule = given[0][1]
     out = []

@@ -3,11 +3,12 @@
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Iterator
 
+from nodl.composition.entities import EntityKind, Provider
 from nodl.system.checks import CheckExtension
 from nodl.system.context import AnalysisContext
-from nodl.composition.entities import EntityKind, Provider
 from nodl.system.findings import Finding, make_finding
 
 __all__ = ['OrphanCheck']
@@ -50,10 +51,8 @@ class OrphanCheck(CheckExtension):
                 continue
             for rule in node.names.rules:
                 if rule.kind not in ('node', 'namespace') and rule.applies_to(node.names.name):
-                    try:
+                    with contextlib.suppress(ValueError):  # a rule rcl would refuse
                         maybe.add(node.names.expand(rule.replacement))
-                    except ValueError:
-                        pass
         caveat = ''
         if unknown:
             names = ', '.join(n.fqn for n in unknown[:3]) + (', ...' if len(unknown) > 3 else '')

@@ -21,12 +21,13 @@ import difflib
 from collections.abc import Iterator
 from typing import Any
 
+from nodl.composition.entities import EntityKind
 from nodl.launch.params import RuntimeValue
 from nodl.model.parameter_types import TypeSpec
 from nodl.system.checks import CheckExtension
 from nodl.system.context import AnalysisContext
-from nodl.composition.entities import EntityKind
 from nodl.system.findings import Finding, make_finding
+from nodl.validation.validators import value_problems
 
 __all__ = ['ParameterCheck', 'launch_value_fits', 'launch_value_verdict', 'value_type_words']
 
@@ -135,8 +136,6 @@ class ParameterCheck(CheckExtension):
 
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """Findings about every node with a definition."""
-        from nodl.validation.validators import value_problems
-
         # Per resolved node (the nodes launched from one definition share it): its parameters
         # by name, and those the launch must set (no default, and a type that takes a value).
         known: dict[int, tuple[dict[str, Any], list[tuple[str, Any]]]] = {}

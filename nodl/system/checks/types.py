@@ -13,13 +13,14 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
-from typing import TYPE_CHECKING
 
+from nodl.interface_types import interface_index
+from nodl.interface_types.hashes import type_hash
+from nodl.interface_types.tree import InterfaceFileError
+from nodl.registry.registrations import search_path
 from nodl.system.checks import CheckExtension
-
-if TYPE_CHECKING:  # pragma: no cover
-    from nodl.system.context import AnalysisContext
-    from nodl.system.findings import Finding
+from nodl.system.context import AnalysisContext
+from nodl.system.findings import Finding, make_finding
 
 __all__ = ['TypeDefinitionCheck']
 
@@ -40,12 +41,6 @@ class TypeDefinitionCheck(CheckExtension):
 
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """One finding per topic whose endpoints' definitions of its type hash differently."""
-        from nodl.interface_types import interface_index
-        from nodl.interface_types.hashes import type_hash
-        from nodl.interface_types.tree import InterfaceFileError
-        from nodl.registry.registrations import search_path
-        from nodl.system.findings import make_finding
-
         prefixes = search_path(list(context.prefixes) if context.prefixes is not None else None)
         for connection in context.system.connections('topic', include_client_library=False):
             endpoints = connection.offering + connection.using
