@@ -50,3 +50,17 @@ def test_a_broken_check_is_reported_and_skipped() -> None:
     assert "check 'wrong' skipped" in broken[1].message and 'other than Finding' in broken[1].message
     assert [f.to_dict() for f in mixed.findings if f.kind != 'broken-check'] == \
         [f.to_dict() for f in alone.findings]
+
+
+def test_the_former_path_of_the_extension_point_still_works_and_says_where_it_went() -> None:
+    import importlib
+    import sys
+    import warnings
+
+    sys.modules.pop('nodl.analysis.checks', None)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter('always')
+        former = importlib.import_module('nodl.analysis.checks')
+    assert former.CheckExtension is CheckExtension and former.load_checks is load_checks
+    assert [str(w.message) for w in caught if w.category is DeprecationWarning] == [
+        'nodl.analysis.checks moved to nodl.system.checks; import it from there']
