@@ -54,9 +54,10 @@ fetch('/api/parameter', {method: 'POST', headers: {'X-Nodl-Token': document.quer
 
 
 def _browser():  # type: ignore[no-untyped-def]
-    import browser
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
+
+    import browser
 
     options = webdriver.ChromeOptions()
     options.binary_location = shutil.which('chromium') or shutil.which('chromium-browser') or ''

@@ -20,7 +20,6 @@ import bench_extract_python  # noqa: E402
 import bench_generate  # noqa: E402
 import bench_hostile  # noqa: E402
 import bench_load  # noqa: E402
-import bench_monitor  # noqa: E402
 import bench_nav2_bringup  # noqa: E402
 import bench_policy  # noqa: E402
 import bench_studio  # noqa: E402

@@ -9,8 +9,8 @@ it opens are local files that fetch nothing.
 from __future__ import annotations
 
 import shutil
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Iterator
 
 import pytest
 

@@ -7,7 +7,8 @@ process), and every wait has a timeout.
 from __future__ import annotations
 
 import time
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 
 class Client:

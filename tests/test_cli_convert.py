@@ -8,7 +8,6 @@ import sys
 from pathlib import Path
 
 from conftest import FIXTURES, REPO
-
 from nodl.writing import unmark
 
 LEGACY = FIXTURES / 'legacy'

@@ -269,7 +269,7 @@ def test_colour_rules() -> None:
     assert colour_enabled('auto', Tty(), {'NO_COLOR': 'x'}) is False
     assert colour_enabled('auto', Tty(), {'NO_COLOR': ''}) is True  # no-color.org: non-empty
     assert colour_enabled('always', object(), {'NO_COLOR': 'x'}) is True
-    assert colourize('f:1:2: warning: w\nplain\n') == f'f:1:2: \033[1;35mwarning\033[0m: w\nplain\n'
+    assert colourize('f:1:2: warning: w\nplain\n') == 'f:1:2: \033[1;35mwarning\033[0m: w\nplain\n'
 
 
 def test_a_guarded_stream_shows_control_and_bidi_characters_never_obeys_them() -> None:

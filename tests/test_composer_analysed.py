@@ -12,8 +12,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from composer_helpers import definitions, example_copy, example_definitions
 
+from composer_helpers import definitions, example_copy, example_definitions
 from nodl.composer import Composition
 from nodl.system.run import analyse_launch
 

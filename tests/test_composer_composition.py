@@ -9,8 +9,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from composer_helpers import copy_launch, definitions
 
+from composer_helpers import copy_launch, definitions
 from nodl.composer import ComposerError, Composition
 
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import ast
 
 import pytest
-from composer_helpers import EXAMPLE, LAUNCH
 
+from composer_helpers import EXAMPLE, LAUNCH
 from nodl.composer.formats import new_document, read_document, render
 from nodl.composer.model import ComposedNode, Group, Kept, Param, Remap
 from nodl.composer.python_format import node_python, read_python

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from composer_helpers import LAUNCH, definitions
-
 from nodl.composer import Composition
 from nodl.composer.showing import show_report, show_text
 

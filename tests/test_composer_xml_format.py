@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import pytest
-from composer_helpers import EXAMPLE, LAUNCH
 
+from composer_helpers import EXAMPLE, LAUNCH
 from nodl.composer.formats import read_document, render
 from nodl.composer.model import ComposedNode, Group, Kept, Param, Remap
 from nodl.composer.xml_format import ReadError, node_xml, read_xml

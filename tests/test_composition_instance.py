@@ -7,8 +7,8 @@ same name, namespace and remapping rules, shows in the ROS graph.
 from __future__ import annotations
 
 import pytest
-from conftest import FIXTURES
 
+from conftest import FIXTURES
 from nodl.live.observe import observe_node
 from nodl.naming import InvalidRemapRuleError
 from nodl.system import EntityKind, NodeInstance, resolve_node

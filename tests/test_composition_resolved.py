@@ -5,8 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from conftest import FIXTURES
 
+from conftest import FIXTURES
 from nodl import ValidationError, compose
 from nodl.composition.bases import base_file
 from nodl.system import (

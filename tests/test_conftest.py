@@ -12,8 +12,9 @@ import sys
 import time
 from pathlib import Path
 
-import conftest
 import pytest
+
+import conftest
 from conftest import DURATIONS, NODES, costliest_first, module_costs
 
 pytest_plugins = ['pytester']

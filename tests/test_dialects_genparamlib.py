@@ -8,7 +8,6 @@ from typing import Any
 import yaml
 
 from conftest import FIXTURES
-
 from nodl.dialects import GENPARAMLIB, recognise
 from nodl.dialects.convert import convert_dialect
 from nodl.dialects.genparamlib import export_genparamlib

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import sys
 
+from nodl.composition.entities import Location
 from nodl.doc.blocks import Heading, Link, Note, Table, text_of
 from nodl.doc.types import type_appendix
 from nodl.interface_types.resolve import interface_index
-from nodl.composition.entities import Location
 
 #: The ament prefix of the virtual environment (std_msgs, std_srvs... are installed there).
 PREFIXES = [sys.prefix]

@@ -225,7 +225,7 @@ def test_a_widened_copy_of_the_policy_is_over_privileged(workspace: Build, tmp_p
 
     sys.path.insert(0, str(REPO / 'examples'))
     try:
-        from demo import widen_policy   # what make demo does
+        from demo import widen_policy  # what make demo does
     finally:
         sys.path.remove(str(REPO / 'examples'))
     result = launch_policy(LAUNCH, WITHOUT_DUPLICATE, allow_missing=True, prefixes=workspace.prefixes)

@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 import tomllib
-from conftest import FIXTURES, REPO
 
+from conftest import FIXTURES, REPO
 from nodl import check_source, plugins
 from nodl.files import find_nodl_files
 from nodl.frontends import frontend

@@ -9,9 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from conftest import FIXTURES, REPO
-
 import nodl
+from conftest import FIXTURES, REPO
 from nodl import compose
 from nodl.dialects import INCLUDE, recognise
 from nodl.frontends.include import read_include

@@ -18,8 +18,13 @@ from hypothesis import strategies as st
 from conftest import FIXTURES, REPO
 from nodl.diagnostics import Severity
 from nodl.frontends.legacy_xml import (
-    LegacyDocument, LegacyEndpoint, LegacyQoS, interface_files_from_package_xml,
-    package_exports, parse_legacy_xml)
+    LegacyDocument,
+    LegacyEndpoint,
+    LegacyQoS,
+    interface_files_from_package_xml,
+    package_exports,
+    parse_legacy_xml,
+)
 from nodl.reporting import format_text
 
 LEGACY = FIXTURES / 'legacy'

@@ -154,8 +154,8 @@ def test_a_whole_node_with_hostile_descriptions_parses(tmp_path: Path) -> None:
     ends, trigraphs and backslashes (its validation errors NODL219/NODL220 bypassed, as a
     running node's descriptors would give them): the generated header, source and user stub
     hold none of them raw, and libclang parses them with no diagnostic."""
-    from nodl.loading import Report, check_source
     from nodl.composition.resolved import resolve_report
+    from nodl.loading import Report, check_source
     from nodl.text_safety import UNSAFE
     from nodl.validation.kinds import Kind
 

@@ -7,8 +7,17 @@ from pathlib import Path
 import pytest
 
 from nodl.generate import (
-    GeneratedFile, GenerateOptions, GenerationError, GeneratorExtension, check_options,
-    default_class_name, default_node_name, generate, load_generators, write_files)
+    GeneratedFile,
+    GenerateOptions,
+    GenerationError,
+    GeneratorExtension,
+    check_options,
+    default_class_name,
+    default_node_name,
+    generate,
+    load_generators,
+    write_files,
+)
 from nodl.generate.definition import resolve_target, target_name
 from nodl.plugins import EXTENSION_POINTS
 from nodl.writing import WriteError

@@ -11,11 +11,11 @@ import json
 import shutil
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any
 
 import pytest
-from ros_client import Client
 
 from nodl.generate import (
     GenerateOptions,
@@ -26,6 +26,7 @@ from nodl.generate import (
 from nodl.generate.python import generate_python
 from nodl.system import resolve_node
 from nodl.writing import mark
+from ros_client import Client
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'generate'
 KINDS = ('talker', 'managed_camera', 'everything')

@@ -8,8 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from nodl.generate.python_text import (
-    LINE_LENGTH, comment, docstring, literal, mark_long_lines, multiline_string_lines)
+from nodl.generate.python_text import LINE_LENGTH, comment, docstring, literal, mark_long_lines, multiline_string_lines
 
 REPO = Path(__file__).resolve().parent.parent
 

@@ -8,15 +8,14 @@ answers only for a type name and hash the node has registered.
 from __future__ import annotations
 
 import sys
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Iterator
 
 import pytest
 
 from conftest import NodeProcess
 from nodl.interface_types import InterfaceIndex
-from nodl.interface_types.hashes import (description_differences, installed_hash,
-                                                type_description, type_hash)
+from nodl.interface_types.hashes import description_differences, installed_hash, type_description, type_hash
 
 VENV = str(Path(sys.prefix))
 

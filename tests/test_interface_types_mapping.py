@@ -8,8 +8,7 @@ from pathlib import Path
 import pytest
 
 from nodl.interface_types import InterfaceIndex
-from nodl.interface_types.mapping import (PARAMETER_CPP, PARAMETER_PY, cpp_type, python_type,
-                                                 spec_note, spec_notes)
+from nodl.interface_types.mapping import PARAMETER_CPP, PARAMETER_PY, cpp_type, python_type, spec_note, spec_notes
 from nodl.interface_types.tree import FieldType, MessageType, load_type
 
 VENV = str(Path(sys.prefix))

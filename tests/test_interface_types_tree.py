@@ -9,8 +9,14 @@ import pytest
 
 from conftest import FIXTURES
 from nodl.interface_types import InterfaceIndex
-from nodl.interface_types.tree import (ActionType, InterfaceFileError, MessageType, ServiceType,
-                                              UnknownTypeError, load_type)
+from nodl.interface_types.tree import (
+    ActionType,
+    InterfaceFileError,
+    MessageType,
+    ServiceType,
+    UnknownTypeError,
+    load_type,
+)
 
 VENV = str(Path(sys.prefix))
 SOURCE = FIXTURES / 'interface_types' / 'types_pkg'

@@ -20,9 +20,14 @@ import yaml
 from conftest import FIXTURES
 from nodl.launch import load_launch
 from nodl.launch.model import ParameterSource, SourceLocation
-from nodl.launch.overrides import (composable_overrides, match_composable_parameter_keys,
-                                          match_parameter_file_nodes, parameter_overrides,
-                                          rcl_scalar, rcl_yaml_value)
+from nodl.launch.overrides import (
+    composable_overrides,
+    match_composable_parameter_keys,
+    match_parameter_file_nodes,
+    parameter_overrides,
+    rcl_scalar,
+    rcl_yaml_value,
+)
 
 TABLE = yaml.safe_load((FIXTURES / 'launch' / 'parameter_precedence.yaml').read_text(encoding='utf-8'))
 CASES: list[dict[str, Any]] = TABLE['cases']

@@ -16,8 +16,7 @@ import pytest
 
 from conftest import FIXTURES
 from nodl.diagnostics import Severity
-from nodl.launch import load_launch
-from nodl.launch import sandbox
+from nodl.launch import load_launch, sandbox
 from nodl.launch.sandbox import LaunchLimits
 
 SANDBOX = FIXTURES / 'launch' / 'sandbox'

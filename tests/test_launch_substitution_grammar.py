@@ -10,8 +10,13 @@ import pytest
 from nodl.launch import load_launch
 from nodl.launch.errors import LaunchProblem
 from nodl.launch.substitution_grammar import SUBSTITUTIONS, parse_substitution
-from nodl.launch.substitutions import (EnvironmentVariable, LaunchConfiguration, PythonExpression,
-                                              TextSubstitution, ThisLaunchFileDir)
+from nodl.launch.substitutions import (
+    EnvironmentVariable,
+    LaunchConfiguration,
+    PythonExpression,
+    TextSubstitution,
+    ThisLaunchFileDir,
+)
 
 
 def test_text_and_substitutions_alternate() -> None:

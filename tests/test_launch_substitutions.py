@@ -19,8 +19,13 @@ from bounded_child import run_bounded
 from conftest import FIXTURES
 from nodl.launch import load_launch
 from nodl.launch.errors import MAX_SUBSTITUTION_CHARS
-from nodl.launch.substitutions import (LaunchConfiguration, PathJoinSubstitution, TextSubstitution,
-                                              check_joined_size, perform)
+from nodl.launch.substitutions import (
+    LaunchConfiguration,
+    PathJoinSubstitution,
+    TextSubstitution,
+    check_joined_size,
+    perform,
+)
 
 HOSTILE = FIXTURES / 'launch' / 'hostile'
 MEGABYTES = 1024   # the child's address space

@@ -12,8 +12,7 @@ import nodl
 from conftest import FIXTURES, REPO
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.frontends.legacy_xml import parse_legacy_xml
-from nodl.legacy import (
-    Converted, convert_file, convert_files, convert_legacy, render_converted, seconds_to_ns)
+from nodl.legacy import Converted, convert_file, convert_files, convert_legacy, render_converted, seconds_to_ns
 from nodl.reporting import format_text
 from nodl.writing import WriteError, marker_state, unmark
 

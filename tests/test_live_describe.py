@@ -6,15 +6,14 @@ describe_node on real node processes, whose descriptions must validate.
 
 from __future__ import annotations
 
-from typing import Iterator
+from collections.abc import Iterator
 
 import pytest
 
 from conftest import FIXTURES, NodeProcess
 from nodl import ValidationError, load_node, validate_node
 from nodl.composition.bases import base_layer
-from nodl.live.describe import (
-    Description, deduce_base, describe_node, describe_observed, render_description)
+from nodl.live.describe import Description, deduce_base, describe_node, describe_observed, render_description
 from nodl.live.observe import ObservedEndpoint, ObservedNode, ObservedParameter
 from nodl.live.session import ros_session
 from nodl.naming import expand

@@ -9,13 +9,12 @@ session of their own as `nodl describe` and `nodl check` do.
 from __future__ import annotations
 
 import time
-from typing import Iterator
+from collections.abc import Iterator
 
 import pytest
 
 from conftest import NodeProcess
-from nodl.live.observe import (ACTION_INFIX, DISCOVERY_WINDOW, ObservedNode, list_nodes,
-                                     observe_node, wait_for_node)
+from nodl.live.observe import ACTION_INFIX, DISCOVERY_WINDOW, ObservedNode, list_nodes, observe_node, wait_for_node
 from nodl.live.session import LiveError, NodeNotFound, ros_session
 
 SECTIONS = ('publishers', 'subscriptions', 'service_servers', 'service_clients', 'action_servers',

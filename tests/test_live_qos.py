@@ -4,8 +4,15 @@ from __future__ import annotations
 
 import pytest
 from rclpy.duration import Duration, Infinite
-from rclpy.qos import (DurabilityPolicy, HistoryPolicy, LivelinessPolicy, QoSProfile,
-                       ReliabilityPolicy, qos_profile_sensor_data, qos_profile_system_default)
+from rclpy.qos import (
+    DurabilityPolicy,
+    HistoryPolicy,
+    LivelinessPolicy,
+    QoSProfile,
+    ReliabilityPolicy,
+    qos_profile_sensor_data,
+    qos_profile_system_default,
+)
 
 from nodl.live.qos import INFINITE_NS, qos_from_rclpy
 from nodl.model import QOS_POLICIES

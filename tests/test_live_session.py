@@ -17,8 +17,7 @@ from pathlib import Path
 
 from conftest import NodeProcess
 from nodl.live.observe import count_nodes, list_nodes
-from nodl.live.session import (OBSERVER_PREFIX, is_hidden_node, is_toolkit_node,
-                                      ros_session, without_toolkit_nodes)
+from nodl.live.session import OBSERVER_PREFIX, is_hidden_node, is_toolkit_node, ros_session, without_toolkit_nodes
 
 
 def raw_names(session) -> set[str]:

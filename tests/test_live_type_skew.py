@@ -4,16 +4,15 @@ private prefix in front of the environment's)."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Iterator
 
 import pytest
 
 from conftest import NodeProcess
-from skewed_prefix import (FIBONACCI_WITH_PROGRESS, STRING_WITH_REVISION, TRIGGER_WITH_ATTEMPT,
-                           VENV, skewed_prefix)
 from nodl.live.check import check_node
 from nodl.live.describe import describe_node, render_description
+from skewed_prefix import FIBONACCI_WITH_PROGRESS, STRING_WITH_REVISION, TRIGGER_WITH_ATTEMPT, VENV, skewed_prefix
 
 
 @pytest.fixture(scope='module')

@@ -20,8 +20,18 @@ import nodl
 from nodl import ValidationError
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.loading import (
-    Report, check_source, dump_nodl, load_interface, load_node, load_nodl, load_parameter,
-    model_from_data, validate_interface, validate_node, validate_parameter)
+    Report,
+    check_source,
+    dump_nodl,
+    load_interface,
+    load_node,
+    load_nodl,
+    load_parameter,
+    model_from_data,
+    validate_interface,
+    validate_node,
+    validate_parameter,
+)
 from nodl.model import Base, Interface, Node, ParameterDefinition
 from nodl.validation import Kind
 

@@ -31,7 +31,7 @@ def test_a_venv_of_another_python_is_rebuilt(tmp_path: Path) -> None:
     (venv / '.installed').touch()
     result = make('-n', 'install', f'VENV={venv}')
     assert result.returncode == 0, result.stderr
-    assert f'if [ -n "yes" ]' in result.stdout
+    assert 'if [ -n "yes" ]' in result.stdout
     assert f'make: {venv} was made with Python 3.12 or its interpreter is gone' in result.stdout
     assert f'rm -rf {venv}' in result.stdout
 

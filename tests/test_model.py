@@ -9,13 +9,36 @@ from typing import Any
 import pytest
 
 from nodl.loading import (
-    check_source, dump_nodl, load_interface, load_node, load_nodl, validate_interface, validate_node)
+    check_source,
+    dump_nodl,
+    load_interface,
+    load_node,
+    load_nodl,
+    validate_interface,
+    validate_node,
+)
 from nodl.model import (
-    ENDPOINT_SECTIONS, QOS_POLICIES, ActionEndpoint, Base, Interface, Node, ParameterDefinition,
-    QoSProfile, ServiceEndpoint, TopicEndpoint)
+    ENDPOINT_SECTIONS,
+    QOS_POLICIES,
+    ActionEndpoint,
+    Base,
+    Interface,
+    Node,
+    ParameterDefinition,
+    QoSProfile,
+    ServiceEndpoint,
+    TopicEndpoint,
+)
 from nodl.model.parameter_types import (
-    ALL_TYPE_WORDS, ARRAY_TYPES, FIXED_BASES, SCALAR_TYPES, TypeSpec, element_fits, parse_type,
-    value_fits)
+    ALL_TYPE_WORDS,
+    ARRAY_TYPES,
+    FIXED_BASES,
+    SCALAR_TYPES,
+    TypeSpec,
+    element_fits,
+    parse_type,
+    value_fits,
+)
 
 FIXTURES = Path(__file__).parent / 'fixtures'
 VALID = sorted((FIXTURES / 'valid').iterdir())

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
+from nodl.composition.entities import Location
 from nodl.live.conformance import Difference
 from nodl.monitor.checks import connection_findings, endpoint_findings, rate_finding
 from nodl.monitor.expected import DeadlineTopic
 from nodl.monitor.graph import TopicEndpoint
-from nodl.composition.entities import Location
 
 DEADLINE = DeadlineTopic('/s/data', 'std_msgs/msg/String', 100_000_000, Location('s.nodl.yaml', 9, 7))
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from conftest import FIXTURES
-
 from nodl.monitor.expected import expected_from_definitions
 from nodl.targets.placement import Definition
 

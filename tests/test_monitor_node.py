@@ -10,8 +10,9 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any, Callable, Iterator
+from typing import Any
 
 import pytest
 
@@ -534,7 +535,6 @@ def test_the_readme_lists_every_parameter_with_its_default() -> None:
     import re
 
     from nodl.monitor.node import _NUMERIC, MonitorSettings
-
     from site_pages import page
 
     readme = page('guides/system-integrators')

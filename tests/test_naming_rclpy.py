@@ -13,8 +13,7 @@ from typing import Any
 import pytest
 import yaml
 
-from nodl.naming import (InvalidNameError, InvalidRemapRuleError, node_fqn,
-                                parse_remap_rules, resolve_name)
+from nodl.naming import InvalidNameError, InvalidRemapRuleError, node_fqn, parse_remap_rules, resolve_name
 
 TABLE = yaml.safe_load((Path(__file__).parent / 'fixtures' / 'naming' / 'rclpy_cases.yaml')
                        .read_text(encoding='utf-8'))

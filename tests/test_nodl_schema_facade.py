@@ -19,10 +19,9 @@ from pathlib import Path
 
 import pytest
 
-from conftest import REPO
-
 import nodl
 import nodl_schema
+from conftest import REPO
 from nodl_schema import ValidationError, dump_nodl, load_nodl, load_schema, parse_nodl, validate
 from nodl_schema.composition import MergeError, merge_documents
 from nodl_schema.models import from_toolkit, to_toolkit

@@ -11,8 +11,7 @@ from pathlib import Path
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl.packaging import (INTERFACE_RESOURCE, NODE_RESOURCE, NodlBuildError, nodl_data_files,
-                                   relative_mixins)
+from nodl.packaging import INTERFACE_RESOURCE, NODE_RESOURCE, NodlBuildError, nodl_data_files, relative_mixins
 
 PACKAGES = FIXTURES / 'python_packages'
 INDEX = Path('share') / 'ament_index' / 'resource_index'

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import keyword
 
-from nodl.plan.identifiers import (
-    CPP_KEYWORDS, IdentifierScope, is_identifier, pascal_case, snake_case)
+from nodl.plan.identifiers import CPP_KEYWORDS, IdentifierScope, is_identifier, pascal_case, snake_case
 
 
 def test_snake_case_of_ros_names() -> None:

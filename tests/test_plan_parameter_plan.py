@@ -7,10 +7,17 @@ from typing import Any
 
 import pytest
 
-from nodl.plan.parameter_plan import (
-    DOUBLE_MAX, INT64_MAX, INT64_MIN, plan_parameters, ros_type_of, type_problem, value_problems)
 from nodl.generate.python_text import VALIDATOR_EXPRESSIONS, docstring, literal, validator_expression
 from nodl.model import ParameterDefinition
+from nodl.plan.parameter_plan import (
+    DOUBLE_MAX,
+    INT64_MAX,
+    INT64_MIN,
+    plan_parameters,
+    ros_type_of,
+    type_problem,
+    value_problems,
+)
 from nodl.validation.validators import VALIDATORS
 
 

@@ -4,6 +4,7 @@ from pathlib import Path
 
 import pytest
 
+from nodl.composition.entities import Location
 from nodl.policy.check import granted_names
 from nodl.policy.enclaves import load_enclave_mapping
 from nodl.policy.generate import MissingNode, policy_for_instances
@@ -11,7 +12,6 @@ from nodl.policy.model import ACCESS_OF_KIND
 from nodl.policy.schema_check import read_policy
 from nodl.policy.targets import Definition, instances_from_definitions
 from nodl.policy.writer import write_policy
-from nodl.composition.entities import Location
 
 REPO = Path(__file__).parent.parent
 POLICY = Path('tests/fixtures/policy')

@@ -2,9 +2,8 @@
 
 import pytest
 
-from nodl.policy.model import (ACCESS_OF_KIND, PERMISSIONS, Grant, Policy, Profile, Source,
-                                      permission_list)
 from nodl.composition.entities import EntityKind
+from nodl.policy.model import ACCESS_OF_KIND, PERMISSIONS, Grant, Policy, Profile, Source, permission_list
 
 
 def test_every_endpoint_kind_has_its_access():

@@ -7,8 +7,7 @@ from pathlib import Path
 import pytest
 
 from nodl.policy.check import granted_names
-from nodl.policy.names import (dds_topics, has_wildcard, resolve_policy_name, written_name,
-                                      written_name_error)
+from nodl.policy.names import dds_topics, has_wildcard, resolve_policy_name, written_name, written_name_error
 from nodl.policy.schema_check import read_policy
 
 ORACLE = Path(__file__).parent / 'fixtures' / 'policy' / 'sros2_oracle'

@@ -31,8 +31,8 @@ DURATION_PAIRS = (((0, 0), (0, 0)), ((0, 7), (5, 3)), ((3, 9), (4, 9)))
 
 def _rclpy_profile(policies: dict[str, Any]) -> Any:
     from rclpy.duration import Duration
-    from rclpy.qos import (DurabilityPolicy, LivelinessPolicy, QoSProfile as RclpyProfile,
-                           ReliabilityPolicy)
+    from rclpy.qos import DurabilityPolicy, LivelinessPolicy, ReliabilityPolicy
+    from rclpy.qos import QoSProfile as RclpyProfile
 
     return RclpyProfile(
         depth=10,

@@ -11,7 +11,6 @@ import subprocess
 import sys
 
 from conftest import FIXTURES, REPO
-
 from nodl.composition.entities import Location
 from nodl.composition.resolved import ResolvedNode
 from nodl.diagnostics import Severity

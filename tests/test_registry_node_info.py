@@ -6,9 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from nodl.registry.node_info import (find_plugin, format_node_info, parse_node_info,
-                                         plugin_key, read_node_info)
 from nodl.packaging import nodl_data_files
+from nodl.registry.node_info import find_plugin, format_node_info, parse_node_info, plugin_key, read_node_info
 
 PREFIX = [str(Path(__file__).parent / 'fixtures' / 'analysis' / 'prefix')]
 SENSORS = Path(__file__).parent / 'fixtures' / 'analysis' / 'prefix' / 'share' / 'sensors'

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from conftest import FIXTURES
-
 from nodl.registry import node_info, registrations
 from nodl.registry.overlay import Definitions, active, read_folder, read_folders, using
 

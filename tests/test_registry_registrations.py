@@ -7,11 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from conftest import FIXTURES
 import nodl
+from conftest import FIXTURES
 from nodl.composition import ResolutionError
-from nodl.registry.registrations import (
-    Registration, describe_missing, find_node, list_registrations, read_registration)
+from nodl.registry.registrations import Registration, describe_missing, find_node, list_registrations, read_registration
 
 FIRST = str(FIXTURES / 'index' / 'first')
 SECOND = str(FIXTURES / 'index' / 'second')

@@ -114,13 +114,12 @@ def test_sarif_of_validate_has_the_shape_sarif_2_1_0_defines(tmp_path) -> None:
 
 def test_the_sarif_shape_check_rejects_what_the_standard_rejects() -> None:
     import copy
+    from typing import Any
 
     import pytest
-    from sarif_shape import assert_sarif_2_1_0
 
     from nodl.reporting.sarif import sarif_log
-
-    from typing import Any
+    from sarif_shape import assert_sarif_2_1_0
 
     good = sarif_log([D1.replace(code='NODL101'), D2.replace(code='NODL216')])
     assert_sarif_2_1_0(good)

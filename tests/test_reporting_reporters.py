@@ -16,8 +16,16 @@ from conftest import FIXTURES, REPO
 from nodl import plugins
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.reporting.junit import JUnitCase, JUnitFailure
-from nodl.reporting.reporters import (GROUP, JsonReporter, JUnitReporter, Report, ReporterExtension,
-                                      SarifReporter, TextReporter, cases_by_file)
+from nodl.reporting.reporters import (
+    GROUP,
+    JsonReporter,
+    JUnitReporter,
+    Report,
+    ReporterExtension,
+    SarifReporter,
+    TextReporter,
+    cases_by_file,
+)
 
 ERROR = Diagnostic(Severity.ERROR, 'bad type', file='a.nodl.yaml', line=3, column=5, code='NODL001')
 WARNING = Diagnostic(Severity.WARNING, 'unused', file='b.nodl.yaml', line=1, column=1, code='NODL002')

@@ -8,11 +8,11 @@ cheap checks that the copies of a fact agree.
 from __future__ import annotations
 
 import runpy
-import tomllib
 from pathlib import Path
 from typing import Any
 
 import pytest
+import tomllib
 from catkin_pkg.package import parse_package
 
 from conftest import REPO

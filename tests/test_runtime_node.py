@@ -10,13 +10,14 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any
 
 import pytest
-from ros_client import Client
 
 from nodl.runtime import RuntimeDefinitionError, callback
+from ros_client import Client
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'generate'
 NODES = Path(__file__).parent / 'nodes'

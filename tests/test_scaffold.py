@@ -305,6 +305,7 @@ def ament_copyright_accepts(text: str, template: str) -> tuple[str, str] | None:
 def test_license_and_maintainer_go_into_package_xml_and_headers_ament_copyright_accepts(
         spdx: str) -> None:
     from catkin_pkg.package import parse_package_string
+
     from nodl.scaffold import authorship
 
     template = (TEMPLATES / f'{SPDX_TEMPLATES[spdx]}_header.txt').read_text(encoding='utf-8')
@@ -428,9 +429,9 @@ def test_python_packages_pass_ament_flake8_and_ament_pep257(license: str | None,
 def _hostile_nodes(build_type: str) -> list:  # type: ignore[type-arg]
     """tests/fixtures/scaffold/hostile_text.nodl.yaml resolved with its validation bypassed (its
     NODL219/NODL220 errors dropped), as a running node's descriptors give such text."""
+    from nodl.composition.resolved import resolve_report
     from nodl.loading import Report, check_source
     from nodl.scaffold import BUILD_TYPES, NodeSource
-    from nodl.composition.resolved import resolve_report
     from nodl.validation.kinds import Kind
 
     path = str(FIXTURES / 'scaffold' / 'hostile_text.nodl.yaml')

@@ -14,9 +14,9 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from conftest import FIXTURES, REPO
 from starlette.testclient import TestClient
 
+from conftest import FIXTURES, REPO
 from nodl.composer import Composition
 from nodl.studio.app import create_app
 from nodl.studio.session import Session

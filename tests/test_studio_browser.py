@@ -18,9 +18,9 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+
 from browser import HEIGHT, browser  # noqa: F401  (browser: a fixture)
 from conftest import FIXTURES, REPO
-
 from nodl.studio.app import create_app
 from nodl.studio.guard import new_token
 from nodl.studio.server import StudioServer, bind
@@ -48,9 +48,11 @@ class Studio:
         self.url = f'http://127.0.0.1:{self.server.port}/?token={self.token}'
 
 
-@pytest.fixture(scope='module')
-def example(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Studio]:
-    root = tmp_path_factory.mktemp('studio') / 'system'
+@pytest.fixture
+def example(tmp_path: Path) -> Iterator[Studio]:
+    """A studio on a copy of the example system (each test its own: under xdist the tests of
+    this module may run in different workers)."""
+    root = tmp_path / 'system'
     shutil.copytree(REPO / 'examples' / 'system', root)
     studio = Studio(root / 'launch' / 'rover.launch.xml')
     try:
@@ -125,7 +127,7 @@ def test_the_example_system_is_shown(browser: Any, example: Studio,  # noqa: F81
     compare_screenshot(browser, EXPECTED / 'example.png', pytestconfig.getoption('--update-golden'))
 
 
-def test_a_node_is_added_from_the_palette(browser: Any, example: Studio) -> None:  # noqa: F811
+def add_from_the_palette(browser: Any) -> None:  # noqa: F811
     search = browser.find_element('id', 'search')
     search.send_keys('dashboard')
     entries = browser.find_elements('css selector', '#definitions li')
@@ -139,7 +141,7 @@ def test_a_node_is_added_from_the_palette(browser: Any, example: Studio) -> None
     assert browser.find_element('id', 'panel-title').text == 'dashboard'
 
 
-def test_two_ports_are_joined_by_dragging(browser: Any, example: Studio) -> None:  # noqa: F811
+def join_by_dragging(browser: Any) -> None:  # noqa: F811
     js(browser, 'studio.cy.fit(undefined, 24)')
     source = f"{node_id(browser, '/rover/battery_monitor')}|publisher|battery"
     target = f"{node_id(browser, '/ops/dashboard')}|subscription|battery"
@@ -161,7 +163,7 @@ def test_two_ports_are_joined_by_dragging(browser: Any, example: Studio) -> None
     assert not js(browser, "return studio.cy.nodes('.incompatible').length")
 
 
-def test_a_value_breaking_a_validator_shows_the_error(browser: Any, example: Studio) -> None:  # noqa: F811
+def break_a_validator(browser: Any) -> None:  # noqa: F811
     battery = node_id(browser, '/rover/battery_monitor')
     x, y = page_point(browser, f'{battery}|spacer0')  # the node's box, left of its ports
     pointer(browser, lambda p: (p.move_to_location(x + 4, y - 2), p.click()))
@@ -181,7 +183,7 @@ def test_a_value_breaking_a_validator_shows_the_error(browser: Any, example: Stu
     wait(browser, lambda: not error.is_displayed(), 'the error to go')
 
 
-def test_save_writes_the_launch_file(browser: Any, example: Studio) -> None:  # noqa: F811
+def save(browser: Any, example: Studio) -> None:  # noqa: F811
     browser.find_element('id', 'save').click()
     wait(browser, lambda: browser.find_element('id', 'status').text.startswith('saved '), 'saving')
     text = Path(example.session.launch_file).read_text(encoding='utf-8')
@@ -195,6 +197,16 @@ def test_save_writes_the_launch_file(browser: Any, example: Studio) -> None:  # 
     assert '<!-- PLANTED no-definition' in text
     side = Path(example.session.launch_file + '.studio.json')
     assert '"/ops/dashboard"' in side.read_text()
+
+
+def test_a_system_is_composed_with_the_mouse(browser: Any, example: Studio) -> None:  # noqa: F811
+    """From the example system: a node added from the palette, two ports joined by dragging,
+    a value breaking a validator refused with its error, then saved."""
+    open_studio(browser, example)
+    add_from_the_palette(browser)
+    join_by_dragging(browser)
+    break_a_validator(browser)
+    save(browser, example)
 
 
 def test_a_hundred_node_system_is_shown(browser: Any, tmp_path: Path,  # noqa: F811

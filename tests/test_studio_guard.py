@@ -7,9 +7,9 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from conftest import FIXTURES
 from starlette.testclient import TestClient
 
+from conftest import FIXTURES
 from nodl.studio.app import create_app
 from nodl.studio.guard import FolderGuard, allowed_host, new_token, same_token
 from nodl.studio.session import Session

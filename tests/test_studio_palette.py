@@ -4,7 +4,6 @@ and the search the page does."""
 from __future__ import annotations
 
 from conftest import FIXTURES
-
 from nodl.registry.overlay import using
 from nodl.studio.palette import build_palette, matches
 from nodl.targets.resolve import gather_definitions

@@ -16,8 +16,8 @@ import urllib.request
 from pathlib import Path
 
 import pytest
-from conftest import FIXTURES, REPO
 
+from conftest import FIXTURES, REPO
 from nodl.cli.verbs.studio import StudioVerb
 
 DEFINITIONS = FIXTURES / 'studio' / 'example_definitions'

@@ -5,11 +5,17 @@ from __future__ import annotations
 import os
 
 import pytest
-from conftest import FIXTURES
 
+from conftest import FIXTURES
 from nodl.config import ConfigError
 from nodl.targets.resolve import (
-    Provenance, coverage_line, gather_definitions, made_by, resolve_reference, resolve_target)
+    Provenance,
+    coverage_line,
+    gather_definitions,
+    made_by,
+    resolve_reference,
+    resolve_target,
+)
 
 OVERLAYS = FIXTURES / 'overlays'
 DEFS = str(OVERLAYS / 'defs')

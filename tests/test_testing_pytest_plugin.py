@@ -8,11 +8,13 @@ installed entry point, as it reaches a package's own tests.
 from __future__ import annotations
 
 import copy
+from collections.abc import Iterator
 from importlib.metadata import entry_points
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any
 
 import pytest
+
 # Imported before pytester runs anything in-process: its module snapshot then keeps them
 # (re-importing rclpy's extension modules after they were dropped would break).
 import rclpy  # noqa: F401

@@ -7,8 +7,15 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from nodl.text_safety import (
-    describe_character, first_unsafe, line_column, locate_unsafe, offset_of, python_escapes,
-    visible, xml_escape)
+    describe_character,
+    first_unsafe,
+    line_column,
+    locate_unsafe,
+    offset_of,
+    python_escapes,
+    visible,
+    xml_escape,
+)
 
 CONTROLS = [chr(c) for c in range(0x20) if chr(c) not in '\t\n'] + ['\x7f'] + [
     chr(c) for c in range(0x80, 0xa0)]

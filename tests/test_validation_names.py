@@ -9,8 +9,12 @@ from hypothesis import strategies as st
 from nodl.diagnostics import Severity
 from nodl.validation import Kind, validate_data
 from nodl.validation.names import (
-    SUBSTITUTIONS, check_parameter_name, check_ros_name, parameter_name_problem,
-    ros_name_problem)
+    SUBSTITUTIONS,
+    check_parameter_name,
+    check_ros_name,
+    parameter_name_problem,
+    ros_name_problem,
+)
 
 # -- topic / service / action names ------------------------------------------
 

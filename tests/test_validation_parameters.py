@@ -17,8 +17,7 @@ from hypothesis import strategies as st
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.model.parameter_types import ARRAY_TYPES, FIXED_BASES, SCALAR_TYPES
 from nodl.validation import Kind, validate_data
-from nodl.validation.parameters import (
-    BUILTIN_VALIDATORS, check_parameter, check_parameter_type, check_validator_name)
+from nodl.validation.parameters import BUILTIN_VALIDATORS, check_parameter, check_parameter_type, check_validator_name
 
 
 def diagnostics(param: dict[str, Any]) -> list[Diagnostic]:

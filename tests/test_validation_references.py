@@ -8,8 +8,7 @@ import pytest
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.validation import Kind, validate_data
-from nodl.validation.references import (
-    NODL_SCHEME, check_reference, parse_nodl_uri, reference_problem)
+from nodl.validation.references import NODL_SCHEME, check_reference, parse_nodl_uri, reference_problem
 
 
 @pytest.mark.parametrize(('text', 'parsed'), [

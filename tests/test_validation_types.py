@@ -7,7 +7,13 @@ import pytest
 from nodl.diagnostics import Severity
 from nodl.validation import Kind, validate_data
 from nodl.validation.types import (
-    NAMESPACE_WORDS, check_action_type, check_msg_type, check_srv_type, split_type, type_problem)
+    NAMESPACE_WORDS,
+    check_action_type,
+    check_msg_type,
+    check_srv_type,
+    split_type,
+    type_problem,
+)
 
 CHECKS = {'msg': check_msg_type, 'srv': check_srv_type, 'action': check_action_type}
 # Where each namespace belongs, and what a user calls that place.

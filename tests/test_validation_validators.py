@@ -12,8 +12,15 @@ import yaml
 from nodl.model.parameter_types import parse_type
 from nodl.validation.parameters import check_parameter
 from nodl.validation.validators import (
-    APPLICABILITY, ARGUMENT_SHAPES, BUILTIN_NAMES, VALIDATORS, applicable_types, bare_name, lookup,
-    value_problems)
+    APPLICABILITY,
+    ARGUMENT_SHAPES,
+    BUILTIN_NAMES,
+    VALIDATORS,
+    applicable_types,
+    bare_name,
+    lookup,
+    value_problems,
+)
 
 ROOT = Path(__file__).resolve().parent.parent
 CASES: dict[str, Any] = yaml.safe_load(

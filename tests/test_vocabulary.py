@@ -153,9 +153,9 @@ def test_every_table_keyed_by_parameter_type_covers_the_vocabulary() -> None:
     from rcl_interfaces.msg import ParameterType
 
     from nodl.generate.cpp.text import CPP_TYPES
-    from nodl.plan.parameter_plan import ROS_TYPES
     from nodl.generate.python import _PY_TYPES
     from nodl.live.observe import _PARAMETER_TYPES
+    from nodl.plan.parameter_plan import ROS_TYPES
 
     assert set(ROS_TYPES) == set(_PY_TYPES) == set(v.PARAMETER_TYPES)
     # a C++ field of type none is an rclcpp::ParameterValue (generate/cpp/parameters.py)

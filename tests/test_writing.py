@@ -16,11 +16,19 @@ from pathlib import Path
 
 import pytest
 import yaml
-from conftest import FIXTURES, REPO
 
+from conftest import FIXTURES, REPO
 from nodl.writing import (
-    WriteError, check_replaceable, mark, marker_state, output_is_input, same_file, unmark, write_file,
-    write_marked)
+    WriteError,
+    check_replaceable,
+    mark,
+    marker_state,
+    output_is_input,
+    same_file,
+    unmark,
+    write_file,
+    write_marked,
+)
 
 LIMITED = textwrap.dedent('''
     import resource, signal, sys
