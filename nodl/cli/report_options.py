@@ -26,11 +26,12 @@ if TYPE_CHECKING:
     from collections.abc import Iterable
     from typing import TextIO
 
+    from nodl.cli.diagnostic_options import DiagnosticPolicy
     from nodl.diagnostics import Diagnostic
     from nodl.reporting.reporters import Report, ReporterExtension
 
 __all__ = ['BUILTIN_FORMATS', 'reporter_names', 'add_format_argument', 'reporter_for', 'load_reporter',
-           'write_report', 'write_report_file', 'show_diagnostics']
+           'policy_and_reporter', 'write_report', 'write_report_file', 'show_diagnostics']
 
 GROUP = 'nodl.reporters'
 #: The built-in reporters, in the order --help lists them; plug-ins follow by name.
@@ -87,6 +88,23 @@ def reporter_for(args: argparse.Namespace, prog: str,
               f"{', '.join(reporter_names(kind))})", file=sys.stderr)
         return None
     return reporter
+
+
+def policy_and_reporter(args: argparse.Namespace, prog: str, kind: str = 'diagnostics'
+                        ) -> tuple[DiagnosticPolicy, ReporterExtension] | None:
+    """What a verb that reports diagnostics is asked for: the codes to ignore or promote
+    (``--ignore`` / ``--error``, then the configuration files found upward from each file)
+    and the reporter ``--format`` names.  None (after one line on standard error) for a bad
+    code, configuration or format: a usage error."""
+    from nodl.cli.diagnostic_options import DiagnosticPolicy, PolicyError
+
+    try:
+        policy = DiagnosticPolicy(args, prog)
+    except PolicyError as exc:
+        print(exc, file=sys.stderr)
+        return None
+    reporter = reporter_for(args, prog, kind)
+    return None if reporter is None else (policy, reporter)
 
 
 def write_report(reporter: ReporterExtension, report: Report, out: TextIO | None = None,

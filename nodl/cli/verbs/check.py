@@ -68,8 +68,8 @@ class CheckVerb(Verb):
 
     def _main(self, args: argparse.Namespace) -> int:
         from nodl.cli.arguments import definition_problem
-        from nodl.cli.diagnostic_options import DiagnosticPolicy, PolicyError
-        from nodl.cli.report_options import reporter_for, show_diagnostics, write_report
+        from nodl.cli.diagnostic_options import PolicyError
+        from nodl.cli.report_options import policy_and_reporter, show_diagnostics, write_report
         from nodl.diagnostics import ValidationError
         from nodl.live.check import check_node
         from nodl.live.report import check_report
@@ -79,9 +79,10 @@ class CheckVerb(Verb):
         if problem is not None:
             print(f'nodl check: error: {problem}', file=sys.stderr)
             return EXIT_USAGE
-        reporter = reporter_for(args, 'nodl check')
-        if reporter is None:
+        asked = policy_and_reporter(args, 'nodl check')  # --ignore / --error, --format
+        if asked is None:
             return EXIT_USAGE
+        policy, reporter = asked
         definition = args.definition[0] if len(args.definition) == 1 else tuple(args.definition)
         if args.junit and isinstance(definition, str):
             from nodl.writing import output_is_input
@@ -90,8 +91,7 @@ class CheckVerb(Verb):
             if clash is not None:
                 print(clash, file=sys.stderr)
                 return EXIT_USAGE
-        try:  # --ignore / --error, and the nodl.toml or [tool.nodl] found upward from the file
-            policy = DiagnosticPolicy(args, 'nodl check')
+        try:  # the nodl.toml or [tool.nodl] found upward from the file
             if isinstance(definition, str):  # known before observing: a bad one fails at once
                 policy.overrides_for(definition)
         except PolicyError as exc:

@@ -52,20 +52,15 @@ class ExtractVerb(Verb):
         add_diagnostic_options(parser)
 
     def main(self, args: argparse.Namespace) -> int:
-        from nodl.cli.diagnostic_options import DiagnosticPolicy, PolicyError
+        from nodl.cli.diagnostic_options import PolicyError
+        from nodl.cli.report_options import policy_and_reporter
         from nodl.diagnostics import Diagnostic, Severity, has_errors
         from nodl.extract.targets import extract_paths
 
-        try:
-            policy = DiagnosticPolicy(args, 'nodl extract')
-        except PolicyError as exc:
-            print(exc, file=sys.stderr)
+        asked = policy_and_reporter(args, 'nodl extract')
+        if asked is None:
             return EXIT_USAGE
-        from nodl.cli.report_options import reporter_for
-
-        reporter = reporter_for(args, 'nodl extract')
-        if reporter is None:
-            return EXIT_USAGE
+        policy, reporter = asked
         extraction = extract_paths(args.paths)
         diagnostics = list(extraction.all_diagnostics)
         written: list[str] = []

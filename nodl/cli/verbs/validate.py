@@ -69,21 +69,17 @@ class ValidateVerb(Verb):
 
     def main(self, args: argparse.Namespace) -> int:
         from nodl.checking import failed, iter_check_paths
-        from nodl.cli.diagnostic_options import DiagnosticPolicy, PolicyError
+        from nodl.cli.diagnostic_options import PolicyError
         from nodl.cli.output import Progress
-        from nodl.cli.report_options import reporter_for, write_report
+        from nodl.cli.report_options import policy_and_reporter, write_report
         from nodl.reporting import Tally, plural, summary_line, without_info
         from nodl.reporting.reporters import Report
         from nodl.validation.kinds import Kind
 
-        try:
-            policy = DiagnosticPolicy(args, 'nodl validate')
-        except PolicyError as exc:
-            print(exc, file=sys.stderr)
+        asked = policy_and_reporter(args, 'nodl validate')
+        if asked is None:
             return EXIT_USAGE
-        reporter = reporter_for(args, 'nodl validate')
-        if reporter is None:
-            return EXIT_USAGE
+        policy, reporter = asked
         tally = Tally()
         unreadable: list[Diagnostic] = []
         cases: list[tuple[str, list[Diagnostic], bool, bool]] = []  # a JUnit test case per path
