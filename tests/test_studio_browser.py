@@ -5,8 +5,8 @@ that breaks its validator (the error shown), the launch file saved; and the scre
 the example system and of a 100-node system at 1280x800, compared with golden pictures with
 a tolerance (``pytest --update-golden`` rewrites them; Chromium decodes both pictures).
 
-One browser and one server for the module; the server runs in a thread of the test process
-on a copy of the example system (tests/fixtures/studio/example_definitions: no build).
+One browser for the module; each test its own server (in a thread of the test process) on a
+copy of the example system (tests/fixtures/studio/example_definitions: no build).
 """
 
 from __future__ import annotations
@@ -127,65 +127,65 @@ def test_the_example_system_is_shown(browser: Any, example: Studio,  # noqa: F81
     compare_screenshot(browser, EXPECTED / 'example.png', pytestconfig.getoption('--update-golden'))
 
 
-def add_from_the_palette(browser: Any) -> None:  # noqa: F811
-    search = browser.find_element('id', 'search')
+def add_from_the_palette(driver: Any) -> None:
+    search = driver.find_element('id', 'search')
     search.send_keys('dashboard')
-    entries = browser.find_elements('css selector', '#definitions li')
+    entries = driver.find_elements('css selector', '#definitions li')
     assert [e.get_attribute('data-executable') for e in entries] == ['dashboard']
-    namespace = browser.find_element('id', 'add-namespace')
+    namespace = driver.find_element('id', 'add-namespace')
     namespace.clear()
     namespace.send_keys('/ops')
     entries[0].find_element('css selector', 'button.add').click()
-    wait(browser, lambda: node_id(browser, '/ops/dashboard'), 'the added node')
-    assert js(browser, "return studio.cy.getElementById('ns:/ops').length") == 1  # its group
-    assert browser.find_element('id', 'panel-title').text == 'dashboard'
+    wait(driver, lambda: node_id(driver, '/ops/dashboard'), 'the added node')
+    assert js(driver, "return studio.cy.getElementById('ns:/ops').length") == 1  # its group
+    assert driver.find_element('id', 'panel-title').text == 'dashboard'
 
 
-def join_by_dragging(browser: Any) -> None:  # noqa: F811
-    js(browser, 'studio.cy.fit(undefined, 24)')
-    source = f"{node_id(browser, '/rover/battery_monitor')}|publisher|battery"
-    target = f"{node_id(browser, '/ops/dashboard')}|subscription|battery"
-    scan = f"{node_id(browser, '/rover/safety_controller')}|subscription|scan"
-    sx, sy = page_point(browser, source)
-    tx, ty = page_point(browser, target)
-    pointer(browser, lambda p: (p.move_to_location(sx, sy), p.click_and_hold(),
+def join_by_dragging(driver: Any) -> None:
+    js(driver, 'studio.cy.fit(undefined, 24)')
+    source = f"{node_id(driver, '/rover/battery_monitor')}|publisher|battery"
+    target = f"{node_id(driver, '/ops/dashboard')}|subscription|battery"
+    scan = f"{node_id(driver, '/rover/safety_controller')}|subscription|scan"
+    sx, sy = page_point(driver, source)
+    tx, ty = page_point(driver, target)
+    pointer(driver, lambda p: (p.move_to_location(sx, sy), p.click_and_hold(),
                                 p.move_to_location(sx + 12, sy + 6)))
-    wait(browser, lambda: js(browser, 'return studio.compatible !== null'), 'the verdicts')
+    wait(driver, lambda: js(driver, 'return studio.compatible !== null'), 'the verdicts')
     # while dragging: the compatible port is marked so, the others as incompatible
-    assert js(browser, 'return studio.cy.getElementById(arguments[0]).hasClass("compatible")', target)
-    assert js(browser, 'return studio.cy.getElementById(arguments[0]).hasClass("incompatible")', scan)
-    pointer(browser, lambda p: (p.move_to_location(tx, ty), p.pause(0.3),
+    assert js(driver, 'return studio.cy.getElementById(arguments[0]).hasClass("compatible")', target)
+    assert js(driver, 'return studio.cy.getElementById(arguments[0]).hasClass("incompatible")', scan)
+    pointer(driver, lambda p: (p.move_to_location(tx, ty), p.pause(0.3),
                                 p.move_to_location(tx + 1, ty), p.pause(0.2), p.release()))
     edge = f'e:{source}>{target}'
-    wait(browser, lambda: js(browser, 'return studio.cy.getElementById(arguments[0]).length', edge),
+    wait(driver, lambda: js(driver, 'return studio.cy.getElementById(arguments[0]).length', edge),
          'the new edge')
-    assert 'battery:=/rover/battery' in browser.find_element('id', 'status').text
-    assert not js(browser, "return studio.cy.nodes('.incompatible').length")
+    assert 'battery:=/rover/battery' in driver.find_element('id', 'status').text
+    assert not js(driver, "return studio.cy.nodes('.incompatible').length")
 
 
-def break_a_validator(browser: Any) -> None:  # noqa: F811
-    battery = node_id(browser, '/rover/battery_monitor')
-    x, y = page_point(browser, f'{battery}|spacer0')  # the node's box, left of its ports
-    pointer(browser, lambda p: (p.move_to_location(x + 4, y - 2), p.click()))
-    wait(browser, lambda: browser.find_element('id', 'panel-title').text == 'battery_monitor',
+def break_a_validator(driver: Any) -> None:
+    battery = node_id(driver, '/rover/battery_monitor')
+    x, y = page_point(driver, f'{battery}|spacer0')  # the node's box, left of its ports
+    pointer(driver, lambda p: (p.move_to_location(x + 4, y - 2), p.click()))
+    wait(driver, lambda: driver.find_element('id', 'panel-title').text == 'battery_monitor',
          'the panel of battery_monitor')
-    editor = browser.find_element('css selector', '.param[data-name="capacity_ah"]')
+    editor = driver.find_element('css selector', '.param[data-name="capacity_ah"]')
     assert 'must be greater than 0.0' in editor.find_element('class name', 'constraints').text
     field = editor.find_element('css selector', 'input')
     field.clear()
     field.send_keys('-5.0')
     error = editor.find_element('class name', 'error-text')
-    wait(browser, lambda: error.is_displayed() and 'greater than 0' in error.text,
+    wait(driver, lambda: error.is_displayed() and 'greater than 0' in error.text,
          'the error under the editor')
     assert 'invalid' in editor.get_attribute('class')
     field.clear()
     field.send_keys('30.0')
-    wait(browser, lambda: not error.is_displayed(), 'the error to go')
+    wait(driver, lambda: not error.is_displayed(), 'the error to go')
 
 
-def save(browser: Any, example: Studio) -> None:  # noqa: F811
-    browser.find_element('id', 'save').click()
-    wait(browser, lambda: browser.find_element('id', 'status').text.startswith('saved '), 'saving')
+def save(driver: Any, example: Studio) -> None:
+    driver.find_element('id', 'save').click()
+    wait(driver, lambda: driver.find_element('id', 'status').text.startswith('saved '), 'saving')
     text = Path(example.session.launch_file).read_text(encoding='utf-8')
     assert '<param name="capacity_ah" value="30.0"/>' in text
     assert '<node pkg="rover_tools" exec="dashboard" name="dashboard">' in text
