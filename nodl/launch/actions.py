@@ -9,14 +9,13 @@ are in :mod:`nodl.launch.ros_actions`; conditions in :mod:`nodl.launch.condition
 from __future__ import annotations
 
 import os
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nodl.launch.conditions import Condition
 from nodl.launch.errors import LaunchProblem, SubstitutionTooLarge, too_large_message
 from nodl.launch.model import LaunchArgument, SourceLocation
 from nodl.launch.substitutions import Deferred, Oversized, check_joined_size, normalize, perform, perform_bounded
 
-TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.launch.context import LaunchContext
 

@@ -6,12 +6,11 @@ A condition's text is performed and read as ``launch`` reads it: ``true``/``1`` 
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nodl.launch.errors import LaunchProblem
 from nodl.launch.substitutions import Substitution, normalize, perform
 
-TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.launch.context import LaunchContext
 

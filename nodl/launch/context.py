@@ -18,6 +18,7 @@ from typing import Any
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch.errors import MAX_ENTITIES, LaunchProblem, SubstitutionTooLarge
 from nodl.launch.model import LaunchArgument, LaunchResult, SourceLocation
+from nodl.launch.shared_yaml import SharedYaml
 
 __all__ = ['LaunchContext']
 
@@ -53,6 +54,9 @@ class LaunchContext:
         #: Environment variables an ``append_env`` would have made longer than the substitution
         #: limit -> the problem reported there (raised again where they are read).
         self.oversized_environment: dict[str, SubstitutionTooLarge] = {}
+        #: PyYAML as the launch's Python code gets it: a text it reads again, or data it writes
+        #: again, is parsed or emitted once in the walk (nav2's RewrittenYaml, one per file).
+        self.shared_yaml = SharedYaml()
 
     # -- what launch.LaunchContext offers to substitutions written in helper packages ------
     @property

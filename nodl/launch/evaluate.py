@@ -12,11 +12,17 @@ import os
 from typing import Any
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.launch.actions import Action, DeclareLaunchArgument, GroupAction, LaunchDescription
+from nodl.launch.actions import (
+    Action,
+    DeclareLaunchArgument,
+    GroupAction,
+    IncludeLaunchDescription,
+    LaunchDescription,
+)
 from nodl.launch.context import LaunchContext
 from nodl.launch.errors import MAX_INCLUDE_DEPTH, LaunchProblem, Unevaluable
 from nodl.launch.model import LaunchResult, SourceLocation
-from nodl.launch.sandbox import LaunchLimits
+from nodl.launch.sandbox import LaunchLimits, contained
 from nodl.launch.substitutions import Oversized, perform, perform_bounded
 
 __all__ = ['load_launch', 'include', 'read_launch_file', 'launch_format']
@@ -95,39 +101,43 @@ def _argument_names_without_context(context: LaunchContext, action: Any) -> list
         return []
 
 
+def _declared_arguments(context: LaunchContext, entities: list[Any], conditional: bool,
+                        chain: tuple[Any, ...] | None, seen: set[str], names: set[str],
+                        declared: list[tuple[DeclareLaunchArgument, bool, tuple[Any, ...] | None]]) -> None:
+    """Collect into ``declared`` (and ``names``) every argument ``entities`` declare, as
+    :func:`_missing_required_argument` needs them: whether a condition holds it, and the
+    includes it is declared through (``chain``)."""
+    for entity in entities:
+        if isinstance(entity, DeclareLaunchArgument):
+            if entity.name not in names:
+                names.add(entity.name)
+                declared.append((entity, conditional or entity.condition is not None, chain))
+            continue
+        inner = conditional or getattr(entity, 'condition', None) is not None
+        if isinstance(entity, GroupAction):
+            if entity.scoped and not entity.forwarding:
+                continue  # launch stops at ResetLaunchConfigurations
+            _declared_arguments(context, entity.actions, inner, chain, seen, names, declared)
+        elif isinstance(entity, LaunchDescription):
+            _declared_arguments(context, entity.entities, inner, chain, seen, names, declared)
+        elif isinstance(entity, IncludeLaunchDescription):
+            nested = _describe_without_context(context, entity, seen)
+            if nested is not None:
+                _declared_arguments(context, nested.entities, inner, (*(chain or ()), entity), seen, names,
+                                    declared)
+
+
 def _missing_required_argument(context: LaunchContext, description: LaunchDescription,
                                given: list[str], path: str, top: bool = False) -> LaunchProblem | None:
     """launch's check before an include: every argument declared without a default and not
     under a condition, in the included file or in the files IT includes (as far as they load
     without a context), must be given by this include or by the includes leading to it
     (``top``: the file the user ran, whose arguments are given as ``NAME:=VALUE``)."""
-    from nodl.launch.actions import IncludeLaunchDescription
-
     declared: list[tuple[DeclareLaunchArgument, bool, tuple[Any, ...] | None]] = []
     names: set[str] = set()
     seen = {os.path.realpath(path)}
 
-    def walk(entities: list[Any], conditional: bool, chain: tuple[Any, ...] | None) -> None:
-        for entity in entities:
-            if isinstance(entity, DeclareLaunchArgument):
-                if entity.name not in names:
-                    names.add(entity.name)
-                    declared.append((entity, conditional or entity.condition is not None, chain))
-                continue
-            inner = conditional or getattr(entity, 'condition', None) is not None
-            if isinstance(entity, GroupAction):
-                if entity.scoped and not entity.forwarding:
-                    continue  # launch stops at ResetLaunchConfigurations
-                walk(entity.actions, inner, chain)
-            elif isinstance(entity, LaunchDescription):
-                walk(entity.entities, inner, chain)
-            elif isinstance(entity, IncludeLaunchDescription):
-                nested = _describe_without_context(context, entity, seen)
-                if nested is not None:
-                    walk(nested.entities, inner, (*(chain or ()), entity))
-
-    walk(description.entities, False, None)
-    del walk  # (a recursive closure refers to itself: a cycle holding what it saw until collected)
+    _declared_arguments(context, description.entities, False, None, seen, names, declared)
     accepted = list(given)  # launch extends one list: names of nested includes accumulate
     for argument, conditional, chain in declared:
         if conditional or argument.default_value is not None:
@@ -214,7 +224,6 @@ def include(context: LaunchContext, action: Any) -> list[Action] | None:
 
 def _what_is_missing(entity: Action) -> str:
     """What the analysis lacks when a value only the running launch knows stops ``entity``."""
-    from nodl.launch.actions import IncludeLaunchDescription
     from nodl.launch.ros_actions import LoadComposableNodes, Node
 
     if isinstance(entity, Node):
@@ -270,8 +279,6 @@ def load_launch(path: str | os.PathLike[str], arguments: dict[str, str] | None =
     it runs in a forked child, 30 s, 2048 MiB; see :mod:`nodl.launch.sandbox`).
     Never raises for a problem in a launch file: see :attr:`LaunchResult.diagnostics`.
     """
-    from nodl.launch.sandbox import contained
-
     name = os.path.abspath(os.fspath(path))
     return contained(lambda: _walk(name, arguments, environment, prefixes), name, limits)
 
@@ -279,8 +286,6 @@ def load_launch(path: str | os.PathLike[str], arguments: dict[str, str] | None =
 def _walk(name: str, arguments: dict[str, str] | None, environment: dict[str, str] | None,
           prefixes: list[str] | None) -> LaunchResult:
     """:func:`load_launch` of ``name`` in this process."""
-    from nodl.launch.actions import IncludeLaunchDescription
-
     result = LaunchResult(name)
     context = LaunchContext(result, environment, prefixes)
     context.current_file = name

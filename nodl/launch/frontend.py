@@ -7,8 +7,6 @@ Both markup frontends build :class:`Entity` objects and call :func:`build_descri
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from functools import partial
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from nodl.diagnostics import Diagnostic, Severity
@@ -74,11 +72,6 @@ NESTED: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
 XML_ONLY = frozenset({'value-sep'})
 
 
-#: ``SourceLocation(file, line, column)`` without a NamedTuple's Python-level ``__new__``
-#: (an entity is made for every element of a launch file).
-_new_location: Callable[[tuple[str, int, int]], SourceLocation] = partial(tuple.__new__, SourceLocation)
-
-
 class Entity:
     """A frontend entity: its tag, attributes, nested entity lists and child actions."""
 
@@ -89,7 +82,7 @@ class Entity:
         #: True for an entity of a YAML launch file (launch_yaml's rules: no ``NAME-sep``,
         #: values are checked against ``type``, not coerced).
         self.yaml = yaml
-        self.location = _new_location((file, line, column))
+        self.location = SourceLocation(file, line, column)
         #: Attribute name -> value as written (text in XML; any YAML scalar or list).
         self.values: dict[str, Any] = {}
         #: Attribute name -> (line, column) where it is written (the YAML frontend's).

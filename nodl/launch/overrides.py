@@ -32,9 +32,8 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Iterable
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
-TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.launch.model import LaunchedNode, ParameterSource
 
@@ -288,9 +287,6 @@ def _file_entries(path: str, composable: bool, text: str | None = None
 def process_overrides(sources: Iterable[ParameterSource], fqn: str) -> dict[str, ParameterOverride]:
     """The parameters a node started as a process called ``fqn`` receives from ``sources``
     (its records' :attr:`~nodl.launch.model.LaunchedNode.parameters`), as rcl resolves them."""
-    # (tuple.__new__: a NamedTuple's own __new__ is a Python function, and every parameter of
-    # every launched node is made here)
-    new = tuple.__new__
     table: dict[str, dict[str, ParameterOverride]] = {}
     for source in sources:
         origin = source.origin
@@ -302,8 +298,7 @@ def process_overrides(sources: Iterable[ParameterSource], fqn: str) -> dict[str,
                 entry = table.setdefault(key, {})
                 for name, value in values.items():
                     at = positions.get(name, (line, column))
-                    entry[name] = new(ParameterOverride, (name, value, path, at[0], at[1],
-                                                          origin, 'file', key))
+                    entry[name] = ParameterOverride(name, value, path, at[0], at[1], origin, 'file', key)
             continue
         where, key = source.source, source.node_key
         entry = table.setdefault(key, {})
@@ -313,9 +308,9 @@ def process_overrides(sources: Iterable[ParameterSource], fqn: str) -> dict[str,
         for name, value in source.values.items():
             place = places.get(name, where) if places else where  # (most: the source's place)
             # (a bool, int or float is read back as it is: not passed to read)
-            entry[name] = new(ParameterOverride, (
+            entry[name] = ParameterOverride(
                 name, value if read is None or type(value) in _AS_READ else read(value),
-                place.file, place.line, place.column, origin, 'values', key))
+                place.file, place.line, place.column, origin, 'values', key)
     if len(table) == 1:  # (most nodes: their own parameters, under their own name)
         [(key, entry)] = table.items()
         return entry if _key_applies(key, fqn) else {}  # (made by this call: no copy needed)

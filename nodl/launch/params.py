@@ -427,10 +427,17 @@ def parse_parameter_text(name: str, text: str) -> ParameterFile:
     key = (name, text)
     found = _TEXTS.get(key)
     if found is None:
-        found = _parse_parameter_text(name, text)
+        # The same text under another name (each evaluation of a substitution such as nav2's
+        # RewrittenYaml writes a file of its own): its nodes, if reading it found nothing to
+        # say (a finding names its file).
+        same = _TEXTS.get(('', text))
+        if same is not None and not same.diagnostics and not same.rcl_diagnostics:
+            found = ParameterFile(name, same.nodes, [], None, same.composable_nodes)
+        else:
+            found = _parse_parameter_text(name, text)
         if len(_TEXTS) > 64:
             _TEXTS.clear()
-        _TEXTS[key] = found
+        _TEXTS[key] = _TEXTS[('', text)] = found
     return found
 
 

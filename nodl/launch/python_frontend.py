@@ -22,7 +22,7 @@ import importlib.util
 import os
 import sys
 import types
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch import actions as A
@@ -35,7 +35,6 @@ from nodl.launch.errors import LaunchProblem, Unevaluable
 from nodl.launch.model import SourceLocation
 from nodl.launch.python_places import frame_location
 
-TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.launch.context import LaunchContext
 
@@ -485,6 +484,7 @@ def read_python_launch(path: str, context: LaunchContext,
     guard = running(os.path.realpath(path), what, where)
     guard.__enter__()
     shims = shim_modules()
+    shims['yaml'] = context.shared_yaml.module()  # (the real PyYAML, each text parsed once a walk)
     saved = {name: sys.modules.get(name) for name in shims}
     stale = [name for name in sys.modules if name.partition('.')[0] in _STAND_IN_PACKAGES
              and name not in shims]

@@ -35,7 +35,7 @@ import importlib.util
 import os
 import sys
 import types
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nodl.launch import actions as A
 from nodl.launch import conditions as C
@@ -44,7 +44,6 @@ from nodl.launch.errors import Unevaluable
 from nodl.launch.model import SourceLocation
 from nodl.launch.python_places import frame_location
 
-TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.launch.context import LaunchContext
 

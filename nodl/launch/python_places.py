@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import ast
 import os
+from functools import lru_cache
+from types import CodeType
 from typing import Any
 
 from nodl.launch.model import SourceLocation
@@ -187,12 +189,17 @@ def frame_location(path: str, frame: Any) -> SourceLocation:
     line, and its column where the interpreter records one); line 0 if none is."""
     while frame is not None:
         if frame.f_code.co_filename == path:
-            column = 1
-            try:
-                positions = list(frame.f_code.co_positions())[frame.f_lasti // 2]
-                column = (positions[2] or 0) + 1
-            except (AttributeError, IndexError):
-                pass
-            return SourceLocation(path, frame.f_lineno, column)
+            columns = _columns(frame.f_code)
+            index = frame.f_lasti // 2
+            return SourceLocation(path, frame.f_lineno, columns[index] if index < len(columns) else 1)
         frame = frame.f_back
     return SourceLocation(path, 0, 0)
+
+
+@lru_cache(maxsize=256)  # every action of a launch file asks its code object (thousands of instructions)
+def _columns(code: CodeType) -> tuple[int, ...]:
+    """The 1-based column of each instruction of ``code`` (1 where none is recorded)."""
+    positions = getattr(code, 'co_positions', None)  # (Python 3.11)
+    if positions is None:
+        return ()
+    return tuple((start or 0) + 1 for _, _, start, _ in positions())

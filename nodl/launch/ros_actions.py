@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nodl.launch.actions import Action
 from nodl.launch.conditions import Condition
@@ -30,7 +30,6 @@ from nodl.launch.substitutions import normalize, perform
 from nodl.launch.text_checks import check_node_text, refuse_unsafe
 from nodl.naming import join_name, namespace_error, node_name_error, normalize_namespace
 
-TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.launch.context import LaunchContext
 

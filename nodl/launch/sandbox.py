@@ -40,12 +40,11 @@ import signal
 import sys
 import time
 from collections.abc import Callable
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from nodl.diagnostics import Severity
 from nodl.launch.model import SourceLocation
 
-TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.launch.model import LaunchResult
 

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import re
 
-TYPE_CHECKING = False
+from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any, Callable, Iterable, Sequence
 
@@ -82,6 +83,11 @@ def _unescape(text: str) -> str:
     return _ESCAPE.sub(r'\1', text) if '\\' in text else text  # most text has no escape
 
 
+#: Runs of characters that are text whatever follows, outside quotes and inside each quote
+#: (what is not a backslash, a ``$`` or the closing quote).
+_ORDINARY = {None: re.compile(r'[^\\$]+'), "'": re.compile(r"[^\\$']+"), '"': re.compile(r'[^\\$"]+')}
+
+
 class _Parser:
     """A recursive-descent reader of launch's substitution grammar."""
 
@@ -98,7 +104,13 @@ class _Parser:
         out: list[Substitution] = []
         buffer: list[str] = []
         text = self.text
+        ordinary = _ORDINARY[quote]
         while i < len(text):
+            run = ordinary.match(text, i)  # (a run of characters with no meaning here, at once)
+            if run is not None:
+                buffer.append(run.group())
+                i = run.end()
+                continue
             char = text[i]
             if quote is not None and char == quote:
                 break

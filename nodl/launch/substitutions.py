@@ -17,7 +17,8 @@ from __future__ import annotations
 import math
 import os
 
-TYPE_CHECKING = False
+from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any
 

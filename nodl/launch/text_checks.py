@@ -28,7 +28,8 @@ from nodl.launch.errors import LaunchProblem
 from nodl.launch.model import LaunchedNode, SourceLocation
 from nodl.text_safety import UNSAFE, first_unsafe, line_column, offset_of, visible
 
-TYPE_CHECKING = False
+from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any
 

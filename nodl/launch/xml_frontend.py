@@ -8,7 +8,10 @@ tag lists as nested (``param``, ``remap``, ``arg``...) go to ``nested``, the oth
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.frontends.xml_reader import XmlElement, load_xml
 from nodl.launch.actions import LaunchDescription
 from nodl.launch.errors import MAX_XML_DEPTH
 from nodl.launch.frontend import NESTED, TAGS, Entity, build_description
@@ -21,10 +24,6 @@ _LISTS = {tag: TAGS.get(tag, (None, (), None))[1] or NESTED.get(tag, ((), ()))[1
 
 def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnostic]]:
     """Read an XML launch file (problems as diagnostics, never an exception for its content)."""
-    from pathlib import Path
-
-    from nodl.frontends.xml_reader import XmlElement, load_xml
-
     problems: list[Diagnostic] = []
     try:
         tree = load_xml(Path(path), path)
@@ -36,33 +35,7 @@ def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnosti
         return None, problems
 
     too_deep: list[XmlElement] = []
-
-    def convert(element: XmlElement, depth: int) -> Entity | None:
-        # Recursive, but never deeper than MAX_XML_DEPTH + 1 (expat itself reads any depth):
-        # an element below that is noted, not entered.
-        if depth > MAX_XML_DEPTH:
-            too_deep.append(element)
-            return None
-        entity = Entity(element.tag, path, element.line, element.column)
-        # The values by name; the element places an attribute only when the entity asks where
-        # it is (a problem, a recorded place), so a launch file without problems places none.
-        pairs = iter(element.pairs)
-        entity.values = dict(zip(pairs, pairs))
-        entity.element = element
-        if element.children:
-            lists = _LISTS.get(element.tag, ())
-            for child in element.children:
-                converted = convert(child, depth + 1)
-                if converted is None:
-                    continue
-                if child.tag in lists:
-                    entity.nested.setdefault(child.tag, []).append(converted)
-                else:
-                    entity.children.append(converted)
-        return entity
-
-    root = convert(tree.root, 1)
-    del convert  # (a recursive closure refers to itself: a cycle holding the tree until collected)
+    root = _convert(tree.root, 1, path, too_deep)
     if too_deep:
         # One diagnostic, at the last element too deep (where it has always been reported: the
         # former separate depth check walked the tree from its end).
@@ -73,3 +46,29 @@ def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnosti
     if root is None:
         return None, problems
     return build_description(root, problems), problems
+
+
+def _convert(element: XmlElement, depth: int, path: str, too_deep: list[XmlElement]) -> Entity | None:
+    """The entity of ``element`` and its children (the elements too deep to enter are noted in
+    ``too_deep``).  Recursive, but never deeper than MAX_XML_DEPTH + 1 (expat itself reads any
+    depth): an element below that is noted, not entered."""
+    if depth > MAX_XML_DEPTH:
+        too_deep.append(element)
+        return None
+    entity = Entity(element.tag, path, element.line, element.column)
+    # The values by name; the element places an attribute only when the entity asks where
+    # it is (a problem, a recorded place), so a launch file without problems places none.
+    pairs = iter(element.pairs)
+    entity.values = dict(zip(pairs, pairs, strict=False))
+    entity.element = element
+    if element.children:
+        lists = _LISTS.get(element.tag, ())
+        for child in element.children:
+            converted = _convert(child, depth + 1, path, too_deep)
+            if converted is None:
+                continue
+            if child.tag in lists:
+                entity.nested.setdefault(child.tag, []).append(converted)
+            else:
+                entity.children.append(converted)
+    return entity
