@@ -78,9 +78,9 @@ def test_drift_exits_1_with_text_and_junit(files: dict[str, Path], tmp_path: Pat
            'observed but not declared [NODL402]' in lines
     assert "/cli_c/full: error: type: subscription '/cli_c/commands': declared type " \
            'std_msgs/msg/Int32, observed std_msgs/msg/String (declared in main) [NODL403]' in lines
-    assert any(l.startswith("/cli_c/full: error: qos: publisher '/cli_c/full/status' durability: "
-                            'declared VOLATILE, observed TRANSIENT_LOCAL') for l in lines)
-    assert any(': info: unverifiable: ' in l for l in lines)  # -v
+    assert any(line.startswith("/cli_c/full: error: qos: publisher '/cli_c/full/status' durability: "
+                               'declared VOLATILE, observed TRANSIENT_LOCAL') for line in lines)
+    assert any(': info: unverifiable: ' in line for line in lines)  # -v
     assert re.fullmatch(r'/cli_c/full drifts from .*drifting\.nodl\.yaml: 3 differences '
                         r'\(\d+ unverifiable\)', lines[-1])
 
@@ -137,9 +137,9 @@ def test_invalid_definition_exits_2_with_file_line_col(tmp_path: Path) -> None:
     result = nodl('check', '/cli_c/full', str(bad), '--timeout', '30')
     assert result.returncode == 2
     assert result.stdout == ''
-    errors = [l for l in result.stderr.splitlines() if ': error: ' in l]
+    errors = [line for line in result.stderr.splitlines() if ': error: ' in line]
     assert errors
-    assert all(re.match(re.escape(str(bad)) + r':\d+:\d+: error: ', l) for l in errors), errors
+    assert all(re.match(re.escape(str(bad)) + r':\d+:\d+: error: ', line) for line in errors), errors
 
 
 def test_unregistered_package_exits_2(tmp_path: Path) -> None:
@@ -252,8 +252,8 @@ def test_ignore_makes_a_drifting_check_pass(files: dict[str, Path]) -> None:
 def test_error_promotes_a_value_warning(files: dict[str, Path]) -> None:
     warned = nodl('check', '/cli_c/full', str(files['value']), '--timeout', '15')
     assert warned.returncode == 0, warned.stdout + warned.stderr
-    assert any(l.startswith("/cli_c/full: warning: value: parameter 'gain'") and
-               l.endswith('[NODL407]') for l in warned.stdout.splitlines())
+    assert any(line.startswith("/cli_c/full: warning: value: parameter 'gain'") and
+               line.endswith('[NODL407]') for line in warned.stdout.splitlines())
     promoted = nodl('check', '/cli_c/full', str(files['value']), '--timeout', '15',
                     '--error', 'NODL407', '--format', 'json')
     assert promoted.returncode == 1, promoted.stdout + promoted.stderr

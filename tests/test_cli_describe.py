@@ -46,7 +46,7 @@ def test_describe_node_to_a_file(nodes, tmp_path: Path) -> None:
     text = unmark(text)
     assert text.startswith('# Described from the running node /cli_d/full by `nodl describe`.\n')
     # every note is a warning on stderr and a line of the header comment
-    warnings = [l for l in result.stderr.splitlines() if l.startswith('nodl describe: warning: ')]
+    warnings = [line for line in result.stderr.splitlines() if line.startswith('nodl describe: warning: ')]
     assert any('service QoS' in w for w in warnings)
     for warning in warnings:
         assert '#   - ' + warning[len('nodl describe: warning: '):] in text
@@ -85,16 +85,16 @@ def test_describe_says_how_long_namesakes_were_watched(nodes, tmp_path: Path) ->
     out = tmp_path / 'full.nodl.yaml'
     result = nodl('describe', '/cli_d/full', '-o', str(out), '--timeout', '15')
     assert result.returncode == 0, result.stderr
-    line = next(l for l in out.read_text(encoding='utf-8').splitlines()
-                if l.startswith('# Namesakes watched for '))
+    line = next(text for text in out.read_text(encoding='utf-8').splitlines()
+                if text.startswith('# Namesakes watched for '))
     found = re.match(r'# Namesakes watched for ([0-9.]+) s of discovery', line)
     assert found is not None and float(found.group(1)) >= 0.3
     if float(found.group(1)) < 3.5:
         assert '--watch 3.5' in line
     longer = nodl('describe', '/cli_d/full', '--watch', '2', '--format', 'json', '--timeout', '15')
     assert longer.returncode == 0, longer.stderr
-    notes = [l for l in longer.stderr.splitlines()
-             if l.startswith('nodl describe: note: namesakes watched for ')]
+    notes = [line for line in longer.stderr.splitlines()
+             if line.startswith('nodl describe: note: namesakes watched for ')]
     assert len(notes) == 1
     assert float(notes[0].split('watched for ')[1].split(' s')[0]) >= 2.0
 
@@ -178,7 +178,7 @@ def test_describe_warns_of_version_skew(tmp_path: Path) -> None:
         else:
             os.environ['AMENT_PREFIX_PATH'] = old
     assert result.returncode == 0, result.stderr
-    [warning] = [l for l in result.stderr.splitlines() if 'version skew' in l]
+    [warning] = [line for line in result.stderr.splitlines() if 'version skew' in line]
     assert warning.startswith('nodl describe: warning: version skew: /cli_skew/chatter: the node '
                               "uses another definition of 'std_msgs/msg/String'")
     assert "field 'revision' (int32)" in warning and warning.endswith('[NODL423]')

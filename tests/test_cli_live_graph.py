@@ -38,11 +38,11 @@ def test_a_shared_name_warns_in_describe_and_check_refuses(ros_node, tmp_path: P
                      '-o', str(tmp_path / 'twin.nodl.yaml'))
     assert described.returncode == 0, described.stderr
     assert 'warning: 2 nodes in the graph are named /ux/twin' in described.stderr
-    header = [l for l in (tmp_path / 'twin.nodl.yaml').read_text().splitlines() if l.startswith('#')]
+    header = [line for line in (tmp_path / 'twin.nodl.yaml').read_text().splitlines() if line.startswith('#')]
     assert '# Warning: 2 nodes in the graph are named /ux/twin: what was observed is all of them ' \
         'together (give each node a unique name).' in header
     # a warning line of its own, not an item of what could not be observed
-    assert not any(l.startswith('#   - ') and '/ux/twin' in l for l in header)
+    assert not any(line.startswith('#   - ') and '/ux/twin' in line for line in header)
     checked = nodl('check', first.fqn, str(tmp_path / 'twin.nodl.yaml'), '--timeout', '10')
     assert checked.returncode == 2
     assert '2 nodes in the graph are named /ux/twin' in checked.stderr
@@ -55,9 +55,9 @@ def test_a_base_mismatch_is_one_line(ros_node, tmp_path: Path) -> None:
     definition.write_text('nodl_version: 2\nbase: node\nmain:\n  nodl_version: 2\n')
     result = nodl('check', node.fqn, str(definition), '--timeout', '10', '--no-parameters')
     assert result.returncode == 1, result.stdout + result.stderr
-    lines = [l for l in result.stdout.splitlines() if ': error: ' in l]
+    lines = [line for line in result.stdout.splitlines() if ': error: ' in line]
     assert lines[0].startswith(f'{node.fqn}: error: base: the node serves the lifecycle services: '
                                'use `base: lifecycle_node`')
-    assert not any('change_state' in l for l in lines), result.stdout  # folded into that line
+    assert not any('change_state' in line for line in lines), result.stdout  # folded into that line
     verbose = nodl('check', node.fqn, str(definition), '--timeout', '10', '--no-parameters', '-v')
     assert 'change_state' in verbose.stdout

@@ -37,7 +37,7 @@ def test_invalid_json_file_reports_file_line_col_and_exits_1(golden) -> None:
 
 def test_every_error_is_reported_with_position() -> None:
     result = nodl('validate', rel(CLI / 'invalid_node.nodl.json'))
-    lines = [l for l in result.stdout.splitlines() if ': error: ' in l]
+    lines = [line for line in result.stdout.splitlines() if ': error: ' in line]
     assert len(lines) == 2
     assert lines[0].startswith(f'{rel(CLI / "invalid_node.nodl.json")}:3:11: error: ')
     assert "did you mean 'node'?" in lines[0]

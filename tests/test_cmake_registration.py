@@ -126,7 +126,7 @@ def test_the_kind_is_enforced_at_build_time(build: Build) -> None:
 
 
 def test_a_broken_mixin_fails_the_build_at_its_entry(build: Build) -> None:
-    lines = [l for l in build.output.splitlines() if 'talker.nodl.yaml:4:5:' in l]
+    lines = [line for line in build.output.splitlines() if 'talker.nodl.yaml:4:5:' in line]
     assert lines, build.output
     assert 'broken_nodl/nodl/talker.nodl.yaml:4:5: error: cannot resolve mixin ' \
            "'nodl://robot_interfaces_nodl/no_such_interface'" in lines[0]
@@ -135,7 +135,7 @@ def test_a_broken_mixin_fails_the_build_at_its_entry(build: Build) -> None:
 def test_a_node_is_composed_with_the_rclcpp_base_at_build_time(build: Build) -> None:
     # valid against rclpy's base, not rclcpp's: an ament_cmake package's nodes are rclcpp's,
     # as nodl analyse, show and check take them from the package's build type
-    lines = [l for l in build.output.splitlines() if 'time_source.nodl.yaml:8:7:' in l]
+    lines = [line for line in build.output.splitlines() if 'time_source.nodl.yaml:8:7:' in line]
     assert lines and '[NODL308]' in lines[0], build.output
 
 
@@ -170,7 +170,7 @@ def test_a_namespaced_node_name_fails_at_configure_time(build: Build) -> None:
 def test_show_an_installed_node_with_its_layers(build: Build) -> None:
     result = nodl(build, 'show', 'laser_driver', 'laser_driver_node', '--layers')
     assert result.returncode == 0, result.stderr
-    layers = [l.strip() for l in result.stdout.splitlines() if '# layer:' in l]
+    layers = [line.strip() for line in result.stdout.splitlines() if '# layer:' in line]
     assert set(layers) == {'# layer: base:node',
                            '# layer: nodl://robot_interfaces_nodl/diagnostics',
                            '# layer: nodl://laser_driver/motor_control',

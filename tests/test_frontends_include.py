@@ -139,7 +139,7 @@ def test_compose_resolves_nodl_and_local_includes(prefix: Path) -> None:
     composed = compose(PKG / 'arm_driver.nodl.yaml')
     params = composed.interface.parameters
     assert {'use_sim_time', 'heartbeat.period', 'limits.max_velocity', 'joint_count'} <= set(params)
-    assert [l.label for l in composed.layers][1:] == [
+    assert [layer.label for layer in composed.layers][1:] == [
         'nodl://arm_common/heartbeat', 'shared/joint_limits.nodl.yaml', 'main']
     assert any(p.name == '/heartbeat' for p in composed.interface.publishers)
 
@@ -185,7 +185,7 @@ CAMERA = FIXTURES / 'dialects' / 'include' / 'camera_driver' / 'nodl'
 def test_an_included_document_that_includes_others_is_flattened(prefix: Path) -> None:
     composed = compose(CAMERA / 'wrist_camera.nodl.yaml')
     # What an included document includes comes before it; local:// is relative to its holder.
-    assert [l.label for l in composed.layers] == [
+    assert [layer.label for layer in composed.layers] == [
         'base:lifecycle_node', 'nodl://arm_common/heartbeat',
         'shared/camera_common.nodl.yaml > sensor_health.nodl.yaml',
         'shared/camera_common.nodl.yaml', 'main']

@@ -63,8 +63,8 @@ def test_the_order_entries_are_written_in_does_not_change_the_names() -> None:
     text = (GENERATE / 'everything.nodl.yaml').read_text(encoding='utf-8')
     # swap two parameters' lines: identifiers and struct layout stay
     lines = text.splitlines()
-    i = next(n for n, l in enumerate(lines) if l.strip().startswith('flag:'))
-    j = next(n for n, l in enumerate(lines) if l.strip().startswith('count:'))
+    i = next(n for n, line in enumerate(lines) if line.strip().startswith('flag:'))
+    j = next(n for n, line in enumerate(lines) if line.strip().startswith('count:'))
     lines[i], lines[j] = lines[j], lines[i]
     assert generated('everything', '\n'.join(lines) + '\n') == generated('everything')
 
@@ -182,7 +182,7 @@ def test_comments_cannot_be_escaped_from() -> None:
     lines = comment_lines('ends with a backslash \\\nnext */ line\r\nthird <b> & @param')
     assert lines == ['/// ends with a backslash &#92;', '/// next */ line',
                      '/// third &lt;b&gt; &amp; &#64;param']
-    assert all(not l.rstrip().endswith('\\') for l in lines)
+    assert all(not line.rstrip().endswith('\\') for line in lines)
 
 
 def test_hostile_names_and_descriptions_stay_inside_literals_and_comments() -> None:
@@ -248,7 +248,7 @@ def test_dependencies_follow_what_the_node_uses() -> None:
         node = resolve_node(path, client_library='rclcpp')
         assert set(cpp_dependencies(node, options_for(path))) >= expected
         header = generated(name)[f'{name}_base.hpp']
-        line = next(l for l in header.splitlines() if l.startswith('// nodl-dependencies:'))
+        line = next(text for text in header.splitlines() if text.startswith('// nodl-dependencies:'))
         assert line.split(':', 1)[1].split() == cpp_dependencies(node, options_for(path))
 
 

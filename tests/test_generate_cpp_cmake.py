@@ -147,8 +147,8 @@ def test_the_libraries_link_what_the_generated_code_needs(project: Project) -> N
             ('everything_base', ['rcl_interfaces', 'rclcpp', 'rclcpp_action', 'rclcpp_components',
                                  'std_msgs', 'std_srvs', 'test_msgs'])):
         header = next((project.build / 'ament_nodl_generate_cpp' / target).glob('*.hpp'))
-        line = next(l for l in header.read_text().splitlines()
-                    if l.startswith('// nodl-dependencies:'))
+        line = next(text for text in header.read_text().splitlines()
+                    if text.startswith('// nodl-dependencies:'))
         assert line.split(':', 1)[1].split() == expected
 
 

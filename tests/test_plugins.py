@@ -92,7 +92,7 @@ def test_help_lists_plugin_verbs_with_their_docstring() -> None:
 def test_internal_error_is_one_line_asking_to_report_it() -> None:
     result = _nodl('crash')
     assert result.returncode == 3
-    lines = [l for l in result.stderr.splitlines() if 'skipped plugin' not in l]
+    lines = [line for line in result.stderr.splitlines() if 'skipped plugin' not in line]
     assert len(lines) == 1
     assert 'internal error' in lines[0] and 'please report it' in lines[0]
     assert 'Traceback' not in result.stderr

@@ -196,7 +196,7 @@ def test_a_flat_reference_document_composes_as_a_node_of_its_interface() -> None
     assert source == reference_entry('ref_robot__talker')
     # No dialect warning for an installed document: its user cannot convert it.
     assert [d.code for d in diagnostics] == []
-    assert [l.label for l in composed.layers] == ['main']
+    assert [layer.label for layer in composed.layers] == ['main']
     assert set(composed.interface.parameters) == {'greeting'}
     assert composed.node.codegen == composed.interface.codegen == {
         'cpp': {'role': 'base_class', 'header': 'ref_robot/talker_base.hpp'}}
@@ -207,7 +207,7 @@ def test_rewritten_includes_resolve_through_the_reference_registrations() -> Non
 
     composed, diagnostics, _ = compose_registered('ref_robot', 'lidar', [REFERENCE], 'rclcpp')
     assert composed is not None, diagnostics
-    assert [l.label for l in composed.layers] == [
+    assert [layer.label for layer in composed.layers] == [
         'base:node', 'nodl://ref_robot/sensor_common', 'main']
     assert {'frame_id', 'use_sim_time'} <= set(composed.interface.parameters)
     assert '/clock' in {s.name for s in composed.interface.subscriptions}
@@ -253,7 +253,7 @@ def test_a_package_installed_by_a_re_creation_of_the_references_macro(tmp_path: 
 
     composed, diagnostics, _ = compose_registered('ref_pkg', 'camera', prefixes)
     assert composed is not None, diagnostics
-    assert [l.label for l in composed.layers] == ['base:node', 'nodl://ref_pkg/sensor_common', 'main']
+    assert [layer.label for layer in composed.layers] == ['base:node', 'nodl://ref_pkg/sensor_common', 'main']
     assert composed.interface.parameters['frame_id'].default_value == 'camera_link'
     assert composed.node.codegen == {'cpp': {'role': 'base_class'}}
     shown = subprocess.run([sys.executable, '-m', 'nodl', 'show', 'other_pkg', 'reset_node'],

@@ -108,8 +108,8 @@ main:
     readme = files['README.md']
     assert '<script>' not in readme and '<b>' not in readme
     assert '\\[link\\](javascript:alert(1)) \\<script\\>' in readme
-    table = [l for l in readme.splitlines() if 'x_y' in l and 'parameter' in l]
-    assert table and all(l.count(' | ') == 3 for l in table), table
+    table = [line for line in readme.splitlines() if 'x_y' in line and 'parameter' in line]
+    assert table and all(line.count(' | ') == 3 for line in table), table
     assert '\n# not a heading' not in readme
 
 

@@ -170,7 +170,7 @@ def test_json_with_layers_lists_each_entitys_layer() -> None:
     data = json.loads(render(iface, 'json', layers=True))
     assert set(data) == {'interface', 'layers'}
     assert load_interface(json.dumps(data['interface'])) == iface
-    assert [(l['section'], l['name'], l['layer']) for l in data['layers']] == origins(iface)
+    assert [(layer['section'], layer['name'], layer['layer']) for layer in data['layers']] == origins(iface)
     assert {'section': 'service_servers', 'name': '~/set_camera_info',
             'layer': 'mixins[0]'} in data['layers']
     assert {'section': 'publishers', 'name': '~/transition_event',

@@ -82,7 +82,7 @@ class ComposedNode:
 
     def layer(self, label: str) -> Layer:
         """The layer called ``label``."""
-        for layer in sorted(self.layers, key=lambda l: l.role == 'mixin'):  # base/main first
+        for layer in sorted(self.layers, key=lambda each: each.role == 'mixin'):  # base/main first
             if layer.label == label:
                 return layer
         raise KeyError(label)
