@@ -190,13 +190,39 @@ def test_an_empty_file_is_composed_and_created_on_save(tmp_path: Path) -> None:
     assert 'package: rover_tools' in launch.read_text() or 'pkg: rover_tools' in launch.read_text()
 
 
-def test_exports_write_next_to_the_launch_file(example: Path) -> None:
-    client, _ = make_client(example, execute=False)
-    unsaved = post(client, 'add', package='rover_tools', executable='teleop', name='teleop2')
-    assert unsaved['ok']
+def test_exports_write_next_to_the_launch_file(tmp_path: Path) -> None:
+    launch = tmp_path / 'small.launch.xml'
+    launch.write_text('<launch>\n  <node pkg="rover_tools" exec="teleop" name="teleop"/>\n'
+                      '  <node pkg="rover_base" exec="motor_controller" name="motor"/>\n</launch>\n')
+    client, _ = make_client(launch, execute=False)
+    assert post(client, 'add', package='rover_tools', executable='dashboard', name='dash')['ok']
     assert 'save the launch file first' in post(client, 'export', what='policy')['error']
     assert post(client, 'save')['ok']
-    graph = post(client, 'export', what='graph')
-    assert graph['ok'] and graph['written'] == [str(example.parent / 'rover.graph.svg')], graph
-    assert (example.parent / 'rover.graph.svg').read_text().lstrip().startswith('<')
+    # (doc runs the same way: nodl doc LAUNCH -o small-docs; left out for time)
+    for what, name in (('policy', 'small.policy.xml'), ('graph', 'small.graph.svg')):
+        answer = post(client, 'export', what=what)
+        assert answer['ok'] and answer['written'] == [str(tmp_path / name)], answer
+    assert '<profile ns="/" node="dash">' in (tmp_path / 'small.policy.xml').read_text()
+    assert (tmp_path / 'small.graph.svg').read_text().lstrip().startswith('<')
+    # a file of the user's at the export's path is not replaced
+    (tmp_path / 'mine.xml').write_text('my own policy\n')
+    refused = post(client, 'export', what='policy', output='mine.xml')
+    assert not refused['ok'] and (tmp_path / 'mine.xml').read_text() == 'my own policy\n', refused
     assert post(client, 'export', what='nothing')['status'] == 400
+
+
+def test_the_page_puts_text_from_definitions_as_text_only() -> None:
+    """Names, descriptions and messages reach the page only through textContent, attributes
+    and canvas labels: the page's script never parses text as HTML."""
+    import re
+
+    from nodl.studio.app import STATIC
+
+    script = (STATIC / 'studio.js').read_text(encoding='utf-8')
+    code = re.sub(r'/\*.*?\*/|//[^\n]*', '', script, flags=re.S)  # (comments may name them)
+    assert not re.search(r'innerHTML|outerHTML|insertAdjacentHTML|document\.write|\beval\(|'
+                         r'new Function|setTimeout\(\s*[\'"]', code)
+    assert code.count('.textContent =') >= 10
+    page = (STATIC / 'index.html').read_text(encoding='utf-8')
+    assert '<script>' not in page  # no inline script (the policy allows none either)
+    assert not re.search(r'\son[a-z]+\s*=', page)  # no onclick= and the like

@@ -536,15 +536,18 @@ class Session:
         problem = self.guard.check(output, 'the export')
         if problem is not None:
             raise StudioError(problem.message, [problem], status=403)
-        command = {'policy': ['policy', self.launch_file, '-o', output, '--force'],
+        command = {'policy': ['policy', self.launch_file, '-o', output],
                    'doc': ['doc', self.launch_file, '-o', output],
                    'graph': ['analyse', self.launch_file, '--graph', output]}[what]
         for folder_given in self.definition_folders:
             command += ['--definitions', folder_given]
         if not (self.execute_allowed and self.code_ran):
             command.append('--no-exec')
+        before = os.stat(output).st_mtime_ns if os.path.exists(output) else None
         done = _run_nodl(command)
-        if not os.path.exists(output):
+        if not os.path.exists(output) or (done.returncode not in (0, 1) and before is not None
+                                          and os.stat(output).st_mtime_ns == before):
+            # (a file of the user's at that path is not replaced: nodl says so)
             raise StudioError(f'nodl {command[0]} wrote nothing: '
                               + (done.stderr.strip().splitlines() or ['no reason given'])[-1])
         return {'ok': True, 'written': [output], 'status': done.returncode,
