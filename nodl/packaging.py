@@ -35,14 +35,24 @@ in the package authors' guide (ros/nodl_toolkit/doc/guides/package-authors.md,
 
 from __future__ import annotations
 
+import logging
 import os
 import posixpath
 import re
 import shutil
+from pathlib import Path
 from typing import Mapping, Sequence
 
+from nodl.checking import check_paths, failed
+from nodl.composition.resolvers import scheme_of
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.frontends.builtin import INCLUDE
+from nodl.loading import check_source
+from nodl.registry.node_info import NODE_INFO_RESOURCE, format_node_info
+from nodl.reporting import format_text, without_info
+from nodl.validation.kinds import Kind
 from nodl.vocabulary import INTERFACE_RESOURCE, NODE_RESOURCE, resource_name
+from nodl.writing import WriteError, write_file
 
 __all__ = ['nodl_data_files', 'relative_mixins', 'package_dependencies', 'NodlBuildError',
            'NODE_RESOURCE', 'INTERFACE_RESOURCE']
@@ -75,8 +85,6 @@ class NodlBuildError(SystemExit):
 def _write(path: str, text: str) -> None:
     """Write an ament index marker atomically (:func:`nodl.writing.write_file`); a
     failure is a :class:`NodlBuildError` naming the file."""
-    from nodl.writing import WriteError, write_file
-
     try:
         write_file(path, text)
     except WriteError as exc:
@@ -159,10 +167,6 @@ def nodl_data_files(package: str, nodes: Mapping[str, str] | None = None,
 
 def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, str],
               staging_dir: str) -> None:
-    from nodl.checking import check_paths, failed
-    from nodl.reporting import format_text, without_info
-    from nodl.validation.kinds import Kind
-
     # A staging index lets nodl://<package>/<name> resolve before installation: its
     # markers point at the source files by absolute path.
     stage = os.path.abspath(os.path.join(staging_dir, 'stage'))
@@ -199,8 +203,6 @@ def _validate(package: str, nodes: Mapping[str, str], interfaces: Mapping[str, s
         raise NodlBuildError(f'{format_text(shown)}{package}: invalid NoDL definitions: '
                              f'{", ".join(failures)}', shown)
     if shown:  # warnings only: the build goes on, and whoever runs it decides what is shown
-        import logging
-
         logging.getLogger(__name__).warning('%s', format_text(shown).rstrip('\n'))
 
 
@@ -234,11 +236,6 @@ def package_dependencies(node_file: str | os.PathLike[str]) -> tuple[list[str], 
 
     I/O errors such as a missing file propagate as :class:`OSError`.
     """
-    from pathlib import Path
-
-    from nodl.loading import check_source
-    from nodl.validation import Kind
-
     name = os.fspath(node_file)
     report = check_source(Path(name), kind=Kind.NODE)
     errors = report.errors
@@ -270,11 +267,6 @@ def package_dependencies(node_file: str | os.PathLike[str]) -> tuple[list[str], 
 
 def _relative_mixins(file: str, prefix: str, found: list[str], visited: set[str]) -> None:
     """Add the relative mixins of ``file`` (whose folder is ``prefix`` from the node's) to ``found``."""
-    from pathlib import Path
-
-    from nodl.composition.resolvers import scheme_of
-    from nodl.loading import check_source
-
     visited.add(os.path.realpath(file))
     try:
         report = check_source(Path(file))
@@ -294,8 +286,6 @@ def _relative_mixins(file: str, prefix: str, found: list[str], visited: set[str]
         target = os.path.join(os.path.dirname(file), path)
         if os.path.realpath(target) not in visited and os.path.isfile(target):
             # Only the include dialect nests; a cycle is the validator's to report.
-            from nodl.dialects import INCLUDE
-
             try:
                 nested = check_source(Path(target)).dialect == INCLUDE
             except OSError:
@@ -308,8 +298,6 @@ def _node_info(package: str, nodes: Mapping[str, str], plugins: dict[str, str],
                node_names: dict[str, str], staging_dir: str,
                entries: dict[str, list[str]]) -> None:
     """Write the ``nodl_node_info`` markers (plugin, node name) and add them to ``entries``."""
-    from nodl.registry.node_info import NODE_INFO_RESOURCE, format_node_info
-
     problems = [f"nodl_data_files: {what} names '{key}', which is not in nodes"
                 for what, given in (('plugins', plugins), ('node_names', node_names))
                 for key in given if key not in nodes]

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from nodl.composition.resolvers import ResolutionError as NodlResolutionError
+from nodl.registry import registrations
+from nodl.vocabulary import INTERFACE_RESOURCE, resource_name
 from nodl_schema.composition import ResolutionError, Resolver
 
 __all__ = ['AmentIndexResolver']
@@ -28,8 +31,6 @@ class AmentIndexResolver(Resolver):
 
     def resolve(self, ref: str, origin: Path | None = None) -> Path:
         """The registered document's file; :class:`ResolutionError` if nothing is registered."""
-        from nodl.vocabulary import INTERFACE_RESOURCE, resource_name
-
         package, _, name = ref[len(self.prefix):].partition('/')
         if not package or not name:
             raise ResolutionError(f'invalid reference {ref!r}: expected nodl://<package>/<name>')
@@ -46,8 +47,6 @@ class AmentIndexResolver(Resolver):
             'that registers it built and its install/setup.bash sourced?')
 
     def _reference_entry(self, package: str, name: str) -> Path | None:
-        from nodl.vocabulary import resource_name
-
         key = resource_name(package, name)
         try:
             from ament_index_python import resources
@@ -68,9 +67,6 @@ class AmentIndexResolver(Resolver):
 
     @staticmethod
     def _toolkit_entry(package: str, name: str) -> Path | None:
-        from nodl.composition.resolvers import ResolutionError as NodlResolutionError
-        from nodl.registry import registrations
-
         entry = registrations.interface_entry(package, name)
         if entry is None:
             return None

@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import abc
 import contextlib
+from typing import TYPE_CHECKING
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from nodl.composition.resolvers import scheme_of
+
 if TYPE_CHECKING:
     from collections.abc import Iterator
     from pathlib import Path
@@ -106,8 +108,6 @@ def resolve(ref: str, origin: Path | None = None) -> Path:
     """
     resolver = resolver_for(ref)
     if resolver is None:
-        from nodl.composition.resolvers import scheme_of
-
         raise ResolutionError(f'No registered resolver handles reference {ref!r} (scheme '
                               f'{scheme_of(ref)!r}); register one with '
                               'nodl_schema.register_resolver()')

@@ -12,10 +12,7 @@ from __future__ import annotations
 
 import io
 from pathlib import Path
-
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any
+from typing import Any
 
 from nodl_schema.composition import ResolutionError, resolver_for
 from nodl_schema.local_resolver import LocalResolver

@@ -10,8 +10,17 @@ with the toolkit's validator, so an invalid document is refused with
 from __future__ import annotations
 
 import copy
+from typing import TYPE_CHECKING
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from nodl.frontends.include import BASE_DESCRIPTIONS, uri_problem
+from nodl.frontends.source import read_source
+from nodl.frontends.yaml_json import parse_document
+from nodl.schemas import bundled_schema
+from nodl.validation.engine import FORMATS
+from nodl.validation.interfaces import check_interface
+from nodl.validation.messages import described, kind_of
+from nodl.validation.structure import SchemaCompiler
+
 if TYPE_CHECKING:
     from typing import Any
 
@@ -69,9 +78,6 @@ def load_schema() -> dict[str, Any]:
 
 
 def _reference_shape() -> dict[str, Any]:
-    from nodl.frontends.include import BASE_DESCRIPTIONS
-    from nodl.schemas import bundled_schema
-
     bundled = bundled_schema('interface')
     definitions: dict[str, Any] = bundled['definitions']
     interface = copy.deepcopy(definitions['interface'])
@@ -118,9 +124,6 @@ def _reference_shape() -> dict[str, Any]:
 
 
 def _uri_check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
-    from nodl.frontends.include import uri_problem
-    from nodl.validation.messages import described
-
     if not isinstance(value, str):
         out.append(Diagnostic(Severity.ERROR, f"'ref' is a URI such as nodl://PACKAGE/NAME or "
                               f'local://FILE, not {described(value)}', path, code='NODL852'))
@@ -133,9 +136,6 @@ def _uri_check(value: Any, path: DocPath, out: list[Diagnostic]) -> None:
 def _compiled() -> Check:
     global _check
     if _check is None:
-        from nodl.validation.engine import FORMATS
-        from nodl.validation.structure import SchemaCompiler
-
         schema = load_schema()
 
         class _Compiler(SchemaCompiler):
@@ -163,9 +163,6 @@ def _compiled() -> Check:
 
 def diagnose(data: Any) -> list[Diagnostic]:
     """Every diagnostic for ``data`` read as a document (paths, no positions)."""
-    from nodl.validation.interfaces import check_interface
-    from nodl.validation.messages import kind_of
-
     if not isinstance(data, dict):
         return [Diagnostic(Severity.ERROR, f'a NoDL document is a mapping at the top level, not '
                            f'{kind_of(data)}', (), code='NODL011')]
@@ -191,9 +188,6 @@ def check_text(source: Source, file: str | None = None) -> Any:
     A path (:class:`os.PathLike`) is read as the file.  Raises :class:`ValidationError`,
     with the diagnostics at ``file:line:col``, for text that is not a valid document.
     """
-    from nodl.frontends.source import read_source
-    from nodl.frontends.yaml_json import parse_document
-
     text, problem = read_source(source, file)
     if text is None:
         assert problem is not None

@@ -8,7 +8,7 @@ import yaml
 
 from conftest import FIXTURES
 from nodl.doc.blocks import Code, Heading, Link, Table, text_of
-from nodl.doc.model import NodeSource, node_page, qos_words, value_text
+from nodl.doc.model import PageSource, node_page, qos_words, value_text
 from nodl.interface_types.resolve import interface_index
 from nodl.model.qos import QoSProfile
 from nodl.composition.resolved import resolve_node
@@ -22,7 +22,7 @@ PREFIXES = [sys.prefix]
 
 def _page():  # type: ignore[no-untyped-def]
     resolved = resolve_node(TALKER)
-    source = NodeSource(None, None, 'talker.nodl.yaml', 'file')
+    source = PageSource(None, None, 'talker.nodl.yaml', 'file')
     return node_page(resolved, source, interface_index(prefixes=PREFIXES), lambda p: p)
 
 

@@ -9,11 +9,11 @@ packages and executables registered in the ament index.
 from __future__ import annotations
 
 import os
+import shlex
 import sys
+from typing import Any, Callable
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any, Callable
+from nodl.registry.registrations import list_registrations
 
 __all__ = ['complete_definition', 'autocomplete']
 
@@ -21,8 +21,6 @@ __all__ = ['complete_definition', 'autocomplete']
 def complete_definition(prefix: str = '', parsed_args: Any = None, **_: Any) -> list[str]:
     """Completions for ``FILE | PACKAGE EXECUTABLE``: paths and registered packages, or,
     after a package, its registered executables."""
-    from nodl.registry.registrations import list_registrations
-
     given = [t for t in (getattr(parsed_args, 'target', None) or getattr(parsed_args, 'definition', None)
                          or [])]
     try:
@@ -41,8 +39,6 @@ def complete_definition(prefix: str = '', parsed_args: Any = None, **_: Any) -> 
 
 def autocomplete(build_parser: Callable[[list[str] | None], Any]) -> None:
     """If a shell asks for completions (``_ARGCOMPLETE`` is set), answer and exit."""
-    import shlex
-
     import argcomplete
 
     line = os.environ.get('COMP_LINE', '')

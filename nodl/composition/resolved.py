@@ -14,6 +14,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterator, Sequence
 from functools import partial
+from typing import Any
 
 from nodl.composition.client_library import ClientLibraryChoice, choose_client_library
 from nodl.composition.compose import ComposedNode, compose_report
@@ -59,7 +60,7 @@ def _entity(kind: EntityKind, name: str, merged: object,
     return found
 
 
-def _new_entity(kind: EntityKind, name: str, merged: object,
+def _new_entity(kind: EntityKind, name: str, merged: Any,
                 trace: Sequence[Declaration], layers: Sequence[Layer]) -> Entity:
     parameter = kind is _PARAMETER
     location: Location | Callable[[], Location]
@@ -70,7 +71,7 @@ def _new_entity(kind: EntityKind, name: str, merged: object,
         layer = last.layer
     else:  # a ComposedNode built by hand, without traced declarations
         label = getattr(merged, 'origin', None) or ''
-        layer = next((l for l in layers if l.label == label), Layer(label or 'main', Interface()))
+        layer = next((each for each in layers if each.label == label), Layer(label or 'main', Interface()))
         first, location, labels = layer, Location(layer.label, 0, 0), (layer.label,)
     type_name: str = merged.type
     description = getattr(merged, 'description', None)

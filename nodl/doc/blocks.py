@@ -10,6 +10,7 @@ format and never need escaping.
 from __future__ import annotations
 
 import functools
+import posixpath
 import re
 from dataclasses import dataclass, field
 from typing import Union
@@ -137,8 +138,6 @@ def text_of(parts: tuple[Inline, ...] | list[Inline]) -> str:
 def href(here: str, link: Link, extension: str) -> str:
     """The address of ``link`` from the page ``here`` (``a/b``): ``#label`` on the same page,
     else the other page's file relative to this one, with ``#label``."""
-    import posixpath
-
     if link.page is None or link.page == here:
         return f'#{link.label}'
     target = posixpath.relpath(link.page + extension, posixpath.dirname(here) or '.')

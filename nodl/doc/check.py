@@ -12,6 +12,8 @@ from __future__ import annotations
 import os
 
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.doc import EXTENSIONS
+from nodl.writing import marker_state, unmark
 
 __all__ = ['check_files']
 
@@ -21,9 +23,6 @@ _HOW = 'run nodl doc again without --check to update it'
 def check_files(files: dict[str, str], folder: str, format: str) -> list[Diagnostic]:
     """What differs between ``files`` (relative path -> text, from
     :func:`nodl.doc.writer.render_files`) and the folder ``folder``."""
-    from nodl.doc import EXTENSIONS
-    from nodl.writing import marker_state, unmark
-
     problems: list[Diagnostic] = []
     for name, text in files.items():
         path = os.path.join(folder, *name.split('/'))

@@ -19,18 +19,29 @@ documented is an error diagnostic (NODL273), never an exception.
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.doc.blocks import Page, Table, label
+from nodl.doc.blocks import Contents, Link, Page, Picture, Table, label
+from nodl.doc.model import PageSource, node_page, package_page
+from nodl.doc.system import graph_picture, system_page
+from nodl.interface_types.resolve import interface_index
+from nodl.loading import check_source
+from nodl.registry.registrations import list_registrations, search_path
+from nodl.system.run import analyse_launch
+from nodl.system.settings import load_settings
+from nodl.registry.overlay import read_folders, using
+from nodl.targets.placement import is_launch_file
+from nodl.targets.resolve import resolve_target
+from nodl.validation.kinds import Kind
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from typing import Mapping, Sequence
 
     from nodl.doc.blocks import Picture
     from nodl.interface_types.resolve import InterfaceIndex
     from nodl.launch.sandbox import LaunchLimits
-    from nodl.targets.overlay import Definitions
+    from nodl.registry.overlay import Definitions
     from nodl.targets.resolve import Target
 
 __all__ = ['DocSet', 'collect', 'Displayer']
@@ -76,8 +87,6 @@ class DocSet:
 
     def pictures(self) -> list[Picture]:
         """Every picture of the pages (written next to them)."""
-        from nodl.doc.blocks import Picture
-
         return [b for page in self.pages.values() for b in page.blocks if isinstance(b, Picture)]
 
 
@@ -92,25 +101,19 @@ class _Run:
         self.client_library, self.prefixes = client_library, prefixes
 
     def node(self, found: Target, package: str | None, executable: str | None) -> Page | None:
-        from nodl.doc.model import NodeSource, node_page
-
         problems = [d for d in found.diagnostics if d.severity is not Severity.INFO]
         if found.node is None:
             self.docs.diagnostics += problems or [_error(found.source, 'the definition cannot be '
                                                                        'resolved')]
             return None
         self.docs.inputs += [found.source, *(l.file for l in found.node.layers if l.file)]
-        source = NodeSource(package, executable, self.display(found.source), str(found.provenance))
+        source = PageSource(package, executable, self.display(found.source), str(found.provenance))
         page, made = node_page(found.node, source, self.index, self.display, problems)
         self.docs.diagnostics += made
         self.docs.add(page)
         return page
 
     def package(self, package: str, description_of: Mapping[str, str] | None = None) -> None:
-        from nodl.doc.model import package_page
-        from nodl.registry.registrations import list_registrations
-        from nodl.targets.resolve import resolve_target
-
         registrations = list_registrations(package, self.prefixes)
         if not registrations:
             self.docs.diagnostics.append(_error(package, f"the package '{package}' has no registered "
@@ -140,9 +143,6 @@ class _Run:
 
 
 def _interface_description(file: str) -> str:
-    from nodl.loading import check_source
-    from nodl.validation.kinds import Kind
-
     try:
         report = check_source(file, kind=Kind.INTERFACE, file=file)
     except OSError:
@@ -157,11 +157,6 @@ def collect(targets: Sequence[str], *, root: str | None = None, client_library: 
             limits: LaunchLimits | None = None, definitions: Definitions | None = None) -> DocSet:
     """The pages of ``targets`` (see the module docstring), with the definitions folders
     ``definitions`` in force; paths shown relative to ``root`` (default: the current folder)."""
-    from nodl.registry.registrations import search_path
-    from nodl.interface_types.resolve import interface_index
-    from nodl.targets.overlay import using
-    from nodl.targets.placement import is_launch_file
-
     docs = DocSet()
     chosen = search_path(prefixes)
     run = _Run(docs, Displayer(root or os.getcwd(), chosen), interface_index(prefixes=chosen),
@@ -173,8 +168,6 @@ def collect(targets: Sequence[str], *, root: str | None = None, client_library: 
             elif is_launch_file(target):
                 _launch(run, target, launch_arguments, limits, definitions)
             elif os.path.isfile(target):
-                from nodl.targets.resolve import resolve_target
-
                 run.node(resolve_target(target, client_library=client_library, prefixes=prefixes),
                          None, None)
             elif any(c in target for c in '.\\') or target.count('/') > 1 or target.startswith('/'):
@@ -182,8 +175,6 @@ def collect(targets: Sequence[str], *, root: str | None = None, client_library: 
                                                'file, PACKAGE, PACKAGE/EXECUTABLE, a definitions '
                                                'folder or a launch file'))
             elif '/' in target:
-                from nodl.targets.resolve import resolve_target
-
                 package, _, executable = target.partition('/')
                 run.node(resolve_target([package, executable], client_library=client_library,
                                         prefixes=prefixes), package, executable)
@@ -195,8 +186,6 @@ def collect(targets: Sequence[str], *, root: str | None = None, client_library: 
 
 
 def _folder(run: _Run, folder: str) -> None:
-    from nodl.targets.overlay import read_folders, using
-
     found = read_folders([(folder, 'TARGET')])
     run.docs.diagnostics += found.diagnostics
     packages = sorted(found.packages())
@@ -210,11 +199,6 @@ def _folder(run: _Run, folder: str) -> None:
 
 def _launch(run: _Run, launch_file: str, arguments: Mapping[str, str] | None,
             limits: LaunchLimits | None, definitions: Definitions | None) -> None:
-    from nodl.system.settings import load_settings
-    from nodl.system.run import analyse_launch
-    from nodl.doc.model import NodeSource, node_page
-    from nodl.doc.system import graph_picture, system_page
-
     if not os.path.isfile(launch_file):
         run.docs.diagnostics.append(_error(launch_file, 'no such launch file'))
         return
@@ -233,7 +217,7 @@ def _launch(run: _Run, launch_file: str, arguments: Mapping[str, str] | None,
         if match.resolved is None or id(match) in pages:
             continue
         executable = node.entry.executable or match.key
-        source = NodeSource(match.package, executable, run.display(match.file or ''), match.origin)
+        source = PageSource(match.package, executable, run.display(match.file or ''), match.origin)
         page, made = node_page(match.resolved, source, run.index, run.display,
                                [d for d in match.resolved.diagnostics
                                 if d.severity is not Severity.INFO])
@@ -253,8 +237,6 @@ def _launch(run: _Run, launch_file: str, arguments: Mapping[str, str] | None,
 
 
 def _index(docs: DocSet) -> Page:
-    from nodl.doc.blocks import Contents, Link
-
     page = Page('index', 'Reference', 'nodl-doc-index')
     page.heading(1, 'Reference', 'nodl-doc-index')
     page.paragraph('The nodes, packages and systems documented here, from their NoDL definitions.')

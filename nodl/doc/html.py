@@ -10,8 +10,20 @@ from __future__ import annotations
 
 from html import escape as _escape
 
-from nodl.doc.blocks import (Code, Heading, Inline, Link, Literal, Note, Page, Paragraph,
-                                    Picture, Table, href)
+from nodl.doc.blocks import (
+    Code,
+    Heading,
+    Inline,
+    Link,
+    Literal,
+    Note,
+    Page,
+    Paragraph,
+    Picture,
+    Table,
+    href,
+)
+from nodl.text_safety import visible
 
 __all__ = ['render_html', 'escape', 'STYLE']
 
@@ -38,8 +50,6 @@ a { color: #1f5bc4; }
 
 def escape(text: str) -> str:
     """``text`` as HTML text (or attribute value)."""
-    from nodl.text_safety import visible
-
     return _escape(visible(text), quote=True)
 
 

@@ -16,8 +16,21 @@ import functools
 import re
 import string
 
-from nodl.doc.blocks import (Code, Contents, Heading, Inline, Link, Literal, Note, Page, Paragraph,
-                                    Picture, Table, href)
+from nodl.doc.blocks import (
+    Code,
+    Contents,
+    Heading,
+    Inline,
+    Link,
+    Literal,
+    Note,
+    Page,
+    Paragraph,
+    Picture,
+    Table,
+    href,
+)
+from nodl.text_safety import visible
 
 __all__ = ['render_markdown', 'escape']
 
@@ -32,8 +45,6 @@ def escape(text: str) -> str:
     """``text`` as literal Markdown text, on one line."""
     if text.isprintable():
         return text.translate(_ESCAPES)
-    from nodl.text_safety import visible
-
     return _SPACES.sub(' ', visible(text)).translate(_ESCAPES)
 
 
@@ -47,8 +58,6 @@ def _literal(text: str) -> str:
     if text.isascii() and text.isprintable():  # what visible() leaves as it is
         shown = ' '.join(text.split())
     else:
-        from nodl.text_safety import visible
-
         shown = ' '.join(visible(text).split())
     if not shown or '|' in shown or '`' in shown or shown != shown.strip():
         return escape(text)  # a code span cannot hold these safely in a table: plain text

@@ -19,20 +19,27 @@ services) is listed in one sentence, not in the tables.
 
 from __future__ import annotations
 
+import os
+from typing import TYPE_CHECKING
+
+from nodl.composition.entities import Provider
 from nodl.diagnostics import Diagnostic
 from nodl.doc.blocks import Code, Inline, Link, Literal, Note, Page, Table, label
 from nodl.doc.types import type_appendix, type_label
+from nodl.interface_types.mapping import PARAMETER_CPP, PARAMETER_PY
+from nodl.plan.parameter_plan import ROS_TYPES
+from nodl.text_safety import dump_yaml, one_line
+from nodl.validation.validators import lookup
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from typing import Any, Callable, Sequence
 
+    from nodl.composition.entities import Entity, Location
+    from nodl.composition.resolved import ResolvedNode
     from nodl.interface_types.resolve import InterfaceIndex
     from nodl.model.qos import QoSProfile
-    from nodl.system.entities import Entity, Location
-    from nodl.system.resolved import ResolvedNode
 
-__all__ = ['NodeSource', 'value_text', 'node_page', 'package_page', 'qos_words', 'parameter_block',
+__all__ = ['PageSource', 'value_text', 'node_page', 'package_page', 'qos_words', 'parameter_block',
            'PARAMETER_COLUMNS', 'ENDPOINT_COLUMNS', 'SECTION_TITLES', 'findings_table']
 
 #: The columns of the parameters table.
@@ -88,7 +95,7 @@ def qos_words(qos: QoSProfile | None) -> str:
     return ', '.join(words)
 
 
-class NodeSource:
+class PageSource:
     """What a node page says of where its definition comes from."""
 
     def __init__(self, package: str | None, executable: str | None, file: str,
@@ -105,8 +112,6 @@ class NodeSource:
         """``package/executable``, or the file's stem."""
         if self.package and self.executable:
             return f'{self.package}/{self.executable}'
-        import os
-
         name = os.path.basename(self.file)
         for ending in ('.nodl.yaml', '.nodl.yml', '.nodl.json', '.yaml', '.yml', '.json'):
             if name.endswith(ending):
@@ -135,10 +140,6 @@ def value_text(value: Any) -> str:
 
 
 def _parameter_row(entity: Entity) -> tuple[tuple[Inline, ...], ...]:
-    from nodl.plan.parameter_plan import ROS_TYPES
-    from nodl.interface_types.mapping import PARAMETER_CPP, PARAMETER_PY
-    from nodl.validation.validators import lookup
-
     definition = entity.definition
     spec = definition.type_spec
     base = spec.base if spec is not None else ''
@@ -173,8 +174,6 @@ def _one_line(text: str) -> str:
 def parameter_block(entities: Sequence[Entity]) -> str:
     """A ready-to-use YAML parameter file for the node's parameters (their defaults; a
     parameter without a default is listed in a comment, to be given)."""
-    from nodl.text_safety import dump_yaml, one_line
-
     values: dict[str, Any] = {}
     required: list[str] = []
     for entity in entities:
@@ -200,13 +199,11 @@ def findings_table(findings: Sequence[Diagnostic], display: Callable[[str], str]
     return Table(('Severity', 'Code', 'Where', 'Message'), tuple(rows))
 
 
-def node_page(resolved: ResolvedNode, source: NodeSource, index: InterfaceIndex,
+def node_page(resolved: ResolvedNode, source: PageSource, index: InterfaceIndex,
               display: Callable[[str], str], findings: Sequence[Diagnostic] = ()) -> tuple[Page, list[Diagnostic]]:
     """The page of a resolved node, and the findings made while building it (field tables
     that are unavailable).  ``display`` turns a file path into the words a page shows
     (paths relative to a root, so the pages do not depend on where they are built)."""
-    from nodl.system.entities import Provider
-
     anchor = label('node', source.title)
     page = Page(source.path, source.title, anchor)
     page.heading(1, source.title, anchor)

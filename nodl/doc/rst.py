@@ -15,8 +15,20 @@ import re
 import string
 import unicodedata
 
-from nodl.doc.blocks import (Code, Contents, Heading, Inline, Link, Literal, Note, Page, Paragraph,
-                                    Picture, Table)
+from nodl.doc.blocks import (
+    Code,
+    Contents,
+    Heading,
+    Inline,
+    Link,
+    Literal,
+    Note,
+    Page,
+    Paragraph,
+    Picture,
+    Table,
+)
+from nodl.text_safety import visible
 
 __all__ = ['render_rst', 'escape']
 
@@ -28,8 +40,6 @@ _UNDERLINES = {1: '=', 2: '-', 3: '~', 4: '^', 5: '"'}
 
 def escape(text: str) -> str:
     """``text`` as literal reStructuredText, on one line."""
-    from nodl.text_safety import visible
-
     shown = text if text.isprintable() else _SPACES.sub(' ', visible(text))
     return shown.translate(_ESCAPES)
 
@@ -39,8 +49,6 @@ def _width(text: str) -> int:
 
 
 def _markup(part: Link | Literal) -> str | None:
-    from nodl.text_safety import visible
-
     shown = ' '.join(visible(part.text).split())
     if isinstance(part, Link):
         return f':ref:`{escape(part.text)} <{part.label}>`'

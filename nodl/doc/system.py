@@ -13,16 +13,19 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+from nodl.diagnostics import Diagnostic, Severity
 from nodl.doc.blocks import Inline, Link, Literal, Note, Page, Picture, Table, label
 from nodl.doc.model import findings_table, value_text
+from nodl.graph import GraphError, render_graph
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from typing import Callable, Mapping
 
-    from nodl.system.run import Analysis
+    from nodl.composition.instance import InstanceEntity
     from nodl.diagnostics import Diagnostic
-    from nodl.system.instance import InstanceEntity
+    from nodl.system.run import Analysis
 
 __all__ = ['system_page', 'graph_picture']
 
@@ -34,9 +37,6 @@ _TITLES = {'topic': 'Topics', 'service': 'Services', 'action': 'Actions'}
 def graph_picture(analysis: Analysis, file: str) -> tuple[Picture | None, Diagnostic | None]:
     """The system's graph as SVG (kept as ``file`` next to the page), or why it cannot be
     drawn (NODL274: the layout program is missing or fails)."""
-    from nodl.graph import GraphError, render_graph
-    from nodl.diagnostics import Diagnostic, Severity
-
     try:
         svg = render_graph(analysis, 'svg')
     except GraphError as exc:

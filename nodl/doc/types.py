@@ -14,17 +14,37 @@ the table is unavailable and what to install (NODL270, NODL271, NODL272).
 from __future__ import annotations
 
 import functools
+from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.doc.blocks import Block, Heading, Inline, Link, Literal, Note, Paragraph, Table, label
+from nodl.doc.blocks import (
+    Block,
+    Heading,
+    Inline,
+    Link,
+    Literal,
+    Note,
+    Paragraph,
+    Table,
+    label,
+)
+from nodl.interface_types.mapping import cpp_type, python_type
+from nodl.interface_types.resolve import parse_type_name
+from nodl.interface_types.tree import (
+    ActionType,
+    InterfaceFileError,
+    MessageType,
+    ServiceType,
+    UnknownTypeError,
+    load_type,
+)
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from typing import Any
 
+    from nodl.composition.entities import Location
     from nodl.interface_types.resolve import InterfaceIndex
     from nodl.interface_types.tree import Field, FieldType, MessageType
-    from nodl.system.entities import Location
 
 __all__ = ['type_label', 'type_appendix', 'FIELD_COLUMNS']
 
@@ -55,8 +75,6 @@ def _comment(field: Field | Any) -> str:
 @functools.lru_cache(maxsize=4096)  # every page that uses a type shows the same field types
 def _language_types(field_type: FieldType) -> tuple[Inline, Inline]:
     """The C++ and Python type cells of a field type."""
-    from nodl.interface_types.mapping import cpp_type, python_type
-
     return Literal(cpp_type(field_type)), Literal(python_type(field_type))
 
 
@@ -95,9 +113,6 @@ def _message_blocks(page: str, message: MessageType, level: int, title: str | No
 
 def _unavailable(index: InterfaceIndex, type_name: str, where: Location | None
                  ) -> tuple[str, Diagnostic]:
-    from nodl.interface_types.resolve import parse_type_name
-    from nodl.interface_types.tree import InterfaceFileError, UnknownTypeError, load_type
-
     file, line, column = (where.file, where.line, where.column) if where is not None else ('', 0, 0)
     try:
         parsed = parse_type_name(type_name)
@@ -128,9 +143,6 @@ def type_appendix(index: InterfaceIndex, page: str, used: dict[str, Location | N
                   level: int = 2) -> tuple[list[Block], list[Diagnostic]]:
     """The field tables, on the page labelled ``page``, of the types ``used`` (type name -> where it is first used, for the
     findings), in the order given, then the nested types they hold; and the findings."""
-    from nodl.interface_types.tree import (ActionType, InterfaceFileError, MessageType,
-                                                  ServiceType, UnknownTypeError, load_type)
-
     blocks: list[Block] = []
     findings: list[Diagnostic] = []
     pending = list(used)

@@ -11,11 +11,18 @@ unless ``force``; writes are atomic, and never leave the output folder
 
 from __future__ import annotations
 
+import hashlib
 import os
+from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic
+from nodl.doc import EXTENSIONS
+from nodl.doc.blocks import Picture
+from nodl.doc.html import render_html
+from nodl.doc.markdown import render_markdown
+from nodl.doc.rst import render_rst
+from nodl.writing import MARKER_TAG, WriteError, marked_text, unmark, write_marked
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from nodl.doc.blocks import Page
     from nodl.doc.collect import DocSet
@@ -26,16 +33,10 @@ __all__ = ['render_page', 'render_files', 'write_files', 'mark_rst']
 def render_page(page: Page, format: str) -> str:
     """One page's text (unmarked) in ``md``, ``html`` or ``rst``; ValueError for another."""
     if format == 'md':
-        from nodl.doc.markdown import render_markdown
-
         return render_markdown(page)
     if format == 'html':
-        from nodl.doc.html import render_html
-
         return render_html(page)
     if format == 'rst':
-        from nodl.doc.rst import render_rst
-
         return render_rst(page)
     raise ValueError(f"unknown format {format!r}; expected md, html or rst")
 
@@ -44,10 +45,6 @@ def mark_rst(text: str) -> str:
     """reStructuredText with the content marker inside a leading comment block (``..`` then
     the indented marker line), which Sphinx shows nowhere; :func:`nodl.writing.marker_state`
     reads it as any other marker (its hash covers the text without that line)."""
-    import hashlib
-
-    from nodl.writing import MARKER_TAG, unmark
-
     body = unmark(text)
     if not body.startswith('..\n'):
         body = '..\n' + body if body.startswith('\n') else '..\n\n' + body
@@ -58,17 +55,12 @@ def mark_rst(text: str) -> str:
 def render_files(docs: DocSet, format: str) -> dict[str, str]:
     """Relative path (``/``-separated) -> the text to write, marked: every page, then every
     graph picture (next to its page)."""
-    from nodl.doc import EXTENSIONS
-    from nodl.writing import marked_text
-
     extension = EXTENSIONS[format]
     files: dict[str, str] = {}
     for path, page in sorted(docs.pages.items()):
         name = path + extension
         text = render_page(page, format)
         files[name] = mark_rst(text) if format == 'rst' else marked_text(name, text)
-        from nodl.doc.blocks import Picture
-
         for block in page.blocks:
             if isinstance(block, Picture) and format != 'html':  # html has it inline
                 folder = os.path.dirname(path)
@@ -81,8 +73,6 @@ def write_files(files: dict[str, str], folder: str, *, force: bool = False
                 ) -> tuple[list[str], list[Diagnostic]]:
     """Write ``files`` (from :func:`render_files`) under ``folder``: the paths written (a
     file that already holds its text is left alone), and a diagnostic per file not written."""
-    from nodl.writing import WriteError, write_marked
-
     written: list[str] = []
     problems: list[Diagnostic] = []
     for name, text in files.items():

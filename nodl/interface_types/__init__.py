@@ -18,7 +18,12 @@ no ROS package at all.
 
 from __future__ import annotations
 
-from nodl.interface_types.resolve import (InterfaceIndex, InterfacePackage, Resolution,
-                                                  TypeName, interface_index)
+from nodl.interface_types.resolve import (
+                                                  InterfaceIndex,
+                                                  InterfacePackage,
+                                                  Resolution,
+                                                  TypeName,
+                                                  interface_index,
+)
 
 __all__ = ['InterfaceIndex', 'InterfacePackage', 'Resolution', 'TypeName', 'interface_index']

@@ -16,7 +16,18 @@ package's own source types, are parsed as IDL.
 
 from __future__ import annotations
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+import os
+from typing import TYPE_CHECKING
+
+from nodl.interface_types.manifest import read_manifest
+from nodl.interface_types.tree import (
+    InterfaceFileError,
+    _adapter_spec,
+    _read_text,
+    load_type,
+)
+from nodl.validation.types import type_problem
+
 if TYPE_CHECKING:
     from typing import Any, Iterator
 
@@ -55,10 +66,6 @@ def type_entries(report: Report) -> Iterator[tuple[DocPath, str, str]]:
 def manifest_for(file: str, package_dir: str | None = None) -> Manifest | None:
     """The manifest a definition is checked against: ``package_dir``'s, or for a registered
     definition (a file under ``<prefix>/share/<package>/`` of an ament prefix) its package's."""
-    import os
-
-    from nodl.interface_types.manifest import read_manifest
-
     if package_dir is not None:
         return read_manifest(package_dir)
     folder = os.path.dirname(os.path.abspath(file))
@@ -115,8 +122,6 @@ def check_types(report: Report, index: InterfaceIndex, manifest: Manifest | None
 def _check_one(index: InterfaceIndex, text: str, namespace: str, path: DocPath,
                manifest: Manifest | None, own: str | None, build: bool
                ) -> Iterator[Diagnostic | tuple[str, Any]]:
-    from nodl.validation.types import type_problem
-
     problem = type_problem(text, namespace)
     if problem is not None and problem[0] is Severity.ERROR:
         return  # not a type name (reported by validation, NODL203/NODL204)
@@ -200,10 +205,6 @@ def interface_problem(index: InterfaceIndex, name: str) -> Any:
 
 
 def _problem(index: InterfaceIndex, name: str) -> Any:
-    import os
-
-    from nodl.interface_types.tree import InterfaceFileError, load_type
-
     package, namespace, base = name.split('/')
     owner = index.package(package)
     files = owner.types.get((namespace, base), []) if owner is not None else []
@@ -240,8 +241,6 @@ def _nested(path: str, package: str, namespace: str, base: str
             ) -> list[tuple[str, int, tuple[str, str]]]:
     """``(field, line, (package, Type))`` of each field of a ``.msg``/``.srv``/``.action``
     file whose type is a message; InterfaceFileError if the file is malformed."""
-    from nodl.interface_types.tree import _adapter_spec, _read_text
-
     text = _read_text(path)
     spec = _adapter_spec(text, path, package, namespace, base)  # as the typed tree reads it
     parts = {'msg': ('',), 'srv': ('request', 'response'),

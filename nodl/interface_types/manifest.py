@@ -10,6 +10,9 @@ not evaluated: a dependency counts whatever its condition.
 from __future__ import annotations
 
 import os
+import re
+import xml.etree.ElementTree as ET
+from xml.parsers import expat
 
 __all__ = ['Manifest', 'read_manifest', 'RUN_TIME', 'BUILD_TIME']
 
@@ -60,10 +63,6 @@ def read_manifest(folder: str) -> Manifest:
         return Manifest(path, problem='is larger than 1 MB')
     if b'<!DOCTYPE' in raw or b'<!ENTITY' in raw:
         return Manifest(path, problem='holds a DTD, which is not read')
-    import xml.etree.ElementTree as ET
-
-    from xml.parsers import expat
-
     depends: dict[str, dict[str, int]] = {}
     try:
         root = ET.fromstring(raw)
@@ -86,7 +85,5 @@ def read_manifest(folder: str) -> Manifest:
 
 
 def _line(text: str, tag: str, dependency: str) -> int:
-    import re
-
     match = re.search(rf'<{tag}(\s[^>]*)?>\s*{re.escape(dependency)}\s*</{tag}>', text)
     return text.count('\n', 0, match.start()) + 1 if match else 0

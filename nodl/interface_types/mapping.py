@@ -14,7 +14,10 @@ Parameter types are mapped as rclcpp (``rclcpp::Parameter::as_*``) and rclpy
 
 from __future__ import annotations
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
+
+from nodl.interface_types.tree import FieldType
+
 if TYPE_CHECKING:
     from nodl.interface_types.tree import FieldType
 
@@ -118,8 +121,6 @@ def spec_note(field_type: FieldType) -> str | None:
 def spec_notes() -> dict[str, str]:
     """IDL type -> where spec 003 and the installed generators disagree, for the types the
     rules of :func:`spec_note` concern (``octet``, sequences of ``int32``/``uint32``...)."""
-    from nodl.interface_types.tree import FieldType
-
     out: dict[str, str] = {}
     for base in ('octet', 'int32', 'uint32'):
         for container, size in ((None, None), ('sequence', None), ('bounded_sequence', 3)):

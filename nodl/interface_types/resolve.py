@@ -15,13 +15,12 @@ hundred definitions reads the index once (see :func:`interface_index`).
 
 from __future__ import annotations
 
+import difflib
 import os
+from typing import Any, Iterable, NamedTuple
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
-if TYPE_CHECKING:
-    from typing import Any, Iterable
-
-from typing import NamedTuple
+from nodl.ament_index import in_snapshot, prefix_paths, remembered
+from nodl.interface_types.manifest import read_manifest
 
 __all__ = ['TypeName', 'InterfacePackage', 'InterfaceIndex', 'Resolution', 'interface_index',
            'NAMESPACES', 'INTERFACE_SUFFIXES', 'parse_type_name']
@@ -122,8 +121,6 @@ class InterfaceIndex:
     """
 
     def __init__(self, prefixes: list[str] | None = None, sources: Iterable[str] = ()) -> None:
-        from nodl.ament_index import prefix_paths
-
         self.prefixes = list(prefixes) if prefixes is not None else prefix_paths()
         self._packages: dict[str, InterfacePackage | None] = {}
         self._listing: dict[str, frozenset[str]] = {}
@@ -153,8 +150,6 @@ class InterfaceIndex:
         installed package of the same name.  ``name`` defaults to ``package.xml``'s
         ``<name>`` (else the folder's name)."""
         if name is None:
-            from nodl.interface_types.manifest import read_manifest
-
             manifest = read_manifest(folder)
             name = manifest.name or os.path.basename(os.path.abspath(folder))
         files: list[str] = []
@@ -263,8 +258,6 @@ def _close(word: str, candidates: list[str], cutoff: float = 0.6) -> list[str]:
     lowered = {c.lower(): c for c in candidates}
     if word.lower() in lowered:
         return [lowered[word.lower()]]
-    import difflib
-
     return difflib.get_close_matches(word, candidates, n=3, cutoff=cutoff)
 
 
@@ -274,8 +267,6 @@ def interface_index(sources: Iterable[str] = (), prefixes: list[str] | None = No
     Inside :func:`nodl.ament_index.snapshot` the same index (and its type
     cache) is returned for the same prefixes and sources; outside one, a new one.
     """
-    from nodl.ament_index import in_snapshot, prefix_paths, remembered
-
     chosen = list(prefixes) if prefixes is not None else prefix_paths()
     folders = tuple(os.path.abspath(s) for s in sources)
     if not in_snapshot():

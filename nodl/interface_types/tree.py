@@ -17,9 +17,11 @@ placed at the line (and column) of the problem when the parser says where.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import os
+from typing import TYPE_CHECKING
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from typing import Any, Union
 
@@ -305,9 +307,6 @@ def _to_idl(text: str, path: str, package: str, namespace: str, name: str) -> st
 
 def _quiet() -> Any:
     """Standard output and error captured (the library never prints)."""
-    import contextlib
-    import io
-
     stack = contextlib.ExitStack()
     stack.enter_context(contextlib.redirect_stdout(io.StringIO()))
     stack.enter_context(contextlib.redirect_stderr(io.StringIO()))

@@ -20,17 +20,28 @@ a skew.  A node offering neither is said once (NODL422), not per service.
 
 from __future__ import annotations
 
-from typing import Any
+import time
+from typing import TYPE_CHECKING, Any
 
+from nodl.composition.entities import Location
+from nodl.interface_types.hashes import (
+    description_differences,
+    type_description,
+    type_hash,
+)
+from nodl.interface_types.tree import InterfaceFileError
 from nodl.live.conformance import Difference, Remaps, final_name
 from nodl.live.observe import ACTION_INFIX, ObservedEndpoint, ObservedNode
-from nodl.system.entities import Location
-from nodl.vocabulary import ACTION_SECTIONS, SERVICE_SECTIONS, TOPIC_SECTIONS
+from nodl.vocabulary import (
+    ACTION_SECTIONS,
+    SECTION_KEYS,
+    SERVICE_SECTIONS,
+    TOPIC_SECTIONS,
+)
 
-TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from nodl.composition.resolved import ResolvedNode
     from nodl.interface_types.resolve import InterfaceIndex
-    from nodl.system.resolved import ResolvedNode
 
 __all__ = ['type_skew', 'declared_locations', 'running_description', 'TypeDescriptions']
 
@@ -41,8 +52,6 @@ ANSWER_TIMEOUT = 2.0
 def declared_locations(resolved: ResolvedNode, observed: ObservedNode,
                        remaps: Remaps = None) -> dict[tuple[str, str], Location]:
     """``(section, final name)`` -> where the endpoint is declared (topics, services, actions)."""
-    from nodl.vocabulary import SECTION_KEYS
-
     where = {id(e.definition): e.location for e in resolved.entities}
     out: dict[tuple[str, str], Location] = {}
     for section in SECTION_KEYS:
@@ -113,8 +122,6 @@ class TypeDescriptions:
         """``('described', description)`` (shaped like the generator's), ``('refused', None)``
         when the node uses no type of that name and hash, ``('silent', None)`` when it serves
         no descriptions or does not answer."""
-        import time
-
         if not self.served or self._silent:
             return 'silent', None
         from type_description_interfaces.srv import GetTypeDescription  # type: ignore[import-untyped]
@@ -178,9 +185,6 @@ class _Unreadable(Exception):
 def _installed(index: InterfaceIndex, name: str) -> str | None:
     """The installed hash of ``name``; None when it is not installed here (nothing to
     compare with: ``validate --types`` says so); _Unreadable for a malformed file."""
-    from nodl.interface_types.hashes import type_hash
-    from nodl.interface_types.tree import InterfaceFileError
-
     try:
         return type_hash(index, name)
     except InterfaceFileError as exc:
@@ -191,8 +195,6 @@ def _installed(index: InterfaceIndex, name: str) -> str | None:
 
 def _fields(index: InterfaceIndex, asker: TypeDescriptions, type_name: str, reported: str) -> str:
     """The differing fields in words, from the node's own description of ``type_name``."""
-    from nodl.interface_types.hashes import description_differences, type_description
-
     status, running = asker.ask(type_name, reported)
     if running is None:
         return ('the node serves no description of it (~/get_type_description), so the '

@@ -15,7 +15,7 @@ starts a generated or runtime node.
 
 from __future__ import annotations
 
-from nodl.params.check import check_parameter_files, check_launch_parameters
+from nodl.params.check import check_launch_parameters, check_parameter_files
 from nodl.plan.defaults_file import defaults_yaml
 
 __all__ = ['check_parameter_files', 'check_launch_parameters', 'defaults_yaml']

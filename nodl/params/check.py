@@ -17,13 +17,23 @@ anchor is a warning (NODL711: rcl ignores it), a merge key ``<<`` an error
 
 from __future__ import annotations
 
-from typing import Any, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, Sequence
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.plan.parameter_plan import ParametersPlan, plan_parameters, value_problems
+from nodl.launch.overrides import match_parameter_file_nodes
+from nodl.launch.params import load_parameter_file
+from nodl.model.parameter_types import TypeSpec
+from nodl.plan.parameter_plan import (
+    ParametersPlan,
+    plan_parameters,
+    type_problem,
+    value_problems,
+)
 from nodl.system import Entity, ResolvedNode
+from nodl.system.checks.parameters import launch_value_verdict
+from nodl.system.run import LAUNCH_KIND, analyse_launch
+from nodl.validation.messages import did_you_mean
 
-TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.launch.sandbox import LaunchLimits
 
@@ -48,12 +58,6 @@ def _declared_here(name: str, entity: Any) -> list[tuple[str, int, int, str]]:
 
 def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) -> list[Diagnostic]:
     """Every problem of ``files`` for ``node`` started as ``fqn`` (``/ns/name``)."""
-    from nodl.system.checks.parameters import launch_value_verdict
-    from nodl.launch.overrides import match_parameter_file_nodes
-    from nodl.model.parameter_types import TypeSpec
-    from nodl.launch.params import load_parameter_file
-    from nodl.validation.messages import did_you_mean
-
     plan, entities = _plan(node)
     names = [p.name for p in plan.parameters]
     out: list[Diagnostic] = []
@@ -98,8 +102,6 @@ def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) ->
                 problems = value_problems(parameter, value)
                 if not problems:
                     continue
-                from nodl.plan.parameter_plan import type_problem
-
                 code = 'NODL702' if type_problem(parameter, value) is not None else 'NODL703'
                 out.append(Diagnostic(
                     Severity.ERROR, f"parameter {name!r} of {fqn}: {value!r} is invalid: "
@@ -133,8 +135,6 @@ def check_launch_parameters(launch_file: str, files: Sequence[str] = (),
     definitions are looked up in (default: ``AMENT_PREFIX_PATH``).  ``limits``: how the
     launch's Python code runs, if at all (:class:`~nodl.launch.sandbox.LaunchLimits`).
     """
-    from nodl.system.run import LAUNCH_KIND, analyse_launch
-
     analysis = analyse_launch(launch_file, arguments or {}, prefixes=prefixes, limits=limits)
     out = [f.diagnostic for f in analysis.findings
            if (f.kind == LAUNCH_KIND and f.severity is Severity.ERROR)

@@ -32,8 +32,8 @@ from dataclasses import dataclass
 from dataclasses import field as _field
 from typing import Any, Iterable, Sequence, Union
 
-from nodl.plan.identifiers import PYTHON_KEYWORDS, IdentifierScope
 from nodl.model.parameter_types import TypeSpec, parse_type
+from nodl.plan.identifiers import PYTHON_KEYWORDS, IdentifierScope
 from nodl.validation.validators import ValidatorRule, lookup
 from nodl.vocabulary import ROS_PARAMETER_TYPE_NAMES
 

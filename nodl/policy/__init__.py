@@ -20,7 +20,15 @@ from nodl.policy.enclaves import ENCLAVE_MODES, assign_enclaves, load_enclave_ma
 from nodl.policy.generate import MissingNode, PolicyResult, policy_for_instances
 from nodl.policy.grants import profile_for_instance
 from nodl.policy.live import live_policy
-from nodl.policy.model import PERMISSIONS, POLICY_VERSION, Enclave, Grant, Policy, Profile, Source
+from nodl.policy.model import (
+    PERMISSIONS,
+    POLICY_VERSION,
+    Enclave,
+    Grant,
+    Policy,
+    Profile,
+    Source,
+)
 from nodl.policy.names import dds_topics, resolve_policy_name, written_name
 from nodl.policy.schema_check import check_policy_structure, read_policy
 from nodl.policy.targets import instances_from_definitions, split_targets

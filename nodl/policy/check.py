@@ -20,10 +20,12 @@ from __future__ import annotations
 
 import fnmatch
 import os
+from pathlib import Path
 from typing import NamedTuple
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.frontends.xml_reader import XmlElement
+from nodl.naming import join_name
 from nodl.policy.model import PERMISSIONS, Policy
 from nodl.policy.names import has_wildcard, resolve_policy_name, written_name
 from nodl.policy.schema_check import ParsedPolicy, check_policy_structure, read_policy
@@ -54,8 +56,6 @@ class GrantedName(NamedTuple):
 
 
 def _fqn(namespace: str, node: str) -> str:
-    from nodl.naming import join_name
-
     return join_name(namespace, node)
 
 
@@ -210,6 +210,4 @@ def check_parsed_policy(parsed: ParsedPolicy, expected: Policy) -> list[Diagnost
 
 def check_policy_file(path: str | os.PathLike[str], expected: Policy) -> list[Diagnostic]:
     """Compare the policy file at ``path`` with ``expected``.  OSError if it cannot be read."""
-    from pathlib import Path
-
     return check_parsed_policy(read_policy(Path(path)), expected)

@@ -29,9 +29,14 @@ from __future__ import annotations
 
 import fnmatch
 import os
+from pathlib import Path
 from typing import Iterable, Mapping, NamedTuple
 
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.frontends.source import read_source
+from nodl.frontends.yaml_json import parse_document
+from nodl.naming import full_name_error, namespace_error
+from nodl.policy.names import has_wildcard
 
 __all__ = ['ENCLAVE_MODES', 'EnclaveMapping', 'load_enclave_mapping', 'assign_enclaves',
            'enclave_path_error']
@@ -42,8 +47,6 @@ ENCLAVE_MODES = ('node', 'namespace')
 
 def enclave_path_error(path: str) -> str | None:
     """Why ``path`` is not a valid enclave name (None: it is)."""
-    from nodl.naming import namespace_error
-
     if not path.startswith('/'):
         return 'an enclave path is absolute (starts with /)'
     return namespace_error(path)
@@ -67,9 +70,6 @@ class EnclaveMapping(NamedTuple):
 
 def entry_error(entry: str) -> str | None:
     """Why ``entry`` of a mapping file is neither a fully qualified node name nor a pattern of one."""
-    from nodl.naming import full_name_error
-    from nodl.policy.names import has_wildcard
-
     if not entry.startswith('/'):
         return 'entries are fully qualified node names or patterns, starting with /'
     if has_wildcard(entry):
@@ -83,11 +83,6 @@ def _problem(file: str, message: str, line: int = 0, column: int = 0) -> Diagnos
 
 def load_enclave_mapping(path: str) -> tuple[EnclaveMapping | None, list[Diagnostic]]:
     """Read a mapping file; (None, problems) if it cannot be used.  OSError if unreadable."""
-    from pathlib import Path
-
-    from nodl.frontends.source import read_source
-    from nodl.frontends.yaml_json import parse_document
-
     text, problem = read_source(Path(path), path)
     if text is None:
         assert problem is not None
@@ -186,8 +181,6 @@ def _mapped(mapping: EnclaveMapping, fqn: str, required: bool = True
             ) -> tuple[str | None, Diagnostic | None]:
     """The enclave of ``fqn`` in ``mapping`` (None and why when there is not exactly one;
     no problem when there is none and ``required`` is false)."""
-    from nodl.policy.names import has_wildcard
-
     by_name: dict[str, str] = {}  # enclave path -> the entry naming the node
     by_pattern: dict[str, str] = {}  # enclave path -> the first pattern matching the node
     for path, entries, _ in mapping.entries:
@@ -219,8 +212,6 @@ def _mapped(mapping: EnclaveMapping, fqn: str, required: bool = True
 
 def _unused_names(mapping: EnclaveMapping, fqns: set[str]) -> list[Diagnostic]:
     """A warning for each node name of ``mapping`` that is no node of the system."""
-    from nodl.policy.names import has_wildcard
-
     out = []
     for path, entries, _ in mapping.entries:
         for entry in entries:

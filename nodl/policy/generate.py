@@ -14,16 +14,19 @@ in the profile says so).
 
 from __future__ import annotations
 
-from typing import Iterable, Mapping, NamedTuple, Sequence
+from typing import TYPE_CHECKING, Iterable, Mapping, NamedTuple, Sequence
 
+from nodl.composition.entities import Location
+from nodl.composition.instance import NodeInstance
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.policy.distros import DEFAULT_DISTRO
 from nodl.policy.enclaves import EnclaveMapping, assign_enclaves
+from nodl.policy.grants import display_path, profile_for_instance
 from nodl.policy.model import Policy, Profile
-from nodl.system.entities import Location
-from nodl.system.instance import NodeInstance
+from nodl.system.gc_tuning import batch_collection
+from nodl.targets.drafts import describe, draft_gaps
+from nodl.vocabulary import SECTION_BY_KEY
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
 if TYPE_CHECKING:
     from nodl.targets.drafts import DraftGap
     from nodl.targets.resolve import Provenance
@@ -60,8 +63,6 @@ def gapped_nodes(nodes: Iterable[tuple[str, str | None, Location | None]]) -> li
     """The nodes among ``(fqn, definition file, launch location)`` whose definition is an
     extracted draft with communication entities still under ``# GAP`` (parameters need no
     grant); each draft read once."""
-    from nodl.targets.drafts import draft_gaps
-
     read: dict[str, tuple[DraftGap, ...]] = {}
     out: list[GappedNode] = []
     for fqn, file, location in nodes:
@@ -106,8 +107,6 @@ def policy_for_instances(instances: Iterable[NodeInstance], *,
     definition is a draft with unresolved entities (:func:`gapped_nodes`); each is
     NODL617, an error unless ``allow_gaps``.
     """
-    from nodl.system.gc_tuning import batch_collection
-
     # a large system allocates many objects that live until the end: collect less often
     with batch_collection():
         result = _policy_for_instances(list(instances), missing, distro, enclaves, allow_missing,
@@ -119,9 +118,6 @@ def policy_for_instances(instances: Iterable[NodeInstance], *,
 
 def _mark_gaps(result: PolicyResult, gapped: Sequence[GappedNode], allow_gaps: bool) -> PolicyResult:
     """NODL617 for each node of ``gapped``, and a note in its profile per unresolved entity."""
-    from nodl.policy.grants import display_path
-    from nodl.targets.drafts import describe
-
     profiles = {profile.fqn: profile for enclave in result.policy.enclaves
                 for profile in enclave.profiles}
     diagnostics = list(result.diagnostics)
@@ -154,16 +150,12 @@ def _mark_gaps(result: PolicyResult, gapped: Sequence[GappedNode], allow_gaps: b
 
 
 def _word(section: str) -> str:
-    from nodl.vocabulary import SECTION_BY_KEY
-
     return SECTION_BY_KEY[section].word
 
 
 def _policy_for_instances(instances: list[NodeInstance], missing: Sequence[MissingNode], distro: str,
                           enclaves: str | EnclaveMapping, allow_missing: bool, notes: Sequence[str],
                           containers: Mapping[str, str] | None) -> PolicyResult:
-    from nodl.policy.grants import display_path, profile_for_instance
-
     diagnostics: list[Diagnostic] = []
     profiles: list[Profile] = []
     seen: dict[str, NodeInstance] = {}

@@ -18,12 +18,12 @@ from __future__ import annotations
 import functools
 import os
 
+from nodl.composition.entities import Location, Provider
+from nodl.composition.instance import NodeInstance
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.policy.distros import DEFAULT_DISTRO, check_distro, exists_in
 from nodl.policy.model import ACCESS_OF_KIND, Profile, Source
 from nodl.policy.names import written_name_error
-from nodl.system.entities import Location, Provider
-from nodl.system.instance import NodeInstance
 
 __all__ = ['profile_for_instance', 'display_path', 'CLOCK_TOPIC', 'CLOCK_TYPE', 'use_sim_time_can_be_true']
 

@@ -10,16 +10,23 @@ are reported as they are; a node without a usable definition is a gap
 from __future__ import annotations
 
 import os
-from typing import Mapping
+from typing import TYPE_CHECKING, Mapping
 
 from nodl.policy.distros import DEFAULT_DISTRO
 from nodl.policy.enclaves import EnclaveMapping
-from nodl.policy.generate import MissingNode, PolicyResult, policy_for_instances
+from nodl.policy.generate import (
+    MissingNode,
+    PolicyResult,
+    gapped_nodes,
+    policy_for_instances,
+)
+from nodl.policy.grants import display_path
+from nodl.system.launched import node_provenance
+from nodl.system.run import analyse_launch
 
-TYPE_CHECKING = False
 if TYPE_CHECKING:
     from nodl.launch.sandbox import LaunchLimits
-    from nodl.targets.overlay import Definitions
+    from nodl.registry.overlay import Definitions
 
 __all__ = ['launch_policy']
 
@@ -36,9 +43,6 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
     their layout is among the diagnostics).  OSError if the launch file cannot be read at
     all; ValueError if it cannot be parsed (its diagnostics in the message).
     """
-    from nodl.system.run import analyse_launch
-    from nodl.policy.grants import display_path
-
     path = os.fspath(path)
     if not os.path.isfile(path):
         raise OSError(2, 'No such file or directory' if not os.path.isdir(path) else 'is a directory',
@@ -61,8 +65,6 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
             reason = f'{node.executable_label}: its name or remapping cannot be resolved'
         missing.append(MissingNode(node.fqn, reason, node.location))
     containers = {node.fqn: node.entry.container for node in analysis.nodes if node.entry.container}
-    from nodl.policy.generate import gapped_nodes
-
     gapped = gapped_nodes((node.fqn, node.match.file, node.location) for node in analysis.nodes
                           if node.instance is not None)
     result = policy_for_instances(
@@ -70,8 +72,6 @@ def launch_policy(path: str | os.PathLike[str], arguments: Mapping[str, str] | N
         containers=containers, gapped=gapped, allow_gaps=allow_gaps,
         notes=[f'Least-privilege SROS 2 policy written by nodl policy for the system '
                f'{display_path(os.path.abspath(path))} launches.'])
-    from nodl.system.launched import node_provenance
-
     sources = tuple(node_provenance(node) for node in analysis.nodes)
     return result._replace(diagnostics=launch_problems + result.diagnostics, sources=sources,
                            files=tuple(dict.fromkeys([path, *analysis.files()])))

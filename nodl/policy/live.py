@@ -14,6 +14,13 @@ from __future__ import annotations
 
 from typing import Any, NamedTuple
 
+from nodl.composition.instance import NodeInstance
+from nodl.composition.resolved import resolve_node
+from nodl.live.describe import describe_observed
+from nodl.live.describe_all import _discover
+from nodl.live.observe import observe_node
+from nodl.live.session import LiveError, is_hidden_node, ros_session
+from nodl.loading import dump_nodl
 from nodl.policy.distros import DEFAULT_DISTRO
 from nodl.policy.enclaves import EnclaveMapping
 from nodl.policy.generate import PolicyResult, policy_for_instances
@@ -33,11 +40,6 @@ class LivePolicy(NamedTuple):
 
 
 def _instance(observed: Any, client_library: str | None) -> Any:
-    from nodl.live.describe import describe_observed
-    from nodl.loading import dump_nodl
-    from nodl.system.instance import NodeInstance
-    from nodl.system.resolved import resolve_node
-
     description = describe_observed(observed, client_library)
     text = dump_nodl(description.node, 'yaml')
     resolved = resolve_node(text, file=f'<observed {observed.fully_qualified_name}>',
@@ -57,10 +59,6 @@ def live_policy(*, timeout: float = 5.0, settle: float = 3.5, distro: str = DEFA
     once a node is seen).  Raises :class:`~nodl.live.session.LiveError`
     when the graph is empty.
     """
-    from nodl.live.describe_all import _discover
-    from nodl.live.observe import observe_node
-    from nodl.live.session import LiveError, is_hidden_node, ros_session
-
     instances = []
     unobserved: list[str] = []
     observed_names: list[str] = []

@@ -17,6 +17,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Iterator, NamedTuple
 
+from nodl.composition.entities import EntityKind
+from nodl.naming import join_name
+
 __all__ = ['POLICY_VERSION', 'PermissionList', 'PERMISSIONS', 'ACCESS_OF_KIND', 'permission_list',
            'Source', 'Grant', 'Profile', 'Enclave', 'Policy']
 
@@ -79,8 +82,6 @@ ACCESS_OF_KIND: dict[str, tuple[str, str]] = {}
 
 
 def _fill_access_table() -> None:
-    from nodl.system.entities import EntityKind
-
     for kind in EntityKind:
         if kind.communication is not None:
             ACCESS_OF_KIND[kind.value] = (kind.communication, access_for(kind.communication, kind.offers))
@@ -151,8 +152,6 @@ class Profile:
     @property
     def fqn(self) -> str:
         """``/namespace/node``."""
-        from nodl.naming import join_name
-
         return join_name(self.namespace, self.node)
 
     def grant(self, communication: str, access: str, name: str, source: Source | None = None) -> Grant:

@@ -33,8 +33,10 @@ import re
 from typing import TYPE_CHECKING, Iterator, NamedTuple
 
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.frontends.source import read_source
 from nodl.frontends.xml_reader import XmlElement, XmlTree, load_xml
 from nodl.policy.model import PERMISSIONS, POLICY_VERSION, QUALIFIERS
+from nodl.policy.xinclude import Origin, Origins, expand_includes
 
 if TYPE_CHECKING:
     from nodl.policy.xinclude import Origin, Origins
@@ -94,8 +96,6 @@ class ParsedPolicy(NamedTuple):
 
 def read_policy(source: str | os.PathLike[str], file: str | None = None) -> ParsedPolicy:
     """Read a policy document: a path, or (``str``) its text.  OSError if the file cannot be read."""
-    from nodl.frontends.source import read_source
-
     if isinstance(source, os.PathLike):
         read, problem = read_source(source, file)
     else:
@@ -107,8 +107,6 @@ def read_policy(source: str | os.PathLike[str], file: str | None = None) -> Pars
     starts = [0] + [m.end() for m in _LINE_BREAK.finditer(read.text)]
     origins = None
     if tree.root is not None and 'XInclude' in read.text:
-        from nodl.policy.xinclude import Origin, Origins, expand_includes
-
         origins = Origins()
         expand_includes(tree.root, Origin(read.file, read.text, starts), origins, tree.diagnostics)
     return ParsedPolicy(read.file, read.text, tree, starts, origins)

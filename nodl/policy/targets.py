@@ -8,8 +8,14 @@ callers of this module.
 from __future__ import annotations
 
 from nodl.targets.placement import (
-    LAUNCH_SUFFIXES, Definition, default_node_name, instances_from_definitions, is_launch_file,
-    split_node_name, split_targets)
+    LAUNCH_SUFFIXES,
+    Definition,
+    default_node_name,
+    instances_from_definitions,
+    is_launch_file,
+    split_node_name,
+    split_targets,
+)
 
 __all__ = ['Definition', 'LAUNCH_SUFFIXES', 'is_launch_file', 'split_targets', 'default_node_name',
            'split_node_name', 'instances_from_definitions']

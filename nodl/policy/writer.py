@@ -31,6 +31,14 @@ import re
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.policy.model import POLICY_VERSION, Policy, Profile, permission_list
 from nodl.policy.names import resolve_policy_name, written_name, written_name_error
+from nodl.system.gc_tuning import batch_collection
+from nodl.text_safety import (
+    UNSAFE,
+    describe_character,
+    is_bidi_control,
+    one_line,
+    visible,
+)
 
 __all__ = ['write_policy', 'PolicyNotWritable', 'xml_text', 'xml_attribute', 'xml_comment']
 
@@ -61,8 +69,6 @@ def xml_attribute(text: str) -> str:
 def xml_comment(text: str) -> str:
     """``<!-- text -->`` with what a comment cannot hold (``--``, a final ``-``, line breaks) defused,
     control and bidi characters written as visible escapes."""
-    from nodl.text_safety import one_line
-
     text = one_line(text)
     while '--' in text:
         text = text.replace('--', '- -')
@@ -114,8 +120,6 @@ def _profile_lines(profile: Profile, problems: list[Diagnostic]) -> list[str]:
 
 def write_policy(policy: Policy) -> str:
     """The policy document as text (UTF-8 XML); :class:`PolicyNotWritable` if SROS 2 would reject it."""
-    from nodl.system.gc_tuning import batch_collection
-
     with batch_collection():  # the lines live until the end
         return _write_policy(policy)
 
@@ -180,8 +184,6 @@ def _unsafe_name(text: str) -> list[Diagnostic]:
     """The first control character (NODL223) or Trojan Source bidi control (NODL224) of the
     written ``text``, as an error at it: SROS 2 would grant the name as it is, and a reviewer
     would not see it (or see it reordered)."""
-    from nodl.text_safety import UNSAFE, describe_character, is_bidi_control, visible
-
     found = UNSAFE.search(text)
     if found is None:
         return []

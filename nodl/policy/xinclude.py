@@ -36,7 +36,8 @@ from pathlib import Path
 from typing import NamedTuple
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.frontends.xml_reader import XmlElement
+from nodl.frontends.source import read_source
+from nodl.frontends.xml_reader import XmlElement, load_xml
 
 __all__ = ['XINCLUDE_NAMESPACES', 'MAX_DEPTH', 'MAX_INCLUDES', 'MAX_INCLUDED_BYTES', 'Origin', 'Origins',
            'expand_includes']
@@ -203,9 +204,6 @@ class _Expander:
 
     def read(self, include: XmlElement, origin: Origin, path: str, href: str
              ) -> tuple[XmlElement, Origin] | None:
-        from nodl.frontends.xml_reader import load_xml
-        from nodl.frontends.source import read_source
-
         shown = os.path.relpath(path) if not os.path.isabs(origin.file) else path
         try:
             read, problem = read_source(Path(path), shown)

@@ -23,13 +23,15 @@ from __future__ import annotations
 
 from typing import Any
 
-from nodl.runtime.errors import RuntimeDefinitionError
 from nodl.runtime.binding import callback
+from nodl.runtime.errors import RuntimeDefinitionError
 
 __all__ = ['NodlNode', 'NodlLifecycleNode', 'RuntimeDefinitionError', 'callback', 'ActionCallbacks']
 
 
 def __getattr__(name: str) -> Any:
+    # NodlNode needs rclpy, which `import nodl.runtime` must not (the decorators and errors
+    # are used without ROS): the node module is loaded when one of its names is asked for.
     if name in ('NodlNode', 'NodlLifecycleNode'):
         from nodl.runtime import node
 

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Mapping, TypeVar
 
 from nodl.runtime.errors import RuntimeDefinitionError
+from nodl.system import EntityKind
 
 __all__ = ['callback', 'ActionCallbacks', 'CALLBACK_ATTRIBUTE', 'collect_callbacks', 'missing_callbacks']
 
@@ -49,8 +50,6 @@ def callback(name: str, role: str = 'callback', kind: Any = None) -> Callable[[F
 
 def _key(key: CallbackKey, needed: Mapping[tuple[Any, str], str]) -> tuple[Any, str]:
     """The ``(kind, name)`` of ``needed`` that ``key`` (a name or ``(kind, name)``) means."""
-    from nodl.system import EntityKind
-
     if isinstance(key, tuple) and len(key) == 2:
         kind, name = key
         try:
@@ -80,8 +79,6 @@ def collect_callbacks(owner: Any, mapping: Mapping[CallbackKey, Any] | None,
     ``needed`` maps the ``(EntityKind, declared name)`` of every entity that needs a callback to
     its kind's words.  A key may be the declared name alone when no other such entity has it.
     """
-    from nodl.system import EntityKind
-
     found: dict[tuple[Any, str], Any] = {}
     problems: list[str] = []
     for key, value in (mapping or {}).items():

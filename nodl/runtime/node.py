@@ -12,13 +12,24 @@ from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackRet
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 
+from nodl.generate import default_node_name
+from nodl.generate.definition import resolve_target
 from nodl.plan.parameter_plan import ParametersPlan, plan_parameters
 from nodl.runtime.binding import ActionCallbacks, collect_callbacks, missing_callbacks
 from nodl.runtime.errors import RuntimeDefinitionError
-from nodl.runtime.parameters import (
-    CustomValidator, ParameterSnapshot, build_snapshot, check_required, custom_validator_problems,
-    descriptor_of, normalized, problems_of, python_default)
+from nodl.runtime.parameter_behaviour import (
+    CustomValidator,
+    ParameterSnapshot,
+    build_snapshot,
+    check_required,
+    custom_validator_problems,
+    descriptor_of,
+    normalized,
+    problems_of,
+    python_default,
+)
 from nodl.system import Entity, EntityKind, InterfaceType, ResolvedNode
+from nodl.vocabulary import QOS_DURATIONS
 
 __all__ = ['NodlNode', 'NodlLifecycleNode', 'Definition']
 
@@ -31,8 +42,6 @@ _NEEDS_CALLBACK = (EntityKind.SUBSCRIPTION, EntityKind.SERVICE_SERVER, EntityKin
 def _resolve(definition: Definition) -> ResolvedNode:
     if isinstance(definition, ResolvedNode):
         return definition
-    from nodl.generate.definition import resolve_target
-
     target = list(definition) if isinstance(definition, tuple) else [os.fspath(definition)]
     try:
         node, diagnostics, _ = resolve_target(target, 'rclpy')
@@ -65,9 +74,13 @@ def _import_type(entity: Entity) -> Any:
 
 def _qos(entity: Entity) -> Any:
     from rclpy.duration import Duration
-    from rclpy.qos import DurabilityPolicy, HistoryPolicy, LivelinessPolicy, QoSProfile, ReliabilityPolicy
-
-    from nodl.vocabulary import QOS_DURATIONS
+    from rclpy.qos import (
+        DurabilityPolicy,
+        HistoryPolicy,
+        LivelinessPolicy,
+        QoSProfile,
+        ReliabilityPolicy,
+    )
 
     qos = entity.qos
     if qos is None:
@@ -269,8 +282,6 @@ class _NodlMixin:
 def _node_name(prepared: _Prepared, node_name: str | None) -> str:
     if node_name:
         return node_name
-    from nodl.generate import default_node_name
-
     return default_node_name(prepared.resolved.file)
 
 

@@ -8,8 +8,11 @@ subclass, written once, with a placeholder for every callback and ``main``.
 from __future__ import annotations
 
 from nodl.generate import GenerateOptions, default_class_name
-from nodl.scaffold import Authorship, NodeSource, PlannedFile
+from nodl.generate.cpp import plan_cpp
+from nodl.generate.cpp.user import render_user_source
 from nodl.scaffold.common import definition_path
+from nodl.scaffold.model import Authorship, NodeSource, PlannedFile
+from nodl.text_safety import UNSAFE, describe_character
 
 __all__ = ['cmake_files', 'cpp_options']
 
@@ -24,8 +27,6 @@ def _cmake_string(text: str) -> str:
     """``text`` as a CMake quoted argument: backslash, quote and ``$`` (a variable reference)
     escaped, tab and line breaks as CMake's escapes; ValueError for another control or a bidi
     character (CMake has no escape for them, and no name the scaffold writes may hold one)."""
-    from nodl.text_safety import UNSAFE, describe_character
-
     quoted = text.replace('\\', '\\\\').replace('"', '\\"').replace('$', '\\$')
     quoted = quoted.replace('\t', '\\t').replace('\n', '\\n').replace('\r', '\\r')
     found = UNSAFE.search(quoted)
@@ -89,9 +90,6 @@ def cmake_files(package: str, nodes: list[NodeSource], component: bool = False,
                 author: Authorship = Authorship()) -> list[PlannedFile]:
     """CMakeLists.txt and ``src/<exe>.cpp`` per node (``component``: each node an rclcpp component
     registered with ``RCLCPP_COMPONENTS_REGISTER_NODE``, and an executable that runs it alone)."""
-    from nodl.generate.cpp import plan_cpp
-    from nodl.generate.cpp.user import render_user_source
-
     files = [PlannedFile('CMakeLists.txt',
                          _cmakelists(package, nodes, component, author.license is not None), False)]
     for node in nodes:

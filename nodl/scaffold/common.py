@@ -14,11 +14,20 @@ import posixpath
 import re
 from typing import Iterable
 
+from nodl.composition.entities import EntityKind, InterfaceType, Provider
 from nodl.model import Base
 from nodl.model.parameter_types import TypeSpec
-from nodl.scaffold import Authorship, NodeSource, PlannedFile, ScaffoldError
-from nodl.scaffold.text import markdown, markdown_code, python_string, xml_attribute, xml_text
-from nodl.system.entities import EntityKind, InterfaceType
+from nodl.naming import join_name
+from nodl.plan.defaults_file import defaults_yaml
+from nodl.plan.parameter_plan import plan_parameters
+from nodl.scaffold.model import Authorship, NodeSource, PlannedFile, ScaffoldError
+from nodl.scaffold.text import (
+    markdown,
+    markdown_code,
+    python_string,
+    xml_attribute,
+    xml_text,
+)
 
 __all__ = ['common_files', 'interface_packages', 'definition_path', 'is_lifecycle',
            'params_path', 'required_placeholders', 'required_parameters', 'generated_base_path']
@@ -77,9 +86,6 @@ def required_placeholders(node: NodeSource) -> list[tuple[str, str]]:
 def required_parameters(node: NodeSource) -> list[tuple[str, str]]:
     """``(name, type)`` of each parameter the node must be given (no default), in declaration
     order (as the parameter file lists them)."""
-    from nodl.plan.parameter_plan import plan_parameters
-    from nodl.system.entities import Provider
-
     entities = node.node.provided_by(Provider.IMPLEMENTATION, Provider.OTHER_CODE)
     plan = plan_parameters([e for e in entities if e.is_parameter])
     return [(p.name, p.type_name) for p in plan.parameters if p.required]
@@ -206,9 +212,6 @@ def _launch(package: str, nodes: list[NodeSource]) -> str:
 
 
 def _params(node: NodeSource) -> str:
-    from nodl.naming import join_name
-    from nodl.plan.defaults_file import defaults_yaml
-
     text = defaults_yaml(node.node, join_name('/', node.executable))
     # the parameter file's note on a required parameter becomes a placeholder to uncomment
     required = iter(required_parameters(node))

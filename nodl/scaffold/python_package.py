@@ -11,19 +11,22 @@ signature and a placeholder body, so the node runs right away.
 from __future__ import annotations
 
 import ast
+import re
+import sys
+import textwrap
 
 from nodl.generate import GenerateOptions, default_class_name
-from nodl.scaffold import Authorship, NodeSource, PlannedFile, ScaffoldError
+from nodl.generate.python import generate_python
 from nodl.scaffold.common import definition_path
-from nodl.scaffold.text import python_string
+from nodl.scaffold.model import Authorship, NodeSource, PlannedFile, ScaffoldError
+from nodl.scaffold.text import one_line, python_string
+from nodl.text_safety import visible
 
 __all__ = ['python_files', 'user_module', 'generate_base']
 
 
 def generate_base(package: str, node: NodeSource) -> tuple[str, str]:
     """``(file name, text)`` of the node's generated rclpy base."""
-    from nodl.generate.python import generate_python
-
     options = GenerateOptions(default_class_name(node.executable), node.executable)
     files = generate_python(node.node, options)
     if len(files) != 1:
@@ -133,9 +136,6 @@ def _empty_custom(tree: ast.Module) -> bool:
 def _imports(tree: ast.Module, text: str) -> tuple[list[str], list[str]]:
     """The generated module's imports that ``text`` uses (names, or dotted modules): those of the
     standard library, and the others."""
-    import re
-    import sys
-
     used = set(re.findall(r'[A-Za-z_][A-Za-z0-9_.]*', text))
     roots = {u.split('.')[0] for u in used}
     out: list[str] = []
@@ -206,9 +206,6 @@ def _description(nodes: list[NodeSource]) -> str:
     """The package's one-line description (setup.py's ``description``, the package metadata's
     Summary): control and bidi characters as visible escapes, so the installed metadata holds
     none of them (pip, PyPI and terminals show the summary as it is)."""
-    from nodl.scaffold.text import one_line
-    from nodl.text_safety import visible
-
     text = ' '.join(visible(one_line(n.node.node.main.description), one_line=True) for n in nodes
                     if n.node.node.main.description)
     return text or f'The nodes {", ".join(n.executable for n in nodes)}.'
@@ -219,8 +216,6 @@ def _string_lines(text: str, head: str) -> str:
     when the line would pass 99 columns."""
     if len(head) + len(python_string(text)) + 1 <= 99:
         return python_string(text)
-    import textwrap
-
     chunks = textwrap.wrap(text, 99 - 8 - 4, break_long_words=True, drop_whitespace=False)
     indent = ' ' * 8
     return '(\n' + ''.join(f'{indent}{python_string(c)}\n' for c in chunks) + '    )'
@@ -237,8 +232,6 @@ def _setup_cfg(package: str) -> str:
 def _wrapped(text: str, width: int = 95) -> str:
     """``text`` as lines of at most ``width`` characters (ament_flake8 allows 99; a docstring's
     first line has three quotes before it)."""
-    import textwrap
-
     return textwrap.fill(text, width, break_long_words=False, break_on_hyphens=False)
 
 

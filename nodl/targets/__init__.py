@@ -14,7 +14,13 @@
 from __future__ import annotations
 
 from nodl.targets.placement import Definition, instances_from_definitions
-from nodl.targets.resolve import Provenance, Target, gather_definitions, provenance_of, resolve_target
+from nodl.targets.resolve import (
+           Provenance,
+           Target,
+           gather_definitions,
+           provenance_of,
+           resolve_target,
+)
 
 __all__ = ['Definition', 'Provenance', 'Target', 'gather_definitions', 'instances_from_definitions',
            'provenance_of', 'resolve_target']

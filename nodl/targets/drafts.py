@@ -17,7 +17,13 @@ gap.  Only files whose header says ``nodl extract`` wrote them are read
 from __future__ import annotations
 
 import re
+import textwrap
 from typing import NamedTuple
+
+import yaml
+
+from nodl.targets.resolve import made_by
+from nodl.vocabulary import SECTION_BY_KEY
 
 __all__ = ['GapLine', 'DraftGap', 'draft_gaps', 'gaps_of_text', 'describe', 'COMMUNICATION_SECTIONS']
 
@@ -72,8 +78,6 @@ def draft_gaps(file: str | None) -> list[DraftGap]:
     cannot be read, an empty list), in the order they are written."""
     if file is None:
         return []
-    from nodl.targets.resolve import made_by
-
     if made_by(file) != 'extracted':
         return []
     try:
@@ -121,10 +125,6 @@ def _name(body: list[str], section: str, run: list[GapLine]) -> str | None:
     """The name the commented-out entity gives, if it is known."""
     if any(gap.code in _NAME_GAPS for gap in run):
         return None
-    import textwrap
-
-    import yaml
-
     try:
         data = yaml.safe_load(textwrap.dedent('\n'.join(line.removeprefix(' ') for line in body)))
     except yaml.YAMLError:
@@ -141,8 +141,6 @@ def _name(body: list[str], section: str, run: list[GapLine]) -> str | None:
 def describe(gaps: list[DraftGap]) -> str:
     """``1 publisher, 2 subscriptions and 1 parameter``: what ``gaps`` leave unknown, by kind,
     in the draft's order."""
-    from nodl.vocabulary import SECTION_BY_KEY
-
     counts: dict[str, int] = {}
     for gap in gaps:
         counts[gap.section] = counts.get(gap.section, 0) + 1

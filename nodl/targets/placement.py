@@ -10,13 +10,12 @@ by default the file's stem or the executable, at ``/``), the remapping rules giv
 from __future__ import annotations
 
 import os
-from pathlib import Path
 from typing import Any, Mapping, NamedTuple, Sequence
 
+from nodl.composition.instance import NodeInstance
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.system.instance import NodeInstance
 from nodl.registry.overlay import Definitions
-from nodl.targets.resolve import Provenance
+from nodl.targets.resolve import Provenance, resolve_target
 
 __all__ = ['Definition', 'Placed', 'LAUNCH_SUFFIXES', 'is_launch_file', 'split_targets',
            'default_node_name', 'split_node_name', 'place_definitions', 'instances_from_definitions']
@@ -113,8 +112,6 @@ def place_definitions(definitions: Sequence[Definition], names: Sequence[str] = 
     resolved give their diagnostics and no instance.  ValueError for more names than
     definitions, or a name or rule rcl would reject; OSError for a file that cannot be read.
     """
-    from nodl.targets.resolve import resolve_target
-
     if len(names) > len(definitions):
         raise ValueError(f'{len(names)} --name options for {len(definitions)} definitions: '
                          'each --name places one definition, in order')

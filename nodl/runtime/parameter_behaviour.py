@@ -15,6 +15,7 @@ from __future__ import annotations
 from types import SimpleNamespace
 from typing import Any, Callable, Mapping
 
+from nodl.generate.python_text import python_value
 from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, StructPlan
 from nodl.runtime.errors import RuntimeDefinitionError
 
@@ -56,7 +57,12 @@ def build_snapshot(plan: ParametersPlan, values: Mapping[str, Any], stamp: int) 
 
 def descriptor_of(parameter: ParameterPlan) -> Any:
     """The rcl_interfaces ParameterDescriptor of ``parameter``."""
-    from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor, ParameterType
+    from rcl_interfaces.msg import (
+        FloatingPointRange,
+        IntegerRange,
+        ParameterDescriptor,
+        ParameterType,
+    )
 
     descriptor = ParameterDescriptor(
         type=getattr(ParameterType, parameter.ros_type), description=parameter.description,
@@ -109,8 +115,6 @@ def problems_of(plan: ParametersPlan, values: Mapping[str, Any], changed: Mappin
 
 def python_default(parameter: ParameterPlan) -> Any:
     """The default as rclpy declares it (doubles as floats, byte arrays as one-byte bytes)."""
-    from nodl.generate.python_text import python_value
-
     return python_value(parameter.default, parameter.type.base)
 
 
