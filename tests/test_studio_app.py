@@ -222,7 +222,7 @@ def test_the_page_puts_text_from_definitions_as_text_only() -> None:
     code = re.sub(r'/\*.*?\*/|//[^\n]*', '', script, flags=re.S)  # (comments may name them)
     assert not re.search(r'innerHTML|outerHTML|insertAdjacentHTML|document\.write|\beval\(|'
                          r'new Function|setTimeout\(\s*[\'"]', code)
-    assert code.count('.textContent =') >= 10
+    assert code.count('.textContent =') >= 5
     page = (STATIC / 'index.html').read_text(encoding='utf-8')
     assert '<script>' not in page  # no inline script (the policy allows none either)
     assert not re.search(r'\son[a-z]+\s*=', page)  # no onclick= and the like
