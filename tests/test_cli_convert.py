@@ -36,7 +36,7 @@ def test_converts_and_exits_0_with_warnings(tmp_path: Path, golden) -> None:
 
 def test_diagnostics_are_file_line_col_lines(tmp_path: Path) -> None:
     result = nodl('convert', rel(LEGACY / 'qos_child.nodl.xml'), '-o', str(tmp_path))
-    lines = [l for l in result.stdout.splitlines() if ': warning: ' in l]
+    lines = [line for line in result.stdout.splitlines() if ': warning: ' in line]
     assert lines[0].startswith(f'{rel(LEGACY / "qos_child.nodl.xml")}:2:9: warning: node name')
     assert f'{rel(LEGACY / "qos_child.nodl.xml")}:27:7: warning: <qos> of action' in result.stdout
 
@@ -249,3 +249,22 @@ def test_an_input_is_never_an_output(tmp_path: Path) -> None:
     assert f'{include}: error: -o names an input of the command ({include})' in result.stderr
     assert '[NODL033]' in result.stderr and 'Traceback' not in result.stderr
     assert include.read_text(encoding='utf-8') == '# nodl: generated; sha256=' + '0' * 64 + '\n'
+
+
+def test_json_and_junit_report_each_input_through_the_reporters(tmp_path: Path) -> None:
+    import json
+    import xml.etree.ElementTree as ET
+
+    bad = rel(LEGACY / 'errors' / 'structural.nodl.xml')
+    good = rel(LEGACY / 'role_both.nodl.xml')
+    result = nodl('convert', good, bad, '-o', str(tmp_path), '--format', 'json')
+    assert result.returncode == 1
+    inputs = json.loads(result.stdout)  # nothing else on standard output: no 'wrote' lines
+    assert [(i['file'], i['converted'], i['written']) for i in inputs] == [
+        (good, True, [str(tmp_path / 'relay.nodl.yaml')]), (bad, False, [])]
+    assert any(d['severity'] == 'error' for d in inputs[1]['diagnostics'])
+    assert result.stderr.startswith('2 files read, 1 node definition written, ')  # apart
+    junit = nodl('convert', good, bad, '-o', str(tmp_path / 'again'), '--format', 'junit')
+    suite = ET.fromstring(junit.stdout)
+    assert [(c.get('name'), c.find('failure') is not None) for c in suite.iter('testcase')] == [
+        (good, False), (bad, True)]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -58,3 +59,15 @@ def test_a_mixin_outside_the_package_is_never_listed() -> None:
     assert (result.returncode, result.stdout) == (1, 'limits.yaml\n')
     assert "the mixin '../../shared/heartbeat.nodl.yaml' leads outside the package" in result.stderr
     assert '[NODL532]' in result.stderr
+
+
+def test_json_lists_the_files_and_the_problems() -> None:
+    result = nodl('deps', str(NODE), '--format', 'json')
+    assert result.returncode == 0, result.stderr
+    assert json.loads(result.stdout) == {
+        'files': ['diagnostics.yaml', 'common/limits.nodl.yaml', '../shared/heartbeat.nodl.yaml'],
+        'diagnostics': []}
+    assert result.stderr == ''
+    # only the formats that show a listing are offered
+    sarif = nodl('deps', str(NODE), '--format', 'sarif')
+    assert sarif.returncode == 2 and "invalid choice: 'sarif'" in sarif.stderr

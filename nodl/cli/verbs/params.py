@@ -65,6 +65,15 @@ class ParamsVerb(Verb):
             return self._check(args)
         return self._defaults(args)
 
+    def _node_named(self, args: argparse.Namespace, target: list[str]) -> tuple[object, str] | int:
+        """The node ``target`` names and its fully qualified name (``--name``, else derived);
+        the exit status when there is none."""
+        node, status = self._resolve(target)
+        if node is None:
+            return status
+        fqn = self._fqn(args, target)
+        return EXIT_USAGE if fqn is None else (node, fqn)
+
     @staticmethod
     def _resolve(target: list[str]) -> tuple[object, int]:
         from nodl.cli.report_options import show_diagnostics
@@ -115,12 +124,10 @@ class ParamsVerb(Verb):
             print(f'nodl params: error: {option} belong{"s" * (option == "--format")} to '
                   '"nodl params check"', file=sys.stderr)
             return EXIT_USAGE
-        node, status = self._resolve(args.args)
-        if node is None:
-            return status
-        fqn = self._fqn(args, args.args)
-        if fqn is None:
-            return EXIT_USAGE
+        found = self._node_named(args, args.args)
+        if isinstance(found, int):
+            return found
+        node, fqn = found
         text = defaults_yaml(node, fqn)  # type: ignore[arg-type]
         if args.output is None or args.output == '-':
             sys.stdout.write(text)
@@ -161,12 +168,10 @@ class ParamsVerb(Verb):
             if not files:
                 print('nodl params check: error: give at least one PARAMS_FILE', file=sys.stderr)
                 return EXIT_USAGE
-            node, status = self._resolve(args.definition)
-            if node is None:
-                return status
-            fqn = self._fqn(args, args.definition)
-            if fqn is None:
-                return EXIT_USAGE
+            found = self._node_named(args, args.definition)
+            if isinstance(found, int):
+                return found
+            node, fqn = found
             diagnostics = check_parameter_files(files, node, fqn)  # type: ignore[arg-type]
         else:
             arguments = {}
