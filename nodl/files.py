@@ -27,7 +27,7 @@ from collections import namedtuple
 
 from nodl.frontends.frontend import frontend_suffixes
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Iterable, Iterator
 

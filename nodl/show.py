@@ -21,7 +21,7 @@ from nodl.validation.kinds import Kind
 
 __all__ = ['Shown', 'show_file', 'show_registered', 'show_reference', 'render']
 
-TYPE_CHECKING = False
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.composition.resolved import ResolvedNode
     from nodl.registry.overlay import Definitions

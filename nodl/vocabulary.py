@@ -22,7 +22,7 @@ from __future__ import annotations
 import enum
 from collections import namedtuple
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import NamedTuple
 

@@ -22,7 +22,7 @@ import sys
 
 from nodl.text_safety import visible
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any, TextIO
 

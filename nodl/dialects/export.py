@@ -11,7 +11,7 @@ from __future__ import annotations
 import os
 import re
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.model import ParameterDefinition
 

@@ -34,7 +34,7 @@ from nodl.diagnostics import Diagnostic, Severity
 from nodl.extract.model import PARAMETERS, Entity, ExtractedNode, Extraction, Gap, Location
 from nodl.vocabulary import ROS_PARAMETER_TYPE_NAMES
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Iterable
     from typing import Any

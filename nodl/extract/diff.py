@@ -12,7 +12,7 @@ from __future__ import annotations
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.extract.model import PARAMETERS, Entity, ExtractedNode
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

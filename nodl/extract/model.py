@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from nodl.diagnostics import Diagnostic, Severity
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

@@ -14,7 +14,7 @@ import os
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.extract.model import PARAMETERS, Entity, ExtractedNode, Gap, Location
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Iterable
     from typing import Any

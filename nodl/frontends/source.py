@@ -11,7 +11,7 @@ import os
 from collections import namedtuple
 from stat import S_ISDIR, S_ISREG
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Callable
     from typing import IO, Any, Union

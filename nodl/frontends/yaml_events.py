@@ -34,7 +34,7 @@ the text again (see :func:`span_position`).
 
 from __future__ import annotations
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Callable
     from typing import Any

@@ -22,7 +22,7 @@ for indentation, empty documents and documents that are not a mapping.
 
 from __future__ import annotations
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 from nodl.plugins import EXTENSION_POINTS, ExtensionPoint, PluginError, instantiate_extensions
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
 

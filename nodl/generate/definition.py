@@ -11,7 +11,7 @@ from collections.abc import Sequence
 from nodl.diagnostics import Diagnostic
 from nodl.system import ResolvedNode
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.registry.overlay import Definitions
 

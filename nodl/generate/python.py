@@ -31,7 +31,7 @@ from nodl.plan.identifiers import PYTHON_KEYWORDS, IdentifierScope
 from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, StructPlan, plan_parameters
 from nodl.vocabulary import QOS_DURATIONS, QOS_ENUMS
 
-TYPE_CHECKING = False
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.system import ResolvedNode
 

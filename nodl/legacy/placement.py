@@ -16,7 +16,7 @@ from __future__ import annotations
 from nodl.frontends.source import SourceText
 from nodl.frontends.yaml_json import ParsedDocument
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.diagnostics import DocPath
     from nodl.legacy.converted import Converted

@@ -50,7 +50,7 @@ from nodl.live.session import is_hidden_node, ros_session
 from nodl.model import ENDPOINT_SECTIONS, Base, Interface, Node, ParameterDefinition
 from nodl.vocabulary import TOPIC_SECTIONS
 
-TYPE_CHECKING = False
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.launch.sandbox import LaunchLimits
     from nodl.registry.overlay import Definitions

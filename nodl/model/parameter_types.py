@@ -12,7 +12,7 @@ from collections import namedtuple
 
 from nodl.vocabulary import ALL_TYPE_WORDS, ARRAY_TYPES, FIXED_BASES, SCALAR_TYPES
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

@@ -17,7 +17,7 @@ from nodl.composition.entities import Location
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.live.conformance import Difference
 
-TYPE_CHECKING = False
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.monitor.expected import DeadlineTopic, ExpectedNode
     from nodl.monitor.graph import TopicEndpoint

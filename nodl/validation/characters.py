@@ -11,7 +11,7 @@ LRM and RLM (U+200E, U+200F) stay allowed for right-to-left text.
 
 from __future__ import annotations
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

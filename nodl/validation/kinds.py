@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from nodl.vocabulary import INCLUDE_KEYS, INTERFACE_KEYS, NODE_KEYS, Kind
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

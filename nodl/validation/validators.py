@@ -23,7 +23,7 @@ from nodl.model.parameter_types import element_fits, parse_type
 from nodl.validation.messages import one_of, show
 from nodl.vocabulary import PARAMETER_TYPES
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

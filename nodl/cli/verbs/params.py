@@ -7,7 +7,7 @@ import sys
 
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.diagnostics import Diagnostic
     from nodl.reporting.junit import JUnitCase

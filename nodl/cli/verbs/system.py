@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

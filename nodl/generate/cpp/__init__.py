@@ -38,7 +38,7 @@ import os
 from nodl.generate import GeneratedFile, GenerateOptions, GenerationError, GeneratorExtension
 from nodl.plan.identifiers import CPP_KEYWORDS, is_identifier, snake_case
 
-TYPE_CHECKING = False
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.generate.cpp.node import CppNode
     from nodl.system import ResolvedNode
