@@ -945,6 +945,6 @@ def _qos_of(observed: ObservedNode) -> list[Any]:
 
 
 def _location(diagnostic: Any) -> Any:
-    from nodl.system.entities import Location
+    from nodl.composition.entities import Location
 
     return Location(diagnostic.file, diagnostic.line, diagnostic.column)
