@@ -111,6 +111,11 @@ def test_assert_conforms_directly(full: NodeProcess, drifting: Path) -> None:
     assert "error: type: subscription '/emergency_stop'" in message
     assert message.rstrip().splitlines()[-1].startswith('/plug/full drifts from ')
     assert 'unverifiable' in message.splitlines()[-1]
+    # the differences as coded diagnostics, placed in the definition, for a test's own use
+    drift = caught.value.result
+    assert drift is not None and caught.value.diagnostics == drift.differences
+    (wrong,) = [d for d in caught.value.diagnostics if d.code == 'NODL403']
+    assert (wrong.file, wrong.line > 0) == (str(drifting), True)
 
 
 def test_assert_conforms_accepts_remaps(full: NodeProcess, tmp_path: Path) -> None:
