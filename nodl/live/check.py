@@ -13,7 +13,6 @@ from nodl.diagnostics import Severity, ValidationError
 from nodl.live.conformance import LiveDiagnostic, Remaps, compare, conforms, place
 from nodl.live.observe import DISCOVERY_WINDOW, ObservedNode, observe_node, recount
 from nodl.live.session import DuplicateNode
-from nodl.location import Location
 from nodl.model import ENDPOINT_SECTIONS
 from nodl.naming import NodeNames
 from nodl.overrides import Overrides
@@ -110,10 +109,6 @@ class CheckResult:
         if self.base_differences and not base_kept:
             out.base_hint = None
         return out
-
-    def location_of(self, difference: LiveDiagnostic) -> Location:
-        """Where a difference points (see :func:`nodl.live.conformance.place`)."""
-        return Location(difference.file, difference.line, difference.column)
 
 
 def base_mismatch(composed: ComposedNode, observed: ObservedNode,
