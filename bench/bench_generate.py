@@ -39,7 +39,7 @@ def run(count: int = 100, rounds: int = 5) -> dict[str, float]:
         load()
         load_best = min(load_best, time.perf_counter() - start)
         start = time.perf_counter()
-        for resolved, option in zip(nodes, options):
+        for resolved, option in zip(nodes, options, strict=True):
             for lang in languages:
                 generators[lang].generate(resolved[lang], option)  # type: ignore[arg-type]
         gen_best = min(gen_best, time.perf_counter() - start)

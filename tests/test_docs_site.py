@@ -347,7 +347,7 @@ def _run_block(block: tuple[str, int, str, str, list[str]], work: Path) -> tuple
     result = subprocess.run(['bash', '--noprofile', '--norc', '-c', script], cwd=work, env=env,
                             text=True, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60)
     statuses = [int(status) for status in re.findall(r'^@@status (\d+)$', result.stdout, re.M)]
-    return result.stdout, list(zip(block[4], statuses))
+    return result.stdout, list(zip(block[4], statuses, strict=False))
 
 
 @pytest.fixture(scope='module')
@@ -359,7 +359,7 @@ def shell_runs(tmp_path_factory: pytest.TempPathFactory) -> dict[tuple[str, int]
     blocks = [block for block in _shell_blocks() if block[2] != 'not-run']
     with ThreadPoolExecutor(max_workers=4) as pool:
         runs = pool.map(lambda numbered: _run_block(numbered[1], root / str(numbered[0])), enumerate(blocks))
-        return {(block[0], block[1]): run for block, run in zip(blocks, runs)}
+        return {(block[0], block[1]): run for block, run in zip(blocks, runs, strict=True)}
 
 
 def test_the_docs_have_shell_examples_that_run() -> None:

@@ -50,7 +50,7 @@ def test_real_node_matches_the_hand_checked_expectation(case: str) -> None:
     assert [n.name for n in extraction.nodes] == [n['class'] for n in expected]
     assert not [d for d in extraction.diagnostics if d.code in ('NODL934', 'NODL931')], \
         [str(d) for d in extraction.diagnostics]
-    for node, want in zip(extraction.nodes, expected):
+    for node, want in zip(extraction.nodes, expected, strict=True):
         assert node.base == want['base']
         assert node.node_name == want['node_name']
         got = [_entity(e) for e in node.entities]

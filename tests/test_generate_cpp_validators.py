@@ -129,6 +129,6 @@ def test_cpp_translations_agree_with_the_table(tmp_path: Path) -> None:
     verdicts = run.stdout.split()
     cases = [(c[0], c[1], v) for c in CASES for v in c[3]]
     assert len(verdicts) == len(expected) == len(cases)
-    disagreements = [(case, got, want) for case, got, want in zip(cases, verdicts, expected)
+    disagreements = [(case, got, want) for case, got, want in zip(cases, verdicts, expected, strict=True)
                      if got != want]
     assert disagreements == []

@@ -41,7 +41,7 @@ def _matches(actual: Any, expected: Any) -> bool:
         return isinstance(actual, dict) and all(_matches(actual.get(k), v) for k, v in expected.items())
     if isinstance(expected, list):
         return (isinstance(actual, list) and len(actual) == len(expected)
-                and all(_matches(a, e) for a, e in zip(actual, expected)))
+                and all(_matches(a, e) for a, e in zip(actual, expected, strict=True)))
     return bool(actual == expected)
 
 
@@ -174,7 +174,7 @@ def test_hostile_launch_input(tmp_path: Path) -> None:
     laughs = tmp_path / 'laughs.launch.yaml'
     laughs.write_text('a: &a ["x","x","x","x","x","x","x","x","x"]\n'
                       + ''.join(f'{c}: &{c} [*{p},*{p},*{p},*{p},*{p},*{p},*{p},*{p},*{p}]\n'
-                                for p, c in zip('abcdefg', 'bcdefgh')))
+                                for p, c in zip('abcdefg', 'bcdefgh', strict=True)))
     assert _hostile(laughs)['codes'] == ['NODL008']
 
 

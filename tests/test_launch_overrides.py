@@ -131,7 +131,7 @@ def _same(actual: dict[str, Any], expected: dict[str, Any]) -> bool:
         if isinstance(e, float) and isinstance(a, float):
             return a == e or (math.isinf(a) and math.isinf(e) and (a > 0) == (e > 0))
         if isinstance(e, list):
-            return isinstance(a, list) and len(a) == len(e) and all(one(x, y) for x, y in zip(a, e))
+            return isinstance(a, list) and len(a) == len(e) and all(one(x, y) for x, y in zip(a, e, strict=True))
         return type(a) is type(e) and a == e
     return actual.keys() == expected.keys() and all(one(actual[k], expected[k]) for k in expected)
 

@@ -403,7 +403,7 @@ def test_drift_diagnostics_point_at_the_declarations(edited: CheckResult) -> Non
         (str(path), _line_of(path, '  subscriptions:'))
     assert by_kind['value'].severity is Severity.WARNING
     assert all(d.line > 0 and d.column > 0 for d in edited.diagnostics)
-    for difference, diagnostic in zip(edited.differences, edited.diagnostics):
+    for difference, diagnostic in zip(edited.differences, edited.diagnostics, strict=True):
         in_base = (difference.layer or '').startswith('base:')
         assert (diagnostic.file == str(path)) is not in_base, diagnostic
 

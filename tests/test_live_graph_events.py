@@ -5,6 +5,7 @@ the graph in a thread of its own that tells of each change."""
 
 from __future__ import annotations
 
+import itertools
 import threading
 import time
 
@@ -143,7 +144,7 @@ def test_a_watching_thread_tells_of_each_change_within_100_ms(ros_node) -> None:
             assert direct is not None and followed is not None
             assert followed - direct <= 0.1
             changes = graph.take_changes()
-            assert changes and all(a <= b for a, b in zip(changes, changes[1:]))
+            assert changes and all(a <= b for a, b in itertools.pairwise(changes))
             assert woken.is_set()
             assert graph.take_changes() == []
             assert graph.signature[2] is None  # no service names read

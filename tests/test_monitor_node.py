@@ -4,6 +4,7 @@
 
 from __future__ import annotations
 
+import itertools
 import json
 import os
 import signal
@@ -338,7 +339,7 @@ class Budget:
 
     def longest_gap(self) -> float:
         times = [self.start] + [when for when, _ in self.arrays()] + [time.monotonic()]
-        return max(b - a for a, b in zip(times, times[1:]))
+        return max(b - a for a, b in itertools.pairwise(times))
 
 
 #: The monitor's budget under bad input, beyond a bare participant's: its graph scans take

@@ -63,7 +63,7 @@ def _compare(profiles: list[dict[str, Any]], pairs: Any) -> tuple[int, list[str]
 
 
 def test_every_policy_value_on_both_sides() -> None:
-    enums = [dict(zip(ENUM_POLICIES, values))
+    enums = [dict(zip(ENUM_POLICIES, values, strict=True))
              for values in itertools.product(*(ENUM_VALUES[p] for p in ENUM_POLICIES))]
     profiles, pairs = [], []
     for (pub_deadline, pub_lease), (sub_deadline, sub_lease) in DURATION_PAIRS:

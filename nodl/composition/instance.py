@@ -104,14 +104,14 @@ class NodeInstance:
 
     @property
     def _bound(self) -> Iterator[tuple[Entity, str]]:
-        return zip(self._entities, self._names)
+        return zip(self._entities, self._names, strict=True)
 
     @property
     def entities(self) -> tuple[InstanceEntity, ...]:
         """Every entity with its final name, in the resolved node's order."""
         new, instance = tuple.__new__, self
         return tuple([new(InstanceEntity, (instance, entity, name))
-                      for entity, name in zip(self._entities, self._names)])
+                      for entity, name in zip(self._entities, self._names, strict=True)])
 
     @entities.setter
     def entities(self, entities: Iterable[InstanceEntity]) -> None:

@@ -376,7 +376,7 @@ class _Evaluator:
             if 'PROPERTIES' in first:
                 at = first.index('PROPERTIES')
                 pairs = first[at + 1:]
-                for key, value in zip(pairs[::2], pairs[1::2]):
+                for key, value in zip(pairs[::2], pairs[1::2], strict=False):
                     if key == 'OUTPUT_NAME':
                         for target in first[:at]:
                             self.targets.output_names[target] = value

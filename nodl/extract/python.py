@@ -833,14 +833,14 @@ def _bind(function: ast.FunctionDef | ast.AsyncFunctionDef, call: ast.Call,
     bound: dict[str, Any] = {}
     if any(isinstance(a, ast.Starred) for a in call.args) or any(k.arg is None for k in call.keywords):
         return None
-    for param, arg in zip(positional, call.args):
+    for param, arg in zip(positional, call.args, strict=False):
         bound[param.arg] = evaluate(arg)
     for keyword in call.keywords:
         bound[str(keyword.arg)] = evaluate(keyword.value)
     defaults = list(args.defaults)
-    for param, default in zip(positional[len(positional) - len(defaults):], defaults):
+    for param, default in zip(positional[len(positional) - len(defaults):], defaults, strict=True):
         bound.setdefault(param.arg, evaluate(default))
-    for param, kw_default in zip(args.kwonlyargs, args.kw_defaults):
+    for param, kw_default in zip(args.kwonlyargs, args.kw_defaults, strict=True):
         if kw_default is not None:
             bound.setdefault(param.arg, evaluate(kw_default))
     return bound
@@ -1065,7 +1065,7 @@ def _arguments(call: ast.Call, names: tuple[str, ...], skip: int = 0) -> dict[st
     for arg in call.args:
         if arg.__class__ is ast.Starred:
             return None
-    out = dict(zip(names, call.args[skip:]))
+    out = dict(zip(names, call.args[skip:], strict=False))
     for keyword in call.keywords:
         if keyword.arg is None:
             return None

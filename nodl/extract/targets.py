@@ -99,7 +99,7 @@ def _literal(expr: ast.expr, constants: dict[str, Any]) -> Any:
     if isinstance(expr, (ast.List, ast.Tuple)):
         return [_literal(e, constants) for e in expr.elts]
     if isinstance(expr, ast.Dict):
-        return {_literal(k, constants): _literal(v, constants) for k, v in zip(expr.keys, expr.values)
+        return {_literal(k, constants): _literal(v, constants) for k, v in zip(expr.keys, expr.values, strict=True)
                 if k is not None}
     if isinstance(expr, ast.BinOp) and isinstance(expr.op, ast.Add):
         left, right = _literal(expr.left, constants), _literal(expr.right, constants)

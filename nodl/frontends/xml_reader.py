@@ -167,7 +167,7 @@ def _place_attributes(lines: _Lines, line: int, column: int,
             if [text[i:j] for i, j in spans] == names:
                 shift = column - start
                 return [_new_attribute((name, value, line, at + shift))
-                        for name, value, (at, _) in zip(names, pairs[1::2], spans)]
+                        for name, value, (at, _) in zip(names, pairs[1::2], spans, strict=True)]
     return _place_attributes_by_name(lines, line, column, pairs, start)
 
 

@@ -338,10 +338,10 @@ def run_time(value: Any, depth: int = 0) -> Any:
         return _text_value(value, None) if _MARK in value.lower() else value
     if kind in (list, tuple):
         items = [run_time(v, depth + 1) for v in value]
-        return kind(items) if any(a is not b for a, b in zip(items, value)) else value
+        return kind(items) if any(a is not b for a, b in zip(items, value, strict=True)) else value
     if kind is dict:
         pairs = [(run_time(k, depth + 1), run_time(v, depth + 1)) for k, v in value.items()]
-        changed = any(a is not b or c is not d for (a, c), (b, d) in zip(pairs, value.items()))
+        changed = any(a is not b or c is not d for (a, c), (b, d) in zip(pairs, value.items(), strict=True))
         return dict(pairs) if changed else value
     return value
 

@@ -63,7 +63,7 @@ def read_yaml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnost
                 result.children = entities(v, value)
             elif isinstance(v, SequenceNode) and v.value and isinstance(v.value[0], MappingNode):
                 result.nested[name] = [entity(name, item, item, d) for item, d in
-                                       zip(v.value, value if isinstance(value, list) else [])]
+                                       zip(v.value, value if isinstance(value, list) else [], strict=False)]
             else:
                 result.values[name] = value
                 result.positions[name] = at(k)
@@ -71,7 +71,7 @@ def read_yaml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnost
 
     def entities(sequence: Any, data: Any) -> list[Entity]:
         out = []
-        for item, item_data in zip(sequence.value, data if isinstance(data, list) else []):
+        for item, item_data in zip(sequence.value, data if isinstance(data, list) else [], strict=False):
             if not isinstance(item, MappingNode) or len(item.value) != 1:
                 problems.append(Diagnostic(Severity.ERROR, 'an entity is a mapping with exactly one key, '
                                            'its tag (- node: {...})', (), path, *at(item), code='NODL504'))

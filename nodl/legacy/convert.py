@@ -307,7 +307,7 @@ def _file_stems(nodes: list[LegacyNode]) -> list[str | None]:
         counts[stem] = counts.get(stem, 0) + 1
     return [f'{n.executable}.{n.name}'
             if counts[stem] > 1 and n.executable is not None and n.name is not None else stem
-            for stem, n in zip(stems, nodes)]
+            for stem, n in zip(stems, nodes, strict=True)]
 
 
 def _validate(data: dict[str, Any], converter: _NodeConverter) -> None:
@@ -344,7 +344,7 @@ def convert_legacy(doc: LegacyDocument) -> list[Converted]:
     """
     out: list[Converted] = []
     taken: dict[str, LegacyNode] = {}
-    for node, stem in zip(doc.nodes, _file_stems(doc.nodes)):
+    for node, stem in zip(doc.nodes, _file_stems(doc.nodes), strict=True):
         converter = _NodeConverter(node, doc.file)
         data = converter.convert()
         _validate(data, converter)

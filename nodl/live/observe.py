@@ -244,7 +244,7 @@ def _parameter_table(names: list[str], values: Any, descriptors: Any
                      ) -> dict[str, ObservedParameter]:
     """The parameters of one node from its get_parameters and describe_parameters answers."""
     found: dict[str, ObservedParameter] = {}
-    for name, value, descriptor in zip(names, values.values, descriptors.descriptors):
+    for name, value, descriptor in zip(names, values.values, descriptors.descriptors, strict=False):
         rng: tuple[float, float] | None = None
         if descriptor.integer_range:
             r = descriptor.integer_range[0]
@@ -273,7 +273,7 @@ class ParameterRead:
         self.kinds = (ListParameters, GetParameters, DescribeParameters)
         self.clients = [node.create_client(kind, f'{fqn}/{service}') for kind, service in
                         zip(self.kinds, ('list_parameters', 'get_parameters',
-                                         'describe_parameters'))]
+                                         'describe_parameters'), strict=True)]
         self.futures: list[Any] = [None, None, None]
         self.names: list[str] | None = None
 
@@ -493,7 +493,7 @@ def read_parameters(node: Any, fqns: list[str], timeout: float
     deadline = time.monotonic() + timeout
     listed = _call_many(node, [(ListParameters, f'{fqn}/list_parameters', ListParameters.Request())
                                for fqn in fqns], deadline)
-    names = {fqn: sorted(r.result.names) for fqn, r in zip(fqns, listed) if r is not None}
+    names = {fqn: sorted(r.result.names) for fqn, r in zip(fqns, listed, strict=True) if r is not None}
     asked = [fqn for fqn in fqns if fqn in names]
     calls: list[tuple[Any, str, Any]] = []
     for fqn in asked:
@@ -518,5 +518,5 @@ def read_lifecycle_states(node: Any, fqns: list[str], timeout: float) -> dict[st
     answers = _call_many(node, [(GetState, f'{fqn}/get_state', GetState.Request()) for fqn in fqns],
                          time.monotonic() + timeout)
     return {fqn: (str(a.current_state.label) or None) if a is not None else None
-            for fqn, a in zip(fqns, answers)}
+            for fqn, a in zip(fqns, answers, strict=True)}
 

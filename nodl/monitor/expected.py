@@ -182,7 +182,7 @@ def expected_from_definitions(targets: Sequence[Definition], names: Sequence[str
                                    prefixes=prefixes, settings=settings, checks={},
                                    definitions=definitions)
     expected = expected_from_analysis(analysis, ' '.join(str(t) for t in targets))
-    for node, target in zip(analysis.nodes, targets):
+    for node, target in zip(analysis.nodes, targets, strict=False):
         if node.fqn in expected.nodes and target.file is not None and not target.package:
             expected.nodes[node.fqn].hardware_id = os.path.basename(target.file)
     return expected

@@ -53,13 +53,13 @@ class ListVerb(Verb):
         from nodl.text_safety import visible
 
         lines = []
-        for r, o in zip(found, origins):
+        for r, o in zip(found, origins, strict=True):
             origin = o.source + (f'({o.made_by})' if o.made_by else '')
             lines.append(visible(f'{r.package:<24} {r.kind:<12} {r.name:<28} {origin:<10} '
                                  f'{r.file}', one_line=True) + '\n')
         entries = [{'package': r.package, 'name': r.name, 'kind': r.kind, 'file': r.file,
                     'origin': o.source, 'folder': o.folder, 'provenance': o.made_by}
-                   for r, o in zip(found, origins)]
+                   for r, o in zip(found, origins, strict=True)]
         write_report(reporter, Report('nodl list', kind='listing', text=''.join(lines),
                                       payload=entries))
         if not reporter.FOR_PEOPLE:
