@@ -58,7 +58,7 @@ class LaunchRemap(tuple):  # type: ignore[type-arg]
 def remap_source(rule: Any, default: SourceLocation) -> SourceLocation:
     """Where a remapping rule of a launched node is written (``default``, the node's entry,
     for a plain pair)."""
-    return getattr(rule, 'source', None) or default
+    return rule.source if isinstance(rule, LaunchRemap) else default
 
 
 class RunTimeSource(NamedTuple):
