@@ -32,7 +32,14 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Iterable
+from functools import lru_cache
 from typing import TYPE_CHECKING, Any, NamedTuple
+
+import yaml
+from yaml.nodes import ScalarNode, SequenceNode
+from yaml.resolver import Resolver
+
+from nodl.naming import join_name
 
 if TYPE_CHECKING:
     from nodl.launch.model import LaunchedNode, ParameterSource
@@ -122,8 +129,6 @@ def match_composable_parameter_keys(keys: Iterable[str], node_name: str | None,
     normalized = {k: _composable_key(k) for k in keys}
     out = [k for k in keys if normalized[k] == '**']
     if node_name:
-        from nodl.naming import join_name
-
         # launch_ros's keys have no leading '/'
         wanted = join_name(namespace or '/', node_name.lstrip('/')).lstrip('/')
         out += [k for k in keys if normalized[k] == wanted and wanted != '**']
@@ -179,6 +184,10 @@ def rcl_scalar(text: str, *, quoted: bool = False, tagged_str: bool = False) -> 
     """
     if tagged_str or quoted:
         return text
+    return _plain_scalar(text) if len(text) <= _SHORT else _rcl_plain(text)
+
+
+def _rcl_plain(text: str) -> Any:
     if text in _TRUE:
         return True
     if text in _FALSE:
@@ -187,11 +196,25 @@ def rcl_scalar(text: str, *, quoted: bool = False, tagged_str: bool = False) -> 
     return text if number is None else number
 
 
-def _implicit_tag(kind: Any, value: str) -> Any:
-    from yaml.resolver import Resolver
+#: Values at most this long are typed once each (parameter files repeat true, 0.0, odom...).
+_SHORT = 64
+_plain_scalar = lru_cache(maxsize=4096)(_rcl_plain)
 
-    resolver: Any = Resolver()
-    return resolver.resolve(kind, value, (True, False))
+
+def _implicit_tag(kind: Any, value: str) -> Any:
+    """The tag PyYAML's resolver gives a plain scalar ``value`` of node class ``kind``."""
+    if len(value) <= _SHORT:
+        return _short_implicit_tag(kind, value)
+    return _RESOLVER.resolve(kind, value, (True, False))
+
+
+@lru_cache(maxsize=4096)
+def _short_implicit_tag(kind: Any, value: str) -> Any:
+    return _RESOLVER.resolve(kind, value, (True, False))
+
+
+#: PyYAML's resolver (its resolve() keeps no state between calls).
+_RESOLVER: Any = Resolver()
 
 
 def _scalar_node(node: Any) -> Any:
@@ -203,8 +226,6 @@ def _scalar_node(node: Any) -> Any:
 
 def rcl_node_value(node: Any) -> Any:
     """A composed YAML node (scalar or sequence of scalars) as rcl types it."""
-    from yaml.nodes import ScalarNode, SequenceNode
-
     if isinstance(node, ScalarNode):
         return _scalar_node(node)
     if isinstance(node, SequenceNode):
@@ -214,8 +235,6 @@ def rcl_node_value(node: Any) -> Any:
 
 def rcl_yaml_value(text: str) -> Any:
     """The value of ``-p NAME:=TEXT`` as rcl types it (the text read as one YAML value)."""
-    import yaml
-
     try:
         node = yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.YAMLError:
@@ -247,11 +266,9 @@ def as_rcl_reads_dump(value: Any) -> Any:
     bool and a double."""
     if type(value) in _AS_READ or _known_at_run_time(value):
         return value
-    if type(value) is str and len(value) > _LONG_TEXT and rcl_scalar(value) is value:
+    if type(value) is str and len(value) > _LONG_TEXT and type(rcl_scalar(value)) is str:  # (itself)
         return value
     if isinstance(value, str) or (isinstance(value, list) and any(isinstance(v, str) for v in value)):
-        import yaml
-
         return rcl_yaml_value(yaml.dump(value))
     return value
 
