@@ -7,7 +7,8 @@ import re
 from typing import Any
 
 from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, plan_parameters
-from nodl.system import Provider, ResolvedNode
+from nodl.composition.entities import Provider
+from nodl.composition.resolved import ResolvedNode
 from nodl.text_safety import json_escapes, visible
 
 __all__ = ['defaults_yaml', 'yaml_scalar']
