@@ -6,9 +6,9 @@ import json
 import re
 from typing import Any
 
-from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, plan_parameters
 from nodl.composition.entities import Provider
 from nodl.composition.resolved import ResolvedNode
+from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, plan_parameters
 from nodl.text_safety import json_escapes, visible
 
 __all__ = ['defaults_yaml', 'yaml_scalar']
