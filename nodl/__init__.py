@@ -19,7 +19,7 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-__version__ = '0.1.0'
+from nodl.version import __version__ as __version__
 
 #: Where each public name is defined.
 _EXPORTS = {

@@ -17,7 +17,7 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from nodl import __version__
+from nodl.version import __version__
 from nodl.launch.params import RuntimeValue
 from nodl.system.findings import Finding
 from nodl.system.launched import SystemNode

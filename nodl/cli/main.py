@@ -7,7 +7,7 @@ import argparse
 import os
 import sys
 
-from nodl import __version__
+from nodl.version import __version__
 from nodl.cli.runner import HelpFormatter, add_verbs, run_verb
 
 __all__ = ['main', 'build_parser']
