@@ -40,7 +40,7 @@ from nodl_schema.composition import (
 from nodl_schema.local_resolver import LocalResolver
 from nodl_schema.validation import ValidationError, load_schema, validate
 
-TYPE_CHECKING = False  # the loader needs pydantic: imported on first use (see __getattr__)
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl_schema.loader import dump_nodl, load_nodl, load_nodl_with_doc_tree, parse_nodl, resolve_document
     from nodl_schema.rewrite import rewrite_references

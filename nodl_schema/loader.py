@@ -15,7 +15,7 @@ import dataclasses
 import json
 from pathlib import Path
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import IO, Any
 

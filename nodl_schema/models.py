@@ -23,7 +23,7 @@ except ImportError:  # pragma: no cover - the message is tested in a process wit
     raise ImportError("nodl_schema.models needs pydantic: pip install 'nodl-toolkit[reference]' "
                       "(or pip install 'pydantic>=1.10.17')") from None
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.model import Interface
 

@@ -33,7 +33,7 @@ from nodl.extract.model import PARAMETERS, Entity, ExtractedNode, Extraction, Ga
 from nodl.extract.writer import check_entities
 from nodl.vocabulary import PARAMETER_TYPE_BY_NUMBER, ROS_PARAMETER_TYPE_NAMES
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterable, Iterator
     from typing import Any

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.extract.model import ExtractedNode, Extraction
 
-TYPE_CHECKING = False  # typing costs the command line start-up time; only type checkers need it
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterable
     from typing import Any

@@ -17,7 +17,7 @@ from typing import Any
 from nodl.composition.entities import Location
 from nodl.diagnostics import Diagnostic, Severity
 
-TYPE_CHECKING = False
+from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.composition.resolved import ResolvedNode
     from nodl.launch.sandbox import LaunchLimits
