@@ -41,11 +41,8 @@ __all__ = ['UNSAFE', 'BIDI_CONTROLS', 'first_unsafe', 'is_bidi_control', 'descri
 BIDI_CONTROLS = frozenset('\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069')
 #: Every unsafe character: C0 controls but tab and newline, DEL, C1 controls, the bidi set.
 UNSAFE = re.compile('[\x00-\x08\x0b-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069]')
-# What a one-line rendering escapes as well: tab, newline and the Unicode line separators.
-_UNSAFE_ONE_LINE = re.compile('[\x00-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]')
 # Characters XML 1.0 does not allow at all, not even as a character reference.
 _NOT_XML = frozenset(chr(c) for c in range(0x20)) - {'\t', '\n', '\r'}
-_XML_REFERENCED = re.compile('[\r\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]')
 _XML_MARKUP = {'&': '&amp;', '<': '&lt;', '>': '&gt;'}
 _XML_QUOTES = {'"': '&quot;', "'": '&apos;'}
 _C0_NAMES = ('NUL', 'SOH', 'STX', 'ETX', 'EOT', 'ENQ', 'ACK', 'BEL', 'BACKSPACE', 'TAB', 'LINE-FEED', 'VT',
@@ -94,6 +91,29 @@ def escape_character(char: str) -> str:
     return f'\\u{code:04x}' if code <= 0xffff else f'\\U{code:08x}'
 
 
+# Each writer's spelling of the characters it must not leave raw, as str.translate tables (the
+# character classes as regular expressions cost the command line's start-up their compilation).
+#: The code points of :data:`UNSAFE`: C0 controls but tab and newline, DEL, C1 controls, the bidi set.
+_UNSAFE_CODES = (*range(0x00, 0x09), *range(0x0b, 0x20), *range(0x7f, 0xa0), *range(0x202a, 0x202f),
+                 *range(0x2066, 0x206a))
+#: The line separators (and tab, newline, CR: all C0) a one-line rendering escapes as well.
+_LINE_SEPARATORS = (0x09, 0x0a, 0x2028, 0x2029)
+_VISIBLE_ESCAPES = {code: escape_character(chr(code)) for code in _UNSAFE_CODES}
+_ONE_LINE_ESCAPES = {code: escape_character(chr(code)) for code in (*_UNSAFE_CODES, *_LINE_SEPARATORS)}
+#: What XML keeps as character references: CR, DEL, C1 controls, the line separators, the bidi set.
+_XML_REFERENCES = {code: f'&#x{code:X};' for code in (0x0d, *range(0x7f, 0xa0), 0x2028, 0x2029,
+                                                       *range(0x202a, 0x202f), *range(0x2066, 0x206a))}
+#: What Python literals, JSON and YAML write as \uXXXX: the unsafe characters and the line separators
+#: (JSON and YAML: U+FEFF too, which a reader may take for a byte order mark).
+_PYTHON_ESCAPES = {code: f'\\u{code:04x}' for code in (*_UNSAFE_CODES, 0x2028, 0x2029)}
+_JSON_ESCAPES = {**_PYTHON_ESCAPES, 0xfeff: '\\ufeff'}
+
+
+def _yaml_escaped(text: str) -> bool:
+    """True if ``text`` holds a character a YAML or JSON writer must escape (:data:`_JSON_ESCAPES`)."""
+    return not text.isprintable() and text.translate(_JSON_ESCAPES) != text
+
+
 def visible(text: str, one_line: bool = False) -> str:
     """``text`` with every unsafe character written as a visible escape (``\\x1b``).
 
@@ -101,10 +121,9 @@ def visible(text: str, one_line: bool = False) -> str:
     line or a label must keep on one line.  A backslash is not doubled: this is for people to
     read (a terminal, a report, a rendered page), not a format to read back.
     """
-    pattern = _UNSAFE_ONE_LINE if one_line else UNSAFE
     if not one_line and text.isascii() and text.isprintable():
         return text
-    return pattern.sub(lambda m: escape_character(m.group(0)), text)
+    return text.translate(_ONE_LINE_ESCAPES if one_line else _VISIBLE_ESCAPES)
 
 
 def xml_escape(text: str, quote: bool = False) -> str:
@@ -121,7 +140,7 @@ def xml_escape(text: str, quote: bool = False) -> str:
     if out.isascii() and out.isprintable():
         return out
     out = ''.join(escape_character(c) if c in _NOT_XML else c for c in out)
-    return _XML_REFERENCED.sub(lambda m: f'&#x{ord(m.group(0)):X};', out)
+    return out.translate(_XML_REFERENCES)
 
 
 def python_escapes(text: str) -> str:
@@ -129,8 +148,7 @@ def python_escapes(text: str) -> str:
     backslashes and quotes: unsafe characters (and U+2028/U+2029, which some editors break lines
     at) become ``\\uXXXX`` escapes (the one escape pydocstyle allows in a docstring), so the
     literal keeps the value and its source shows them."""
-    return re.sub('[\x00-\x08\x0b-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]',
-                  lambda m: f'\\u{ord(m.group(0)):04x}', text)
+    return text.translate(_PYTHON_ESCAPES)
 
 
 def line_column(text: str, offset: int) -> tuple[int, int]:
@@ -198,21 +216,18 @@ def locate_unsafe(text: str, start: int, value: str) -> int:
     return -1
 
 
-# What a YAML or JSON writer must not leave raw: the unsafe characters, and the line separators a
-# YAML reader breaks lines at (NEL is among the C1 controls).
-_YAML_ESCAPED = re.compile('[\x00-\x08\x0b-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069\ufeff]')
 
 
 def json_escapes(text: str) -> str:
     """JSON (or YAML double-quoted) text with what :data:`UNSAFE` holds and the line separators
     written as ``\\uXXXX``: for the output of ``json.dumps(..., ensure_ascii=False)``, where
     they can only be inside strings.  Both JSON and YAML read the escapes back as they were."""
-    return _YAML_ESCAPED.sub(lambda m: f'\\u{ord(m.group(0)):04x}', text)
+    return text.translate(_JSON_ESCAPES)
 
 
 def _needs_escapes(data: Any) -> bool:
     if isinstance(data, str):
-        return _YAML_ESCAPED.search(data) is not None
+        return _yaml_escaped(data)
     if isinstance(data, dict):
         return any(_needs_escapes(k) or _needs_escapes(v) for k, v in data.items())
     if isinstance(data, (list, tuple)):
@@ -235,14 +250,14 @@ def _escaping_dumper() -> Any:
         class EscapingDumper(yaml.SafeDumper):
             def analyze_scalar(self, scalar: str) -> Any:
                 analysis = super().analyze_scalar(scalar)
-                if _YAML_ESCAPED.search(scalar):
+                if _yaml_escaped(scalar):
                     analysis.allow_flow_plain = analysis.allow_block_plain = False
                     analysis.allow_single_quoted = analysis.allow_block = False
                 return analysis
 
             def write_double_quoted(self, text: str, split: bool = True) -> None:
                 unicode = self.allow_unicode
-                if _YAML_ESCAPED.search(text):
+                if _yaml_escaped(text):
                     self.allow_unicode = False  # this scalar only: every non-ASCII escaped
                 try:
                     super().write_double_quoted(text, split)

@@ -5,9 +5,13 @@ from __future__ import annotations
 import argparse
 import sys
 
+from typing import TYPE_CHECKING
+
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.reporting.junit import JUnitCase
+
+if TYPE_CHECKING:  # (the JUnit reporter is loaded only when it is asked for)
+    from nodl.reporting.junit import JUnitCase
 
 #: The code of a path that cannot be read (see nodl.codes).
 UNREADABLE_CODE = 'NODL020'
@@ -149,4 +153,6 @@ class ValidateVerb(Verb):
 
 
 def _junit_cases(cases: list[tuple[str, list[Diagnostic], bool, bool]]) -> list[JUnitCase]:
+    from nodl.reporting.junit import JUnitCase
+
     return [JUnitCase(*case) for case in cases]
