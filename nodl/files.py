@@ -24,10 +24,10 @@ from __future__ import annotations
 import os
 import stat
 from collections import namedtuple
+from typing import TYPE_CHECKING
 
 from nodl.frontends.frontend import frontend_suffixes
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Iterable, Iterator
 

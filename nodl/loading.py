@@ -10,6 +10,7 @@ diagnostic, for an invalid document.
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any, Union
 

@@ -40,8 +40,8 @@ import os
 import posixpath
 import re
 import shutil
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Mapping, Sequence
 
 from nodl.checking import check_paths, failed
 from nodl.composition.resolvers import scheme_of

@@ -22,6 +22,7 @@ from nodl.validation.kinds import Kind
 __all__ = ['Shown', 'show_file', 'show_registered', 'show_reference', 'render']
 
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from nodl.composition.resolved import ResolvedNode
     from nodl.registry.overlay import Definitions

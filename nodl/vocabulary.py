@@ -21,8 +21,8 @@ from __future__ import annotations
 
 import enum
 from collections import namedtuple
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import NamedTuple
 

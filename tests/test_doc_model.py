@@ -7,11 +7,11 @@ import sys
 import yaml
 
 from conftest import FIXTURES
+from nodl.composition.resolved import resolve_node
 from nodl.doc.blocks import Code, Heading, Link, Table, text_of
 from nodl.doc.model import PageSource, node_page, qos_words, value_text
 from nodl.interface_types.resolve import interface_index
 from nodl.model.qos import QoSProfile
-from nodl.composition.resolved import resolve_node
 from nodl.validation.validators import lookup
 
 TALKER = FIXTURES / 'doc' / 'talker.nodl.yaml'

@@ -11,7 +11,8 @@ from __future__ import annotations
 import os
 import shlex
 import sys
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 from nodl.registry.registrations import list_registrations
 

@@ -19,10 +19,10 @@ from __future__ import annotations
 
 import os
 import sys
+from typing import TYPE_CHECKING
 
 from nodl.text_safety import visible
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any, TextIO
 

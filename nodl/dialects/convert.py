@@ -12,8 +12,8 @@ input file.
 from __future__ import annotations
 
 import os
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from collections.abc import Sequence
     from typing import Any

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import os
 import re
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from nodl.model import ParameterDefinition
 

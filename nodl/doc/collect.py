@@ -27,16 +27,16 @@ from nodl.doc.model import PageSource, node_page, package_page
 from nodl.doc.system import graph_picture, system_page
 from nodl.interface_types.resolve import interface_index
 from nodl.loading import check_source
+from nodl.registry.overlay import read_folders, using
 from nodl.registry.registrations import list_registrations, search_path
 from nodl.system.run import analyse_launch
 from nodl.system.settings import load_settings
-from nodl.registry.overlay import read_folders, using
 from nodl.targets.placement import is_launch_file
 from nodl.targets.resolve import resolve_target
 from nodl.validation.kinds import Kind
 
 if TYPE_CHECKING:
-    from typing import Mapping, Sequence
+    from collections.abc import Mapping, Sequence
 
     from nodl.doc.blocks import Picture
     from nodl.interface_types.resolve import InterfaceIndex

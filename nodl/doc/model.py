@@ -32,7 +32,8 @@ from nodl.text_safety import dump_yaml, one_line
 from nodl.validation.validators import lookup
 
 if TYPE_CHECKING:
-    from typing import Any, Callable, Sequence
+    from collections.abc import Callable, Sequence
+    from typing import Any
 
     from nodl.composition.entities import Entity, Location
     from nodl.composition.resolved import ResolvedNode

@@ -21,7 +21,7 @@ from nodl.doc.model import findings_table, value_text
 from nodl.graph import GraphError, render_graph
 
 if TYPE_CHECKING:
-    from typing import Callable, Mapping
+    from collections.abc import Callable, Mapping
 
     from nodl.composition.instance import InstanceEntity
     from nodl.diagnostics import Diagnostic

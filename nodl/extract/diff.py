@@ -9,10 +9,11 @@ is not compared (NODL926, info), so a gap is never reported as drift.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.extract.model import PARAMETERS, Entity, ExtractedNode
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

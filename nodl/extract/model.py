@@ -11,10 +11,10 @@ missing and where.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

@@ -10,11 +10,11 @@ toolkit's own validator before it is returned.
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.extract.model import PARAMETERS, Entity, ExtractedNode, Gap, Location
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Iterable
     from typing import Any

@@ -9,6 +9,7 @@ position of the original text, through the reading's ``original_path``.
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any, Protocol
 

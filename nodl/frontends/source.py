@@ -10,8 +10,8 @@ import errno
 import os
 from collections import namedtuple
 from stat import S_ISDIR, S_ISREG
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from collections.abc import Callable
     from typing import IO, Any, Union

@@ -35,6 +35,7 @@ the text again (see :func:`span_position`).
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from collections.abc import Callable
     from typing import Any

@@ -23,6 +23,7 @@ for indentation, empty documents and documents that are not a mapping.
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any
 

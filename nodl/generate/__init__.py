@@ -21,10 +21,10 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from nodl.plugins import EXTENSION_POINTS, ExtensionPoint, PluginError, instantiate_extensions
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
 

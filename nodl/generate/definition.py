@@ -7,11 +7,11 @@ node definition as a file or as an installed package's executable.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic
 from nodl.system import ResolvedNode
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.registry.overlay import Definitions
 

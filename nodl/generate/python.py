@@ -16,6 +16,8 @@ dependency on the toolkit.  Output is deterministic.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from nodl.composition.entities import Entity, EntityKind, InterfaceType
 from nodl.generate import GeneratedFile, GenerateOptions, GenerationError, GeneratorExtension
 from nodl.generate.python_text import (
@@ -31,7 +33,6 @@ from nodl.plan.identifiers import PYTHON_KEYWORDS, IdentifierScope
 from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, StructPlan, plan_parameters
 from nodl.vocabulary import QOS_DURATIONS, QOS_ENUMS
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.system import ResolvedNode
 

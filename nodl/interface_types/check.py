@@ -29,7 +29,8 @@ from nodl.interface_types.tree import (
 from nodl.validation.types import type_problem
 
 if TYPE_CHECKING:
-    from typing import Any, Iterator
+    from collections.abc import Iterator
+    from typing import Any
 
     from nodl.interface_types.manifest import Manifest
     from nodl.interface_types.resolve import InterfaceIndex

@@ -17,7 +17,8 @@ from __future__ import annotations
 
 import difflib
 import os
-from typing import Any, Iterable, NamedTuple
+from collections.abc import Iterable
+from typing import Any, NamedTuple
 
 from nodl.ament_index import in_snapshot, prefix_paths, remembered
 from nodl.interface_types.manifest import read_manifest

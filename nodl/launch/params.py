@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import os
 import re
-from functools import lru_cache
+from functools import cache
 from typing import Any, NamedTuple
 
 from nodl.diagnostics import Diagnostic, Severity
@@ -84,7 +84,7 @@ def _construct(resolver: Any, constructor: Any, scalar: Any, text: str) -> Any:
     return construct(constructor, scalar(tag, text))
 
 
-@lru_cache(maxsize=None)  # one entry: PyYAML's stateless helpers, made when first needed
+@cache  # one entry: PyYAML's stateless helpers, made when first needed
 def _plain_scalar_typing() -> tuple[Any, Any, Any, dict[str, Any]]:
     from yaml.constructor import SafeConstructor
     from yaml.nodes import ScalarNode
@@ -511,8 +511,8 @@ def unsafe_parameter_text(name: str, text: str, root: Any) -> list[Diagnostic]:
         return []  # (almost every file: nothing raw, no escape that could make one)
     from yaml.nodes import MappingNode, ScalarNode, SequenceNode
 
-    from nodl.launch.text_checks import unsafe_diagnostic
     from nodl.launch.model import SourceLocation
+    from nodl.launch.text_checks import unsafe_diagnostic
     from nodl.text_safety import line_column, locate_unsafe, offset_of, visible
 
     out: list[Diagnostic] = []

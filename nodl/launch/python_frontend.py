@@ -54,7 +54,7 @@ def _located(cls: type, name: str | None = None) -> type:
         if M.stubs_active():  # values from a module not installed here: run-time values
             args, kwargs = M.action_arguments(cls, args, kwargs)
         condition = kwargs.pop('condition', None)
-        init: Any = getattr(cls, '__init__')
+        init: Any = getattr(cls, '__init__')  # noqa: B009  (mypy refuses __init__ read from a type)
         init(self, *args, **kwargs)
         self.location = _caller()
         if hasattr(self, 'remap_sources'):
@@ -209,9 +209,7 @@ class _Parameter:
 
 
 def _type(value_type: Any) -> Any:
-    import typing
-
-    if getattr(value_type, '__origin__', None) in (list, typing.List):
+    if getattr(value_type, '__origin__', None) is list:  # list[T] and typing.List[T]
         return ('list', value_type.__args__[0])
     return value_type
 
@@ -302,7 +300,7 @@ def _module(name: str, members: dict[str, Any], unknown: bool = False) -> types.
     module.__dict__.update(members)
     module.__path__ = []  # a package: submodules import
     if unknown:
-        setattr(module, '__getattr__', _unknown(name))
+        setattr(module, '__getattr__', _unknown(name))  # noqa: B010  (mypy: a module's method)
     return module
 
 

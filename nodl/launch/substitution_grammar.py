@@ -12,21 +12,39 @@ with the character position.
 from __future__ import annotations
 
 import re
-
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from typing import Any, Callable, Iterable, Sequence
+    from collections.abc import Callable, Iterable, Sequence
+    from typing import Any
 
 from nodl.launch.errors import LaunchProblem
-from nodl.launch.substitutions import (AllSubstitution, AndSubstitution, AnonName, AnySubstitution,
-                                              Command, EnvironmentVariable, EqualsSubstitution,
-                                              ExecutableInPackage, FileContent, FindExecutable,
-                                              FindPackagePrefix, FindPackageShare, IfElseSubstitution,
-                                              LaunchConfiguration, LaunchLogDir, NotEqualsSubstitution,
-                                              NotSubstitution, OrSubstitution, ParameterSubstitution,
-                                              PythonExpression, Substitution, TextSubstitution,
-                                              ThisLaunchFile, ThisLaunchFileDir)
+from nodl.launch.substitutions import (
+    AllSubstitution,
+    AndSubstitution,
+    AnonName,
+    AnySubstitution,
+    Command,
+    EnvironmentVariable,
+    EqualsSubstitution,
+    ExecutableInPackage,
+    FileContent,
+    FindExecutable,
+    FindPackagePrefix,
+    FindPackageShare,
+    IfElseSubstitution,
+    LaunchConfiguration,
+    LaunchLogDir,
+    NotEqualsSubstitution,
+    NotSubstitution,
+    OrSubstitution,
+    ParameterSubstitution,
+    PythonExpression,
+    Substitution,
+    TextSubstitution,
+    ThisLaunchFile,
+    ThisLaunchFileDir,
+)
 
 __all__ = ['SUBSTITUTIONS', 'parse_substitution', 'parse_if_substitutions', 'describe_all']
 

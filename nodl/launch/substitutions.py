@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 import os
-
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:

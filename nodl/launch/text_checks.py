@@ -22,13 +22,12 @@ the attribute, entry or call that gives the value (a value made by substitutions
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch.errors import LaunchProblem
 from nodl.launch.model import LaunchedNode, SourceLocation
 from nodl.text_safety import UNSAFE, first_unsafe, line_column, offset_of, visible
-
-from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from typing import Any

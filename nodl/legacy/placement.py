@@ -13,10 +13,11 @@ the file is the XML file itself.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from nodl.frontends.source import SourceText
 from nodl.frontends.yaml_json import ParsedDocument
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.diagnostics import DocPath
     from nodl.legacy.converted import Converted

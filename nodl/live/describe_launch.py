@@ -33,7 +33,7 @@ import os
 import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.live.describe import Description, annotate_yaml, describe_observed
@@ -50,7 +50,6 @@ from nodl.live.session import is_hidden_node, ros_session
 from nodl.model import ENDPOINT_SECTIONS, Base, Interface, Node, ParameterDefinition
 from nodl.vocabulary import TOPIC_SECTIONS
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.launch.sandbox import LaunchLimits
     from nodl.registry.overlay import Definitions

@@ -7,8 +7,8 @@ command line should not pay for the dataclasses it does not use.
 from __future__ import annotations
 
 import importlib
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any
 

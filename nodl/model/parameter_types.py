@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import re
 from collections import namedtuple
+from typing import TYPE_CHECKING
 
 from nodl.vocabulary import ALL_TYPE_WORDS, ARRAY_TYPES, FIXED_BASES, SCALAR_TYPES
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

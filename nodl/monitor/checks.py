@@ -11,13 +11,12 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nodl.composition.entities import Location
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.live.conformance import Difference
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.monitor.expected import DeadlineTopic, ExpectedNode
     from nodl.monitor.graph import TopicEndpoint

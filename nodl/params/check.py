@@ -17,7 +17,8 @@ anchor is a warning (NODL711: rcl ignores it), a merge key ``<<`` an error
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Sequence
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch.overrides import match_parameter_file_nodes
@@ -115,7 +116,7 @@ def check_parameter_files(files: Sequence[str], node: ResolvedNode, fqn: str) ->
         if parameter.name in given:
             continue
         entity = entities[parameter.name]
-        where = getattr(entity, 'location')
+        where = entity.location
         out.append(Diagnostic(
             Severity.ERROR, f"required parameter {parameter.name!r} ({parameter.type_name}) of {fqn} "
             'is set by none of the parameter files; a node without it fails to start',

@@ -28,9 +28,10 @@ step: rclpy and rclcpp both skip the step test for 0).
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from dataclasses import field as _field
-from typing import Any, Iterable, Sequence, Union
+from typing import Any, Union
 
 from nodl.model.parameter_types import TypeSpec, parse_type
 from nodl.plan.identifiers import PYTHON_KEYWORDS, IdentifierScope

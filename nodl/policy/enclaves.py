@@ -29,8 +29,9 @@ from __future__ import annotations
 
 import fnmatch
 import os
+from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Iterable, Mapping, NamedTuple
+from typing import NamedTuple
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.frontends.source import read_source

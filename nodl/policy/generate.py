@@ -14,7 +14,8 @@ in the profile says so).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Iterable, Mapping, NamedTuple, Sequence
+from collections.abc import Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING, NamedTuple
 
 from nodl.composition.entities import Location
 from nodl.composition.instance import NodeInstance

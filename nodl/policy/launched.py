@@ -10,7 +10,8 @@ are reported as they are; a node without a usable definition is a gap
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING, Mapping
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 from nodl.policy.distros import DEFAULT_DISTRO
 from nodl.policy.enclaves import EnclaveMapping

@@ -14,8 +14,9 @@ other kind cannot be built.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Iterator, NamedTuple
+from typing import NamedTuple
 
 from nodl.composition.entities import EntityKind
 from nodl.naming import join_name

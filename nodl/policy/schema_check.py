@@ -30,7 +30,8 @@ from __future__ import annotations
 import html
 import os
 import re
-from typing import TYPE_CHECKING, Iterator, NamedTuple
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, NamedTuple
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.frontends.source import read_source

@@ -10,8 +10,8 @@ characters XML 1.0 cannot hold are replaced.
 from __future__ import annotations
 
 import re
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from collections.abc import Iterable, Sequence
     from typing import NamedTuple

@@ -20,8 +20,8 @@ prints: a reporter returns text, the verb writes it.
 from __future__ import annotations
 
 import json
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
     from typing import Any

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import json
 import os
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from collections.abc import Iterable
     from typing import Any

@@ -12,8 +12,9 @@ custom validators are called through functions the user gives.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from types import SimpleNamespace
-from typing import Any, Callable, Mapping
+from typing import Any
 
 from nodl.generate.python_text import python_value
 from nodl.plan.parameter_plan import ParameterPlan, ParametersPlan, StructPlan

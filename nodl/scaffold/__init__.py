@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import os
 import re
-from typing import Sequence
+from collections.abc import Sequence
 
 from nodl.generate import GenerationError, default_node_name
 from nodl.generate.definition import resolve_target

@@ -12,7 +12,7 @@ from __future__ import annotations
 import os
 import posixpath
 import re
-from typing import Iterable
+from collections.abc import Iterable
 
 from nodl.composition.entities import EntityKind, InterfaceType, Provider
 from nodl.model import Base

@@ -8,8 +8,9 @@ write each part (:mod:`~nodl.scaffold.common`, :mod:`~nodl.scaffold.python_packa
 from __future__ import annotations
 
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Sequence
+from typing import TYPE_CHECKING
 
 from nodl.scaffold.licenses import check_maintainer, copyright_header, license_for
 

@@ -10,7 +10,8 @@ by default the file's stem or the executable, at ``/``), the remapping rules giv
 from __future__ import annotations
 
 import os
-from typing import Any, Mapping, NamedTuple, Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any, NamedTuple
 
 from nodl.composition.instance import NodeInstance
 from nodl.diagnostics import Diagnostic, Severity

@@ -12,6 +12,7 @@ LRM and RLM (U+200E, U+200F) stay allowed for right-to-left text.
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any
 

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from nodl.vocabulary import INCLUDE_KEYS, INTERFACE_KEYS, NODE_KEYS, Kind
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

@@ -10,8 +10,8 @@ NoDL rule: words of letters, digits, ``_`` and ``/`` separated by ``.``.
 from __future__ import annotations
 
 import re
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any
 

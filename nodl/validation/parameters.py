@@ -12,8 +12,8 @@
 from __future__ import annotations
 
 import re
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any
 

@@ -7,8 +7,8 @@ composition, where the resolvers (one per URI scheme, plugins) live.
 from __future__ import annotations
 
 import re
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any
 

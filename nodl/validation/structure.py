@@ -25,8 +25,8 @@ below the cost of parsing the YAML.
 from __future__ import annotations
 
 import re
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from collections.abc import Callable
     from typing import Any

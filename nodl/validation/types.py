@@ -8,8 +8,8 @@ accepted (it is common in older files) with a warning naming the full form.
 from __future__ import annotations
 
 import re
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any
 

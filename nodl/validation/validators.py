@@ -18,12 +18,12 @@ any sequence.
 from __future__ import annotations
 
 from collections import namedtuple
+from typing import TYPE_CHECKING
 
 from nodl.model.parameter_types import element_fits, parse_type
 from nodl.validation.messages import one_of, show
 from nodl.vocabulary import PARAMETER_TYPES
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from typing import Any
 

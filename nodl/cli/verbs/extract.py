@@ -5,10 +5,10 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from typing import TYPE_CHECKING
 
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.diagnostics import Diagnostic
     from nodl.extract.model import Extraction

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import argparse
 import sys
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import Any
 
@@ -24,13 +24,16 @@ OPERATIONS = {
                'remapping rule is computed and written',
     'disconnect': "remove the node's own remapping rule that joins two endpoints",
     'set': "set a parameter of a node's entry, checked against its declared type and validators",
+    'rename': "give a node's entry another name or namespace (checked as rcl checks names)",
+    'remap': "set a node's own remapping rules to RULE... (none: remove them); rules kept as "
+             'written stay',
     'show': 'print the composition (nodes, ports, connections, read-only parts) and its findings',
 }
 
 
 class SystemVerb(Verb):
     """Compose a launch file from node definitions: new, add, remove, connect, disconnect, set,
-    show (every change checked at once, the file edited in place)."""
+    rename, remap, show (every change checked at once, the file edited in place)."""
 
     failure = 'the operation was refused (what is wrong is printed), or show found errors'
 
@@ -111,6 +114,22 @@ class SystemVerb(Verb):
                               'true a bool, [1, 2] a list, anything else a string')
 
     @staticmethod
+    def _arguments_rename(sub: argparse.ArgumentParser) -> None:
+        sub.add_argument('node', metavar='NODE', help='its final name, its name, or its id')
+        sub.add_argument('--name', help="the entry's new name ('': none, the program names "
+                         'its node); not given: unchanged')
+        sub.add_argument('--namespace', metavar='NS',
+                         help="the entry's own namespace (relative to its groups' unless it "
+                              "starts with /; '': none); not given: unchanged")
+
+    @staticmethod
+    def _arguments_remap(sub: argparse.ArgumentParser) -> None:
+        sub.add_argument('node', metavar='NODE', help='its final name, its name, or its id')
+        sub.add_argument('rules', metavar='RULE', nargs='*',
+                         help="FROM:=TO, in rcl's order (the first that matches wins); the "
+                              "entry's own editable rules become exactly these")
+
+    @staticmethod
     def _arguments_show(sub: argparse.ArgumentParser) -> None:
         sub.add_argument('-v', '--verbose', action='store_true',
                          help='also print informational findings and every port')
@@ -123,6 +142,9 @@ class SystemVerb(Verb):
         from nodl.composer import ComposerError, Composition
 
         prog = f'nodl system {args.operation}'
+        if args.operation == 'rename' and args.name is None and args.namespace is None:
+            print(f'{prog}: error: give --name, --namespace or both', file=sys.stderr)
+            return EXIT_USAGE
         reporter = reporter_for(args, prog)
         if reporter is None:
             return EXIT_USAGE
@@ -174,6 +196,18 @@ class SystemVerb(Verb):
         if operation == 'set':
             change = composition.set_parameter(args.node, args.parameter, args.value)
             return change, f'set {args.parameter} = {args.value} on {args.node}'
+        if operation == 'rename':
+            node = composition.node(args.node)
+            before = composition.fqn(node) if node is not None else args.node
+            change = composition.rename(
+                args.node, args.name if args.name is not None else getattr(node, 'name', None),
+                args.namespace if args.namespace is not None else getattr(node, 'namespace', None))
+            after = composition.fqn(node) if node is not None else args.node
+            return change, f'renamed {before} to {after}' if before != after else \
+                f'{before}: the name and namespace are unchanged'
+        if operation == 'remap':
+            change = composition.set_remaps(args.node, args.rules)
+            return change, f"remapping rules of {args.node}: {', '.join(args.rules) or 'none'}"
         if operation == 'connect':
             change = composition.connect(args.first, args.second)
             rules = ', '.join(f"{r['from']}:={r['to']} on {composition.fqn(composition.node(r['node']))}"

@@ -34,11 +34,11 @@ the CMake function ``ament_nodl_generate_cpp``).
 from __future__ import annotations
 
 import os
+from typing import TYPE_CHECKING
 
 from nodl.generate import GeneratedFile, GenerateOptions, GenerationError, GeneratorExtension
 from nodl.plan.identifiers import CPP_KEYWORDS, is_identifier, snake_case
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.generate.cpp.node import CppNode
     from nodl.system import ResolvedNode
