@@ -228,7 +228,7 @@ def test_value_fits(type_: str, value: Any, fits: bool) -> None:
 
 def test_base_compares_equal_to_strings() -> None:
     assert Base.NODE == 'node'
-    assert 'lifecycle_node' == Base.LIFECYCLE_NODE
+    assert 'lifecycle_node' == Base.LIFECYCLE_NODE  # noqa: SIM300  (the string on the left: both directions)
     assert Base('node') is Base.NODE
     assert str(Base.LIFECYCLE_NODE) == 'lifecycle_node'
     assert {'node': 1}[Base.NODE] == 1

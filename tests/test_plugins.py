@@ -243,7 +243,7 @@ def test_each_extension_point_has_a_base_class_of_its_version(group: str) -> Non
     base = spec.base_class()
     assert issubclass(base, plugins.ExtensionPoint)
     if spec.base is not None:
-        assert base.EXTENSION_POINT_VERSION == spec.version  # type: ignore[attr-defined]
+        assert spec.version == base.EXTENSION_POINT_VERSION  # type: ignore[attr-defined]
 
 
 @pytest.mark.parametrize('group', ['nodl.verbs', 'nodl.resolvers'])

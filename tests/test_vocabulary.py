@@ -161,7 +161,7 @@ def test_every_table_keyed_by_parameter_type_covers_the_vocabulary() -> None:
     # a C++ field of type none is an rclcpp::ParameterValue (generate/cpp/parameters.py)
     assert set(CPP_TYPES) == set(v.PARAMETER_TYPES) - {'none'}
     # the numbers the live observation reads are rcl_interfaces' constants of those names
-    assert _PARAMETER_TYPES == {getattr(ParameterType, ROS_TYPES[word]): word for word in ROS_TYPES}
+    assert {getattr(ParameterType, ROS_TYPES[word]): word for word in ROS_TYPES} == _PARAMETER_TYPES
 
 
 def test_tables_beside_the_validator_table_name_its_rows() -> None:
@@ -180,5 +180,5 @@ def test_ros_parameter_types_are_rcl_interfaces_constants() -> None:
     assert set(v.ROS_PARAMETER_TYPES) == set(v.PARAMETER_TYPES)
     for word, (name, number) in v.ROS_PARAMETER_TYPES.items():
         assert getattr(ParameterType, name) == number, word
-    assert v.PARAMETER_TYPE_BY_NUMBER == {n: w for w, (_, n) in v.ROS_PARAMETER_TYPES.items()}
-    assert v.ROS_PARAMETER_TYPE_NAMES == {w: name for w, (name, _) in v.ROS_PARAMETER_TYPES.items()}
+    assert {n: w for w, (_, n) in v.ROS_PARAMETER_TYPES.items()} == v.PARAMETER_TYPE_BY_NUMBER
+    assert {w: name for w, (name, _) in v.ROS_PARAMETER_TYPES.items()} == v.ROS_PARAMETER_TYPE_NAMES
