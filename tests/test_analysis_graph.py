@@ -244,7 +244,7 @@ def fleet_page(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Any]:
     return page, build_graph(analysis)
 
 
-def test_the_100_node_page_fits_the_window_on_load(browser, fleet_page, tmp_path) -> None:  # type: ignore[no-untyped-def]
+def test_the_100_node_page_fits_the_window_on_load(browser, fleet_page, tmp_path) -> None:  # type: ignore[no-untyped-def]  # noqa: F811
     page, _ = fleet_page
     open_page(browser, page)
     box = assert_fits(browser)
@@ -256,7 +256,7 @@ def test_the_100_node_page_fits_the_window_on_load(browser, fleet_page, tmp_path
     assert browser.save_screenshot(str(shot)) and shot.stat().st_size > 10_000
 
 
-def test_zoom_and_pan_move_the_view_box(browser, fleet_page) -> None:  # type: ignore[no-untyped-def]
+def test_zoom_and_pan_move_the_view_box(browser, fleet_page) -> None:  # type: ignore[no-untyped-def]  # noqa: F811
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.actions.wheel_input import ScrollOrigin
     from selenium.webdriver.common.by import By
@@ -280,7 +280,7 @@ def test_zoom_and_pan_move_the_view_box(browser, fleet_page) -> None:  # type: i
     assert_fits(browser)
 
 
-def test_search_highlights_and_centres_a_node(browser, fleet_page) -> None:  # type: ignore[no-untyped-def]
+def test_search_highlights_and_centres_a_node(browser, fleet_page) -> None:  # type: ignore[no-untyped-def]  # noqa: F811
     from selenium.webdriver.common.by import By
     from selenium.webdriver.common.keys import Keys
 
@@ -308,7 +308,7 @@ def test_search_highlights_and_centres_a_node(browser, fleet_page) -> None:  # t
     assert browser.find_element(By.ID, 'found').text == 'nothing found'
 
 
-def test_a_folded_namespace_hides_its_members(browser, fleet_page) -> None:  # type: ignore[no-untyped-def]
+def test_a_folded_namespace_hides_its_members(browser, fleet_page) -> None:  # type: ignore[no-untyped-def]  # noqa: F811
     from selenium.webdriver.common.by import By
 
     page, graph = fleet_page
@@ -339,7 +339,7 @@ def test_a_folded_namespace_hides_its_members(browser, fleet_page) -> None:  # t
     assert not _displayed(browser, other) and not _displayed(browser, members[0])
 
 
-def test_the_panel_lists_the_node_s_own_interface_first(browser, fleet_page) -> None:  # type: ignore[no-untyped-def]
+def test_the_panel_lists_the_node_s_own_interface_first(browser, fleet_page) -> None:  # type: ignore[no-untyped-def]  # noqa: F811
     from selenium.webdriver.common.by import By
 
     page, graph = fleet_page

@@ -248,7 +248,7 @@ def test_the_library_finds_what_the_command_reports(analysis, report) -> None:  
 from browser import assert_fits, browser, open_page  # noqa: E402,F401  (browser: a fixture)
 
 
-def test_the_graph_page_of_the_example_system_fits_1280x800(analysis, browser, tmp_path) -> None:  # type: ignore[no-untyped-def]
+def test_the_graph_page_of_the_example_system_fits_1280x800(analysis, browser, tmp_path) -> None:  # type: ignore[no-untyped-def]  # noqa: F811
     """The page `nodl analyse --graph rover.html` writes, in headless Chromium at 1280x800: the
     18 nodes fit the window on load (no scrolling), the /rover namespace folds to one box,
     and the screenshot a person looks at is kept in tmp_path (fleet of 100 nodes:
