@@ -148,8 +148,13 @@ def test_names_namespaces_and_remapping_rules(example: Path) -> None:
     client, _ = make_client(example)
     state = post(client, 'state')['state']
     teleop = node_named(state, '/rover/teleop')
+    # refused by the composer, nothing changed: its errors, and the state as it was
     refused = post(client, 'rename', node=teleop['id'], name='tele op', namespace='')
-    assert refused['status'] == 400 and refused['diagnostics'][0]['code'] == 'NODL993'
+    assert not refused['ok'] and refused['diagnostics'][0]['code'] == 'NODL982'
+    assert "'tele op' is not a node name" in refused['error']
+    assert node_named(refused['state'], '/rover/teleop')['name_given'] == 'teleop'
+    taken = post(client, 'rename', node=teleop['id'], name='battery_monitor', namespace='')
+    assert not taken['ok'] and taken['diagnostics'][0]['code'] == 'NODL982'
     renamed = post(client, 'rename', node=teleop['id'], name='joystick', namespace='')
     assert renamed['ok'], renamed
     assert node_named(renamed['state'], '/rover/joystick')['name_given'] == 'joystick'
@@ -161,7 +166,10 @@ def test_names_namespaces_and_remapping_rules(example: Path) -> None:
                       'type': 'geometry_msgs/msg/Twist'}]
     assert 'NODL551' not in {f['code'] for f in ruled['state']['findings']}  # one publisher left
     bad = post(client, 'remaps', node=teleop['id'], remaps=[['cmd vel', 'x']])
-    assert bad['status'] == 400 and bad['diagnostics'][0]['code'] == 'NODL993'
+    assert not bad['ok'] and bad['diagnostics'][0]['code'] == 'NODL988'
+    assert node_named(bad['state'], '/rover/joystick')['remaps'] == [
+        {'from': 'cmd_vel', 'to': 'cmd_vel_nav', 'kept': False}]
+    assert post(client, 'remaps', node=teleop['id'], remaps='cmd_vel:=x')['status'] == 400
     # a read-only node (from the included file) cannot be renamed
     lidar = node_named(state, '/rover/lidar')
     assert post(client, 'rename', node=lidar['id'], name='x')['status'] == 400

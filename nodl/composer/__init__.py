@@ -10,6 +10,8 @@ Opening, making, saving::
     c.add('rover_sensors', 'lidar_driver', 'lidar', namespace='rover')
     c.connect('/rover/lidar:scan', '/rover/safety_controller:scan')  # -> Change
     c.set_parameter('/rover/lidar', 'scan_rate', '10.0')             # -> Change
+    c.rename('/rover/lidar', 'front_lidar', None)                    # -> Change
+    c.set_remaps('/rover/front_lidar', [('scan', 'front/scan')])     # -> Change
     c.analyse().findings          # nodl analyse's findings, same codes
     c.save()                      # -> list of diagnostics (empty: saved)
 
@@ -28,8 +30,9 @@ What the studio needs to know:
   ports; call it while dragging).  :meth:`~Composition.analyse` runs ``nodl analyse``'s
   analysis once per change (cached until the next change); :meth:`~Composition.to_dict`
   runs it unless ``analyse=False``.  A Python launch file is analysed by running it in the
-  launch sandbox: give ``limits=LaunchLimits(execute=False)`` for ``--no-exec``; the
-  composer itself only parses Python, it never runs it.
+  launch sandbox: give ``limits=LaunchLimits(execute=False)`` for ``--no-exec``, and
+  :meth:`~Composition.set_limits` after the user's explicit action to run it; the composer
+  itself only parses Python, it never runs it.
 * **Read-only parts.**  A node whose entry is not declarative (a condition, substitutions in
   its package/name/namespace) has ``editable: false`` and ``read_only_reason``; kept pieces
   (includes, arguments, parameter files, Python code) are listed under ``kept`` with their
@@ -43,10 +46,12 @@ Modules: :mod:`~nodl.composer.model` (items), :mod:`~nodl.composer.xml_format`,
 each format), :mod:`~nodl.composer.formats` (the three behind one interface),
 :mod:`~nodl.composer.analysed` (the real analysis of a composition), :mod:`~nodl.composer.ports`
 (endpoints and whether two can be joined), :mod:`~nodl.composer.connecting` (the rules
-that join them), :mod:`~nodl.composer.parameters` (values checked against the plan),
+that join them), :mod:`~nodl.composer.setting` (parameter values checked against the plan),
+:mod:`~nodl.composer.renaming` (names, namespaces and a node's own remapping rules),
 :mod:`~nodl.composer.adding` (adding and removing nodes), :mod:`~nodl.composer.values`
-(parameter values as each format spells them), :mod:`~nodl.composer.convert` (another
-format), :mod:`~nodl.composer.composition` (the class).
+(parameter values as each format spells them), :mod:`~nodl.composer.rendering` (the text of
+a document, and where each node is in it), :mod:`~nodl.composer.convert` (another format),
+:mod:`~nodl.composer.composition` (the class).
 """
 
 from __future__ import annotations

@@ -11,11 +11,12 @@ node's entry occupies in the written text.
 
 from __future__ import annotations
 
+import contextlib
 import os
 from dataclasses import dataclass, field
 from typing import Any
 
-from nodl.composer.text import Rendered
+from nodl.composer.rendering import Rendered
 from nodl.diagnostics import Diagnostic
 
 __all__ = ['ComposedAnalysis', 'analyse_text']
@@ -78,10 +79,8 @@ def analyse_text(path: str, rendered: Rendered, *, on_disk: bool,
                                   definitions=definitions, prefixes=prefixes)
     finally:
         if hidden != target:
-            try:
+            with contextlib.suppress(OSError):
                 os.unlink(hidden)
-            except OSError:
-                pass
     findings = [_renamed(f, hidden, target) for f in analysis.findings]
     out = ComposedAnalysis(analysis, findings)
     real = os.path.realpath(hidden)

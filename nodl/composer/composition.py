@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -17,7 +18,7 @@ from nodl.composer.formats import (
 )
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept, Param, Remap
 from nodl.composer.ports import Port, Verdict, ports_of, verdict
-from nodl.composer.text import Rendered
+from nodl.composer.rendering import Rendered
 from nodl.diagnostics import Diagnostic, Severity
 
 __all__ = ['Change', 'ComposerError', 'Composition']
@@ -368,9 +369,40 @@ class Composition:
     def set_parameter(self, node: ComposedNode | str, name: str, text: str) -> Change:
         """Set a parameter of a node's entry to ``text`` typed as launch types it, checked at
         once against the declared type and validators (refused when it breaks them)."""
-        from nodl.composer.parameters import set_parameter
+        from nodl.composer.setting import set_parameter
 
         return set_parameter(self, node, name, text)
+
+    def rename(self, node: ComposedNode | str, name: str | None,
+               namespace: str | None) -> Change:
+        """Give the node's entry ``name`` and ``namespace`` (its ``name=``/``namespace=``;
+        None or empty: none, the program's name, the groups' namespace alone).  Refused (an
+        error, nothing changed) for a name or namespace rcl would refuse, or a final name
+        another node has (NODL982), and for a read-only node (NODL983).  Its remapping rules
+        are not rewritten: what the new name joins is the next analysis's."""
+        from nodl.composer.renaming import rename
+
+        return rename(self, node, name, namespace)
+
+    def set_remaps(self, node: ComposedNode | str,
+                   rules: Sequence[tuple[str, str] | str]) -> Change:
+        """Replace the node's own editable remapping rules with ``rules`` (``(FROM, TO)``
+        pairs or ``FROM:=TO`` texts, in rcl's order: the first that matches wins); rules kept as
+        written stay where they are.  Every rule is parsed as rcl parses it: one it would
+        refuse refuses the whole change (NODL988); a rule an earlier one hides is a warning
+        (NODL989).  Refused for a read-only node (NODL983) or rules computed by code
+        (NODL976).  ``Change.remaps``/``removed``: the rules added and taken away."""
+        from nodl.composer.renaming import set_remaps
+
+        return set_remaps(self, node, rules)
+
+    def set_limits(self, limits: Any) -> None:
+        """Analyse from now on under ``limits`` (:class:`~nodl.launch.sandbox.LaunchLimits`):
+        e.g. ``LaunchLimits(execute=True)`` once the user explicitly asked for the launch's
+        Python code to run.  The cached analysis is dropped (the next :meth:`analyse` runs
+        anew); the composition itself is unchanged (nothing to save)."""
+        self.limits = limits
+        self._analysis = None
 
     def definition_of(self, node: ComposedNode) -> Any:
         """The resolved definition of the node (:class:`~nodl.composition.resolved.ResolvedNode`),
@@ -429,11 +461,11 @@ class Composition:
         doc.style['next_id'] = self.document.style.get('next_id', 0)
         new = doc.nodes()
         if len(new) == len(old):
-            for before, after in zip(old, new):
+            for before, after in zip(old, new, strict=True):
                 after.id = before.id
         groups = [g for g, _ in doc.walk() if isinstance(g, Group)]
         if len(groups) == len(old_groups):
-            for before_group, after_group in zip(old_groups, groups):
+            for before_group, after_group in zip(old_groups, groups, strict=True):
                 after_group.id = before_group.id
         self.document = doc
         self._rendered = None

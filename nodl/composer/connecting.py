@@ -72,8 +72,8 @@ def _final_with(composition: Composition, node: ComposedNode, port: Port,
                 remaps: list[Remap | Kept]) -> str | None:
     """The port's final name if the node's own rules were ``remaps`` (None: not computable,
     e.g. a kept rule is among them)."""
-    from nodl.naming import parse_remap_rule
     from nodl.composition.instance import NodeInstance
+    from nodl.naming import parse_remap_rule
 
     launched = composition.analyse().node(node.id)
     if launched is None or launched.match.resolved is None or \

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from nodl.composer import python_format, xml_format, yaml_format
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept
-from nodl.composer.text import Rendered, render_document
+from nodl.composer.rendering import Rendered, render_document
 from nodl.composer.xml_format import ReadError
 
 __all__ = [
@@ -97,10 +97,8 @@ def render(doc: Document) -> Rendered:
         header = header.replace('{imports}\n', imports)
     elif imports:
         at = doc.style.get('import_at')
-        if at is None:
-            header = imports + header
-        else:
-            header = header[:at] + '\n' + imports.rstrip('\n') + header[at:]
+        header = imports + header if at is None else \
+            header[:at] + '\n' + imports.rstrip('\n') + header[at:]
     shifted = Document(doc.format, header, doc.items, doc.close_gap, doc.trailer, doc.indent,
                        doc.style)
     return render_document(shifted, python_format.node_python, python_format.group_python, ',')

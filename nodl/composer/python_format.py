@@ -16,7 +16,7 @@ import ast
 from typing import Any
 
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept, Param, Remap
-from nodl.composer.text import reindent
+from nodl.composer.rendering import reindent
 from nodl.composer.xml_format import ReadError
 
 __all__ = [
@@ -195,7 +195,7 @@ class _Reader:
                 values = None
             if values is not None and all(_parameter_value(v) for v in values):
                 return [Param(k.value, v, None) for k, v in  # type: ignore[union-attr]
-                        zip(element.keys, values)]
+                        zip(element.keys, values, strict=True)]
         return [Kept(self.text(element), 'a parameter source computed by code',
                      element.lineno, column=self.column(element))]
 

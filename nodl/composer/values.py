@@ -32,7 +32,7 @@ def same_value(first: Any, second: Any) -> bool:
     if type(first) is not type(second):
         return False
     if isinstance(first, list):
-        return len(first) == len(second) and all(same_value(a, b) for a, b in zip(first, second))
+        return len(first) == len(second) and all(same_value(a, b) for a, b in zip(first, second, strict=True))
     if isinstance(first, float) and math.isnan(first):
         return math.isnan(second)
     return bool(first == second)

@@ -13,7 +13,7 @@ import xml.parsers.expat
 from dataclasses import dataclass, field
 
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept, Param, Remap
-from nodl.composer.text import reindent
+from nodl.composer.rendering import reindent
 
 __all__ = ['ReadError', 'escape', 'group_xml', 'new_xml', 'node_xml', 'read_xml']
 
@@ -71,7 +71,7 @@ def _parse(raw: bytes) -> _Element:
 
     def start(tag: str, attrs: list[str]) -> None:
         at = parser.CurrentByteIndex
-        element = _Element(tag, list(zip(attrs[::2], attrs[1::2])), at, _tag_end(raw, at),
+        element = _Element(tag, list(zip(attrs[::2], attrs[1::2], strict=True)), at, _tag_end(raw, at),
                            line=parser.CurrentLineNumber, column=parser.CurrentColumnNumber)
         if stack:
             stack[-1].children.append(element)

@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import Any
 
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept, Param, Remap
-from nodl.composer.text import reindent
+from nodl.composer.rendering import reindent
 from nodl.composer.xml_format import ReadError
 
 __all__ = ['group_yaml', 'new_yaml', 'node_yaml', 'push_yaml', 'read_yaml']

@@ -24,13 +24,12 @@ import sys
 from collections.abc import Callable, Sequence
 from typing import Any
 
-from nodl.composer import Change, ComposerError, Composition, Kept, Remap
+from nodl.composer import ComposerError, Composition
 from nodl.composer.ports import ports_of, verdict
 from nodl.composer.values import xml_value
 from nodl.composition.entities import Provider
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch.sandbox import LaunchLimits
-from nodl.naming import namespace_error, node_name_error, parse_remap_rules
 from nodl.registry.overlay import using
 from nodl.studio.guard import FolderGuard
 from nodl.studio.layout import layout_file, read_layout, write_layout
@@ -393,40 +392,15 @@ class Session:
         return self._answer(change)
 
     def rename(self, data: dict[str, Any]) -> dict[str, Any]:
-        """Give ``{node}`` the ``name`` and ``namespace`` of its entry (empty: none)."""
+        """Give ``{node}`` the ``name`` and ``namespace`` of its entry (empty: none); refused,
+        with the composer's errors, for a name or namespace rcl would refuse, a final name
+        another node has (NODL982) or a read-only node (NODL983)."""
         ref = self._node_ref(data)
         node = self.composition.node(ref)
         assert node is not None
-        name = _text(data, 'name', required=False).strip()
-        namespace = _text(data, 'namespace', required=False).strip()
-        problems = []
-        if name:
-            why = node_name_error(name)
-            if why:
-                problems.append(Diagnostic(Severity.ERROR, f"'{name}' is not a node name: {why}",
-                                           file=self.launch_file, code='NODL993'))
-        if namespace:
-            why = namespace_error(namespace if namespace.startswith('/') else '/' + namespace)
-            if why:
-                problems.append(Diagnostic(Severity.ERROR,
-                                           f"'{namespace}' is not a namespace: {why}",
-                                           file=self.launch_file, code='NODL993'))
-        if not node.editable:
-            problems.append(Diagnostic(Severity.ERROR, f'{node.label} is read-only: '
-                                       f'{node.read_only_reason}', file=self.launch_file,
-                                       code='NODL993'))
-        if problems:
-            raise StudioError('; '.join(p.message for p in problems), problems)
         before = self.composition.fqn(node)
-        rename = getattr(self.composition, 'rename', None)
-        if rename is not None:
-            change = rename(ref, name or None, namespace or None)
-        else:  # (see /tmp/h/studio-needs.md: until the composer has the operation)
-            node.name = name or None
-            node.namespace = namespace or None
-            self.composition._changed(node)
-
-            change = Change([], node.id)
+        change = self.composition.rename(node, _text(data, 'name', required=False) or None,
+                                         _text(data, 'namespace', required=False) or None)
         answer = self._answer(change)
         after = self.composition.fqn(node)
         if change.ok and before != after:
@@ -434,32 +408,15 @@ class Session:
         return answer
 
     def set_remaps(self, data: dict[str, Any]) -> dict[str, Any]:
-        """Replace ``{node}``'s own rules with ``remaps`` (``[[from, to], ...]``)."""
+        """Replace ``{node}``'s own rules with ``remaps`` (``[[from, to], ...]``); refused, with
+        the composer's errors, for a rule rcl would refuse (NODL988) or a read-only node."""
         ref = self._node_ref(data)
-        node = self.composition.node(ref)
-        assert node is not None
         rules = data.get('remaps')
         if not isinstance(rules, list) or not all(
                 isinstance(r, list) and len(r) == 2 and all(isinstance(x, str) for x in r)
                 for r in rules):
             raise StudioError("'remaps' must be a list of [from, to] pairs")
-        try:
-            parse_remap_rules([f'{a}:={b}' for a, b in rules])
-        except ValueError as exc:
-            problem = Diagnostic(Severity.ERROR, f'a remapping rule rcl would refuse: {exc}',
-                                 file=self.launch_file, code='NODL993')
-            raise StudioError(problem.message, [problem]) from None
-        if not node.editable:
-            raise StudioError(f'{node.label} is read-only: {node.read_only_reason}')
-        setter = getattr(self.composition, 'set_remaps', None)
-        if setter is not None:
-            change = setter(ref, [(a, b) for a, b in rules])
-        else:  # (see /tmp/h/studio-needs.md)
-
-            kept = [r for r in node.remaps if isinstance(r, Kept)]
-            node.remaps = [*kept, *(Remap(a, b) for a, b in rules)]
-            self.composition._changed(node)
-            change = Change([], node.id)
+        change = self.composition.set_remaps(ref, [(a, b) for a, b in rules])
         return self._answer(change)
 
     # -- files --------------------------------------------------------------------------------
@@ -563,8 +520,7 @@ class Session:
             raise StudioError(problem.message, [problem], status=403)
 
         self.code_ran = True
-        self.composition.limits = LaunchLimits(execute=True)
-        self.composition._analysis = None
+        self.composition.set_limits(LaunchLimits(execute=True))
         return {'ok': True, 'state': self.snapshot()}
 
 

@@ -50,8 +50,8 @@ def set_parameter(composition: Composition, ref: ComposedNode | str, name: str,
     try:
         value = typed_value(text)
     except ValueError as exc:
-        return Change([Diagnostic(Severity.ERROR, f'{name}: {exc}', code='NODL977', file=path, line=line, column=column)],
-                      node.id)
+        return Change([Diagnostic(Severity.ERROR, f'{name}: {exc}', code='NODL977', file=path,
+                                  line=line, column=column)], node.id)
     diagnostics: list[Diagnostic] = []
     resolved = composition.definition_of(node)
     if resolved is None:
