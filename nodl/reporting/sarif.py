@@ -73,7 +73,7 @@ def sarif_log(diagnostics: Iterable[Diagnostic], tool_name: str = 'nodl') -> dic
     """The SARIF log object of ``diagnostics`` (JSON-ready)."""
     from pathlib import Path
 
-    from nodl import __version__
+    from nodl.version import __version__
     from nodl.codes import CODES
 
     items = list(diagnostics)
