@@ -22,9 +22,11 @@ main:
   parameters:
     rate: {{type: double, default_value: 10.0, description: Rate.}}
   publishers:
-    - {{name: out_{i}, type: std_msgs/msg/String, description: Out., qos: {{history: KEEP_LAST, depth: 10, reliability: RELIABLE, durability: VOLATILE, liveliness: AUTOMATIC}}}}
+    - {{name: out_{i}, type: std_msgs/msg/String, description: Out.,
+       qos: {{history: KEEP_LAST, depth: 10, reliability: RELIABLE, durability: VOLATILE, liveliness: AUTOMATIC}}}}
   subscriptions:
-    - {{name: out_{j}, type: std_msgs/msg/String, description: In., qos: {{history: KEEP_LAST, depth: 10, reliability: RELIABLE, durability: VOLATILE, liveliness: AUTOMATIC}}}}
+    - {{name: out_{j}, type: std_msgs/msg/String, description: In.,
+       qos: {{history: KEEP_LAST, depth: 10, reliability: RELIABLE, durability: VOLATILE, liveliness: AUTOMATIC}}}}
 """
 
 

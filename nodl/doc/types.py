@@ -141,8 +141,9 @@ def _unavailable(index: InterfaceIndex, type_name: str, where: Location | None
 
 def type_appendix(index: InterfaceIndex, page: str, used: dict[str, Location | None],
                   level: int = 2) -> tuple[list[Block], list[Diagnostic]]:
-    """The field tables, on the page labelled ``page``, of the types ``used`` (type name -> where it is first used, for the
-    findings), in the order given, then the nested types they hold; and the findings."""
+    """The field tables, on the page labelled ``page``, of the types ``used`` (type name -> where it
+    is first used, for the findings), in the order given, then the nested types they hold; and the
+    findings."""
     blocks: list[Block] = []
     findings: list[Diagnostic] = []
     pending = list(used)

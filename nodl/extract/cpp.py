@@ -781,9 +781,8 @@ class _Scan:
             self.visit(node.child_by_field_name('right'))
             self._assign(node)
             return
-        if kind == 'call_expression':
-            if self._call(node):
-                return
+        if kind == 'call_expression' and self._call(node):
+            return
         nested = kind in ('if_statement', 'for_statement', 'while_statement', 'for_range_loop',
                           'do_statement', 'switch_statement', 'lambda_expression', 'try_statement')
         self.depth += nested
@@ -986,17 +985,16 @@ class _Scan:
                 inner = self.value(obj)
                 if isinstance(inner, _ParamValue):
                     return inner
-        if plain.endswith('get_parameter') or plain.endswith('get_parameter_or'):
-            if items:
-                pname = self.value(items[0])
-                if isinstance(pname, str):
-                    return _ParamValue(pname, None, self.r.loc(node))
+        if (plain.endswith('get_parameter') or plain.endswith('get_parameter_or')) and items:
+            pname = self.value(items[0])
+            if isinstance(pname, str):
+                return _ParamValue(pname, None, self.r.loc(node))
         if plain.endswith('declare_parameter'):
             found = self._declare_parameter(node, function, items, record=False)
             if found is not None:
                 return found
-        if plain.endswith(('QoS', 'KeepLast', 'KeepAll')) or (function is not None and function.type == 'field_expression'
-                                                              and self._is_qos_chain(function)):
+        if plain.endswith(('QoS', 'KeepLast', 'KeepAll')) or (
+                function is not None and function.type == 'field_expression' and self._is_qos_chain(function)):
             return self.qos_value(node)
         return _Unknown(_RUNTIME, self.r.loc(node))
 
@@ -1077,7 +1075,9 @@ class _Scan:
             else:
                 profile = self.qos_value(first)
             if not isinstance(profile, QoSProfile):
-                return profile if isinstance(profile, (_Unknown, _ParamValue)) else _Unknown(_RUNTIME, self.r.loc(first))
+                if isinstance(profile, (_Unknown, _ParamValue)):
+                    return profile
+                return _Unknown(_RUNTIME, self.r.loc(first))
             if len(items) > 1:
                 policies = self.qos_value(items[1])
                 if not isinstance(policies, QoSProfile):
@@ -1309,8 +1309,8 @@ class _Scan:
         owner = self.node_for(receiver)
         if owner is None:
             if receiver is not None:
-                self.untied(node, f'rclcpp_action::{"create_server" if section == "action_servers" else "create_client"}',
-                            receiver)
+                create = 'create_server' if section == 'action_servers' else 'create_client'
+                self.untied(node, f'rclcpp_action::{create}', receiver)
             return
         gaps: list[Gap] = []
         name, gap = self.name_of(items[index] if len(items) > index else None, 'action name', node)
@@ -1800,9 +1800,8 @@ class _FreeScan(_Scan):
             function = node.child_by_field_name('function')
             text = _squash(_text(function)) if function is not None else ''
             base = None
-            if re.fullmatch(r'(?:std::)?make_shared<(rclcpp::Node|rclcpp_lifecycle::LifecycleNode)>', text):
-                base = text
-            elif re.fullmatch(r'(rclcpp::Node|rclcpp_lifecycle::LifecycleNode)::make_shared', text):
+            if (re.fullmatch(r'(?:std::)?make_shared<(rclcpp::Node|rclcpp_lifecycle::LifecycleNode)>', text)
+                    or re.fullmatch(r'(rclcpp::Node|rclcpp_lifecycle::LifecycleNode)::make_shared', text)):
                 base = text
             if base is not None:
                 args = node.child_by_field_name('arguments')

@@ -82,6 +82,7 @@ def too_large_message(what: str = 'a substitution', *, made: bool = False) -> st
     """The message of :class:`SubstitutionTooLarge` for ``what`` (``launch configuration 'x'``);
     ``made``: the text exists already (written so in a Python launch file), it is not used."""
     return (f'{what} {"is" if made else "would be"} longer than the substitution limit of 16 MiB '
-            f'({MAX_SUBSTITUTION_CHARS:,} characters); {"not used" if made else "stopped before making it"}. Real values '
+            f'({MAX_SUBSTITUTION_CHARS:,} characters); {"not used" if made else "stopped before making it"}. '
+            'Real values '
             '(a robot_description) are a few MB: look for a let or arg that repeats its own '
             'value ($(var x)$(var x)) or a value joined with itself')

@@ -37,7 +37,8 @@ __all__ = [
     'ThisLaunchFile', 'AnonName', 'NotSubstitution', 'AndSubstitution', 'OrSubstitution',
     'AnySubstitution', 'AllSubstitution', 'EqualsSubstitution', 'NotEqualsSubstitution',
     'IfElseSubstitution', 'PathJoinSubstitution', 'PathSubstitution', 'Command', 'FindExecutable',
-    'FileContent', 'ExecutableInPackage', 'Deferred', 'Oversized', 'perform_or_defer', 'perform_bounded', 'check_joined_size', 'LaunchLogDir', 'ParameterSubstitution', 'normalize', 'perform',
+    'FileContent', 'ExecutableInPackage', 'Deferred', 'Oversized', 'perform_or_defer', 'perform_bounded',
+    'check_joined_size', 'LaunchLogDir', 'ParameterSubstitution', 'normalize', 'perform',
     'to_bool', 'yaml_bool',
 ]
 

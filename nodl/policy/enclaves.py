@@ -204,7 +204,8 @@ def _mapped(mapping: EnclaveMapping, fqn: str, required: bool = True
     (first, first_entry), (second, second_entry) = list(found.items())[:2]
     line, column = mapping.place(second, second_entry)
     how = 'lists it by name' if by_name else 'has a pattern matching it'
-    fix = 'list it under one enclave only' if by_name else         'list it by name under the one it belongs to, or make the patterns disjoint'
+    fix = 'list it under one enclave only' if by_name \
+        else 'list it by name under the one it belongs to, or make the patterns disjoint'
     return None, _problem(mapping.file, f'the node {fqn} is in two enclaves of {file}: {first!r} and '
                           f'{second!r} each {how} ({first_entry!r} at line '
                           f'{mapping.place(first, first_entry)[0]}, {second_entry!r} here); a node runs '

@@ -159,7 +159,11 @@ def _setup_py(package: str, nodes: list[NodeSource], author: Authorship) -> str:
     name, email = author.maintainer or ('TODO', 'todo@todo.todo')
     scripts = ',\n'.join(f'            {python_string(f"{n.executable} = {package}.{n.executable}:main")}'
                          for n in nodes)
-    return author.header('#') + f'''"""Build and install {package}: its module, its node definitions and their registration."""
+    definitions = _wrapped_comment(f'The definitions: validated now, installed to share/{package}/nodl, registered '
+                                   f'in the ament index (nodl show / nodl check {package} EXECUTABLE find them).',
+                                   '        ')
+    docstring = f'"""Build and install {package}: its module, its node definitions and their registration."""'
+    return author.header('#') + docstring + f'''
 
 from glob import glob
 
@@ -177,7 +181,7 @@ setup(
         ('share/' + package_name, ['package.xml']),
         ('share/' + package_name + '/config', glob('config/*.yaml')),
         ('share/' + package_name + '/launch', glob('launch/*.launch.xml')),
-{_wrapped_comment(f'The definitions: validated now, installed to share/{package}/nodl, registered in the ament index (nodl show / nodl check {package} EXECUTABLE find them).', '        ')}
+{definitions}
         *nodl_data_files(
             package_name,
             nodes={{

@@ -24,7 +24,7 @@ def _is_file_output(path: str) -> bool:
 
 
 class ExtractVerb(Verb):
-    """Draft node definitions from rclpy and rclcpp source code (read, never run), or compare the source with a definition."""
+    """Draft node definitions from rclpy and rclcpp source code (read, never run), or compare the source with a definition."""  # noqa: E501  (one line: the help of nodl -h)
 
     failure = ('the sources have errors (a file that cannot be parsed), or with --diff the source and the '
                'definition differ (with --strict: also a gap or another warning)')
