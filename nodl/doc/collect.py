@@ -42,7 +42,7 @@ if TYPE_CHECKING:
     from nodl.interface_types.resolve import InterfaceIndex
     from nodl.launch.sandbox import LaunchLimits
     from nodl.registry.overlay import Definitions
-    from nodl.targets.resolve import Target
+    from nodl.targets.resolve import ResolvedTarget
 
 __all__ = ['DocSet', 'collect', 'Displayer']
 
@@ -100,7 +100,7 @@ class _Run:
         self.docs, self.display, self.index = docs, display, index
         self.client_library, self.prefixes = client_library, prefixes
 
-    def node(self, found: Target, package: str | None, executable: str | None) -> Page | None:
+    def node(self, found: ResolvedTarget, package: str | None, executable: str | None) -> Page | None:
         problems = [d for d in found.diagnostics if d.severity is not Severity.INFO]
         if found.node is None:
             self.docs.diagnostics += problems or [_error(found.source, 'the definition cannot be '

@@ -16,11 +16,11 @@ from __future__ import annotations
 from nodl.targets.placement import Definition, instances_from_definitions
 from nodl.targets.resolve import (
            Provenance,
-           Target,
+           ResolvedTarget,
            gather_definitions,
            provenance_of,
            resolve_target,
 )
 
-__all__ = ['Definition', 'Provenance', 'Target', 'gather_definitions', 'instances_from_definitions',
+__all__ = ['Definition', 'Provenance', 'ResolvedTarget', 'gather_definitions', 'instances_from_definitions',
            'provenance_of', 'resolve_target']

@@ -32,7 +32,7 @@ from nodl.registry.registrations import compose_registered, find_node
 from nodl.reporting import plural
 from nodl.validation.kinds import Kind
 
-__all__ = ['Provenance', 'Target', 'gather_definitions', 'provenance_of', 'made_by', 'resolve_registered',
+__all__ = ['Provenance', 'ResolvedTarget', 'gather_definitions', 'provenance_of', 'made_by', 'resolve_registered',
            'resolve_target', 'resolve_reference', 'coverage_line', 'NODL_PATH']
 
 #: The environment variable listing definitions folders.
@@ -114,7 +114,7 @@ def gather_definitions(given: Sequence[str] = (), *, environ: Mapping[str, str] 
     return read_folders(roots)
 
 
-class Target(NamedTuple):
+class ResolvedTarget(NamedTuple):
     """A resolved target: the node (None on errors), the diagnostics, the file it was read
     from, and where that file came from."""
 
@@ -126,7 +126,7 @@ class Target(NamedTuple):
 
 def resolve_target(target: Sequence[str] | str, *, client_library: str | None = None,
                    prefixes: list[str] | None = None,
-                   definitions: Definitions | None = None) -> Target:
+                   definitions: Definitions | None = None) -> ResolvedTarget:
     """Resolve ``FILE`` or ``PACKAGE EXECUTABLE`` to a node.
 
     ``PACKAGE EXECUTABLE`` is looked up in ``definitions`` (and whatever folders are in
@@ -144,7 +144,7 @@ def resolve_target(target: Sequence[str] | str, *, client_library: str | None = 
                 parts[0], parts[1], client_library=client_library, prefixes=prefixes)
             provenance = Provenance.of(registration.origin if registration else 'index',
                                        registration.file if registration else None)
-            return Target(node, diagnostics, source, provenance)
+            return ResolvedTarget(node, diagnostics, source, provenance)
         if len(parts) != 1:
             raise ValueError('give a definition FILE or PACKAGE EXECUTABLE')
         path = parts[0]
@@ -153,7 +153,7 @@ def resolve_target(target: Sequence[str] | str, *, client_library: str | None = 
         report = check_source(Path(path), kind=Kind.NODE, file=path)
         node, diagnostics = resolve_report(report, client_library=client_library,
                                            prefixes=prefixes)
-        return Target(node, diagnostics, path, Provenance('file', None, made_by(path)))
+        return ResolvedTarget(node, diagnostics, path, Provenance('file', None, made_by(path)))
 
 
 def resolve_reference(reference: str, *, prefixes: list[str] | None = None,
