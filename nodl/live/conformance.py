@@ -24,7 +24,7 @@ declared points at the section of ``main`` it would belong in.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from typing import Any, Union
+from typing import Any
 
 from nodl.composition.entities import Entity
 from nodl.composition.resolved import ResolvedNode
@@ -185,7 +185,7 @@ Difference = LiveDiagnostic
 
 #: How a node's names are remapped: its :class:`~nodl.naming.NodeNames` (exact: what
 #: rcl does, topics and services apart) or a mapping of expanded topic names FROM -> TO.
-Remaps = Union[NodeNames, Mapping[str, str], None]
+Remaps = NodeNames | Mapping[str, str] | None
 
 
 def parse_remaps(rules: Iterable[str], node_name: str, namespace: str) -> dict[str, str]:
