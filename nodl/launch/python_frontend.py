@@ -17,7 +17,6 @@ code, as ``ros2 launch`` does: analyse only launch files you would launch.
 
 from __future__ import annotations
 
-import importlib.abc
 import importlib.util
 import os
 import sys
@@ -120,8 +119,9 @@ def _placeholder(qualified: str) -> type:
     return Unknown
 
 
-class _Finder(importlib.abc.MetaPathFinder, importlib.abc.Loader):
-    """Any other submodule of the stand-in packages imports as a module of placeholders."""
+class _Finder:
+    """Any other submodule of the stand-in packages imports as a module of placeholders (a
+    meta path finder and loader by protocol, as :class:`~nodl.launch.python_missing.MissingModules`)."""
 
     def find_spec(self, fullname: str, path: Any, target: Any = None) -> Any:
         if fullname.partition('.')[0] not in _STAND_IN_PACKAGES or fullname in sys.modules:

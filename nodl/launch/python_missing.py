@@ -30,7 +30,6 @@ the value is not known.
 from __future__ import annotations
 
 import importlib
-import importlib.abc
 import importlib.util
 import os
 import sys
@@ -435,9 +434,13 @@ def action_arguments(cls: type, args: tuple[Any, ...], kwargs: dict[str, Any]) -
     return args, kwargs
 
 
-class MissingModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
+class MissingModules:
     """The finder, last on ``sys.meta_path`` while one launch file is evaluated, that gives
-    a module found nowhere else as a module of placeholders (see the module docstring)."""
+    a module found nowhere else as a module of placeholders (see the module docstring).
+
+    A meta path finder and loader by protocol (``find_spec``, ``create_module``,
+    ``exec_module``): importlib.abc's base classes would load importlib.resources, tempfile
+    and random into ``nodl analyse`` for nothing."""
 
     def __init__(self, context: LaunchContext, path: str, helper_roots: list[str]) -> None:
         self.context = context
