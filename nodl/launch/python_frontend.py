@@ -126,7 +126,7 @@ class _Finder:
     def find_spec(self, fullname: str, path: Any, target: Any = None) -> Any:
         if fullname.partition('.')[0] not in _STAND_IN_PACKAGES or fullname in sys.modules:
             return None
-        return importlib.util.spec_from_loader(fullname, self, is_package=True)
+        return importlib.util.spec_from_loader(fullname, self, is_package=True)  # type: ignore[arg-type]  # (exec_module, not load_module)
 
     def create_module(self, spec: Any) -> types.ModuleType:
         # launch's packages re-export what their submodules define: a submodule

@@ -508,7 +508,7 @@ class MissingModules:
                               'installed here (neither on the Python path nor in the Python folders of '
                               'an ament prefix): what it computes is known only when the launch runs '
                               '(install or source the package that provides it to analyse it)', where)
-        return importlib.util.spec_from_loader(fullname, self, is_package=True)
+        return importlib.util.spec_from_loader(fullname, self, is_package=True)  # type: ignore[arg-type]  # (exec_module, not load_module)
 
     def create_module(self, spec: Any) -> types.ModuleType:
         """A module whose every attribute is a placeholder."""
