@@ -8,8 +8,11 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from composer_helpers import DEFINITIONS, copy_launch
 from conftest import REPO
+from nodl.cli.main import main
 
 
 def nodl(*args: str) -> subprocess.CompletedProcess[str]:
@@ -82,3 +85,28 @@ def test_dry_run_prints_and_writes_nothing(tmp_path: Path) -> None:
     assert "        Node(\n            package='demo_pkg',\n            executable='listener',\n" \
            "            name='extra',\n        ),\n    ])\n" in done.stdout
     assert Path(path).read_text(encoding='utf-8') == before
+
+
+def test_rename_and_remap(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = str(copy_launch(tmp_path) / 'rules.launch.xml')
+    renamed = nodl('rename', path, 'talker', '--namespace', '/robot')
+    assert renamed.returncode == 0, renamed.stderr
+    assert renamed.stdout == f'renamed /talker to /robot/talker; {path} saved\n'
+    assert '<node pkg="demo_pkg" exec="talker" name="talker" namespace="/robot"/>' in \
+        Path(path).read_text(encoding='utf-8')
+    before = Path(path).read_text(encoding='utf-8')
+    refused = nodl('remap', path, 'listener', 'messages:=/robot/chatter', 'nonsense')
+    assert refused.returncode == 1
+    assert "rule 2 'nonsense' is not FROM:=TO" in refused.stdout and '[NODL988]' in refused.stdout
+    assert Path(path).read_text(encoding='utf-8') == before
+    remapped = nodl('remap', path, 'listener', 'messages:=/robot/chatter', '--format', 'json')
+    assert remapped.returncode == 0, remapped.stderr
+    data = json.loads(remapped.stdout)
+    assert data['saved'] and data['remaps'] == [{'node': 'n1', 'from': 'messages',
+                                                 'to': '/robot/chatter'}]
+    assert len(data['removed']) == 2
+    assert '<remap from="$(var topic)" to="messages"/>\n' \
+           '    <remap from="messages" to="/robot/chatter"/>\n' in Path(path).read_text(encoding='utf-8')
+    # rename without --name or --namespace is a usage error (in process: no file is read)
+    assert main(['system', 'rename', path, 'talker']) == 2
+    assert 'give --name, --namespace or both' in capsys.readouterr().err

@@ -12,6 +12,7 @@ import pytest
 
 from composer_helpers import copy_launch, definitions
 from nodl.composer import ComposerError, Composition
+from nodl.launch.sandbox import LaunchLimits
 
 
 @pytest.fixture
@@ -166,3 +167,17 @@ def test_other_formats_render_the_declarative_part(demo: Composition) -> None:
     assert 'output' not in yaml_text   # kept pieces are the source format's
     assert "PushRosNamespace('sub')" in demo.render('python')
     assert 'quiet' not in yaml_text   # read-only: its condition is XML's
+
+
+def test_set_limits_analyses_anew(tmp_path: Path) -> None:
+    demo = Composition.open(str(copy_launch(tmp_path) / 'demo.launch.py'),
+                            definitions=definitions(), limits=LaunchLimits(execute=False))
+    before = demo.analyse()
+    assert demo.analyse() is before   # cached until something changes
+    assert {f.code for f in before.findings} & {'NODL525', 'NODL526'}   # not run: said so
+    allowed = LaunchLimits(execute=True)
+    demo.set_limits(allowed)
+    assert demo.limits is allowed and not demo.dirty
+    after = demo.analyse()
+    assert after is not before
+    assert not {f.code for f in after.findings} & {'NODL525', 'NODL526'}
