@@ -7,6 +7,7 @@ TOML, registered through its entry_points.txt like the built-ins, with broken ne
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -178,3 +179,18 @@ def test_cli_validates_with_a_third_party_frontend() -> None:
     assert 'talker.nodl.toml: valid node definition' in out, out
     assert out.count('[NODL017]') == 2, out  # 'future' and 'gone', once each
     assert result.returncode == 0, out
+
+
+def test_reading_yaml_loads_no_other_frontends_reader() -> None:
+    """The XML and generate_parameter_library readers are loaded for their own texts only."""
+    program = ('import json, sys\nfrom nodl.cli.main import main\n'
+               "code = main(['validate', '-q', sys.argv[1]])\n"
+               'print(json.dumps([code, sorted(sys.modules)]))\n')
+    node = FIXTURES / 'valid' / 'node_laser_driver.nodl.yaml'
+    done = subprocess.run([sys.executable, '-c', program, str(node)], capture_output=True, text=True,
+                          timeout=60, cwd=REPO, check=False)
+    assert done.returncode == 0, done.stderr
+    code, modules = json.loads(done.stdout.splitlines()[-1])
+    assert code == 0 and 'nodl.frontends.builtin' in modules
+    assert not {'nodl.frontends.xml_reader', 'nodl.frontends.legacy_xml', 'nodl.frontends.xml_recognise',
+                'nodl.frontends.genparamlib', 'pyexpat', 'importlib.metadata'} & set(modules)
