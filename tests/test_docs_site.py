@@ -233,7 +233,7 @@ def _matches(printed: list[str], quoted: list[str]) -> bool:
 def test_the_docs_have_command_examples() -> None:
     examples = _examples()
     assert len(examples) >= 8
-    for page, kind, marker, command, quoted in examples:
+    for page, kind, marker, command, _quoted in examples:
         if kind == 'not-run':
             assert len(marker) > 20, f'{page}: `{command}`: say why it cannot run here'
 
@@ -374,8 +374,9 @@ def test_the_docs_have_shell_examples_that_run() -> None:
 
 
 @pytest.mark.parametrize('block', _shell_blocks(), ids=lambda b: f'{b[0]}:{b[1]}')
-def test_every_shell_example_runs_or_says_why_not(block: tuple[str, int, str, str, list[str]],
-                                                  shell_runs: dict[tuple[str, int], tuple[str, list[tuple[str, int]]]]) -> None:
+def test_every_shell_example_runs_or_says_why_not(
+        block: tuple[str, int, str, str, list[str]],
+        shell_runs: dict[tuple[str, int], tuple[str, list[tuple[str, int]]]]) -> None:
     import shlex
 
     page, line, kind, marker, commands = block

@@ -69,7 +69,8 @@ def test_value_sep_lists_are_uniform() -> None:
 
 def test_parameter_files_keep_positions_and_both_typings(tmp_path: Path) -> None:
     path = tmp_path / 'p.yaml'
-    path.write_text('/**:\n  ros__parameters:\n    a: y\n    b:\n      c: 1e5\nns:\n  n:\n    ros__parameters: {d: 1}\n')
+    path.write_text('/**:\n  ros__parameters:\n    a: y\n    b:\n      c: 1e5\n'
+                    'ns:\n  n:\n    ros__parameters: {d: 1}\n')
     loaded = load_parameter_file(path)
     assert loaded.keys == ['/**', 'ns/n'] and not loaded.diagnostics
     star, named = loaded.nodes

@@ -6,7 +6,28 @@ import itertools
 
 import pytest
 
-from nodl.naming import expand, fully_qualified, relativize
+from nodl.naming import (
+    InvalidNameError,
+    InvalidRemapRuleError,
+    NodeNames,
+    RemapRule,
+    expand,
+    expand_name,
+    full_name_error,
+    fully_qualified,
+    join_name,
+    namespace_error,
+    node_fqn,
+    node_name_after_remaps,
+    node_name_error,
+    node_namespace_after_remaps,
+    parse_remap_rule,
+    parse_remap_rules,
+    relativize,
+    resolve_name,
+    split_name,
+    topic_name_error,
+)
 
 
 @pytest.mark.parametrize('namespace, name, fqn', [
@@ -108,27 +129,6 @@ def test_relativize_then_expand_gives_the_name_back(name: str, namespace: str) -
 
 
 # -- expand_name: rcl's expansion with rcl's validation --------------------------------------
-
-from nodl.naming import (
-    InvalidNameError,
-    InvalidRemapRuleError,
-    NodeNames,
-    RemapRule,
-    expand_name,
-    full_name_error,
-    join_name,
-    namespace_error,
-    node_fqn,
-    node_name_after_remaps,
-    node_name_error,
-    node_namespace_after_remaps,
-    parse_remap_rule,
-    parse_remap_rules,
-    resolve_name,
-    split_name,
-    topic_name_error,
-)
-
 
 @pytest.mark.parametrize('name, namespace', list(itertools.product(_NAMES, _NAMESPACES)))
 def test_expand_name_agrees_with_rcl(name: str, namespace: str) -> None:
@@ -356,7 +356,8 @@ def test_join_and_split(namespace: str, name: str, fqn: str) -> None:
 # -- no other module joins ROS names by hand ---------------------------------------------------
 
 #: A string concatenation or f-string that glues a name, node or namespace to a '/'.
-_HAND_JOIN = r"""(\+\s*['"]/['"]|['"]/['"]\s*\+|rstrip\(['"]/['"]\)\s*\+|f['"][^'"]*\{[^}]*(namespace|ns|node|name)[^}]*\}/\{|f['"]/\{[^}]*(namespace|node|name))"""
+_HAND_JOIN = (r"""(\+\s*['"]/['"]|['"]/['"]\s*\+|rstrip\(['"]/['"]\)\s*\+|"""
+              r"""f['"][^'"]*\{[^}]*(namespace|ns|node|name)[^}]*\}/\{|f['"]/\{[^}]*(namespace|node|name))""")
 #: Lines that join with '/' but do not compute a ROS name the way rcl does, and why.
 _NOT_ROS_NAMES = {
     # interface types (package/msg/Name) and the C++ header of one
@@ -371,19 +372,26 @@ _NOT_ROS_NAMES = {
     ('nodl/policy/names.py', "own = _delimited(namespace) + node + '/'"),
     # type names (pkg/msg/T), file paths in messages, a node's own prefix to test names against,
     # the diagnostic aggregator's status paths: not ROS graph names being built
-    ('nodl/analysis/checks/definitions.py', "f'as DIR/{node.match.package}/{node.match.key}.nodl.yaml and give --definitions DIR)',"),
-    ('nodl/analysis/checks/names.py', "return expanded.startswith(names.fqn.rstrip('/') + '/') or expanded in _CONTAINER_GLOBALS"),
-    ('nodl/system/checks/definitions.py', "f'as DIR/{node.match.package}/{node.match.key}.nodl.yaml and give --definitions DIR)',"),
-    ('nodl/system/checks/names.py', "return expanded.startswith(names.fqn.rstrip('/') + '/') or expanded in _CONTAINER_GLOBALS"),
-    ('nodl/extract/targets.py', 'Severity.INFO, f"component {node.plugin} is not recorded in {node.package}/{NODES_FILE}: a "'),
+    ('nodl/analysis/checks/definitions.py',
+     "f'as DIR/{node.match.package}/{node.match.key}.nodl.yaml and give --definitions DIR)',"),
+    ('nodl/analysis/checks/names.py',
+     "return expanded.startswith(names.fqn.rstrip('/') + '/') or expanded in _CONTAINER_GLOBALS"),
+    ('nodl/system/checks/definitions.py',
+     "f'as DIR/{node.match.package}/{node.match.key}.nodl.yaml and give --definitions DIR)',"),
+    ('nodl/system/checks/names.py',
+     "return expanded.startswith(names.fqn.rstrip('/') + '/') or expanded in _CONTAINER_GLOBALS"),
+    ('nodl/extract/targets.py',
+     'Severity.INFO, f"component {node.plugin} is not recorded in {node.package}/{NODES_FILE}: a "'),
     ('nodl/interface_types/resolve.py', "return f'{self.package}/{self.namespace}/{self.name}'"),
     ('nodl/interface_types/resolve.py', "return sorted(f'{self.name}/{ns}/{name}' for ns, name in self.types"),
     ('nodl/interface_types/resolve.py', "files += [f'{namespace}/{e.name}' for e in entries if e.is_file()]"),
     ('nodl/interface_types/resolve.py', "tuple(f'{package_name}/{namespace}/{c}' for c in close), package)"),
     ('nodl/interface_types/tree.py', "raise UnknownTypeError(f'{package}/{namespace}/{name}')"),
     ('nodl/interface_types/tree.py', "raise InterfaceFileError(f'does not define {package}/{namespace}/{name}', path)"),
-    ('nodl/interface_types/tree.py', "data = {'pkg_name': package, 'relative_input_file': f'{namespace}/{os.path.basename(path)}',"),
-    ('nodl/interface_types/tree.py', 'file = index.file(f\'{package}/{namespace}/{type_name.split("_", 1)[0]}\') or \'\''),
+    ('nodl/interface_types/tree.py',
+     "data = {'pkg_name': package, 'relative_input_file': f'{namespace}/{os.path.basename(path)}',"),
+    ('nodl/interface_types/tree.py',
+     'file = index.file(f\'{package}/{namespace}/{type_name.split("_", 1)[0]}\') or \'\''),
     ('nodl/interface_types/tree.py', "prefix = f'{package}/{namespace}/{base}'"),
     ('nodl/live/type_skew.py', "own = observed.fully_qualified_name + '/'  # the base's services (parameters...) last"),
     ('nodl/monitor/aggregator.py', "prefix = PREFIX + namespace.rstrip('/') + '/'"),

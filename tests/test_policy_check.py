@@ -35,7 +35,8 @@ def test_the_generated_policy_passes(expected):
 
 def test_one_missing_and_one_extra_grant_are_exactly_reported(expected):
     text = write_policy(expected)
-    text = text.replace('            <topic>chatter</topic> <!-- publisher', '            <topic>chatting</topic> <!-- publisher')
+    text = text.replace('            <topic>chatter</topic> <!-- publisher',
+                        '            <topic>chatting</topic> <!-- publisher')
     found = _check(text, expected)
     assert [(d.code, d.line) for d in found] == [
         ('NODL604', _line(text, '<profile ns="/" node="talker">')),
