@@ -25,7 +25,7 @@ import sys
 import types
 import warnings
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import nodl
 from nodl_schema.ament_resolver import AmentIndexResolver
@@ -40,7 +40,6 @@ from nodl_schema.composition import (
 from nodl_schema.local_resolver import LocalResolver
 from nodl_schema.validation import ValidationError, load_schema, validate
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl_schema.loader import dump_nodl, load_nodl, load_nodl_with_doc_tree, parse_nodl, resolve_document
     from nodl_schema.rewrite import rewrite_references

@@ -14,8 +14,8 @@ import collections
 import dataclasses
 import json
 from pathlib import Path
-
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from typing import IO, Any
 

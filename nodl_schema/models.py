@@ -24,6 +24,7 @@ except ImportError:  # pragma: no cover - the message is tested in a process wit
                       "(or pip install 'pydantic>=1.10.17')") from None
 
 from typing import TYPE_CHECKING
+
 if TYPE_CHECKING:
     from nodl.model import Interface
 

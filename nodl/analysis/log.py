@@ -17,12 +17,12 @@ from __future__ import annotations
 import json
 from typing import Any
 
-from nodl.version import __version__
 from nodl.launch.params import RuntimeValue
 from nodl.system.findings import Finding
 from nodl.system.launched import SystemNode
 from nodl.system.run import LAUNCH_KIND, Analysis
 from nodl.text_safety import visible
+from nodl.version import __version__
 
 __all__ = ['format_log']
 

@@ -7,8 +7,8 @@ import argparse
 import os
 import sys
 
-from nodl.version import __version__
 from nodl.cli.runner import HelpFormatter, add_verbs, run_verb
+from nodl.version import __version__
 
 __all__ = ['main', 'build_parser']
 

@@ -19,11 +19,11 @@ import ast
 import copy
 import os
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.extract.model import ExtractedNode, Extraction
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from collections.abc import Callable, Iterable
     from typing import Any

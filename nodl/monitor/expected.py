@@ -12,12 +12,11 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nodl.composition.entities import Location
 from nodl.diagnostics import Diagnostic, Severity
 
-from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from nodl.composition.resolved import ResolvedNode
     from nodl.launch.sandbox import LaunchLimits

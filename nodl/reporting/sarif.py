@@ -73,8 +73,8 @@ def sarif_log(diagnostics: Iterable[Diagnostic], tool_name: str = 'nodl') -> dic
     """The SARIF log object of ``diagnostics`` (JSON-ready)."""
     from pathlib import Path
 
-    from nodl.version import __version__
     from nodl.codes import CODES
+    from nodl.version import __version__
 
     items = list(diagnostics)
     rule_index: dict[str, int] = {}
