@@ -42,15 +42,17 @@ class TypeDefinitionCheck(CheckExtension):
     def check(self, context: AnalysisContext) -> Iterator[Finding]:
         """One finding per topic whose endpoints' definitions of its type hash differently."""
         prefixes = search_path(list(context.prefixes) if context.prefixes is not None else None)
+        if len(prefixes) < 2:
+            return  # every node sees the same interface packages: one definition per type name
         for connection in context.system.connections('topic', include_client_library=False):
             endpoints = connection.offering + connection.using
             if len(endpoints) < 2 or len({e.entity.type_name for e in endpoints}) != 1:
                 continue  # one endpoint, or several type names (type-mismatch says so)
+            views = [_prefixes_of(e.entity.location.file, prefixes) for e in endpoints]
+            if all(view == views[0] for view in views):
+                continue  # the same prefixes seen from every endpoint: the same definition
             by_hash: dict[str, list[tuple[object, str]]] = {}
-            for endpoint in endpoints:
-                # (with one prefix every node sees it: no need to place the declaration)
-                seen = _prefixes_of(endpoint.entity.location.file, prefixes) \
-                    if len(prefixes) > 1 else prefixes
+            for endpoint, seen in zip(endpoints, views, strict=True):
                 try:
                     found = type_hash(interface_index(prefixes=seen), endpoint.entity.type_name)
                 except (LookupError, InterfaceFileError):
