@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from typing import Any, Union
+    from typing import Any
 
 from nodl.diagnostics import Diagnostic, Severity, ValidationError, has_errors
 from nodl.frontends.frontend import Placer, read_document
@@ -41,7 +41,7 @@ if TYPE_CHECKING:
 
 #: Any loaded NoDL document.
 if TYPE_CHECKING:
-    Document = Union['Interface', 'Node', 'ParameterDefinition']
+    Document = Interface | Node | ParameterDefinition
 else:
     Document = object
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import enum
 import re
-from typing import Any, Optional
+from typing import Any
 
 try:
     from pydantic.v1 import BaseModel, Extra, Field, validator
@@ -145,9 +145,9 @@ class ActionEndpoint(_Strict):
     description: str | None = None
 
 
-_Numbers = Optional[list[float]]
-_Comparison = Optional[list[float] | float]
-_Size = Optional[list[int] | int]
+_Numbers = list[float] | None
+_Comparison = list[float] | float | None
+_Size = list[int] | int | None
 
 
 class Validation(_Strict):

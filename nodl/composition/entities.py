@@ -13,7 +13,7 @@ import enum
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any, NamedTuple, Union
+from typing import Any, NamedTuple
 
 from nodl.location import Location
 from nodl.model import QoSProfile
@@ -124,7 +124,7 @@ class InterfaceType(NamedTuple):
 
 
 #: The parsed type of an entity: an interface type, or a parameter type.
-EntityType = Union[InterfaceType, TypeSpec, None]
+EntityType = InterfaceType | TypeSpec | None
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)

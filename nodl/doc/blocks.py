@@ -13,7 +13,6 @@ import functools
 import posixpath
 import re
 from dataclasses import dataclass, field
-from typing import Union
 
 __all__ = ['Link', 'Literal', 'Inline', 'Heading', 'Paragraph', 'Table', 'Code', 'Note', 'Picture',
            'Contents', 'Block', 'Page', 'label', 'text_of', 'href']
@@ -36,7 +35,7 @@ class Literal:
 
 
 #: A piece of running text.
-Inline = Union[str, Link, Literal]
+Inline = str | Link | Literal
 
 
 @dataclass(frozen=True)
@@ -96,7 +95,7 @@ class Contents:
     pages: tuple[str, ...]
 
 
-Block = Union[Heading, Paragraph, Table, Code, Note, Picture, Contents]
+Block = Heading | Paragraph | Table | Code | Note | Picture | Contents
 
 
 @dataclass

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from collections.abc import Callable
-    from typing import IO, Any, Union
+    from typing import IO, Any
 
 from nodl.diagnostics import Diagnostic, Severity
 
@@ -27,7 +27,7 @@ _CHUNK = 1024 * 1024
 
 #: Everything the loaders accept as a document.
 if TYPE_CHECKING:
-    Source = Union[str, bytes, bytearray, memoryview, IO[str], IO[bytes], 'os.PathLike[str]']
+    Source = str | bytes | bytearray | memoryview | IO[str] | IO[bytes] | os.PathLike[str]
 else:
     Source = object
 

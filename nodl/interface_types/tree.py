@@ -23,11 +23,9 @@ import os
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from typing import Any, Union
+    from typing import Any
 
     from nodl.interface_types.resolve import InterfaceIndex, TypeName
-
-    InterfaceType = Union['MessageType', 'ServiceType', 'ActionType']
 
 __all__ = ['FieldType', 'Field', 'Constant', 'MessageType', 'ServiceType', 'ActionType',
            'InterfaceFileError', 'UnknownTypeError', 'load_type', 'load_idl']
@@ -195,6 +193,10 @@ class ActionType:
         return f'<ActionType {self.name}>'
 
 
+#: Any interface type: a message, a service or an action.
+InterfaceType = MessageType | ServiceType | ActionType
+
+
 # -- reading files ------------------------------------------------------------------------------
 
 def load_idl(index: InterfaceIndex, package: str, namespace: str, name: str) -> Any:
@@ -264,10 +266,7 @@ def _adapter_spec(text: str, path: str, package: str, namespace: str, name: str)
 
 def _parse(path: str, share: str, package: str, namespace: str, name: str) -> Any:
     text = _read_text(path)
-    if path.endswith('.idl'):
-        idl = text
-    else:
-        idl = _to_idl(text, path, package, namespace, name)
+    idl = text if path.endswith('.idl') else _to_idl(text, path, package, namespace, name)
     from rosidl_parser.parser import parse_idl_string
 
     try:

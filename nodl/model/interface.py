@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import copy
 from dataclasses import dataclass, field
-from typing import Any, Union
+from typing import Any
 
 from nodl.model.parameter import ParameterDefinition
 from nodl.model.qos import QoSProfile
@@ -88,7 +88,7 @@ class ActionEndpoint:
         return out
 
 
-Endpoint = Union[TopicEndpoint, ServiceEndpoint, ActionEndpoint]
+Endpoint = TopicEndpoint | ServiceEndpoint | ActionEndpoint
 
 _ENDPOINT_CLASSES = {'topic': TopicEndpoint, 'service': ServiceEndpoint, 'action': ActionEndpoint}
 #: Section name -> endpoint class, in file order (derived from :mod:`nodl.vocabulary`).

@@ -5,7 +5,7 @@ from __future__ import annotations
 import copy
 import enum
 from dataclasses import dataclass, field
-from typing import Any, Union
+from typing import Any
 
 from nodl.model.interface import Interface
 
@@ -24,7 +24,7 @@ class Base(str, enum.Enum):
 
 #: A mixin is a reference (``nodl://pkg/name`` or a relative path) or an
 #: in-place interface definition.
-Mixin = Union[str, Interface]
+Mixin = str | Interface
 
 
 @dataclass(slots=True)

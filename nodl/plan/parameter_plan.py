@@ -31,7 +31,7 @@ import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from dataclasses import field as _field
-from typing import Any, Union
+from typing import Any
 
 from nodl.model.parameter_types import TypeSpec, parse_type
 from nodl.plan.identifiers import PYTHON_KEYWORDS, IdentifierScope
@@ -391,4 +391,4 @@ def value_problems(plan: ParameterPlan, value: Any) -> list[str]:
     return [why for why in (v.check(value) for v in plan.builtin_validators) if why is not None]
 
 
-ParameterMember = Union[ParameterPlan, StructPlan]
+ParameterMember = ParameterPlan | StructPlan
