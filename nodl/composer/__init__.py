@@ -51,12 +51,14 @@ that join them), :mod:`~nodl.composer.setting` (parameter values checked against
 :mod:`~nodl.composer.adding` (adding and removing nodes), :mod:`~nodl.composer.values`
 (parameter values as each format spells them), :mod:`~nodl.composer.rendering` (the text of
 a document, and where each node is in it), :mod:`~nodl.composer.convert` (another format),
-:mod:`~nodl.composer.composition` (the class).
+:mod:`~nodl.composer.change` (what an operation answers), :mod:`~nodl.composer.composition`
+(the class).
 """
 
 from __future__ import annotations
 
-from nodl.composer.composition import Change, ComposerError, Composition
+from nodl.composer.change import Change, ComposerError
+from nodl.composer.composition import Composition
 from nodl.composer.model import ComposedNode, Group, Kept, Param, Remap
 from nodl.composer.ports import Port, Verdict
 

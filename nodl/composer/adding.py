@@ -4,11 +4,15 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from nodl.composer.change import Change
+from nodl.composer.formats import new_group
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.naming import join_name, namespace_error, node_name_error
+from nodl.registry import node_info, overlay
 
 if TYPE_CHECKING:
-    from nodl.composer.composition import Change, Composition
+    from nodl.composer.composition import Composition
 
 __all__ = ['add_node', 'default_plugin', 'remove_node']
 
@@ -19,7 +23,6 @@ def default_plugin(composition: Composition, package: str, executable: str) -> s
     as ``executable``)."""
     if '::' in executable:
         return executable
-    from nodl.registry import node_info, overlay
 
     with overlay.using(composition.definitions):
         info = node_info.read_node_info(package, executable, composition.prefixes)
@@ -57,9 +60,6 @@ def add_node(composition: Composition, package: str, executable: str, name: str,
              namespace: str | None, container: str | None, plugin: str | None,
              group_id: str | None) -> Change:
     """:meth:`Composition.add`."""
-    from nodl.composer.composition import Change
-    from nodl.naming import namespace_error, node_name_error
-
     doc = composition.document
     if doc.style.get('opaque'):
         return Change([composition._editable(ComposedNode('', 'node', '', None))])  # type: ignore[list-item]
@@ -73,7 +73,6 @@ def add_node(composition: Composition, package: str, executable: str, name: str,
         why = namespace_error(namespace if namespace.startswith('/') else '/' + namespace)
         if why is not None:
             return Change([_problem(composition, f"'{namespace}' is not a namespace: {why}")])
-    from nodl.naming import join_name
 
     wanted = join_name(namespace or '/', name) if namespace is None or namespace.startswith('/') \
         else join_name('/' + namespace, name)
@@ -121,8 +120,6 @@ def add_node(composition: Composition, package: str, executable: str, name: str,
         holder = next((g for g in items if isinstance(g, Group) and g.namespace == namespace
                        and not g.conditional), None)
         if holder is None:
-            from nodl.composer.formats import new_group
-
             holder = new_group(doc.format, composition._next_id('g'), namespace, indent)
             _place(items, holder, indent, opening, doc.format)
             target_group = holder

@@ -13,11 +13,14 @@ from __future__ import annotations
 
 import contextlib
 import os
+import tempfile
 from dataclasses import dataclass, field
 from typing import Any
 
 from nodl.composer.rendering import Rendered
 from nodl.diagnostics import Diagnostic
+from nodl.system.run import analyse_launch
+from nodl.system.settings import load_settings
 
 __all__ = ['ComposedAnalysis', 'analyse_text']
 
@@ -56,14 +59,9 @@ def analyse_text(path: str, rendered: Rendered, *, on_disk: bool,
                  prefixes: list[str] | None = None) -> ComposedAnalysis:
     """Analyse ``rendered`` as the launch file ``path`` (``on_disk``: the file holds that text
     already).  OSError when the hidden copy cannot be written."""
-    from nodl.system.run import analyse_launch
-    from nodl.system.settings import load_settings
-
     target = os.path.abspath(path)
     hidden = target
     if not on_disk:
-        import tempfile
-
         folder, base = os.path.split(target)
         suffix = next((s for s in ('.launch.xml', '.launch.yaml', '.launch.yml', '.launch.py')
                        if base.lower().endswith(s)), os.path.splitext(base)[1])

@@ -5,10 +5,13 @@ from __future__ import annotations
 import hashlib
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
-from nodl.composer.analysed import ComposedAnalysis
+from nodl.composer.adding import add_node, remove_node
+from nodl.composer.analysed import ComposedAnalysis, analyse_text
+from nodl.composer.change import Change, ComposerError
+from nodl.composer.connecting import connect, disconnect, resolve_ports
+from nodl.composer.convert import convert_document
 from nodl.composer.formats import (
     ReadError,
     format_of,
@@ -18,39 +21,18 @@ from nodl.composer.formats import (
 )
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept, Param, Remap
 from nodl.composer.ports import Port, Verdict, ports_of, verdict
+from nodl.composer.renaming import rename, set_remaps
 from nodl.composer.rendering import Rendered
+from nodl.composer.setting import set_parameter
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.files import describe_os_error
+from nodl.launch.model import LaunchedNode, SourceLocation
+from nodl.naming import join_name
+from nodl.registry import overlay
+from nodl.system.matching import DefinitionMatcher
+from nodl.writing import WriteError, write_file
 
 __all__ = ['Change', 'ComposerError', 'Composition']
-
-
-class ComposerError(Exception):
-    """A composition that cannot be opened or made: carries one coded diagnostic."""
-
-    def __init__(self, diagnostic: Diagnostic) -> None:
-        super().__init__(diagnostic.message)
-        self.diagnostic = diagnostic
-
-
-@dataclass
-class Change:
-    """What an operation did: its diagnostics (errors mean nothing changed), the node it
-    concerns, and the remapping rules it wrote or removed (``{'node', 'from', 'to'}``)."""
-
-    diagnostics: list[Diagnostic] = field(default_factory=list)
-    node: str | None = None
-    remaps: list[dict[str, str]] = field(default_factory=list)
-    removed: list[dict[str, str]] = field(default_factory=list)
-
-    @property
-    def ok(self) -> bool:
-        """True when no diagnostic is an error (the operation was done)."""
-        return not any(d.severity is Severity.ERROR for d in self.diagnostics)
-
-    def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready mapping."""
-        return {'ok': self.ok, 'node': self.node, 'remaps': self.remaps, 'removed': self.removed,
-                'diagnostics': [d.to_dict() for d in self.diagnostics]}
 
 
 def _digest(data: bytes) -> str:
@@ -92,8 +74,6 @@ class Composition:
             with open(path, 'rb') as stream:
                 raw = stream.read()
         except OSError as exc:
-            from nodl.files import describe_os_error
-
             raise ComposerError(Diagnostic(Severity.ERROR, f'cannot read the launch file: '
                                            f'{describe_os_error(exc)}', file=path,
                                            code='NODL020')) from None
@@ -190,8 +170,6 @@ class Composition:
         return self._written_fqn(node)
 
     def _written_fqn(self, node: ComposedNode) -> str:
-        from nodl.naming import join_name
-
         namespace = '/'
         for group in self._groups_of(node):
             if group.namespace_unknown:
@@ -237,8 +215,6 @@ class Composition:
         out, each with a comment saying so)."""
         if kind is None or kind == self.format:
             return self.rendered().text
-        from nodl.composer.convert import convert_document
-
         return render(convert_document(self.document, kind)).text
 
     def analyse(self) -> ComposedAnalysis:
@@ -320,8 +296,6 @@ class Composition:
         made when there is none; ``plugin``: its class, by default the one its registration
         records).  ``namespace`` puts it in the group pushing that namespace (made when there is
         none); ``group``: the id of a group to add it to instead of the top level."""
-        from nodl.composer.adding import add_node
-
         change = add_node(self, package, executable, name, namespace, container, plugin, group)
         if change.ok:
             self._changed()
@@ -329,8 +303,6 @@ class Composition:
 
     def remove(self, node: ComposedNode | str) -> Change:
         """Remove a node (a container with its composable nodes)."""
-        from nodl.composer.adding import remove_node
-
         found = self._node(node)
         if found is None:
             return Change([self.find(str(node))[1]])  # type: ignore[list-item]
@@ -344,8 +316,6 @@ class Composition:
     def can_connect(self, first: str, second: str) -> Verdict:
         """Whether ``NODE:ENDPOINT`` ``first`` and ``second`` can be joined (cheap: the last
         analysis's ports, no new analysis unless none has run)."""
-        from nodl.composer.connecting import resolve_ports
-
         ports, problem = resolve_ports(self, first, second)
         if problem is not None:
             return Verdict('error', problem.message, problem.code)
@@ -356,21 +326,15 @@ class Composition:
         meet is written into the using side's entry (the subscription's, the client's; the
         offering side's when the using side's rules are read-only).  Refused (an error, nothing
         changed) when the kinds do not pair, the types differ or the QoS cannot connect."""
-        from nodl.composer.connecting import connect
-
         return connect(self, first, second)
 
     def disconnect(self, first: str, second: str) -> Change:
         """Undo a join: remove the node's own rules that make the two final names meet."""
-        from nodl.composer.connecting import disconnect
-
         return disconnect(self, first, second)
 
     def set_parameter(self, node: ComposedNode | str, name: str, text: str) -> Change:
         """Set a parameter of a node's entry to ``text`` typed as launch types it, checked at
         once against the declared type and validators (refused when it breaks them)."""
-        from nodl.composer.setting import set_parameter
-
         return set_parameter(self, node, name, text)
 
     def rename(self, node: ComposedNode | str, name: str | None,
@@ -380,8 +344,6 @@ class Composition:
         error, nothing changed) for a name or namespace rcl would refuse, or a final name
         another node has (NODL982), and for a read-only node (NODL983).  Its remapping rules
         are not rewritten: what the new name joins is the next analysis's."""
-        from nodl.composer.renaming import rename
-
         return rename(self, node, name, namespace)
 
     def set_remaps(self, node: ComposedNode | str,
@@ -392,8 +354,6 @@ class Composition:
         refuse refuses the whole change (NODL988); a rule an earlier one hides is a warning
         (NODL989).  Refused for a read-only node (NODL983) or rules computed by code
         (NODL976).  ``Change.remaps``/``removed``: the rules added and taken away."""
-        from nodl.composer.renaming import set_remaps
-
         return set_remaps(self, node, rules)
 
     def set_limits(self, limits: Any) -> None:
@@ -423,8 +383,6 @@ class Composition:
         """Write the launch file, atomically.  Refused (NODL980) when the file changed on disk
         since it was read (or, for a new composition, when a file appeared there: NODL981),
         unless ``force``.  Returns the diagnostics (empty: saved)."""
-        from nodl.writing import WriteError, write_file
-
         text = self.rendered().text
         try:
             with open(self.path, 'rb') as stream:
@@ -555,8 +513,6 @@ def _kind(path: str) -> str:
 
 
 def _analyse(composition: Composition, rendered: Rendered) -> ComposedAnalysis:
-    from nodl.composer.analysed import analyse_text
-
     on_disk = not composition.dirty and composition._digest is not None
     return analyse_text(composition.path, rendered, on_disk=on_disk,
                         definitions=composition.definitions, limits=composition.limits,
@@ -565,10 +521,6 @@ def _analyse(composition: Composition, rendered: Rendered) -> ComposedAnalysis:
 
 def _match(composition: Composition, node: ComposedNode) -> Any:
     """The node's definition, as the analysis matches a launched node."""
-    from nodl.launch.model import LaunchedNode, SourceLocation
-    from nodl.registry import overlay
-    from nodl.system.matching import DefinitionMatcher
-
     record = LaunchedNode(node.kind, node.package, node.executable, node.name, '/',
                           SourceLocation(composition.path, node.line, 0), plugin=node.plugin)
     with overlay.using(composition.definitions):

@@ -15,12 +15,15 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from nodl.composer.change import Change
 from nodl.composer.model import ComposedNode, Kept, Remap
 from nodl.composer.ports import Port, find_port, ports_of, verdict
+from nodl.composition.instance import NodeInstance
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.naming import parse_remap_rule
 
 if TYPE_CHECKING:
-    from nodl.composer.composition import Change, Composition
+    from nodl.composer.composition import Composition
 
 __all__ = ['connect', 'disconnect', 'resolve_ports']
 
@@ -72,9 +75,6 @@ def _final_with(composition: Composition, node: ComposedNode, port: Port,
                 remaps: list[Remap | Kept]) -> str | None:
     """The port's final name if the node's own rules were ``remaps`` (None: not computable,
     e.g. a kept rule is among them)."""
-    from nodl.composition.instance import NodeInstance
-    from nodl.naming import parse_remap_rule
-
     launched = composition.analyse().node(node.id)
     if launched is None or launched.match.resolved is None or \
             any(isinstance(r, Kept) for r in (*remaps, *node.remaps)):
@@ -117,8 +117,6 @@ def _rule_for(composition: Composition, node: ComposedNode, port: Port, final: s
 
 def connect(composition: Composition, first: str, second: str) -> Change:
     """:meth:`Composition.connect`."""
-    from nodl.composer.composition import Change
-
     (a, b), problem = resolve_ports(composition, first, second)
     if problem is not None:
         return Change([problem])
@@ -161,8 +159,6 @@ def connect(composition: Composition, first: str, second: str) -> Change:
 
 def disconnect(composition: Composition, first: str, second: str) -> Change:
     """:meth:`Composition.disconnect`."""
-    from nodl.composer.composition import Change
-
     (a, b), problem = resolve_ports(composition, first, second)
     if problem is not None:
         return Change([problem])

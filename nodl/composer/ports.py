@@ -14,6 +14,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from nodl.composition.entities import InterfaceType
+from nodl.qos_compat import check_qos_compatible
+
 __all__ = ['PAIRS', 'Port', 'Verdict', 'find_port', 'ports_of', 'verdict']
 
 #: The kinds that can be joined: offering side -> using side.
@@ -117,8 +120,6 @@ def find_port(ports: list[Port], text: str) -> list[Port]:
 
 
 def _same_type(first: str, second: str, communication: str) -> bool:
-    from nodl.composition.entities import InterfaceType
-
     try:
         return InterfaceType.parse(first, communication) == InterfaceType.parse(second, communication)
     except ValueError:
@@ -138,8 +139,6 @@ def verdict(first: Port, second: Port) -> Verdict:
         return Verdict('error', f'the types differ: {offering.final_name} is {offering.type} '
                        f'but {using.final_name} is {using.type}', 'NODL973', connected)
     if offering.communication == 'topic':
-        from nodl.qos_compat import check_qos_compatible
-
         try:
             result = check_qos_compatible(offering.qos, using.qos)
         except (TypeError, ValueError) as exc:

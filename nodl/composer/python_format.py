@@ -17,6 +17,7 @@ from typing import Any
 
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept, Param, Remap
 from nodl.composer.rendering import reindent
+from nodl.composer.values import python_value
 from nodl.composer.xml_format import ReadError
 
 __all__ = [
@@ -310,8 +311,6 @@ def imports_needed(doc: Document, used: set[str]) -> str:
 
 
 def _literal_text(value: Any) -> str:
-    from nodl.composer.values import python_value
-
     return python_value(value)
 
 

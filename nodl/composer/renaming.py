@@ -19,6 +19,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from nodl.composer.change import Change
 from nodl.composer.model import ComposedNode, Kept, Remap
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.naming import (
@@ -30,7 +31,7 @@ from nodl.naming import (
 )
 
 if TYPE_CHECKING:
-    from nodl.composer.composition import Change, Composition
+    from nodl.composer.composition import Composition
 
 __all__ = ['RuleText', 'rename', 'rule_pairs', 'set_remaps']
 
@@ -48,8 +49,6 @@ def _error(composition: Composition, node: ComposedNode, message: str, code: str
 def rename(composition: Composition, ref: ComposedNode | str, name: str | None,
            namespace: str | None) -> Change:
     """:meth:`Composition.rename`."""
-    from nodl.composer.composition import Change
-
     node = ref if isinstance(ref, ComposedNode) else composition.node(ref)
     if node is None:
         return Change([composition.find(str(ref))[1]])  # type: ignore[list-item]
@@ -136,8 +135,6 @@ def rule_pairs(rules: Sequence[RuleText]) -> tuple[list[tuple[str, str]], list[s
 def set_remaps(composition: Composition, ref: ComposedNode | str,
                rules: Sequence[RuleText]) -> Change:
     """:meth:`Composition.set_remaps`."""
-    from nodl.composer.composition import Change
-
     node = ref if isinstance(ref, ComposedNode) else composition.node(ref)
     if node is None:
         return Change([composition.find(str(ref))[1]])  # type: ignore[list-item]

@@ -10,35 +10,32 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from nodl.composer.change import Change
 from nodl.composer.model import ComposedNode, Kept, Param
+from nodl.composer.values import typed_value
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.plan.parameter_plan import plan_parameters, value_problems
+from nodl.validation.messages import did_you_mean
 
 if TYPE_CHECKING:
-    from nodl.composer.composition import Change, Composition
+    from nodl.composer.composition import Composition
 
 __all__ = ['check_value', 'parameter_plans', 'set_parameter']
 
 
 def parameter_plans(resolved: Any) -> Any:
     """The parameter plan of a resolved node (:class:`nodl.plan.ParametersPlan`)."""
-    from nodl.plan.parameter_plan import plan_parameters
-
     return plan_parameters(list(resolved.parameters))
 
 
 def check_value(plan: Any, value: Any) -> list[str]:
     """Why ``value`` cannot be the parameter's (its type, then its validators); empty: it can."""
-    from nodl.plan.parameter_plan import value_problems
-
     return list(value_problems(plan, value))
 
 
 def set_parameter(composition: Composition, ref: ComposedNode | str, name: str,
                   text: str) -> Change:
     """:meth:`Composition.set_parameter`."""
-    from nodl.composer.composition import Change
-    from nodl.composer.values import typed_value
-
     node = ref if isinstance(ref, ComposedNode) else composition.node(ref)
     if node is None:
         return Change([composition.find(str(ref))[1]])  # type: ignore[list-item]
@@ -62,8 +59,6 @@ def set_parameter(composition: Composition, ref: ComposedNode | str, name: str,
         plans = parameter_plans(resolved)
         plan = plans.get(name)
         if plan is None:
-            from nodl.validation.messages import did_you_mean
-
             declared = [p.name for p in plans.parameters]
             return Change([Diagnostic(
                 Severity.ERROR, f"{composition.fqn(node)} ({node.label}) declares no parameter "

@@ -14,24 +14,22 @@ from typing import TYPE_CHECKING, Any
 
 from nodl.composer.model import Group, Param, Remap
 from nodl.composer.ports import ports_of
+from nodl.composer.values import python_value
+from nodl.reporting.reporters import Report
+from nodl.text_safety import visible
 
 if TYPE_CHECKING:
     from nodl.composer.composition import Composition
-    from nodl.reporting.reporters import Report
 
 __all__ = ['show_report', 'show_text']
 
 
 def _value(value: Any) -> str:
-    from nodl.composer.values import python_value
-
     return python_value(value)
 
 
 def show_text(composition: Composition, verbose: bool = False) -> str:
     """The composition for people (see the module docstring)."""
-    from nodl.text_safety import visible
-
     analysis = composition.analyse()
     nodes = composition.nodes
     kept = composition.document.kept()
@@ -95,8 +93,6 @@ def _fqn(composition: Composition, node_id: str) -> str:
 
 def show_report(composition: Composition, verbose: bool, tool: str) -> Report:
     """The report of ``nodl system show``."""
-    from nodl.reporting.reporters import Report
-
     findings = composition.findings
     counts = {'error': 0, 'warning': 0, 'info': 0}
     for finding in findings:

@@ -12,15 +12,17 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import yaml
+
+from nodl.launch.errors import LaunchProblem
+from nodl.launch.params import get_typed_value
+
 __all__ = ['python_value', 'same_value', 'typed_value', 'xml_value', 'yaml_value_text']
 
 
 def typed_value(text: str) -> Any:
     """``text`` typed as launch types a parameter's ``value`` attribute (ValueError when launch
     would refuse it: a mapping, a list that mixes types)."""
-    from nodl.launch.errors import LaunchProblem
-    from nodl.launch.params import get_typed_value
-
     try:
         return get_typed_value(text, None)
     except LaunchProblem as exc:
@@ -63,8 +65,6 @@ def _flow_text(value: Any) -> str:
     if isinstance(value, list):
         return '[' + ', '.join(_flow_text(v) for v in value) + ']'
     if isinstance(value, str):
-        import yaml
-
         text = str(yaml.safe_dump(value, default_flow_style=True, width=1 << 30)).strip() \
             .removesuffix('\n...').removesuffix('...').strip()
         if '\n' in text:  # one line always: a double-quoted scalar with escapes
@@ -76,8 +76,6 @@ def _flow_text(value: Any) -> str:
 def xml_value(value: Any) -> tuple[str, str | None]:
     """``(value attribute text, type attribute or None)`` that launch's XML frontend reads back as
     ``value``."""
-    from nodl.launch.params import get_typed_value
-
     text = value if isinstance(value, str) else _flow_text(value)
     if _reads_back(get_typed_value, text, value):
         return text, None
@@ -98,8 +96,6 @@ def yaml_value_text(value: Any) -> str:
 
 def yaml_needs_type(value: Any) -> str | None:
     """The ``type`` a YAML ``param`` entry needs to be read back as ``value`` (None: none)."""
-    from nodl.launch.params import get_typed_value
-
     if isinstance(value, str):
         return None if _reads_back(get_typed_value, value, value) else 'str'
     if isinstance(value, list) and any(isinstance(v, str) for v in value):
@@ -109,8 +105,6 @@ def yaml_needs_type(value: Any) -> str | None:
 
 def _reads_back(typing: Any, text: str, value: Any) -> bool:
     """True when launch types ``text`` (no type given) as ``value``."""
-    from nodl.launch.errors import LaunchProblem
-
     try:
         return same_value(typing(text, None), value)
     except LaunchProblem:

@@ -14,6 +14,8 @@ from dataclasses import dataclass, field
 
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept, Param, Remap
 from nodl.composer.rendering import reindent
+from nodl.composer.values import xml_value
+from nodl.launch.params import get_typed_value, type_from_identifier
 
 __all__ = ['ReadError', 'escape', 'group_xml', 'new_xml', 'node_xml', 'read_xml']
 
@@ -190,8 +192,6 @@ class _Reader:
             if child.tag == 'param' and name and value is not None and not child.children \
                     and _literal(name) and _literal(value) and child.attr('value-sep') is None \
                     and child.attr('from') is None:
-                from nodl.launch.params import get_typed_value, type_from_identifier
-
                 try:
                     typed = get_typed_value(value, type_from_identifier(kind_) if kind_ else None)
                 except Exception:  # noqa: BLE001 - launch reports it; the composer keeps it
@@ -260,8 +260,6 @@ def _child_line(item: Param | Remap | Kept, indent: str, text: str) -> str:
 
 def param_xml(param: Param) -> str:
     """A ``<param>`` element."""
-    from nodl.composer.values import xml_value
-
     value, type_ = xml_value(param.value)
     typed = f' type="{type_}"' if type_ else ''
     return f'<param name="{escape(param.name)}" value="{escape(value)}"{typed}/>'

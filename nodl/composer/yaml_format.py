@@ -11,9 +11,14 @@ from __future__ import annotations
 
 from typing import Any
 
+import yaml
+from yaml.nodes import MappingNode, ScalarNode, SequenceNode
+
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept, Param, Remap
 from nodl.composer.rendering import reindent
+from nodl.composer.values import yaml_needs_type, yaml_value_text
 from nodl.composer.xml_format import ReadError
+from nodl.launch.params import get_typed_value, type_from_identifier
 
 __all__ = ['group_yaml', 'new_yaml', 'node_yaml', 'push_yaml', 'read_yaml']
 
@@ -24,8 +29,6 @@ _PUSH = ('push-ros-namespace', 'push_ros_namespace')
 
 def _end(node: Any) -> int:
     """The index after the last character of a YAML node's own text."""
-    from yaml.nodes import MappingNode, SequenceNode
-
     if isinstance(node, MappingNode) and not node.flow_style and node.value:
         return max(_end(node.value[-1][0]), _end(node.value[-1][1]))
     if isinstance(node, SequenceNode) and not node.flow_style and node.value:
@@ -35,8 +38,6 @@ def _end(node: Any) -> int:
 
 
 def _scalar(node: Any) -> str | None:
-    from yaml.nodes import ScalarNode
-
     return str(node.value) if isinstance(node, ScalarNode) else None
 
 
@@ -76,8 +77,6 @@ class _Reader:
         return out, after
 
     def item(self, entry: Any, start: int, end: int) -> Item:
-        from yaml.nodes import MappingNode
-
         text = self.source[start:end]
         line = entry.start_mark.line + 1
         column = self.column(start)
@@ -95,8 +94,6 @@ class _Reader:
         return Kept(text, f'{tag}', line, column=column)
 
     def group(self, value: Any, text: str, start: int, end: int, line: int, column: int) -> Item:
-        from yaml.nodes import MappingNode, SequenceNode
-
         children = value if isinstance(value, SequenceNode) else None
         conditional = False
         if isinstance(value, MappingNode):
@@ -116,8 +113,6 @@ class _Reader:
         group.close_text = self.source[last:end]
         for item in group.items:
             if isinstance(item, Kept) and item.what in _PUSH:
-                import yaml
-
                 try:
                     data = yaml.safe_load(item.text[1:])
                     namespace = data[item.what].get('namespace') if isinstance(data, dict) \
@@ -140,8 +135,6 @@ class _Reader:
         return self.source[start:_end(value)], key.start_mark.line + 1, self.column(start)
 
     def node(self, value: Any, kind: str, line: int, column: int) -> ComposedNode:
-        from yaml.nodes import MappingNode, SequenceNode
-
         names = _COMPOSABLE_KEYS if kind == 'composable' else _NODE_KEYS
         fields = {_scalar(k): _scalar(v) for k, v in value.value}
         node = ComposedNode(self.next_id('n'), kind, fields.get('pkg') or '',
@@ -187,15 +180,11 @@ class _Reader:
         return node
 
     def param(self, entry: Any) -> Param | Kept:
-        from yaml.nodes import MappingNode, ScalarNode
-
         text, line, column = self.entry_text(entry)
         if isinstance(entry, MappingNode):
             keys = {_scalar(k): v for k, v in entry.value}
             if set(keys) <= {'name', 'value', 'type'} and 'name' in keys and 'value' in keys:
                 name = _scalar(keys['name'])
-                import yaml
-
                 try:
                     data = yaml.safe_load(self.source[entry.start_mark.index:_end(entry)])
                 except yaml.YAMLError:
@@ -213,8 +202,6 @@ class _Reader:
         return Kept(text, 'a parameter entry', line, column=column)
 
     def remap(self, entry: Any) -> Remap | Kept:
-        from yaml.nodes import MappingNode
-
         text, line, column = self.entry_text(entry)
         if isinstance(entry, MappingNode):
             keys = {_scalar(k): _scalar(v) for k, v in entry.value}
@@ -230,8 +217,6 @@ _NO_VALUE = object()
 
 def _typed(raw: Any, type_name: Any) -> Any:
     """A YAML ``value`` as launch_yaml types it (strings are typed again), or _NO_VALUE."""
-    from nodl.launch.params import get_typed_value, type_from_identifier
-
     try:
         data_type = type_from_identifier(type_name) if isinstance(type_name, str) else None
         if isinstance(raw, str):
@@ -243,9 +228,6 @@ def _typed(raw: Any, type_name: Any) -> Any:
 
 def read_yaml(text: str) -> Document:
     """The items of a launch YAML file (ReadError when it is not YAML or not ``launch:``)."""
-    import yaml
-    from yaml.nodes import MappingNode, SequenceNode
-
     try:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.YAMLError as exc:
@@ -277,15 +259,11 @@ def new_yaml() -> Document:
 
 
 def _flow_scalar(text: str) -> str:
-    from nodl.composer.values import yaml_value_text
-
     return yaml_value_text(text)
 
 
 def param_yaml(param: Param) -> str:
     """A ``param`` entry in flow style."""
-    from nodl.composer.values import yaml_needs_type, yaml_value_text
-
     type_ = yaml_needs_type(param.value)
     typed = f', type: {type_}' if type_ else ''
     return f'- {{name: {_flow_scalar(param.name)}, value: {yaml_value_text(param.value)}{typed}}}'
