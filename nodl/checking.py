@@ -7,8 +7,8 @@ import sys
 from collections.abc import Iterable, Iterator
 
 from nodl.diagnostics import Diagnostic, has_errors
-from nodl.files import STDIN, iter_nodl_files
-from nodl.frontends.source import MAX_BYTES
+from nodl.files import STDIN, describe_os_error, iter_nodl_files
+from nodl.frontends.source import MAX_BYTES, read_limited
 from nodl.loading import Report, check_source
 from nodl.validation.kinds import Kind
 
@@ -96,15 +96,11 @@ def iter_check_paths(paths: Iterable[str], kind: Kind | None = None,
                 if data is None:
                     yield FileResult(target.path, note='is a named pipe: waiting for a program to '
                                                        'write to it (Ctrl-C to stop)')
-                    from nodl.frontends.source import read_limited
-
                     data = read_limited(target.path)
                 report = check_source(data, kind=kind, file=target.path)
             else:
                 report = check_source(_FilePath(target.path), kind=kind, file=target.path)
         except OSError as exc:
-            from nodl.files import describe_os_error
-
             yield FileResult(target.path, problem=describe_os_error(exc))
             continue
         diagnostics = report.diagnostics

@@ -31,8 +31,9 @@ from nodl.composition.merge import PARAMETERS, Declaration, seeded_copies
 from nodl.composition.resolvers import Resolver
 from nodl.diagnostics import Diagnostic, Severity, ValidationError
 from nodl.frontends.source import Source
-from nodl.loading import Report
+from nodl.loading import Report, check_source
 from nodl.model import ENDPOINT_SECTIONS, Base, Interface, Node
+from nodl.validation.kinds import Kind
 
 __all__ = ['ResolvedNode', 'resolve_node', 'resolve_report']
 
@@ -276,9 +277,6 @@ def resolve_node(source: ComposedNode | Source, *, file: str | None = None,
     if isinstance(source, ComposedNode):
         reason = client_library.reason if isinstance(client_library, ClientLibraryChoice) else ''
         return ResolvedNode(source, reason or f'{source.client_library}, as composed')
-    from nodl.loading import check_source
-    from nodl.validation.kinds import Kind
-
     if file is None and isinstance(source, os.PathLike):
         file = os.fspath(source)
     resolved, diagnostics = resolve_report(check_source(source, kind=Kind.NODE, file=file),

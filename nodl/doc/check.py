@@ -13,6 +13,7 @@ import os
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.doc import EXTENSIONS
+from nodl.files import describe_os_error
 from nodl.writing import marker_state, unmark
 
 __all__ = ['check_files']
@@ -34,8 +35,6 @@ def check_files(files: dict[str, str], folder: str, format: str) -> list[Diagnos
                                        code='NODL276'))
             continue
         except OSError as exc:
-            from nodl.files import describe_os_error
-
             problems.append(Diagnostic(Severity.ERROR, f'the page cannot be read: '
                                        f'{describe_os_error(exc)}', file=path, code='NODL276'))
             continue

@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.files import describe_os_error
 from nodl.frontends.source import read_source
 from nodl.frontends.xml_reader import XmlElement, load_xml
 
@@ -208,8 +209,6 @@ class _Expander:
         try:
             read, problem = read_source(Path(path), shown)
         except OSError as exc:
-            from nodl.files import describe_os_error
-
             self.problems.append(_problem(origin, include, f'<{include.tag}>: cannot read {href}: '
                                           f'{describe_os_error(exc)}'))
             return None

@@ -29,7 +29,7 @@ from typing import ContextManager
 from nodl import ament_index, composition, loading
 from nodl.composition.resolvers import ResolutionError, Resolved
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.files import tidy_path
+from nodl.files import describe_os_error, tidy_path
 from nodl.frontends.source import read_regular
 from nodl.registry import Registration, overlay
 from nodl.registry.legacy import compose_legacy, legacy_registrations
@@ -293,8 +293,6 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
             report = loading.check_source(Path(registration.file), kind=Kind.NODE,
                                           file=registration.file)
         except OSError as exc:
-            from nodl.files import describe_os_error
-
             return None, [Diagnostic(Severity.ERROR, f'cannot read the definition: '
                                      f'{describe_os_error(exc)}', (), registration.file,
                                      code='NODL246')], registration.file

@@ -13,6 +13,7 @@ from rclpy.lifecycle import LifecycleNode, LifecycleState, TransitionCallbackRet
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 
+from nodl.files import describe_os_error
 from nodl.generate import default_node_name
 from nodl.generate.definition import resolve_target
 from nodl.plan.parameter_plan import ParametersPlan, plan_parameters
@@ -47,8 +48,6 @@ def _resolve(definition: Definition) -> ResolvedNode:
     try:
         node, diagnostics, _ = resolve_target(target, 'rclpy')
     except OSError as exc:
-        from nodl.files import describe_os_error
-
         why = describe_os_error(exc)
         raise RuntimeDefinitionError(f'{exc.filename}: {why}' if exc.filename else why) from None
     except ValueError as exc:

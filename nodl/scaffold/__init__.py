@@ -29,11 +29,13 @@ import os
 import re
 from collections.abc import Sequence
 
+from nodl.files import describe_os_error
 from nodl.generate import GenerationError, default_node_name
 from nodl.generate.definition import resolve_target
 from nodl.packaging import relative_mixins
 from nodl.plan.identifiers import CPP_KEYWORDS, PYTHON_KEYWORDS
 from nodl.reporting import without_info
+from nodl.scaffold.cmake_package import cmake_files
 from nodl.scaffold.common import common_files
 from nodl.scaffold.model import (
     Authorship,
@@ -44,6 +46,7 @@ from nodl.scaffold.model import (
     WriteReport,
     authorship,
 )
+from nodl.scaffold.python_package import python_files
 from nodl.writing import (
     WriteError,
     check_replaceable,
@@ -84,8 +87,6 @@ def load_nodes(sources: Sequence[Sequence[str]], build_type: str) -> list[NodeSo
             node, diagnostics, file = resolve_target(list(source), BUILD_TYPES[build_type])
         except (OSError, ValueError) as exc:
             if isinstance(exc, OSError):  # in words, the path once, no '[Errno N]'
-                from nodl.files import describe_os_error
-
                 words, name = describe_os_error(exc), exc.filename or source[0]
                 raise ScaffoldError(words if words.startswith(f'{name}:') else
                                     f'{name}: {words}') from None
@@ -141,12 +142,8 @@ def plan_package(package: str, nodes: Sequence[NodeSource], build_type: str, *,
     try:
         files = common_files(package, list(nodes), build_type, component, author)
         if build_type == 'ament_python':
-            from nodl.scaffold.python_package import python_files
-
             files += python_files(package, list(nodes), author)
         else:
-            from nodl.scaffold.cmake_package import cmake_files
-
             files += cmake_files(package, list(nodes), component, author)
     except GenerationError as exc:
         raise ScaffoldError(str(exc)) from None

@@ -15,6 +15,7 @@ import re
 from collections.abc import Iterable
 
 from nodl.composition.entities import EntityKind, InterfaceType, Provider
+from nodl.files import describe_os_error
 from nodl.model import Base
 from nodl.model.parameter_types import TypeSpec
 from nodl.naming import join_name
@@ -116,8 +117,6 @@ def _definitions(nodes: list[NodeSource]) -> list[PlannedFile]:
                 with open(source, encoding='utf-8', newline='') as f:
                     files[target] = (source, f.read())
             except OSError as exc:
-                from nodl.files import describe_os_error
-
                 raise ScaffoldError(f'{source}: {describe_os_error(exc)}') from None
     return [PlannedFile(target, text, generated=True) for target, (_, text) in files.items()]
 
