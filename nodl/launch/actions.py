@@ -229,7 +229,7 @@ class AppendEnvironmentVariable(Action):
                 problem = context.oversized_environment[name] = SubstitutionTooLarge(
                     too_large_message(f"environment variable '{name}' after this append_env")
                     + '; what uses it is not analysed', *self.location)
-                raise problem.again()
+                raise problem.again() from None
             value = f'{value}{self.separator}{old}' if self.prepend else f'{old}{self.separator}{value}'
         context.environment[name] = value
         return None

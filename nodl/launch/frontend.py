@@ -128,7 +128,7 @@ class Entity:
         try:
             return parse_substitution(text)
         except LaunchProblem as problem:
-            raise LaunchProblem(problem.code, problem.message, self.location.file, *self.position(name))
+            raise LaunchProblem(problem.code, problem.message, self.location.file, *self.position(name)) from None
 
     def boolean(self, name: str) -> bool | None:
         """A boolean attribute (``true``/``false``/``1``/``0``)."""
@@ -288,15 +288,14 @@ def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
                                 param.location.file, *param.position('value'))
     separator = param.text('value-sep')
     try:
+        typed = raw
         if isinstance(raw, str):
             typed = get_typed_value(raw.split(separator) if separator else raw, data_type)
-        else:
-            typed = raw
         value = ParameterValue(parse_if_substitutions(typed), data_type)
         value.location = param.location  # findings about the value sit at its <param>
         return [(name, value)]
     except LaunchProblem as problem:
-        raise LaunchProblem(problem.code, problem.message, param.location.file, *param.position('value'))
+        raise LaunchProblem(problem.code, problem.message, param.location.file, *param.position('value')) from None
 
 
 def _yaml_value_problem(raw: Any, data_type: Any, identifier: str | None) -> str | None:

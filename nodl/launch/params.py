@@ -107,7 +107,7 @@ def _yaml(text: str, can_be_str: bool) -> Any:
             raise
         if can_be_str:
             return text
-        raise LaunchProblem('NODL518', f'cannot read {text!r} as a YAML value: {exc}'.split('\n')[0])
+        raise LaunchProblem('NODL518', f'cannot read {text!r} as a YAML value: {exc}'.split('\n')[0]) from None
     valid = isinstance(out, SCALAR_TYPES) or (isinstance(out, list) and _uniform(out, can_be_str))
     if not valid:
         raise LaunchProblem('NODL518', f'the value {text!r} is {type(out).__name__} in YAML; a '
@@ -135,7 +135,7 @@ def coerce_to_type(text: str, data_type: Any = None, *, can_be_str: bool = False
         except ValueError:
             if can_be_str:
                 return text
-            raise LaunchProblem('NODL518', f'cannot convert {text!r} to {data_type.__name__}')
+            raise LaunchProblem('NODL518', f'cannot convert {text!r} to {data_type.__name__}') from None
     value = {'1': 'true', '0': 'false'}.get(text, text)
     out = _yaml(value, can_be_str)
     if isinstance(out, bool) or (can_be_str and isinstance(out, str)):
@@ -165,7 +165,7 @@ def type_from_identifier(identifier: str) -> Any:
 
         raise LaunchProblem('NODL504', f"unknown parameter type '{identifier}'"
                                        f'{did_you_mean(identifier, _TYPE_NAMES)}; expected one of '
-                                       f'{", ".join(_TYPE_NAMES)}')
+                                       f'{", ".join(_TYPE_NAMES)}') from None
 
 
 class ParameterValue:
@@ -250,7 +250,7 @@ def _dict_yaml(text: str, name: str) -> Any:
         out = yaml_value(text)
     except yaml.YAMLError:
         raise LaunchProblem('NODL518', f"parameter '{name}': the value {text!r} is not valid YAML; "
-                                       'for a string, wrap it in ParameterValue(value, value_type=str)')
+                                       'for a string, wrap it in ParameterValue(value, value_type=str)') from None
     if isinstance(out, SCALAR_TYPES):
         return out
     if isinstance(out, list) and out and _uniform(out):

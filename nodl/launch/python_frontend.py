@@ -58,9 +58,7 @@ def _located(cls: type, name: str | None = None) -> type:
         self.location = _caller()
         if hasattr(self, 'remap_sources'):
             _place_remaps(self)
-        if isinstance(self, A.Action):
-            self.condition = condition
-        elif condition is not None:
+        if isinstance(self, A.Action) or condition is not None:
             self.condition = condition
     return type(name or cls.__name__, (cls,), {'__init__': __init__})
 
@@ -242,7 +240,7 @@ def _package_prefix(package: str) -> str:
     try:
         return str(context.package_prefix(package))
     except LaunchProblem as problem:
-        raise PackageNotFoundError(problem.message)
+        raise PackageNotFoundError(problem.message) from None
 
 
 class PackageNotFoundError(KeyError):

@@ -160,10 +160,8 @@ def _normalize_parameters(parameters: Any) -> list[Any]:
     for item in parameters or []:
         if isinstance(item, dict):
             out.append(normalize_python_dict(item))
-        elif isinstance(item, ParameterFileEntry) or (isinstance(item, list) and item and
-                                                       isinstance(item[0], tuple)):
-            out.append(item)
-        elif hasattr(item, 'nodl_parameter'):
+        elif (isinstance(item, ParameterFileEntry) or (isinstance(item, list) and item and isinstance(item[0], tuple))
+              or hasattr(item, 'nodl_parameter')):
             out.append(item)
         else:
             out.append(ParameterFileEntry(item))
@@ -296,7 +294,7 @@ def _own_parameters(context: LaunchContext, parameters: list[Any], location: Sou
                 _run_time_parameters(context, problem, record, parameters, item)
                 continue
             except LaunchProblem as problem:
-                raise _placed(problem, where)
+                raise _placed(problem, where) from None
             path = tidy_path(path)  # '$(dirname)/../config/x.yaml' tidied
             if not os.path.isfile(path):
                 context.warn('NODL517', f"parameter file '{path}' is not a file; launch skips it", where)
@@ -327,7 +325,7 @@ def _allow_substs(context: LaunchContext, value: Any, where: SourceLocation) -> 
     try:
         return to_bool(context, normalize(value))
     except LaunchProblem as problem:
-        raise _placed(problem, where)
+        raise _placed(problem, where) from None
 
 
 def _substitute_file(context: LaunchContext, source: ParameterSource, record: LaunchedNode,
@@ -352,7 +350,7 @@ def _substitute_file(context: LaunchContext, source: ParameterSource, record: La
         source.path = None  # (its values are unknown: none are read from the text as written)
     except LaunchProblem as failed:
         raise LaunchProblem(failed.code, f"parameter file '{source.path}' (allow_substs): "
-                                         f'{failed.message}', where.file, where.line, where.column)
+                                         f'{failed.message}', where.file, where.line, where.column) from None
 
 
 def _named_parameters(context: LaunchContext, item: Any, location: SourceLocation, node_key: str,
@@ -373,11 +371,11 @@ def _named_parameters(context: LaunchContext, item: Any, location: SourceLocatio
             _run_time_parameters(context, problem, record, parameters, item)
             continue
         except LaunchProblem as problem:
-            raise _placed(problem, where)
+            raise _placed(problem, where) from None
         try:
             values[pname] = evaluate_parameter(context, spec, pname, where)
         except LaunchProblem as problem:
-            raise _placed(problem, where)
+            raise _placed(problem, where) from None
         if where is not location:
             places[pname] = where
     return ParameterSource('values', 'node', location, values=values, node_key=node_key,
