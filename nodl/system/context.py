@@ -68,8 +68,9 @@ class AnalysisContext:
                 file = node.match.file
                 if file is None:
                     continue
-                if file not in by_file:
-                    by_file[file] = draft_gaps(file)
+                if file not in by_file:  # (only a file nodl extract wrote can be a draft)
+                    by_file[file] = draft_gaps(file) \
+                        if node.match.provenance().made_by == 'extracted' else []
                 if by_file[file]:
                     gaps[id(node)] = by_file[file]
         return gaps

@@ -139,7 +139,7 @@ class SystemNode:
 
     def provenance(self) -> Provenance:
         """Where its definition came from (``none`` without one)."""
-        return Provenance.of(self.match.origin, self.match.file)
+        return self.match.provenance()
 
     def to_dict(self) -> dict[str, Any]:
         """The node as JSON: final name, what it runs, its definition and where that came

@@ -20,7 +20,7 @@ from nodl.composition.resolved import ResolvedNode
 from nodl.diagnostics import Diagnostic
 from nodl.launch.model import LaunchedNode
 from nodl.registry import node_info, registrations
-from nodl.targets.resolve import resolve_registered
+from nodl.targets.resolve import Provenance, resolve_registered
 
 # Imported here, not in the functions: an import statement costs a few microseconds each
 # time it runs, for every launched node.  The index functions are called through their
@@ -49,6 +49,18 @@ class Match:
     #: Where the definition was found: ``index``, ``overlay DIR`` (a definitions folder)
     #: or ``file`` (given by path).
     origin: str = 'index'
+    #: Where the definition came from, with what wrote its file (read once: see
+    #: :meth:`provenance`).
+    _provenance: Provenance | None = field(default=None, repr=False, compare=False)
+
+    def provenance(self) -> Provenance:
+        """Where the definition came from (``none`` without one), and whether ``nodl extract``
+        or ``nodl describe`` wrote its file: read from the file once per definition, however
+        many launched nodes run it."""
+        found = self._provenance
+        if found is None:
+            found = self._provenance = Provenance.of(self.origin, self.file)
+        return found
 
 
 class DefinitionMatcher:
