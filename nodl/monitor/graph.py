@@ -25,6 +25,8 @@ from nodl.naming import join_name
 __all__ = ['TopicEndpoint', 'Snapshot', 'GraphView', 'observed_node', 'discovered']
 
 _SECTIONS = ('publishers', 'subscriptions', 'service_servers', 'service_clients')
+#: How many topics a scan reads between two calls of its ``meanwhile``.
+SCAN_CHUNK = 100
 
 
 @dataclass(frozen=True)
@@ -109,11 +111,13 @@ class GraphView:
         self._known: dict[tuple[str, str, bytes, str, str], TopicEndpoint | None] = {}
 
     def scan(self, counts: Mapping[str, int], wanted: Iterable[str],
-             everyone: bool = False) -> Snapshot:
+             everyone: bool = False, meanwhile: Callable[[], None] | None = None) -> Snapshot:
         """A full scan of the nodes ``counts`` holds (how many of each name: the graph
         follower's, :attr:`~nodl.live.graph_events.GraphFollower.counts`): the endpoints
         of the ``wanted`` nodes present (with ``everyone``: of every node present), every
-        topic's endpoint infos."""
+        topic's endpoint infos.  ``meanwhile`` is called every :data:`SCAN_CHUNK` topics
+        (what must not wait for a long scan: a periodic publication); the processor time
+        it takes is not the scan's :attr:`~Snapshot.cost`."""
         start = time.monotonic()
         process = time.process_time()
         node = self.node
@@ -133,7 +137,11 @@ class GraphView:
         known = self._known
         seen: dict[tuple[str, str, bytes, str, str], TopicEndpoint | None] = {}
         publishers, subscriptions = self._info_functions()
-        for topic, _ in node.get_topic_names_and_types():
+        for index, (topic, _) in enumerate(node.get_topic_names_and_types()):
+            if meanwhile is not None and index % SCAN_CHUNK == SCAN_CHUNK - 1:
+                paused = time.process_time()
+                meanwhile()
+                process += time.process_time() - paused
             found: list[TopicEndpoint] = []
             for kind, infos in (('publisher', publishers(topic)),
                                 ('subscription', subscriptions(topic))):

@@ -195,6 +195,10 @@ class Monitor:
         self._changes: deque[float] = deque()
         self._next_scan = 0.0
         self._min_scan_gap = 0.0
+        #: When the next periodic publication is due.
+        self._next_publish = 0.0
+        #: Wall seconds the last scan and the refresh after it took.
+        self._scan_took = 0.0
         self._scan_wanted = False
         self._stable_since = 0.0
         self._shedding: list[str] = []
@@ -334,7 +338,7 @@ class Monitor:
         assert self.node is not None and self.graph is not None
         deadline = time.monotonic() + wait if once else float('inf')
         self._once = once
-        next_tick = next_publish = time.monotonic()
+        next_tick = self._next_publish = time.monotonic()
         # --once's report waits for the graph to settle, and costs no steady state: it
         # follows topic and service names at every poll
         self.graph.topics_every = 1 if once else TOPIC_POLLS
@@ -355,24 +359,20 @@ class Monitor:
                 if now >= deadline:
                     break
                 self.executor.spin_once(timeout_sec=max(0.0, min(
-                    next_tick, next_publish, deadline, self._next_flush(),
-                    self._scan_at(now, next_publish)) - now))
+                    next_tick, self._next_publish, deadline, self._next_flush(),
+                    self._scan_at(now, self._next_publish)) - now))
                 self._step_reads()
                 now = time.monotonic()
                 self._flush_events(now)
-                if now >= next_publish:  # before a scan that could make it late
-                    self._publish(now)
-                    next_publish = now + 1.0 / max(self.settings.publish_rate, 1e-3)
-                self._follow(now, next_publish)
+                self._publish_due()  # before a scan that could make it late
+                self._follow(now, self._next_publish)
                 if now >= next_tick:
                     next_tick = now + TICK
                     self._tick(now)
                     self._refresh(now)
                     if once and self._complete(now):
                         break
-                if now >= next_publish:
-                    self._publish(now)
-                    next_publish = now + 1.0 / max(self.settings.publish_rate, 1e-3)
+                self._publish_due()
         finally:
             self.graph.unwatch()
             self.node.destroy_guard_condition(wake)
@@ -399,11 +399,15 @@ class Monitor:
 
     def _scan_at(self, now: float, publish_at: float) -> float:
         """When to scan: :meth:`_scan_due`, or just after the publication due at
-        ``publish_at`` when the scan (as long as the last) would not end before it."""
+        ``publish_at`` when the scan and the refresh after it (as long as the last, in
+        processor or in wall time: a loaded machine's scan takes longer than its processor
+        time) would not end before it."""
         due = self._scan_due()
         period = 1.0 / max(self.settings.publish_rate, 1e-3)
-        if self.snapshot is not None and self.snapshot.cost < period \
-                and max(due, now) + self.snapshot.cost >= publish_at:
+        if self.snapshot is None:
+            return due
+        length = max(self.snapshot.cost, self._scan_took)
+        if length < period and max(due, now) + length >= publish_at:
             return max(due, publish_at)  # (a scan longer than the period cannot wait)
         return due
 
@@ -420,8 +424,10 @@ class Monitor:
         if changed:
             self._scan_wanted = True
         if now >= self._scan_at(now, publish_at):
+            began = time.monotonic()
             self._scan(now)
             self._refresh(now)  # a change is published within a poll, not a tick
+            self._scan_took = time.monotonic() - began
         elif self._scan_wanted and self._min_scan_gap > 1.0:
             self._shed('graph scans spaced out to every %.1f s to stay within the CPU budget'
                        % self._min_scan_gap)
@@ -437,7 +443,7 @@ class Monitor:
         # nodes present are those of the follower's last poll (what woke this scan)
         snapshot = self.view.scan(self.graph.counts, [fqn for fqn, s in self.states.items()
                                                       if s.expected.resolved is not None],
-                                  everyone=self._once)
+                                  everyone=self._once, meanwhile=self._publish_due)
         self.snapshot = snapshot
         self._scan_wanted = False
         self._min_scan_gap = snapshot.cost / self.settings.scan_budget
@@ -904,6 +910,15 @@ class Monitor:
             self._levels[status.name] = status.level
         if publish_changes:
             self._publish(now)
+
+    def _publish_due(self) -> None:
+        """The periodic publication, if it is due (also between the chunks of a long
+        scan: a scan of thousands of endpoints on a loaded machine takes longer than
+        the publish period)."""
+        now = time.monotonic()
+        if now >= self._next_publish:
+            self._publish(now)
+            self._next_publish = now + 1.0 / max(self.settings.publish_rate, 1e-3)
 
     def _publish(self, now: float) -> None:
         from diagnostic_msgs.msg import DiagnosticArray
