@@ -361,7 +361,7 @@ _HAND_JOIN = (r"""(\+\s*['"]/['"]|['"]/['"]\s*\+|rstrip\(['"]/['"]\)\s*\+|"""
 #: Lines that join with '/' but do not compute a ROS name the way rcl does, and why.
 _NOT_ROS_NAMES = {
     # interface types (package/msg/Name) and the C++ header of one
-    ('nodl/system/entities.py', "return f'{self.package}/{self.namespace}/{self.name}'"),
+    ('nodl/composition/entities.py', "return f'{self.package}/{self.namespace}/{self.name}'"),
     ('nodl/generate/cpp/text.py', "return f'{package}/{namespace}/{rosidl_file_stem(name)}.hpp'"),
     # a parameter file's node key as rcl_yaml_param_parser normalizes it (a pattern, not a name)
     ('nodl/launch/overrides.py', "name = key if key.startswith('/') else '/' + key"),
