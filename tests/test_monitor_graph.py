@@ -120,3 +120,29 @@ def test_discovered_waits_for_every_announced_endpoint_s_qos() -> None:
     into = TopicEndpoint('/n/in', '/n', 'subscription', 'std_msgs/msg/String', (), (), '', '02')
     assert not discovered(Snapshot(0.0, {'/n': 1}, {'/n': raw}, {'/n/out': [out]}))
     assert discovered(Snapshot(0.0, {'/n': 1}, {'/n': raw}, {'/n/out': [out], '/n/in': [into]}))
+
+
+def test_a_long_scan_lets_what_cannot_wait_run_and_does_not_count_it() -> None:
+    """GraphView.scan calls ``meanwhile`` every SCAN_CHUNK topics (nodl monitor publishes
+    then, if due); the processor time it takes is not the scan's cost."""
+    from nodl.monitor.graph import SCAN_CHUNK, GraphView
+
+    class Crowded(_Graph):
+        def get_topic_names_and_types(self) -> list[tuple[str, list[str]]]:
+            return [(f'/t{i}', ['std_msgs/msg/String']) for i in range(2 * SCAN_CHUNK + 50)]
+
+    graph = Crowded()
+    view = GraphView(graph)
+    view._info_functions = lambda: (lambda topic: [], lambda topic: [])  # type: ignore[method-assign]
+    calls: list[float] = []
+
+    def busy() -> None:
+        end = time.process_time() + 0.05
+        while time.process_time() < end:
+            pass
+        calls.append(time.monotonic())
+
+    snapshot = view.scan({'/n': 1}, ['/n'], meanwhile=busy)
+    assert len(calls) == 2
+    assert snapshot.cost < 0.05
+    assert view.scan({'/n': 1}, ['/n']).endpoints == snapshot.endpoints  # none: never called
