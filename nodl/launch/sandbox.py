@@ -33,6 +33,7 @@ read them; a program that does should read its launch files first.
 
 from __future__ import annotations
 
+import contextlib
 import io
 import os
 import pickle
@@ -325,16 +326,12 @@ def _child(walk: Callable[[], LaunchResult], session: _Session, channel: int, se
         _send(channel, b'R', (result, sorted(session.met)))
     except BaseException as exc:  # noqa: B036 - whatever happens, the parent hears of it
         status = 70
-        try:
+        with contextlib.suppress(BaseException):  # the pipe is gone: the exit status says enough
             _send(channel, b'X', f'{type(exc).__name__}: {exc}'[:2000])
-        except BaseException:  # noqa: B036 - the pipe is gone: the exit status says enough
-            pass
     finally:
         for stream in (sys.stdout, sys.stderr):
-            try:
+            with contextlib.suppress(BaseException):  # a closed stream: nothing more to say
                 stream.flush()
-            except BaseException:  # noqa: B036 - a closed stream: nothing more to say
-                pass
         os._exit(status)  # the forked child ends here: it never returns into the caller's code
 
 
@@ -380,10 +377,8 @@ def _run_child(walk: Callable[[], LaunchResult], session: _Session, root: str,
     import select
 
     for stream in (sys.stdout, sys.stderr):  # what is buffered is written once, not twice
-        try:
+        with contextlib.suppress(OSError, ValueError):
             stream.flush()
-        except (OSError, ValueError):
-            pass
     seconds = max(deadline - time.monotonic(), 0.0)
     read_end, write_end = os.pipe()
     pid = os.fork()
@@ -444,10 +439,8 @@ def _run_child(walk: Callable[[], LaunchResult], session: _Session, root: str,
     finally:
         if status is None:
             status = _peek(pid)
-        try:
+        with contextlib.suppress(ProcessLookupError, PermissionError):
             os.killpg(pid, signal.SIGKILL)  # the child and whatever it started
-        except (ProcessLookupError, PermissionError):
-            pass
         os.waitpid(pid, 0)
         os.close(read_end)
     if answer is not None and isinstance(answer, tuple) and len(answer) == 2:

@@ -9,6 +9,7 @@ backreferences (rcl does not implement them).
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Iterable, Sequence
 
 from nodl.naming.validation import ALNUM, DIGITS
@@ -154,9 +155,9 @@ def _lex(rule: str) -> list[tuple[str, str, int]]:
         elif rest.startswith('rosservice://'):
             kind, end = _URL_SERVICE, i + len('rosservice://')
         elif rest.startswith('__'):
-            for word, kind in (('__ns', _NS), ('__node', _NODE), ('__name', _NODE)):
+            for word, word_kind in (('__ns', _NS), ('__node', _NODE), ('__name', _NODE)):
                 if rest.startswith(word):
-                    end = i + len(word)
+                    kind, end = word_kind, i + len(word)
                     break
             else:
                 raise InvalidRemapRuleError(rule, f"'{rest[:3]}' at index {i} starts no name "
@@ -291,10 +292,8 @@ def parse_remap_rules(args: RemapArgs) -> list[RemapRule]:
         elif item == '--ros-args':
             in_ros_args = True
         elif not in_ros_args:
-            try:
+            with contextlib.suppress(InvalidRemapRuleError):  # else an argument of the program, not a rule
                 rules.append(parse_remap_rule(item))
-            except InvalidRemapRuleError:
-                pass  # an argument of the program, not a rule
         elif item == '--':
             in_ros_args = False
         elif item in _REMAP_FLAGS:
