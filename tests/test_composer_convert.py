@@ -2,16 +2,16 @@
 
 Nodes, containers, names, namespaces (groups pushing literal ones), parameter values and
 remapping rules are written anew; kept pieces and read-only nodes (their conditions and
-substitutions are the source format's) are left out.  Outputs are compared with expected
-files, and read back by the composer as the same nodes.
+substitutions are the source format's) are left out, and listed in a comment.  Outputs are
+compared with expected files, and read back by the composer as the same nodes.
 """
 
 from __future__ import annotations
 
 import pytest
 
-from composer_helpers import FIXTURES, LAUNCH
-from nodl.composer.convert import convert_document
+from composer_helpers import EXAMPLE, FIXTURES, LAUNCH
+from nodl.composer.convert import convert_document, left_out
 from nodl.composer.formats import read_document, render
 from nodl.composer.model import ComposedNode, Remap
 
@@ -46,3 +46,20 @@ def test_the_source_document_is_not_touched() -> None:
     doc = read_document(text, 'xml')
     convert_document(doc, 'python')
     assert render(doc).text == text
+
+
+def test_what_is_left_out_is_listed() -> None:
+    doc = read_document((EXAMPLE / 'launch' / 'rover.launch.xml').read_text(encoding='utf-8'), 'xml')
+    missing = left_out(doc)
+    assert missing[:4] == ['line 6: <arg>', 'line 7: <arg>', 'line 8: <arg>', 'line 9: <set_parameter>']
+    assert 'line 10: a namespace only the running launch knows (its nodes are written without it)' \
+        in missing
+    assert 'line 31: the condition of a group (its nodes are written unconditionally)' in missing
+    assert "line 39: args='--port 9090' of rover_tools web_bridge" in missing
+    assert not any('push' in line for line in missing)   # the groups' namespaces are carried over
+    xml = render(convert_document(doc, 'xml')).text
+    assert "args='- -port 9090' of rover_tools web_bridge" in xml   # nothing ends the comment
+    assert read_document(xml, 'xml').nodes()[0].label == 'rover_base motor_controller'
+    rules = read_document((LAUNCH / 'rules.launch.xml').read_text(encoding='utf-8'), 'xml')
+    assert left_out(rules) == ['line 4: <arg>', 'line 6: a remapping rule with substitutions of '
+                               'demo_pkg listener']
