@@ -127,7 +127,7 @@ def main() -> bool:
     print(f'accuracy on {len(list(REAL.glob("*.py")))} real rclpy nodes (tests/fixtures/extract/python/real)')
     print(f'  {"kind":16} {"truth":>5} {"precision":>9} {"recall":>7} {"coverage":>8}')
     total = {'truth': 0, 'extracted': 0, 'right': 0, 'gaps': 0}
-    for kind, c in counts.items():
+    for c in counts.values():
         for key in total:
             total[key] += c[key]
     for kind, c in [*counts.items(), ('all', total)]:

@@ -99,9 +99,8 @@ def find_config_file(start: str) -> str | None:
     while True:
         for name in CONFIG_FILES:
             candidate = os.path.join(directory, name)
-            if os.path.isfile(candidate):
-                if name == 'nodl.toml' or _table(candidate) is not None:
-                    return candidate
+            if os.path.isfile(candidate) and (name == 'nodl.toml' or _table(candidate) is not None):
+                return candidate
         parent = os.path.dirname(directory)
         if parent == directory:
             return None

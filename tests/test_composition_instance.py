@@ -78,7 +78,7 @@ def test_parameter_values_are_defaults_overridden(talker) -> None:  # type: igno
 def test_final_names_agree_with_a_real_rclpy_node(ros_node) -> None:  # type: ignore[no-untyped-def]
     rules = ['commands:=cmd_in', '~/status:=/health', 'rosservice://~/reset:=/reset_all',
              '__ns:=/moved']
-    node = ros_node('full_node.py', 'inst', '/sys', '--ros-args', *[x for r in rules for x in ('-r', r)])
+    ros_node('full_node.py', 'inst', '/sys', '--ros-args', *[x for r in rules for x in ('-r', r)])
     resolved = resolve_node(FIXTURES / 'live' / 'full_node.nodl.yaml')
     instance = NodeInstance(resolved, 'inst', '/sys', rules)
     observed = observe_node(instance.fqn, timeout=15, parameters=False)

@@ -106,7 +106,7 @@ class _Run:
             self.docs.diagnostics += problems or [_error(found.source, 'the definition cannot be '
                                                                        'resolved')]
             return None
-        self.docs.inputs += [found.source, *(l.file for l in found.node.layers if l.file)]
+        self.docs.inputs += [found.source, *(layer.file for layer in found.node.layers if layer.file)]
         source = PageSource(package, executable, self.display(found.source), str(found.provenance))
         page, made = node_page(found.node, source, self.index, self.display, problems)
         self.docs.diagnostics += made

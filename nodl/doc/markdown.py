@@ -55,10 +55,8 @@ def _fence(text: str, char: str = '`') -> str:
 
 @functools.lru_cache(maxsize=4096)  # pages repeat the same names and types many times over
 def _literal(text: str) -> str:
-    if text.isascii() and text.isprintable():  # what visible() leaves as it is
-        shown = ' '.join(text.split())
-    else:
-        shown = ' '.join(visible(text).split())
+    # printable ASCII is what visible() leaves as it is
+    shown = ' '.join((text if text.isascii() and text.isprintable() else visible(text)).split())
     if not shown or '|' in shown or '`' in shown or shown != shown.strip():
         return escape(text)  # a code span cannot hold these safely in a table: plain text
     return f'`{shown}`'

@@ -352,7 +352,7 @@ def _unsupported(tag: str) -> str:
 
 def _construct(tag: str, text: str) -> Any:
     """The value of a scalar with a standard tag; ``_MISS`` if the text cannot be one."""
-    if tag == _STR or tag == _TIMESTAMP:  # NoDL has no date type: keep the text as written
+    if tag in (_STR, _TIMESTAMP):  # NoDL has no date type: keep the text as written
         return text
     try:
         if tag == _INT:

@@ -57,10 +57,7 @@ def cpp_type(field_type: FieldType) -> str:
     """The C++ type rosidl_generator_cpp gives a field: ``float``, ``std::vector<float>``,
     ``std::array<double, 9>``, ``rosidl_runtime_cpp::BoundedVector<int32_t, 5>``,
     ``std_msgs::msg::Header``."""
-    if field_type.nested:
-        element = field_type.base.replace('/', '::')
-    else:
-        element = _cpp_table()[field_type.base]
+    element = field_type.base.replace('/', '::') if field_type.nested else _cpp_table()[field_type.base]
     if field_type.container == 'array':
         return f'std::array<{element}, {field_type.size}>'
     if field_type.container == 'sequence':

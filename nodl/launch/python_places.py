@@ -75,9 +75,9 @@ def _scope_of(tree: ast.Module, line: int) -> ast.AST:
         scopes = memo['scopes'] = [node for node in ast.walk(tree) if isinstance(node, _SCOPES)]
     scope: ast.AST = tree
     for node in scopes:
-        if node.lineno <= line <= (node.end_lineno or node.lineno):
-            if scope is tree or node.lineno >= getattr(scope, 'lineno', 0):
-                scope = node
+        if node.lineno <= line <= (node.end_lineno or node.lineno) and (
+                scope is tree or node.lineno >= getattr(scope, 'lineno', 0)):
+            scope = node
     return scope
 
 

@@ -150,10 +150,7 @@ class GraphView:
                     # announcement is reported under an unknown node, then under its own
                     key = (topic, kind, bytes(info['endpoint_gid']), info['node_namespace'],
                            info['node_name'])
-                    if key in known:
-                        endpoint = known[key]
-                    else:
-                        endpoint = self._endpoint(topic, kind, info)
+                    endpoint = known[key] if key in known else self._endpoint(topic, kind, info)
                     seen[key] = endpoint
                     if endpoint is not None:
                         found.append(endpoint)

@@ -59,9 +59,7 @@ def use_sim_time_can_be_true(value: object) -> bool:
     """True unless ``use_sim_time`` is surely false (False, unset, or the text ``false``)."""
     if value is None or value is False:
         return False
-    if isinstance(value, str) and value.strip().lower() == 'false':
-        return False
-    return True
+    return not (isinstance(value, str) and value.strip().lower() == 'false')
 
 
 def profile_for_instance(instance: NodeInstance, *, distro: str = DEFAULT_DISTRO

@@ -105,10 +105,7 @@ def problems_of(plan: ParametersPlan, values: Mapping[str, Any], changed: Mappin
         if parameter.size_requirement is not None and len(checked) > parameter.type.size:
             problems.append(f'parameter {name!r} = {value!r}: {parameter.size_requirement}')
         for validator in parameter.validators:
-            if validator.builtin:
-                why = validator.check(checked)
-            else:
-                why = custom[validator.name](value, validator.raw)
+            why = validator.check(checked) if validator.builtin else custom[validator.name](value, validator.raw)
             if why:
                 problems.append(f'parameter {name!r} = {value!r}: {why}')
     return problems

@@ -175,7 +175,7 @@ def _package_xml(package: str, nodes: list[NodeSource], build_type: str, compone
               else '', '',
               '  <export>', f'    <build_type>{build_type}</build_type>', '  </export>',
               '</package>']
-    return '\n'.join(l for i, l in enumerate(lines) if l or (i and lines[i - 1])) + '\n'
+    return '\n'.join(line for i, line in enumerate(lines) if line or (i and lines[i - 1])) + '\n'
 
 
 def _maintainer_xml(author: Authorship) -> str:
