@@ -63,3 +63,13 @@ def test_what_is_left_out_is_listed() -> None:
     rules = read_document((LAUNCH / 'rules.launch.xml').read_text(encoding='utf-8'), 'xml')
     assert left_out(rules) == ['line 4: <arg>', 'line 6: a remapping rule with substitutions of '
                                'demo_pkg listener']
+
+
+def test_a_read_only_composable_node_is_left_out_as_listed() -> None:
+    doc = read_document((LAUNCH / 'rules.launch.xml').read_text(encoding='utf-8'), 'xml')
+    camera = doc.nodes()[3]
+    camera.editable, camera.read_only_reason = False, 'a condition decides whether it is loaded'
+    assert left_out(doc)[-1] == ('line 13: demo_pkg demo_pkg::Camera (read-only: a condition '
+                                 'decides whether it is loaded)')
+    converted = convert_document(doc, 'yaml')
+    assert [n.name for n in converted.nodes()] == ['listener', 'talker', 'box']

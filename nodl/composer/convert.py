@@ -35,7 +35,7 @@ def _fresh(node: ComposedNode) -> ComposedNode:
             rule.original, rule.gap = None, ''
     out.extra = []
     out.style = {}
-    out.children = [_fresh(child) for child in node.children]
+    out.children = [_fresh(child) for child in node.children if child.editable]  # as left_out says
     return out
 
 
