@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import argparse
+import gc
 import os
 import sys
 
@@ -25,6 +26,7 @@ def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of ``nodl``; returns the exit code."""
+    program = argv is None  # (the command itself, not a caller passing arguments)
     if argv is None:
         argv = sys.argv[1:]
         if os.environ.get('_ARGCOMPLETE'):  # a shell asks for completions (argcomplete)
@@ -34,7 +36,13 @@ def main(argv: list[str] | None = None) -> int:
             autocomplete(build_parser)
     parser = build_parser(argv)
     args = parser.parse_args(argv)
-    return run_verb(parser, args)
+    code = run_verb(parser, args)
+    if program:
+        # The process ends now: what is still alive is moved out of the collector's generations,
+        # so that the interpreter's shutdown does not walk it all once more (about 20 ms of
+        # processor time after nodl analyse of nav2's bringup).
+        gc.freeze()
+    return code
 
 
 if __name__ == '__main__':
