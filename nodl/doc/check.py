@@ -64,7 +64,7 @@ def check_files(files: dict[str, str], folder: str, format: str) -> list[Diagnos
 
 
 def _first_difference(old: str, new: str) -> int:
-    for number, (a, b) in enumerate(zip(old.splitlines(), new.splitlines()), 1):
+    for number, (a, b) in enumerate(zip(old.splitlines(), new.splitlines(), strict=False), 1):
         if a != b:
             return number
     return min(len(old.splitlines()), len(new.splitlines())) + 1

@@ -210,6 +210,11 @@ _DTD_MESSAGE = ('document type declarations (<!DOCTYPE ...>) are not allowed in 
                 'bound (XML bombs); remove the declaration')
 
 
+#: The expat handlers _parse_xml sets (and unhooks after parsing).
+_HANDLERS = ('StartElementHandler', 'EndElementHandler', 'CharacterDataHandler', 'StartDoctypeDeclHandler',
+             'EntityDeclHandler', 'XmlDeclHandler')
+
+
 def _parse_xml(text: str, file: str) -> XmlTree:
     """Parse XML text with expat, keeping positions; rejects DTDs and entities."""
     diagnostics: list[Diagnostic] = []
@@ -281,8 +286,9 @@ def _parse_xml(text: str, file: str) -> XmlTree:
         diagnostics.append(_error(file, f'malformed XML: {message}', exc.lineno, exc.offset + 1, code='NODL012'))
     finally:
         # The handlers refer to the parser (a reference cycle that would keep the whole
-        # tree alive until the next full garbage collection): let it go now.
-        del parser
+        # tree alive until the next full garbage collection): unhook them now.
+        for handler in _HANDLERS:
+            setattr(parser, handler, None)
     return XmlTree(file, roots[0] if roots else None, diagnostics)
 
 

@@ -429,8 +429,8 @@ class Monitor:
             self._refresh(now)  # a change is published within a poll, not a tick
             self._scan_took = time.monotonic() - began
         elif self._scan_wanted and self._min_scan_gap > 1.0:
-            self._shed('graph scans spaced out to every %.1f s to stay within the CPU budget'
-                       % self._min_scan_gap)
+            self._shed(f'graph scans spaced out to every {self._min_scan_gap:.1f} s to stay within the CPU '
+                       'budget')
 
     def _shed(self, why: str) -> None:
         if why not in self._shedding:

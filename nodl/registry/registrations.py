@@ -20,8 +20,8 @@ holds, and its :attr:`Registration.origin` says which folder served it.
 from __future__ import annotations
 
 import os
+from contextlib import AbstractContextManager
 from pathlib import Path
-from typing import ContextManager
 
 # The names compose_registered needs are imported here rather than on every call (an
 # import statement costs a few microseconds each time it runs).  Composing and checking
@@ -56,7 +56,7 @@ def search_path(prefixes: list[str] | None = None) -> list[str]:
     return prefixes if prefixes is not None else ament_index.prefix_paths()
 
 
-def one_run() -> ContextManager[None]:
+def one_run() -> AbstractContextManager[None]:
     """A block within which every look-up sees the index as it was when first read (one
     listing per resource folder, each entry and registered document read once): for one
     run over many nodes, such as an analysis of a launched system.  Nested blocks share
