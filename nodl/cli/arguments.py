@@ -7,10 +7,10 @@ import os
 import sys
 from typing import TYPE_CHECKING
 
+from nodl.cli.report_options import show_diagnostics
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from nodl.config import ConfigError
 from nodl.diagnostics import Severity
-from nodl.reporting import format_text
 from nodl.vocabulary import CLIENT_LIBRARIES
 
 if TYPE_CHECKING:
@@ -162,7 +162,7 @@ def load_definitions(args: argparse.Namespace, prog: str, start: str | None = No
         print(exc, file=sys.stderr)
         return EXIT_USAGE
     if report and definitions.diagnostics:
-        sys.stderr.write(format_text(definitions.diagnostics))
+        show_diagnostics(definitions.diagnostics)
     return definitions
 
 

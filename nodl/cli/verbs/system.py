@@ -3,13 +3,30 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from typing import TYPE_CHECKING
+
+from nodl.cli.arguments import (
+    add_definitions_argument,
+    add_launch_code_arguments,
+    launch_limits,
+    load_definitions,
+)
+from nodl.cli.report_options import (
+    add_format_argument,
+    reporter_for,
+    show_diagnostics,
+    write_report,
+)
+from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+from nodl.reporting.reporters import Report
 
 if TYPE_CHECKING:
     from typing import Any
 
-from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
+    from nodl.composer import Change, Composition
+    from nodl.reporting.reporters import ReporterExtension
 
 #: Codes that mean what the command names is not there (exit status 2, as a missing file).
 _NOT_FOUND = ('NODL970', 'NODL971')
@@ -53,12 +70,6 @@ class SystemVerb(Verb):
 
     @staticmethod
     def _common(sub: argparse.ArgumentParser, name: str) -> None:
-        from nodl.cli.arguments import (
-            add_definitions_argument,
-            add_launch_code_arguments,
-        )
-        from nodl.cli.report_options import add_format_argument
-
         add_definitions_argument(sub)
         if name in ('connect', 'disconnect', 'show', 'remove'):
             add_launch_code_arguments(sub)
@@ -135,11 +146,9 @@ class SystemVerb(Verb):
                          help='also print informational findings and every port')
 
     def main(self, args: argparse.Namespace) -> int:
-        import os
-
-        from nodl.cli.arguments import load_definitions
-        from nodl.cli.report_options import reporter_for
-        from nodl.composer import ComposerError, Composition
+        # The composer loads the whole analysis (about 0.4 s): imported when the verb runs,
+        # not when ``nodl --help`` builds every verb's parser.
+        from nodl.composer import Change, ComposerError, Composition
 
         prog = f'nodl system {args.operation}'
         if args.operation == 'rename' and args.name is None and args.namespace is None:
@@ -154,8 +163,6 @@ class SystemVerb(Verb):
             return definitions
         options: dict[str, Any] = {'definitions': definitions}
         if getattr(args, 'no_exec', None) is not None:
-            from nodl.cli.arguments import launch_limits
-
             options['limits'] = launch_limits(args)
         try:
             if args.operation == 'new':
@@ -168,22 +175,23 @@ class SystemVerb(Verb):
                     return EXIT_USAGE
                 composition = Composition.open(args.file, **options)
         except ComposerError as exc:
-            from nodl.reporting import format_text
-
-            print(format_text([exc.diagnostic]).rstrip('\n'), file=sys.stderr)
+            show_diagnostics([exc.diagnostic])
             return EXIT_USAGE
         if args.operation == 'show':
-            return self._show(args, prog, composition, reporter)
-        return self._change(args, prog, composition, reporter)
+            from nodl.composer.showing import show_report
+
+            write_report(reporter, show_report(composition, args.verbose, prog))
+            return self._show_status(composition)
+        if args.operation == 'new':
+            change, done = Change(), f'started {args.file} (empty)'
+        else:
+            change, done = self._operate(args, composition)
+        return self._change(args, prog, composition, reporter, change, done)
 
     @staticmethod
-    def _operate(args: argparse.Namespace, composition: Any) -> tuple[Any, str]:
-        """Do the operation: ``(Change, what it did in words)``."""
-        from nodl.composer import Change
-
+    def _operate(args: argparse.Namespace, composition: Composition) -> tuple[Change, str]:
+        """Do the operation (all but new and show): ``(Change, what it did in words)``."""
         operation = args.operation
-        if operation == 'new':
-            return Change(), f'started {args.file} (empty)'
         if operation == 'add':
             change = composition.add(args.package, args.executable, args.name,
                                      namespace=args.namespace, container=args.container,
@@ -210,7 +218,7 @@ class SystemVerb(Verb):
             return change, f"remapping rules of {args.node}: {', '.join(args.rules) or 'none'}"
         if operation == 'connect':
             change = composition.connect(args.first, args.second)
-            rules = ', '.join(f"{r['from']}:={r['to']} on {composition.fqn(composition.node(r['node']))}"
+            rules = ', '.join(f"{r['from']}:={r['to']} on {_final_name(composition, r['node'])}"
                               for r in change.remaps)
             return change, f'joined {args.first} and {args.second}' + \
                 (f' (remapping rule {rules})' if rules else '')
@@ -219,11 +227,10 @@ class SystemVerb(Verb):
         return change, f'parted {args.first} and {args.second}' + \
             (f' (removed {rules})' if rules else '')
 
-    def _change(self, args: argparse.Namespace, prog: str, composition: Any, reporter: Any) -> int:
-        from nodl.cli.report_options import write_report
-        from nodl.reporting.reporters import Report
-
-        change, done = self._operate(args, composition)
+    @staticmethod
+    def _change(args: argparse.Namespace, prog: str, composition: Composition,
+                reporter: ReporterExtension, change: Change, done: str) -> int:
+        """Save what the operation changed (unless refused or --dry-run) and report it."""
         diagnostics = list(change.diagnostics)
         status = EXIT_OK
         if not change.ok:
@@ -249,23 +256,21 @@ class SystemVerb(Verb):
         report = Report(prog, diagnostics, summary=summary, payload=payload)
         if args.dry_run and change.ok and reporter.FOR_PEOPLE:
             print(summary, file=sys.stderr)
-            if diagnostics:
-                from nodl.reporting import format_text
-
-                sys.stderr.write(format_text(diagnostics))
+            show_diagnostics(diagnostics)
             return status
         write_report(reporter, report)
         return status
 
     @staticmethod
-    def _show(args: argparse.Namespace, prog: str, composition: Any, reporter: Any) -> int:
-        from nodl.cli.report_options import write_report
-        from nodl.composer.showing import show_report
-
-        report = show_report(composition, args.verbose, prog)
-        write_report(reporter, report)
-        analysis = composition.analyse().analysis
-        if analysis.unreadable:
+    def _show_status(composition: Composition) -> int:
+        """``show``'s exit status: 2 when the file cannot be read, 1 when it has errors."""
+        if composition.analyse().analysis.unreadable:
             return EXIT_USAGE
         return EXIT_FAILURE if any(f.severity.value == 'error' for f in composition.findings) \
             else EXIT_OK
+
+
+def _final_name(composition: Composition, node_id: str) -> str:
+    """The final name of the node ``node_id`` (the id itself when it is gone)."""
+    node = composition.node(node_id)
+    return composition.fqn(node) if node is not None else node_id
