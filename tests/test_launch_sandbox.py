@@ -237,3 +237,23 @@ def test_no_exec_leaves_eval_values_unknown_and_the_nodes_analysed() -> None:
     from nodl.launch.params import RuntimeValue
 
     assert isinstance(result.nodes[0].parameters[0].values['rate'], RuntimeValue)  # set, unchecked
+
+
+def test_the_child_starts_with_what_it_inherits_frozen_and_the_parent_as_it_was(tmp_path: Path) -> None:
+    """The objects the child inherits are out of the collector's generations (its collections
+    neither walk them nor copy their pages); the parent's are back at once."""
+    import gc
+
+    main = tmp_path / 'x.launch.py'
+    main.write_text(textwrap.dedent('''\
+        import gc
+        from launch import LaunchDescription
+        from launch_ros.actions import Node
+        def generate_launch_description():
+            name = 'frozen' if gc.get_freeze_count() > 0 else 'walked'
+            return LaunchDescription([Node(package='p', executable='e', name=name)])
+        '''))
+    assert gc.get_freeze_count() == 0
+    result = load_launch(main, {})
+    assert [node.name for node in result.nodes] == ['frozen']
+    assert gc.get_freeze_count() == 0

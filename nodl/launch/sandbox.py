@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import gc
 import os
 import pickle
 import signal
@@ -381,7 +382,15 @@ def _run_child(walk: Callable[[], LaunchResult], session: _Session, root: str,
             stream.flush()
     seconds = max(deadline - time.monotonic(), 0.0)
     read_end, write_end = os.pipe()
+    # What the child inherits is moved out of the collector's generations while it forks: the
+    # child's collections then do not walk it (nor copy the pages it is on); the parent's
+    # objects go back at once (a program that keeps objects frozen itself is left alone).
+    moved = gc.get_freeze_count() == 0
+    if moved:
+        gc.freeze()
     pid = os.fork()
+    if pid != 0 and moved:
+        gc.unfreeze()
     if pid == 0:
         os.close(read_end)
         _child(walk, session, write_end, seconds)
