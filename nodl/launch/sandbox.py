@@ -34,8 +34,8 @@ read them; a program that does should read its launch files first.
 from __future__ import annotations
 
 import contextlib
-import io
 import gc
+import io
 import os
 import pickle
 import signal
