@@ -21,6 +21,7 @@ import importlib.util
 import os
 import sys
 import types
+from functools import lru_cache
 from typing import TYPE_CHECKING, Any
 
 from nodl.diagnostics import Diagnostic, Severity
@@ -450,6 +451,12 @@ def _column(text: str, line: int, offset: int | None) -> int:
     return len(lines[line - 1].encode('utf-8', 'surrogatepass')[:offset].decode('utf-8', 'replace')) + 1
 
 
+@lru_cache(maxsize=64)  # an included file is run twice (its declared arguments, then its nodes)
+def _compiled(text: str, path: str) -> types.CodeType:
+    """The code of a Python launch file's ``text`` (the same text compiles to the same code)."""
+    return compile(text, path, 'exec')
+
+
 def read_python_launch(path: str, context: LaunchContext,
                        site: SourceLocation | None = None) -> A.LaunchDescription | None:
     """Evaluate ``generate_launch_description()`` of a Python launch file with the stand-ins.
@@ -499,7 +506,7 @@ def read_python_launch(path: str, context: LaunchContext,
         # What the launch file itself prints goes to standard error, as ros2 launch shows it:
         # standard output carries the reports of the tools (--format json, sarif).
         with contextlib.redirect_stdout(sys.stderr):
-            code = compile(text, path, 'exec')
+            code = _compiled(text, path)
             exec(code, namespace)  # noqa: S102 - running the launch file, as ros2 launch does
             generate = namespace.get('generate_launch_description')
             if not callable(generate):
