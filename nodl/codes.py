@@ -31,6 +31,8 @@ code listed here is used).
 
 from __future__ import annotations
 
+from nodl.wording import close_matches
+
 __all__ = ['CODES', 'RANGES', 'explain', 'default_severity', 'is_code', 'close_codes', 'catalogue_markdown']
 
 #: The stage of each range of codes (``'1'`` covers NODL100-NODL199).
@@ -410,13 +412,9 @@ def is_code(text: str) -> bool:
 
 def close_codes(text: str) -> list[str]:
     """Catalogued codes that look like ``text`` (for a "did you mean" hint)."""
-    import difflib
-
     wanted = text.upper()
     # the codes a prefix names come first ('nodl21': NODL210...), then those spelled alike
-    starting = [code for code in CODES if len(wanted) > 4 and code.startswith(wanted) and code != wanted]
-    alike = difflib.get_close_matches(wanted, list(CODES), n=3, cutoff=0.6)
-    return (starting + [code for code in alike if code not in starting])[:3]
+    return close_matches(wanted, CODES, most=3, prefix=len(wanted) > 4)
 
 
 def catalogue_markdown() -> str:

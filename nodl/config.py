@@ -27,6 +27,7 @@ import re
 from typing import Any
 
 from nodl.overrides import Overrides, parse_code_list
+from nodl.wording import did_you_mean
 
 __all__ = ['ConfigError', 'CONFIG_FILES', 'KEYS', 'ANALYSE_TABLE', 'ANALYSE_KEYS', 'analyse_table',
            'find_config_file', 'load_config', 'overrides_for', 'ConfigCache', 'definitions_of']
@@ -118,10 +119,7 @@ def load_config(path: str) -> Overrides:
     values: dict[str, list[str]] = {'ignore': [], 'error': []}
     for key, value in table.items():
         if key not in KEYS:
-            import difflib
-
-            close = difflib.get_close_matches(str(key), list(KEYS), n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else f'; expected {" or ".join(KEYS)}'
+            hint = did_you_mean(str(key), KEYS) or f'; expected {" or ".join(KEYS)}'
             raise ConfigError(f"{where}: error: unknown key '{key}'{hint}")
         if key == ANALYSE_TABLE:  # checked here, so that a wrong table fails every verb alike
             analyse_table(value, where)
@@ -152,11 +150,7 @@ def analyse_table(table: object, where: str) -> dict[str, tuple[str, ...]]:
         raise ConfigError(f"{where}: error: '{ANALYSE_TABLE}' must be a table")
     for key, value in table.items():
         if key not in ANALYSE_KEYS:
-            import difflib
-
-            close = difflib.get_close_matches(str(key), list(ANALYSE_KEYS), n=1)
-            hint = f"; did you mean '{close[0]}'?" if close else \
-                f'; expected {", ".join(ANALYSE_KEYS)}'
+            hint = did_you_mean(str(key), ANALYSE_KEYS) or f'; expected {", ".join(ANALYSE_KEYS)}'
             raise ConfigError(f"{where}: error: unknown key '{ANALYSE_TABLE}.{key}'{hint}")
         if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
             raise ConfigError(f"{where}: error: '{ANALYSE_TABLE}.{key}' must be {ANALYSE_KEYS[key]}")

@@ -19,7 +19,7 @@ from nodl.frontends.frontend import Placer, read_document
 from nodl.frontends.source import Source, read_source
 from nodl.validation import Kind, detect_kind, validate_data
 from nodl.validation.kinds import KIND_REASONS
-from nodl.validation.messages import article, kind_of
+from nodl.wording import article, kind_of
 
 __all__ = [
     'Document',

@@ -18,8 +18,8 @@ from nodl.frontends.yaml_json import parse_document
 from nodl.schemas import bundled_schema
 from nodl.validation.engine import FORMATS
 from nodl.validation.interfaces import check_interface
-from nodl.validation.messages import described, kind_of
 from nodl.validation.structure import SchemaCompiler
+from nodl.wording import described, kind_of
 
 if TYPE_CHECKING:
     from typing import Any

@@ -15,7 +15,7 @@ from nodl.composer.model import ComposedNode, Kept, Param
 from nodl.composer.values import typed_value
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.plan.parameter_plan import plan_parameters, value_problems
-from nodl.validation.messages import did_you_mean
+from nodl.wording import did_you_mean
 
 if TYPE_CHECKING:
     from nodl.composer.composition import Composition

@@ -28,8 +28,8 @@ from typing import Any
 from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.frontends.remapped import RemappedDocument
 from nodl.frontends.yaml_json import ParsedDocument
-from nodl.validation.messages import described, show
 from nodl.vocabulary import INTERFACE_KEYS, NODE_KEYS
+from nodl.wording import described, show
 
 __all__ = [
     'IDENTIFIER',

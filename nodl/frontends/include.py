@@ -26,8 +26,8 @@ from typing import Any
 from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.frontends.remapped import RemappedDocument
 from nodl.frontends.yaml_json import ParsedDocument
-from nodl.validation.messages import described, show
 from nodl.vocabulary import INCLUDE_KEYS, NODE_KEYS
+from nodl.wording import described, show
 
 __all__ = [
     'BASE_DESCRIPTIONS',

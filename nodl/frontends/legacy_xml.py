@@ -211,7 +211,7 @@ def _warning(file: str, message: str, line: int = 0, column: int = 0, *, code: s
 
 def _did_you_mean(word: str, choices: Iterable[str]) -> str:
     # Imported here: the validation package is not otherwise needed to read XML.
-    from nodl.validation.messages import did_you_mean
+    from nodl.wording import did_you_mean
 
     return did_you_mean(word, choices)
 

@@ -15,13 +15,13 @@ hundred definitions reads the index once (see :func:`interface_index`).
 
 from __future__ import annotations
 
-import difflib
 import os
 from collections.abc import Iterable
 from typing import Any, NamedTuple
 
 from nodl.ament_index import in_snapshot, prefix_paths, remembered
 from nodl.interface_types.manifest import read_manifest
+from nodl.wording import close_matches
 
 __all__ = ['TypeName', 'InterfacePackage', 'InterfaceIndex', 'Resolution', 'interface_index',
            'NAMESPACES', 'INTERFACE_SUFFIXES', 'parse_type_name']
@@ -237,7 +237,7 @@ class InterfaceIndex:
         if package is None:
             status = 'no_interfaces' if self.installed(package_name) else 'unknown_package'
             suggestions = () if status == 'no_interfaces' else tuple(
-                _close(package_name, self.interface_packages(), 0.8))
+                close_matches(package_name, self.interface_packages(), most=3, cutoff=0.8))
             return Resolution(status, None, suggestions)
         wanted = TypeName(package_name, namespace, name)
         if written in (None, namespace) and (namespace, name) in package.types:
@@ -246,20 +246,13 @@ class InterfaceIndex:
             if other != namespace and (other, name) in package.types:
                 return Resolution('wrong_kind', TypeName(package_name, other, name), (), package)
         candidates = [n for ns, n in package.types if ns == namespace]
-        close = _close(name, candidates)
+        close = close_matches(name, candidates, most=3)
         return Resolution('unknown_type', None,
                           tuple(f'{package_name}/{namespace}/{c}' for c in close), package)
 
     def describe_kind(self, namespace: str) -> str:
         """``a message`` / ``a service`` / ``an action``."""
         return _WORDS[namespace]
-
-
-def _close(word: str, candidates: list[str], cutoff: float = 0.6) -> list[str]:
-    lowered = {c.lower(): c for c in candidates}
-    if word.lower() in lowered:
-        return [lowered[word.lower()]]
-    return difflib.get_close_matches(word, candidates, n=3, cutoff=cutoff)
 
 
 def interface_index(sources: Iterable[str] = (), prefixes: list[str] | None = None) -> InterfaceIndex:

@@ -88,7 +88,7 @@ class DeclareLaunchArgument(Action):
         argument.value = value if isinstance(value, str) else None
         context.declare(argument)
         if self.choices is not None and isinstance(value, str) and value not in self.choices:
-            from nodl.validation.messages import did_you_mean
+            from nodl.wording import did_you_mean
 
             raise LaunchProblem('NODL505', f"argument '{self.name}' has value '{value}', which is "
                                            f'not one of its choices: {", ".join(self.choices)}'

@@ -100,7 +100,7 @@ class LaunchContext:
         prefix = self._packages[package]
         if prefix is None:
             from nodl.ament_index import get_resources
-            from nodl.validation.messages import did_you_mean
+            from nodl.wording import did_you_mean
 
             hint = did_you_mean(package, get_resources('packages', self.prefixes))
             raise LaunchProblem('NODL511', f"package '{package}' not found in the ament index "
@@ -133,7 +133,7 @@ class LaunchContext:
 
     def configuration_hint(self, name: str) -> str:
         """"; did you mean ..." among the configurations set, or how to set it."""
-        from nodl.validation.messages import did_you_mean
+        from nodl.wording import did_you_mean
 
         names = [k for k, v in self.configurations.items() if isinstance(v, str)]
         hint = did_you_mean(name, names)

@@ -296,7 +296,7 @@ def _walk(name: str, arguments: dict[str, str] | None, environment: dict[str, st
     declared = set(result.arguments)
     for argument in given:
         if argument not in declared:
-            from nodl.validation.messages import did_you_mean
+            from nodl.wording import did_you_mean
 
             result.diagnostics.append(Diagnostic(
                 Severity.WARNING, f"launch argument '{argument}' is given but no launch file declares "

@@ -179,7 +179,7 @@ def _check(entity: Entity, spec: _Spec, problems: list[Diagnostic]) -> bool:
 
 def _check_slow(entity: Entity, allowed: set[str], required: tuple[str, ...], lists: tuple[str, ...],
                 children: bool, problems: list[Diagnostic]) -> bool:
-    from nodl.validation.messages import did_you_mean
+    from nodl.wording import did_you_mean
 
     ok = True
     for name in entity.values:
@@ -392,7 +392,7 @@ def build_action(entity: Entity, problems: list[Diagnostic]) -> A.Action | None:
     """One entity to its action (None, reported, when it is not valid)."""
     spec = _SPECS.get(entity.tag)
     if spec is None:
-        from nodl.validation.messages import did_you_mean
+        from nodl.wording import did_you_mean
 
         problems.append(Diagnostic(Severity.ERROR, f'unknown launch tag <{entity.tag}>'
                                    f'{did_you_mean(entity.tag, TAGS)}', (), *entity.location, code='NODL501'))

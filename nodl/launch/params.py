@@ -161,7 +161,7 @@ def type_from_identifier(identifier: str) -> Any:
     try:
         return _TYPE_NAMES[identifier]
     except KeyError:
-        from nodl.validation.messages import did_you_mean
+        from nodl.wording import did_you_mean
 
         raise LaunchProblem('NODL504', f"unknown parameter type '{identifier}'"
                                        f'{did_you_mean(identifier, _TYPE_NAMES)}; expected one of '

@@ -210,7 +210,7 @@ class _Parser:
     def instantiate(self, name: str, args: list[list[Substitution]]) -> Substitution:
         entry = SUBSTITUTIONS.get(name)
         if entry is None:
-            from nodl.validation.messages import did_you_mean
+            from nodl.wording import did_you_mean
 
             raise LaunchProblem('NODL509', f"unknown substitution '$({name})'"
                                            f'{did_you_mean(name, SUBSTITUTIONS)}; known: '

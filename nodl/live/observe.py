@@ -23,8 +23,8 @@ from nodl.live.session import (
     without_toolkit_nodes,
 )
 from nodl.naming import join_name
-from nodl.validation.messages import did_you_mean
 from nodl.vocabulary import PARAMETER_TYPE_BY_NUMBER, SERVICE_SECTIONS, TOPIC_SECTIONS
+from nodl.wording import did_you_mean
 
 __all__ = ['ObservedEndpoint', 'ObservedParameter', 'ObservedNode', 'observe_node',
            'wait_for_node', 'list_nodes', 'count_nodes', 'ACTION_INFIX', 'DISCOVERY_WINDOW',

@@ -33,7 +33,7 @@ from nodl.plan.parameter_plan import (
 from nodl.system import Entity, ResolvedNode
 from nodl.system.checks.parameters import launch_value_verdict
 from nodl.system.run import LAUNCH_KIND, analyse_launch
-from nodl.validation.messages import did_you_mean
+from nodl.wording import did_you_mean
 
 if TYPE_CHECKING:
     from nodl.launch.sandbox import LaunchLimits

@@ -15,9 +15,9 @@ if TYPE_CHECKING:
 
 from nodl.diagnostics import Diagnostic, DocPath, Severity, format_path
 from nodl.validation.characters import check_text_fields
-from nodl.validation.messages import show
 from nodl.validation.parameters import check_parameter
 from nodl.vocabulary import SECTION_WORDS
+from nodl.wording import show
 
 __all__ = ['SECTIONS', 'NO_DESCRIPTION', 'check_interface']
 

@@ -18,8 +18,8 @@ if TYPE_CHECKING:
 from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.naming.resolution import declared_name_error
 from nodl.validation.characters import check_text
-from nodl.validation.messages import described, show, subject
 from nodl.vocabulary import NAME_SUBSTITUTIONS
+from nodl.wording import described, show, subject
 
 __all__ = ['SUBSTITUTIONS', 'ros_name_problem', 'parameter_name_problem',
            'check_ros_name', 'check_parameter_name']

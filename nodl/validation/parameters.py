@@ -20,8 +20,8 @@ if TYPE_CHECKING:
 from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.model.parameter_types import ALL_TYPE_WORDS, ARRAY_TYPES, SCALAR_TYPES, TypeSpec, element_fits, parse_type
 from nodl.validation.characters import check_text, check_text_fields
-from nodl.validation.messages import article, described, did_you_mean, show
 from nodl.validation.validators import APPLICABILITY, VALIDATORS
+from nodl.wording import article, described, did_you_mean, show
 
 __all__ = ['BUILTIN_VALIDATORS', 'check_parameter_type', 'check_validator_name', 'check_parameter']
 

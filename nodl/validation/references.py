@@ -13,7 +13,7 @@ if TYPE_CHECKING:
     from typing import Any
 
 from nodl.diagnostics import Diagnostic, DocPath, Severity
-from nodl.validation.messages import described, show
+from nodl.wording import described, show
 
 __all__ = ['NODL_SCHEME', 'parse_nodl_uri', 'reference_problem', 'check_reference']
 

@@ -33,7 +33,7 @@ if TYPE_CHECKING:
 
 from nodl.diagnostics import Diagnostic, DocPath, Severity
 from nodl.schemas import load_schema_file
-from nodl.validation.messages import described, did_you_mean, kind_of, one_of, show, subject
+from nodl.wording import described, did_you_mean, kind_of, one_of, show, subject
 
 __all__ = ['Check', 'FormatCheck', 'SchemaCompiler']
 

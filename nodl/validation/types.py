@@ -14,7 +14,7 @@ if TYPE_CHECKING:
     from typing import Any
 
 from nodl.diagnostics import Diagnostic, DocPath, Severity
-from nodl.validation.messages import described, show, subject
+from nodl.wording import described, show, subject
 
 __all__ = ['NAMESPACE_WORDS', 'split_type', 'type_problem', 'check_msg_type',
            'check_srv_type', 'check_action_type']

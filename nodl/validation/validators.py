@@ -21,8 +21,8 @@ from collections import namedtuple
 from typing import TYPE_CHECKING
 
 from nodl.model.parameter_types import element_fits, parse_type
-from nodl.validation.messages import one_of, show
 from nodl.vocabulary import PARAMETER_TYPES
+from nodl.wording import one_of, show
 
 if TYPE_CHECKING:
     from typing import Any

@@ -17,7 +17,6 @@ for it, since the unknown source may set the parameter.
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterator
 from typing import Any
 
@@ -28,6 +27,7 @@ from nodl.system.checks import CheckExtension
 from nodl.system.context import AnalysisContext
 from nodl.system.findings import Finding, make_finding
 from nodl.validation.validators import value_problems
+from nodl.wording import did_you_mean
 
 __all__ = ['ParameterCheck', 'launch_value_fits', 'launch_value_verdict', 'value_type_words']
 
@@ -166,8 +166,7 @@ class ParameterCheck(CheckExtension):
                 entity = declared.get(name)
                 where = setting.location
                 if entity is None:
-                    close = difflib.get_close_matches(name, list(declared), n=1)
-                    hint = f"; did you mean '{close[0]}'?" if close else ''
+                    hint = did_you_mean(name, declared)
                     yield make_finding(
                         'unknown-parameter', f"{fqn}: parameter '{name}' is set ({setting.origin}) "
                         f'but {node.executable_label} does not declare it{hint}', where, [fqn],

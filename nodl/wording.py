@@ -1,16 +1,18 @@
-"""Wording shared by the checks: how values, types and suggestions are said."""
+"""Wording shared by the whole toolkit: how values, kinds and suggestions are said.
+
+One "did you mean" (:func:`did_you_mean`, :func:`close_matches`) for every
+message that suggests a name: keys, codes, parameters, interface types, nodes.
+It sits at the bottom of the layers (it imports nothing of the toolkit), so
+that the catalogue of codes and the configuration can use it as well as the
+validation, the frontends, the launch interpreter and the live layer.
+"""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Iterable, Sequence
+from typing import Any
 
-if TYPE_CHECKING:
-    from collections.abc import Iterable
-    from typing import Any
-
-from nodl.diagnostics import DocPath
-
-__all__ = ['show', 'kind_of', 'described', 'did_you_mean', 'close_matches', 'subject', 'one_of']
+__all__ = ['show', 'article', 'kind_of', 'described', 'did_you_mean', 'close_matches', 'subject', 'one_of']
 
 
 def show(value: Any, limit: int = 40) -> str:
@@ -63,34 +65,41 @@ def described(value: Any) -> str:
     return f'{kind_of(value)} ({show(value)})'
 
 
-def close_matches(word: str, candidates: Iterable[str], *, most: int = 1) -> list[str]:
+def close_matches(word: str, candidates: Iterable[str], *, most: int = 1, cutoff: float = 0.6,
+                  prefix: bool = False) -> list[str]:
     """The candidates close to ``word``, best first, at most ``most``.
 
-    The same word in another case first; for a ROS name (holding ``/``), the
-    candidates with its last segment (``/b/scan`` for ``/a/scan``); else
-    difflib's closest (ratio 0.6 or more).
+    The same word in another case first; with ``prefix``, the candidates
+    ``word`` begins (``NODL21`` names ``NODL210``...), then those spelled
+    alike; for a ROS name (holding ``/``), the candidates with its last
+    segment (``/b/scan`` for ``/a/scan``); else difflib's closest (ratio
+    ``cutoff`` or more).
     """
     options = list(candidates)
     lowered = {c.lower(): c for c in options}
     if word.lower() in lowered:
         return [lowered[word.lower()]]
+    import difflib  # only when a suggestion is needed: it costs start-up time
+
+    if prefix:
+        starting = [c for c in options if c.startswith(word)]
+        alike = difflib.get_close_matches(word, options, n=most, cutoff=cutoff)
+        return (starting + [c for c in alike if c not in starting])[:most]
     if '/' in word:
         last = word.rpartition('/')[2]
         same_last = [c for c in options if c.rpartition('/')[2] == last]
         if same_last:
             return same_last[:most]
-    import difflib  # only when a suggestion is needed: it costs start-up time
-
-    return difflib.get_close_matches(word, options, n=most, cutoff=0.6)
+    return difflib.get_close_matches(word, options, n=most, cutoff=cutoff)
 
 
-def did_you_mean(word: Any, candidates: Iterable[str], *, most: int = 1,
+def did_you_mean(word: Any, candidates: Iterable[str], *, most: int = 1, cutoff: float = 0.6,
                  aside: bool = False) -> str:
     """``"; did you mean 'x'?"`` when candidates are close to ``word`` (:func:`close_matches`),
     else ``''``; with ``aside``, ``" (did you mean 'x' or 'y'?)"`` for the middle of a sentence."""
     if not isinstance(word, str):
         return ''
-    close = close_matches(word, candidates, most=most)
+    close = close_matches(word, candidates, most=most, cutoff=cutoff)
     if not close:
         return ''
     question = 'did you mean ' + ' or '.join(f"'{c}'" for c in close) + '?'
@@ -105,8 +114,9 @@ def one_of(options: Iterable[Any]) -> str:
     return ', '.join(items[:-1]) + ' or ' + items[-1]
 
 
-def subject(path: DocPath) -> str:
-    """What a path points at, for a message: its last key (``history``)."""
+def subject(path: Sequence[str | int]) -> str:
+    """What a path in a document (a :data:`nodl.diagnostics.DocPath`) points at, for a
+    message: its last key (``history``)."""
     if path and isinstance(path[-1], int):
         for part in reversed(path):
             if isinstance(part, str):
