@@ -71,6 +71,13 @@ def test_add_places_nodes_in_namespace_groups(demo: Composition) -> None:
             '  </group>\n'
             '</launch>\n') in text
     assert demo.fqn(demo.node('third')) == '/other/third'  # type: ignore[arg-type]
+    # a group's push of its literal namespace is the group, not a piece kept as written
+    pushes = [k.what for k in demo.document.kept() if 'push' in k.what]
+    assert pushes == [], pushes
+    assert demo.save() == []
+    reopened = Composition.open(demo.path, definitions=definitions())
+    assert not [k for k in reopened.document.kept() if 'push' in k.what]
+    assert not [d for d in reopened.kept_diagnostics() if 'push' in d.message]
     duplicate = demo.add('demo_pkg', 'listener', 'second', namespace='/sub')
     assert _codes(duplicate) == ['NODL982']
     assert _codes(demo.add('demo_pkg', 'listener', 'bad name')) == ['NODL982']
@@ -155,7 +162,7 @@ def test_to_dict_is_json(demo: Composition) -> None:
     assert talker['editable'] and talker['parameters'] == {'rate': 5.0}
     assert {'kind': 'publisher', 'name': 'chatter', 'final_name': '/chatter'}.items() <= \
         next(p for p in talker['ports'] if p['name'] == 'chatter').items()
-    assert [k['what'] for k in data['kept']] == ['<arg>', '<include>', '<push-ros-namespace>']
+    assert [k['what'] for k in data['kept']] == ['<arg>', '<include>']  # the push is the group's
     assert data['groups'] == [{'id': 'g4', 'namespace': 'sub', 'namespace_unknown': False,
                                'conditional': False, 'parent': None}]
     assert {f['code'] for f in data['findings']} >= {'NODL555'}

@@ -16,7 +16,7 @@ def test_walk_nodes_and_kept_in_file_order() -> None:
                       ('ComposedNode', None), ('ComposedNode', None), ('Group', None),
                       ('Kept', group.id), ('ComposedNode', group.id)]
     assert [n.name for n in doc.nodes()] == ['talker', 'listener', 'quiet', 'counter']
-    assert [k.what for k in doc.kept()] == ['<arg>', '<include>', '<push-ros-namespace>']
+    assert [k.what for k in doc.kept()] == ['<arg>', '<include>']  # the push: the group's namespace
     rules = read_document((LAUNCH / 'rules.launch.xml').read_text(encoding='utf-8'), 'xml')
     assert [(n.kind, n.name) for n in rules.nodes()] == [
         ('node', 'listener'), ('node', 'talker'), ('container', 'box'), ('composable', 'camera')]

@@ -10,7 +10,7 @@ from nodl.composer.showing import show_report, show_text
 def test_show_text_lists_nodes_ports_connections_and_kept_parts() -> None:
     c = Composition.open(str(LAUNCH / 'demo.launch.xml'), definitions=definitions())
     text = show_text(c)
-    assert text.startswith(f'{LAUNCH / "demo.launch.xml"} (xml): 4 nodes, 3 parts kept as written\n')
+    assert text.startswith(f'{LAUNCH / "demo.launch.xml"} (xml): 4 nodes, 2 parts kept as written\n')
     for line in ('  /talker  demo_pkg talker  [n1]',
                  '    param rate = 5.0',
                  '    publisher chatter -> /chatter (std_msgs/msg/String)',

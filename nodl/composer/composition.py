@@ -19,7 +19,16 @@ from nodl.composer.formats import (
     read_document,
     render,
 )
-from nodl.composer.model import ComposedNode, Document, Group, Item, Kept, Param, Remap
+from nodl.composer.model import (
+    ComposedNode,
+    Document,
+    Group,
+    Item,
+    Kept,
+    Param,
+    Remap,
+    pushes_group_namespace,
+)
 from nodl.composer.ports import Port, Verdict, ports_of, verdict
 from nodl.composer.renaming import rename, set_remaps
 from nodl.composer.rendering import Rendered
@@ -486,8 +495,8 @@ class Composition:
         """One NODL979 info per piece kept verbatim (items and parts of nodes): what it is and
         that it is read-only."""
         out = []
-        for item, _ in self.document.walk():
-            if isinstance(item, Kept) and item.line:
+        for item, group in self.document.walk():
+            if isinstance(item, Kept) and item.line and not pushes_group_namespace(item, group):
                 out.append(Diagnostic(Severity.INFO, f'{item.what}: kept as written, read-only '
                                       'here', file=self.path, line=item.line, code='NODL979'))
             elif isinstance(item, ComposedNode):

@@ -32,6 +32,7 @@ __all__ = [
     'Kept',
     'Param',
     'Remap',
+    'pushes_group_namespace',
 ]
 
 #: ``node`` (a process), ``container`` (a process hosting composable nodes), ``composable``.
@@ -209,5 +210,21 @@ class Document:
         return out
 
     def kept(self) -> list[Kept]:
-        """Every kept piece at item level (not those inside a node)."""
-        return [item for item, _ in self.walk() if isinstance(item, Kept)]
+        """Every kept piece at item level (not those inside a node), but for a group's push of
+        a literal namespace: that is the group's namespace, which the composer reads, shows
+        and writes (:func:`pushes_group_namespace`), not a piece it leaves alone."""
+        return [item for item, group in self.walk()
+                if isinstance(item, Kept) and not pushes_group_namespace(item, group)]
+
+
+#: How the formats name the action that pushes a namespace.
+_PUSHES = ('push-ros-namespace', 'push_ros_namespace', '<push-ros-namespace>',
+           '<push_ros_namespace>')
+
+
+def pushes_group_namespace(item: Kept, group: Group | None) -> bool:
+    """True when ``item`` is ``group``'s push of the literal namespace the group records."""
+    if group is None or group.namespace is None or group.namespace_unknown:
+        return False
+    return item.what in _PUSHES or (item.what == 'Python code'
+                                    and item.text.lstrip().startswith('PushRosNamespace('))
