@@ -77,6 +77,9 @@ def test_the_example_system_as_the_page_gets_it(example: Path) -> None:
     # findings: nodl analyse's, with its codes, naming the nodes they concern
     codes = {f['code'] for f in state['findings']}
     assert {'NODL525', 'NODL553', 'NODL559', 'NODL561', 'NODL562', 'NODL564'} <= codes
+    # not run because nobody asked yet (the studio was not given --no-exec): it says how to ask
+    not_run = next(f for f in state['findings'] if f['code'] == 'NODL525')
+    assert 'click Run launch Python' in not_run['message'] and '--no-exec' not in not_run['message']
     qos = next(f for f in state['findings'] if f['code'] == 'NODL553')
     assert qos['nodes'] == ['/rover/lidar', '/rover/safety_controller']
     assert state['counts']['error'] == sum(f['severity'] == 'error' for f in state['findings'])
@@ -87,6 +90,9 @@ def test_the_example_system_as_the_page_gets_it(example: Path) -> None:
     assert capacity['default_text'] == '20.0' and capacity['constraints'] == 'must be greater than 0.0'
     # what is kept as written is listed read-only
     assert any('include' in k['what'] for k in state['readonly'])
+    # a group's push of a namespace it reads is the group (drawn), not a piece it leaves alone;
+    # one it cannot read ($(var robot)) is read-only
+    assert [k['what'] for k in state['readonly']].count('<push-ros-namespace>') == 1
 
 
 def test_the_palette_lists_every_definition_with_its_ports(example: Path) -> None:

@@ -166,6 +166,9 @@ class Session:
             analysis = composition.analyse()
             data = composition.to_dict(analyse=False)
             findings = [f.to_dict() for f in analysis.findings]
+            if self.execute_allowed:  # not run yet because nobody asked: say how to ask
+                findings = [_not_asked(f) if f['code'] in NOT_RUN_CODES else f
+                            for f in findings]
             nodes = []
             by_entity: dict[tuple[int, int], str] = {}
             launched_of: list[tuple[dict[str, Any], Any]] = [
@@ -541,3 +544,19 @@ def _run_nodl(arguments: list[str]) -> subprocess.CompletedProcess[str]:
                               text=True, timeout=EXPORT_TIMEOUT, env=env, check=False)
     except subprocess.TimeoutExpired:
         raise StudioError(f'nodl {arguments[0]} took longer than {EXPORT_TIMEOUT:g} s') from None
+
+
+#: What the analysis says of launch code it did not run, and what the studio says instead when
+#: it was started without --no-exec (the code runs when the user asks).
+_NOT_ASKED = (('--no-exec is set', 'the studio runs it only when you click Run launch Python'),
+              ('(analyse it without --no-exec, where its code may run)',
+               '(Run launch Python runs it, in a sandboxed child process)'))
+
+
+def _not_asked(finding: dict[str, Any]) -> dict[str, Any]:
+    """``finding`` (NODL525/526) as the studio says it: not run until the user asks, rather
+    than because of ``--no-exec``, which the studio was not given."""
+    message = finding['message']
+    for said, meant in _NOT_ASKED:
+        message = message.replace(said, meant)
+    return {**finding, 'message': message}
