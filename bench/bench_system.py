@@ -10,7 +10,10 @@ interpreter on the source tree, with the prefix on ``AMENT_PREFIX_PATH``:
 * ``nodl system add`` (a node, checked against its definition, the file written);
 * ``nodl system set`` (a parameter checked against its declaration, the file written);
 * ``nodl system connect`` (the ports from the analysis, the rule computed, the file written);
-* ``nodl system remove``.
+* ``nodl system remove``;
+* ``nodl system rename`` (a node's name and namespace checked as rcl checks them, the file
+  written);
+* ``nodl system remap`` (a node's own remapping rules replaced, the file written).
 
 Each operation starts from the same launch file (copied back before every run, not timed).
 Runs are interleaved, three rounds, the best of each compared.  The figure compared is each
@@ -71,6 +74,9 @@ def operations(launch: str) -> dict[str, list[str]]:
         'nodl system set': ['system', 'set', launch, '/g0/n5', 'rate', '2.5'],
         'nodl system connect': ['system', 'connect', launch, '/g0/n5:out_5', '/g0/n10:out_9'],
         'nodl system remove': ['system', 'remove', launch, '/g0/n42'],
+        'nodl system rename': ['system', 'rename', launch, '/g0/n5', '--name', 'renamed',
+                               '--namespace', 'moved'],
+        'nodl system remap': ['system', 'remap', launch, '/g0/n10', 'out_9:=out_5'],
     }
 
 
@@ -90,6 +96,10 @@ def main() -> bool:
         launch.write_text(pristine, encoding='utf-8')
         _run(commands['nodl system connect'], env)
         assert '<remap from="out_9" to="out_5"/>' in launch.read_text(encoding='utf-8')
+        for label in ('nodl system rename', 'nodl system remap'):  # they did change the file
+            launch.write_text(pristine, encoding='utf-8')
+            _run(commands[label], env)
+            assert launch.read_text(encoding='utf-8') != pristine, label
     finally:
         shutil.rmtree(root, ignore_errors=True)
     best = {label: (min(t[0] for t in runs), min(t[1] for t in runs))
