@@ -18,8 +18,8 @@ from nodl.generate import (
     load_generators,
     write_files,
 )
-from nodl.generate.definition import resolve_target, target_name
 from nodl.plugins import EXTENSION_POINTS
+from nodl.targets import resolve_target
 from nodl.writing import WriteError
 
 FIXTURES = Path(__file__).parent / 'fixtures' / 'generate'
@@ -33,7 +33,7 @@ def test_generators_are_extensions_by_language() -> None:
 
 
 def test_an_unknown_language_is_a_generation_error() -> None:
-    node, _, _ = resolve_target(str(FIXTURES / 'talker.nodl.yaml'))
+    node = resolve_target(str(FIXTURES / 'talker.nodl.yaml')).node
     assert node is not None
 
     class Echo(GeneratorExtension):
@@ -52,7 +52,6 @@ def test_default_names() -> None:
     assert default_node_name('camera.json') == 'camera'
     assert default_class_name('laser_driver.nodl.yaml') == 'LaserDriver'
     assert default_class_name('my-node') == 'MyNode'
-    assert target_name(['pkg', 'exe']) == 'exe'
 
 
 def test_write_files_writes_changes_only(tmp_path: Path) -> None:
@@ -116,12 +115,3 @@ def test_check_options_refuses_what_is_not_a_name(options: GenerateOptions, lang
 def test_check_options_accepts_names() -> None:
     assert check_options(GenerateOptions('Talker', 'talker', namespace='demo::nodes'), 'cpp') == []
     assert check_options(GenerateOptions('class_', 'for_'), 'python') == []
-
-
-def test_resolve_target_errors(tmp_path: Path) -> None:
-    with pytest.raises(OSError):
-        resolve_target(str(tmp_path / 'missing.nodl.yaml'))
-    bad = tmp_path / 'bad.nodl.yaml'
-    bad.write_text('nodl_version: 2\nbase: nope\nmain: {nodl_version: 2}\n')
-    node, diagnostics, source = resolve_target(str(bad))
-    assert node is None and diagnostics and source == str(bad)

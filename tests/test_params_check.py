@@ -8,8 +8,8 @@ from pathlib import Path
 
 import yaml
 
-from nodl.generate.definition import resolve_target
 from nodl.params import check_parameter_files, defaults_yaml
+from nodl.targets import resolve_target
 
 FIXTURES = Path(__file__).parent / 'fixtures'
 EVERYTHING = str(FIXTURES / 'generate' / 'everything.nodl.yaml')
@@ -17,7 +17,7 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 def _node(path: str = EVERYTHING):  # type: ignore[no-untyped-def]
-    node, _, _ = resolve_target(path)
+    node = resolve_target(path).node
     assert node is not None
     return node
 

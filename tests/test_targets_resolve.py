@@ -15,6 +15,7 @@ from nodl.targets.resolve import (
     made_by,
     resolve_reference,
     resolve_target,
+    target_name,
 )
 
 OVERLAYS = FIXTURES / 'overlays'
@@ -107,3 +108,16 @@ def test_coverage_line() -> None:
     assert coverage_line(drafts) == \
         '6 nodes: 1 registered, 4 overlay (1 extracted, 2 described), 1 without definition'
     assert coverage_line([Provenance('file', None, 'extracted')]) == '1 node: 1 from files (1 extracted)'
+
+
+def test_an_invalid_file_resolves_to_its_diagnostics(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    bad = tmp_path / 'bad.nodl.yaml'
+    bad.write_text('nodl_version: 2\nbase: nope\nmain: {nodl_version: 2}\n')
+    found = resolve_target(str(bad))
+    assert found.node is None and found.diagnostics and found.source == str(bad)
+    assert found.provenance.source == 'file'
+
+
+def test_target_name_is_the_executable_or_the_file() -> None:
+    assert target_name(['pkg', 'exe']) == 'exe'
+    assert target_name('dir/talker.nodl.yaml') == 'dir/talker.nodl.yaml'

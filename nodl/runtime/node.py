@@ -15,7 +15,6 @@ from rclpy.parameter import Parameter
 
 from nodl.files import describe_os_error
 from nodl.generate import default_node_name
-from nodl.generate.definition import resolve_target
 from nodl.plan.parameter_plan import ParametersPlan, plan_parameters
 from nodl.runtime.binding import ActionCallbacks, collect_callbacks, missing_callbacks
 from nodl.runtime.errors import RuntimeDefinitionError
@@ -31,6 +30,7 @@ from nodl.runtime.parameter_behaviour import (
     python_default,
 )
 from nodl.system import Entity, EntityKind, InterfaceType, ResolvedNode
+from nodl.targets import resolve_target
 from nodl.vocabulary import QOS_DURATIONS
 
 __all__ = ['NodlNode', 'NodlLifecycleNode', 'Definition']
@@ -46,7 +46,7 @@ def _resolve(definition: Definition) -> ResolvedNode:
         return definition
     target = list(definition) if isinstance(definition, tuple) else [os.fspath(definition)]
     try:
-        node, diagnostics, _ = resolve_target(target, 'rclpy')
+        node, diagnostics, _, _ = resolve_target(target, client_library='rclpy')
     except OSError as exc:
         why = describe_os_error(exc)
         raise RuntimeDefinitionError(f'{exc.filename}: {why}' if exc.filename else why) from None

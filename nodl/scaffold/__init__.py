@@ -31,7 +31,6 @@ from collections.abc import Sequence
 
 from nodl.files import describe_os_error
 from nodl.generate import GenerationError, default_node_name
-from nodl.generate.definition import resolve_target
 from nodl.packaging import relative_mixins
 from nodl.plan.identifiers import CPP_KEYWORDS, PYTHON_KEYWORDS
 from nodl.reporting import without_info
@@ -47,6 +46,7 @@ from nodl.scaffold.model import (
     authorship,
 )
 from nodl.scaffold.python_package import python_files
+from nodl.targets import resolve_target
 from nodl.writing import (
     WriteError,
     check_replaceable,
@@ -84,7 +84,7 @@ def load_nodes(sources: Sequence[Sequence[str]], build_type: str) -> list[NodeSo
     nodes: list[NodeSource] = []
     for source in sources:
         try:
-            node, diagnostics, file = resolve_target(list(source), BUILD_TYPES[build_type])
+            node, diagnostics, file, _ = resolve_target(list(source), client_library=BUILD_TYPES[build_type])
         except (OSError, ValueError) as exc:
             if isinstance(exc, OSError):  # in words, the path once, no '[Errno N]'
                 words, name = describe_os_error(exc), exc.filename or source[0]

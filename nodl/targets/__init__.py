@@ -20,7 +20,8 @@ from nodl.targets.resolve import (
            gather_definitions,
            provenance_of,
            resolve_target,
+           target_name,
 )
 
 __all__ = ['Definition', 'Provenance', 'ResolvedTarget', 'gather_definitions', 'instances_from_definitions',
-           'provenance_of', 'resolve_target']
+           'provenance_of', 'resolve_target', 'target_name']

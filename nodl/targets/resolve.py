@@ -33,6 +33,7 @@ from nodl.reporting import plural
 from nodl.validation.kinds import Kind
 
 __all__ = ['Provenance', 'ResolvedTarget', 'gather_definitions', 'provenance_of', 'made_by', 'resolve_registered',
+           'target_name',
            'resolve_target', 'resolve_reference', 'coverage_line', 'NODL_PATH']
 
 #: The environment variable listing definitions folders.
@@ -154,6 +155,13 @@ def resolve_target(target: Sequence[str] | str, *, client_library: str | None = 
         node, diagnostics = resolve_report(report, client_library=client_library,
                                            prefixes=prefixes)
         return ResolvedTarget(node, diagnostics, path, Provenance('file', None, made_by(path)))
+
+
+def target_name(target: Sequence[str] | str) -> str:
+    """The executable (``PACKAGE EXECUTABLE``) or the file a target names: what a generated
+    node's default names are derived from."""
+    parts = [target] if isinstance(target, str) else list(target)
+    return parts[-1]
 
 
 def resolve_reference(reference: str, *, prefixes: list[str] | None = None,

@@ -59,8 +59,8 @@ class GenerateVerb(Verb):
             load_generators,
             write_files,
         )
-        from nodl.generate.definition import resolve_target, target_name
         from nodl.reporting import without_info
+        from nodl.targets import resolve_target, target_name
 
         if len(args.target) > 2:
             print('nodl generate: error: give a definition FILE or PACKAGE EXECUTABLE', file=sys.stderr)
@@ -82,7 +82,8 @@ class GenerateVerb(Verb):
             show_diagnostics(problems)
             return EXIT_USAGE
         try:
-            node, diagnostics, _ = resolve_target(args.target, generator.CLIENT_LIBRARY or None)
+            node, diagnostics, _, _ = resolve_target(args.target,
+                                                    client_library=generator.CLIENT_LIBRARY or None)
         except (OSError, ValueError) as exc:
             if isinstance(exc, OSError):
                 from nodl.files import describe_os_error

@@ -77,14 +77,14 @@ class ParamsVerb(Verb):
     @staticmethod
     def _resolve(target: list[str]) -> tuple[object, int]:
         from nodl.cli.report_options import show_diagnostics
-        from nodl.generate.definition import resolve_target
         from nodl.reporting import without_info
+        from nodl.targets import resolve_target
 
         if len(target) > 2:
             print('nodl params: error: give a definition FILE or PACKAGE EXECUTABLE', file=sys.stderr)
             return None, EXIT_USAGE
         try:
-            node, diagnostics, _ = resolve_target(target)
+            node, diagnostics, _, _ = resolve_target(target)
         except (OSError, ValueError) as exc:
             from nodl.files import describe_os_error
 
@@ -100,7 +100,7 @@ class ParamsVerb(Verb):
     @staticmethod
     def _fqn(args: argparse.Namespace, target: list[str]) -> str | None:
         from nodl.generate import default_node_name
-        from nodl.generate.definition import target_name
+        from nodl.targets import target_name
 
         if args.name is None:
             from nodl.naming import join_name
