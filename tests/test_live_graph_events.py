@@ -78,11 +78,14 @@ def test_a_change_in_the_local_graph_cache_is_seen_within_100_ms(ros_node) -> No
 def test_settling_waits_for_what_is_waited_for_not_the_whole_graph(ros_node, tmp_path) -> None:
     script = tmp_path / 'flapping_node.py'
     script.write_text(_FLAPPING_NODE, encoding='utf-8')
-    ros_node(str(script), 'flapper', '/ge')
+    flapper = ros_node(str(script), 'flapper', '/ge')
     steady = ros_node('plain_node.py', 'steady', '/ge')
     with ros_session() as session:
         graph = follower(session)
-        assert graph.wait(lambda: steady.fqn in graph.counts, time.monotonic() + 15)
+        # both discovered (a participant that misses the session's first announcements is
+        # discovered seconds later: until then the graph around the steady node is quiet)
+        assert graph.wait(lambda: steady.fqn in graph.counts and flapper.fqn in graph.counts,
+                          time.monotonic() + 15)
         graph.follow([steady.fqn])
         # the node's own endpoints settle although the graph keeps changing around it
         start = time.monotonic()

@@ -71,10 +71,10 @@ def graph_signature(node: Any, nodes: Iterable[str] = (), *, topics: bool = True
                     ('service_clients', node.get_client_names_and_types_by_node)))))
         except Exception:  # noqa: BLE001 - it vanished between two calls: the next poll sees it
             endpoints.append((fqn, None))
+    # the names and types as rclpy lists them (compared, never changed: not copied)
     return (tuple(names),
-            tuple((n, tuple(t)) for n, t in node.get_topic_names_and_types()) if topics else None,
-            tuple((n, tuple(t)) for n, t in node.get_service_names_and_types()) if services
-            else None,
+            node.get_topic_names_and_types() if topics else None,
+            node.get_service_names_and_types() if services else None,
             tuple(endpoints))
 
 
@@ -156,6 +156,8 @@ class GraphFollower:
         self.polled_at = time.monotonic()
         if not topics and self.signature is not None:  # not read this time: as they were
             signature = (signature[0], self.signature[1], *signature[2:])
+        if signature == self.signature and self.followed.issubset(self._parts):
+            return False  # nothing changed: no part either
         if signature[0] != self._parts.get('nodes'):
             self.counts = count_node_names(signature[0])
         parts = {'nodes': signature[0], 'topics': signature[1], 'services': signature[2],
