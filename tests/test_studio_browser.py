@@ -25,6 +25,7 @@ from nodl.studio.app import create_app
 from nodl.studio.guard import new_token
 from nodl.studio.server import StudioServer, bind
 from nodl.studio.session import Session
+from nodl.system.run import analyse_launch
 from nodl.targets.resolve import gather_definitions
 
 DEFINITIONS = FIXTURES / 'studio' / 'example_definitions'
@@ -127,6 +128,21 @@ def test_the_example_system_is_shown(browser: Any, example: Studio,  # noqa: F81
     compare_screenshot(browser, EXPECTED / 'example.png', pytestconfig.getoption('--update-golden'))
 
 
+def in_view(driver: Any, element: str | None) -> bool:
+    """Whether the Cytoscape element ``element`` is drawn wholly inside the canvas."""
+    return bool(js(driver, "var b = studio.cy.getElementById(arguments[0]).renderedBoundingBox();"
+                           "var c = document.getElementById('canvas').getBoundingClientRect();"
+                           'return b.x1 >= 0 && b.y1 >= 0 && b.x2 <= c.width && b.y2 <= c.height;',
+                   element))
+
+
+def boxes_meet(driver: Any, one: str, other: str) -> bool:
+    return bool(js(driver, 'var a = studio.cy.getElementById(arguments[0]).boundingBox();'
+                           'var b = studio.cy.getElementById(arguments[1]).boundingBox();'
+                           'return a.x1 < b.x2 && b.x1 < a.x2 && a.y1 < b.y2 && b.y1 < a.y2;',
+                   one, other))
+
+
 def add_from_the_palette(driver: Any) -> None:
     search = driver.find_element('id', 'search')
     search.send_keys('dashboard')
@@ -138,6 +154,8 @@ def add_from_the_palette(driver: Any) -> None:
     entries[0].find_element('css selector', 'button.add').click()
     wait(driver, lambda: node_id(driver, '/ops/dashboard'), 'the added node')
     assert js(driver, "return studio.cy.getElementById('ns:/ops').length") == 1  # its group
+    # shown where it was put (a new namespace's block, right of the others) without Fit
+    assert in_view(driver, node_id(driver, '/ops/dashboard'))
     assert driver.find_element('id', 'panel-title').text == 'dashboard'
 
 
@@ -207,6 +225,54 @@ def test_a_system_is_composed_with_the_mouse(browser: Any, example: Studio) -> N
     join_by_dragging(browser)
     break_a_validator(browser)
     save(browser, example)
+
+
+def test_a_system_is_built_from_an_empty_file(browser: Any, tmp_path: Path) -> None:  # noqa: F811
+    """From no file: nodes added from the palette into two namespaces, each shown in its
+    namespace's box (no box over another), joined by dragging, saved; nodl analyse of the file
+    finds what the page showed."""
+    launch = tmp_path / 'rover.launch.xml'
+    studio = Studio(launch)
+    try:
+        open_studio(browser, studio)
+        for executable, namespace in (('battery_monitor', '/rover'), ('dashboard', '/ops'),
+                                      ('safety_controller', '/rover')):
+            search = browser.find_element('id', 'search')
+            search.clear()
+            search.send_keys(executable)
+            field = browser.find_element('id', 'add-namespace')
+            field.clear()
+            field.send_keys(namespace)
+            count = len(studio.session.snapshot()['nodes'])
+            browser.find_element('css selector', '#definitions li button.add').click()
+            fqn = f'{namespace}/{executable}'
+            wait(browser, lambda fqn=fqn: node_id(browser, fqn), fqn)
+            assert len(studio.session.snapshot()['nodes']) == count + 1
+            assert in_view(browser, node_id(browser, fqn)), f'{fqn} is not shown'
+            assert js(browser, 'return studio.cy.zoom()') <= 1.0  # one node does not fill it
+        assert not boxes_meet(browser, 'ns:/rover', 'ns:/ops')
+        # the composer's own namespace groups are not listed as kept, read-only pieces
+        assert browser.find_element('id', 'readonly-items').text == ''
+        source = f"{node_id(browser, '/rover/battery_monitor')}|publisher|battery"
+        target = f"{node_id(browser, '/ops/dashboard')}|subscription|battery"
+        sx, sy = page_point(browser, source)
+        tx, ty = page_point(browser, target)
+        pointer(browser, lambda p: (p.move_to_location(sx, sy), p.click_and_hold(),
+                                    p.move_to_location(sx + 12, sy + 6), p.pause(0.3),
+                                    p.move_to_location(tx, ty), p.pause(0.3),
+                                    p.move_to_location(tx + 1, ty), p.pause(0.2), p.release()))
+        wait(browser, lambda: js(browser, 'return studio.cy.getElementById(arguments[0]).length',
+                                 f'e:{source}>{target}'), 'the new edge')
+        browser.find_element('id', 'save').click()
+        wait(browser, lambda: browser.find_element('id', 'status').text.startswith('saved '),
+             'saving')
+        shown = sorted(js(browser, 'return studio.state.findings.map(function (f) {'
+                                   ' return f.code + " " + f.message; })'))
+        assert '<remap from="battery" to="/rover/battery"/>' in launch.read_text(encoding='utf-8')
+        found = analyse_launch(str(launch), definitions=studio.session.definitions)
+        assert sorted(f'{f.code} {f.message}' for f in found.findings) == shown
+    finally:
+        studio.server.stop()
 
 
 def test_a_hundred_node_system_is_shown(browser: Any, tmp_path: Path,  # noqa: F811

@@ -548,7 +548,11 @@ def _run_nodl(arguments: list[str]) -> subprocess.CompletedProcess[str]:
 
 #: What the analysis says of launch code it did not run, and what the studio says instead when
 #: it was started without --no-exec (the code runs when the user asks).
-_NOT_ASKED = (('--no-exec is set', 'the studio runs it only when you click Run launch Python'),
+_NOT_ASKED = (('--no-exec is set and reading a Python launch file runs its code',
+               'reading a Python launch file runs its code, which the studio does only when you '
+               'click Run launch Python'),
+              ('--no-exec is set and it is Python code',
+               'it is Python code, which the studio runs only when you click Run launch Python'),
               ('(analyse it without --no-exec, where its code may run)',
                '(Run launch Python runs it, in a sandboxed child process)'))
 

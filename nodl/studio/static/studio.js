@@ -23,6 +23,15 @@
     if (text !== undefined && text !== null) { e.textContent = String(text); }
     return e;
   }
+  // ``text`` into ``e`` with a line-break opportunity after each '_' and '/' (identifiers break
+  // between their words, not inside one)
+  function breakable(e, text) {
+    String(text).split(/(?<=[_/])/).forEach(function (part, i) {
+      if (i) { e.appendChild(document.createElement('wbr')); }
+      e.appendChild(document.createTextNode(part));
+    });
+    return e;
+  }
   function clear(node) { while (node.firstChild) { node.removeChild(node.firstChild); } }
   function status(text) { $('status').textContent = text || ''; $('status').title = text || ''; }
 
@@ -54,13 +63,61 @@
     return out;
   }
 
+  function nodeHeight(n) { return Math.max(1, rowsOf(n)) * PORT_H + 56; }
+  function boxAt(n, p) {
+    var h = nodeHeight(n) / 2;
+    return {x1: p.x - PORT_W - 20, x2: p.x + PORT_W + 20, y1: p.y - h, y2: p.y + h};
+  }
+  function union(a, b) {
+    return {x1: Math.min(a.x1, b.x1), x2: Math.max(a.x2, b.x2), y1: Math.min(a.y1, b.y1), y2: Math.max(a.y2, b.y2)};
+  }
+  function meets(a, b, pad) {
+    return a.x1 - pad < b.x2 && b.x1 - pad < a.x2 && a.y1 - pad < b.y2 && b.y1 - pad < a.y2;
+  }
+
+  // A node added to a namespace drawn already goes with its namespace: under a column of its
+  // nodes, or in a new column at their right, wherever the namespace's box then meets no other
+  // namespace's (null: nowhere; it is placed as a new block).
+  function besideItsNamespace(n, nodes, placed, cellW) {
+    var ns = n.namespace || '/', mine = null, others = [], columns = {};
+    nodes.forEach(function (m) {
+      var p = placed[m.id];
+      if (!p || m.id === n.id) { return; }
+      var b = boxAt(m, p);
+      if ((m.namespace || '/') === ns) {
+        mine = mine ? union(mine, b) : b;
+        if (!(p.x in columns) || b.y2 > columns[p.x]) { columns[p.x] = b.y2; }
+      } else {
+        others.push(b);
+      }
+    });
+    if (!mine) { return null; }
+    var h = nodeHeight(n), right = -Infinity;
+    var candidates = Object.keys(columns).map(function (x) {
+      right = Math.max(right, Number(x));
+      return {x: Number(x), y: columns[x] + 16 + h / 2};
+    }).sort(function (a, b) { return a.y - b.y; });
+    candidates.push({x: right + cellW, y: mine.y1 + h / 2});
+    return candidates.filter(function (c) {
+      var grown = union(mine, boxAt(n, c));
+      return !others.some(function (o) { return meets(grown, o, 60); });
+    })[0] || null;
+  }
+
   function defaultPositions(nodes, known) {
-    // Nodes without a kept position: each namespace's as a block of columns about as wide
+    // Nodes without a kept position: with their namespace's when it is drawn already (see
+    // besideItsNamespace); the others each namespace's as a block of columns about as wide
     // as tall, the blocks in rows (as many per row as rows), right of the placed nodes.
     var out = {}, groups = {}, order = [], x0 = 0, cellW = 2 * PORT_W + 90, gap = 150;
-    Object.keys(known).forEach(function (k) { x0 = Math.max(x0, known[k].x + cellW + gap); });
+    var placed = Object.assign({}, known);
     nodes.forEach(function (n) {
-      if (known[n.id]) { return; }
+      if (placed[n.id]) { return; }
+      var p = besideItsNamespace(n, nodes, placed, cellW);
+      if (p) { out[n.id] = placed[n.id] = p; }
+    });
+    Object.keys(placed).forEach(function (k) { x0 = Math.max(x0, placed[k].x + cellW + gap); });
+    nodes.forEach(function (n) {
+      if (placed[n.id]) { return; }
       var ns = n.namespace || '/';
       if (!groups[ns]) { groups[ns] = []; order.push(ns); }
       groups[ns].push(n);
@@ -204,6 +261,10 @@
     {selector: 'edge.error', style: {'line-color': '#d32f2f', 'target-arrow-color': '#d32f2f', 'width': 2.5}},
     {selector: 'node.port.compatible', style: {'border-color': '#1e9e3e', 'border-width': 3.5, 'width': 15, 'height': 15}},
     {selector: 'node.port.incompatible', style: {'opacity': 0.3}},
+    // the selected node keeps the colour of its findings and gets a blue halo (its border alone
+    // was overridden by a finding's colour: the panel's node was not marked on the canvas)
+    {selector: 'node.instance:selected', style: {'underlay-color': '#2a6fdb', 'underlay-opacity': 0.25,
+                                                 'underlay-padding': 6, 'underlay-shape': 'round-rectangle'}},
     {selector: 'node.spacer', style: {'width': 1, 'height': 1, 'opacity': 0, 'events': 'no'}},
     {selector: '.eh-preview, .eh-ghost-edge', style: {'line-color': '#2a6fdb', 'target-arrow-color': '#2a6fdb',
                                                       'target-arrow-shape': 'triangle', 'line-style': 'dotted', 'width': 2}},
@@ -216,6 +277,17 @@
       minZoom: 0.05, maxZoom: 3, boxSelectionEnabled: false, autoungrabify: false,
       textureOnViewport: true, pixelRatio: 1
     });
+    // a namespace's name stays readable however far the drawing is zoomed out (13 pixels on
+    // screen at least; its nodes' labels are not drawn when too small)
+    function namespaceLabels() {
+      var size = Math.max(14, 13 / cy.zoom());
+      if (size !== studio.namespaceFont) {
+        studio.namespaceFont = size;
+        cy.nodes('.namespace').style('font-size', size);
+      }
+    }
+    cy.on('zoom', namespaceLabels);
+    cy.on('add', 'node.namespace', function () { studio.namespaceFont = null; namespaceLabels(); });
     studio.eh = cy.edgehandles({
       canConnect: function (source, target) {
         return !!(studio.compatible && studio.compatible[target.id()] && studio.compatible[target.id()].ok);
@@ -306,6 +378,20 @@
     return ele.classes().slice().sort().join(' ') === want;
   }
 
+  function inView(ele) {
+    if (!ele.length || !ele.visible()) { return true; }
+    var box = ele.boundingBox(), view = studio.cy.extent();
+    return box.x1 >= view.x1 && box.x2 <= view.x2 && box.y1 >= view.y1 && box.y2 <= view.y2;
+  }
+
+  // everything in view, never magnified beyond its natural size (one node does not fill the
+  // canvas)
+  function fitAll() {
+    var cy = studio.cy;
+    cy.fit(undefined, 24);
+    if (cy.zoom() > 1) { cy.zoom(1); cy.center(); }
+  }
+
   function draw(state, fit) {
     // Only what changed is changed: the elements drawn already keep their place and their
     // cached pictures (a 100-node system is redrawn in time after an edit).
@@ -337,7 +423,12 @@
       });
       cy.add(added);
     });
-    if (keepView) { cy.viewport({zoom: zoom, pan: pan}); } else { cy.fit(undefined, 24); }
+    if (keepView) { cy.viewport({zoom: zoom, pan: pan}); }
+    // a node just added where the view does not reach (another namespace's block) is shown:
+    // everything is fitted again
+    if (!keepView || added.some(function (e) { return e.group === 'nodes' && !inView(cy.getElementById(e.data.id)); })) {
+      fitAll();
+    }
     if (studio.selected && cy.getElementById(studio.selected).length) {
       cy.getElementById(studio.selected).select();
     }
@@ -547,7 +638,7 @@
       li.dataset.executable = entry.executable;
       li.title = entry.ports.map(function (p) { return SHORT[p.kind] + ' ' + p.name + ' (' + p.type + ')'; }).join('\n');
       li.appendChild(el('span', 'pkg', entry.package));
-      li.appendChild(el('span', 'exe', entry.executable));
+      li.appendChild(breakable(el('span', 'exe'), entry.executable));
       li.appendChild(el('span', 'ports', portSummary(entry)));
       if (entry.problems.length) { li.appendChild(el('span', 'problem', entry.problems[0])); }
       var add = el('button', 'add', '+');
@@ -589,7 +680,7 @@
 
   function wire() {
     $('search').addEventListener('input', showPalette);
-    $('fit').addEventListener('click', function () { studio.cy.fit(undefined, 24); });
+    $('fit').addEventListener('click', fitAll);
     $('save').addEventListener('click', function () {
       call('save', {}).then(function (answer) {
         if (answer.ok) { status('saved ' + answer.file); return; }
