@@ -53,7 +53,7 @@ from nodl.write_error import WriteError
 
 __all__ = ['WriteError', 'MARKER_TAG', 'comment_style', 'mark', 'unmark', 'marker_state',
            'check_replaceable', 'write_file', 'write_marked', 'marked_text', 'output_is_input',
-           'same_file', 'write_problem', 'check_within', 'outputs_are_inputs']
+           'same_file', 'write_problem', 'check_within', 'outputs_are_inputs', 'holds_text']
 
 #: The words of the marker line, before the hash.
 MARKER_TAG = 'nodl: generated; sha256='
@@ -331,18 +331,28 @@ def write_marked(path: str, text: str, *, force: bool = False, style: str | None
     outside = check_within(path, within) if within is not None else None
     if outside is not None:
         raise WriteError(outside)
-    try:
-        if stat.S_ISREG(os.lstat(path).st_mode):
-            with open(path, 'rb') as stream:
-                if stream.read() == final.encode('utf-8', 'surrogatepass'):
-                    return False
-    except OSError:
-        pass
+    if holds_text(path, final):
+        return False
     problem = check_replaceable(path, final, force=force)
     if problem is not None:
         raise WriteError(problem)
     write_file(path, final, mode=mode, make_parents=make_parents, within=within)
     return True
+
+
+def holds_text(path: str, text: str) -> bool:
+    """Whether ``path`` is a regular file (not a link: it is not followed) holding exactly
+    ``text`` (as UTF-8).  A writer leaves such a file untouched, so its time stamp stays and
+    build systems do not rebuild; anything unreadable is False (the write says why)."""
+    data = text.encode('utf-8', 'surrogatepass')
+    try:
+        status = os.lstat(path)
+        if not stat.S_ISREG(status.st_mode) or status.st_size != len(data):
+            return False
+        with open(path, 'rb') as stream:
+            return stream.read() == data
+    except OSError:
+        return False
 
 
 def marked_text(path: str, text: str, style: str | None = None) -> str:

@@ -21,6 +21,7 @@ from conftest import FIXTURES, REPO
 from nodl.writing import (
     WriteError,
     check_replaceable,
+    holds_text,
     mark,
     marker_state,
     output_is_input,
@@ -514,3 +515,15 @@ def test_writing_loads_no_tempfile_and_makes_private_new_temporaries(tmp_path: P
     assert first != second and os.path.dirname(first) == str(tmp_path)
     assert os.path.basename(first).startswith('.out.yaml.') and first.endswith('.nodl-tmp')
     assert stat.S_IMODE(os.stat(first).st_mode) == 0o600
+
+
+def test_holds_text_is_a_regular_file_with_exactly_that_text(tmp_path: Path) -> None:
+    file = tmp_path / 'a.py'
+    file.write_bytes('x = "\u00e9"\r\n'.encode())
+    assert holds_text(str(file), 'x = "\u00e9"\r\n')
+    assert not holds_text(str(file), 'x = "\u00e9"\n')  # newlines are kept as written
+    assert not holds_text(str(file), 'x = "e"\r\n')
+    assert not holds_text(str(tmp_path / 'missing.py'), '')
+    assert not holds_text(str(tmp_path), '')
+    (tmp_path / 'link.py').symlink_to(file)
+    assert not holds_text(str(tmp_path / 'link.py'), 'x = "\u00e9"\r\n')  # a link is not followed

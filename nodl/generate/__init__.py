@@ -168,7 +168,7 @@ def write_files(files: Sequence[GeneratedFile], out_dir: str, *, check: bool = F
     link to a place outside: :func:`nodl.writing.check_within`),
     NODL031/NODL032 for a file that is not nodl's to replace, NODL030 when a write fails.
     """
-    from nodl.writing import WriteError, check_replaceable, check_within, marked_text, write_marked
+    from nodl.writing import WriteError, check_replaceable, check_within, holds_text, marked_text, write_marked
 
     planned: list[tuple[str, str]] = []
     for item in files:
@@ -179,12 +179,7 @@ def write_files(files: Sequence[GeneratedFile], out_dir: str, *, check: bool = F
         planned.append((path, marked_text(path, item.text)))
     changed: list[str] = []
     for path, text in planned:
-        try:
-            with open(path, encoding='utf-8', newline='') as f:
-                same = f.read() == text
-        except (OSError, UnicodeDecodeError):
-            same = False
-        if same:
+        if holds_text(path, text):
             continue
         changed.append(path)
         if not check:

@@ -51,6 +51,7 @@ from nodl.writing import (
     WriteError,
     check_replaceable,
     check_within,
+    holds_text,
     marked_text,
     output_is_input,
     write_file,
@@ -186,15 +187,9 @@ def write_package(plan: PackagePlan, out_dir: str, *, update: bool = False,
             report.kept.append(shown)
             continue
         text = marked_text(path, item.text) if item.generated else item.text
-        if exists and not os.path.islink(path):
-            try:
-                with open(path, encoding='utf-8', newline='') as f:
-                    same = f.read() == text
-            except (OSError, UnicodeDecodeError):
-                same = False
-            if same:
-                report.unchanged.append(shown)
-                continue
+        if exists and holds_text(path, text):
+            report.unchanged.append(shown)
+            continue
         refusal = check_replaceable(path, text, force=force)
         if refusal is not None:
             raise WriteError(refusal)
