@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 from nodl.composer.model import Group, Param, Remap
 from nodl.composer.ports import ports_of
 from nodl.composer.values import python_value
+from nodl.reporting import plural
 from nodl.reporting.reporters import Report
 from nodl.text_safety import visible
 
@@ -97,8 +98,9 @@ def show_report(composition: Composition, verbose: bool, tool: str) -> Report:
     counts = {'error': 0, 'warning': 0, 'info': 0}
     for finding in findings:
         counts[finding.severity.value] += 1
-    summary = (f'{os.path.basename(composition.path)}: {len(composition.nodes)} nodes, '
-               f"{counts['error']} errors, {counts['warning']} warnings, {counts['info']} info")
+    summary = (f'{os.path.basename(composition.path)}: {plural(len(composition.nodes), "node")}, '
+               f"{plural(counts['error'], 'error')}, {plural(counts['warning'], 'warning')}, "
+               f"{counts['info']} info")
     diagnostics = [f.diagnostic for f in findings] + composition.kept_diagnostics()
     text = show_text(composition, verbose)
     return Report(tool, diagnostics, summary=summary, text=text + summary + '\n',
