@@ -107,6 +107,13 @@ def test_rename_and_remap(tmp_path: Path, capsys: pytest.CaptureFixture[str]) ->
     assert len(data['removed']) == 2
     assert '<remap from="$(var topic)" to="messages"/>\n' \
            '    <remap from="messages" to="/robot/chatter"/>\n' in Path(path).read_text(encoding='utf-8')
+    # what is so already is not written again, and not said to be saved (in process)
+    mtime = os.stat(path).st_mtime_ns
+    assert main(['system', 'rename', path, 'talker', '--namespace', '/robot', '--definitions',
+                 str(DEFINITIONS)]) == 0
+    assert capsys.readouterr().out == \
+        f'/robot/talker: the name and namespace are unchanged; {path} unchanged\n'
+    assert os.stat(path).st_mtime_ns == mtime
     # rename without --name or --namespace is a usage error (in process: no file is read)
     assert main(['system', 'rename', path, 'talker']) == 2
     assert 'give --name, --namespace or both' in capsys.readouterr().err

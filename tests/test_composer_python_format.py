@@ -68,3 +68,11 @@ def test_not_a_launch_file() -> None:
         read_python('def (:\n')
     with pytest.raises(ReadError, match='generate_launch_description'):
         read_python('x = 1\n')
+
+
+def test_an_empty_list_read_back_indents_its_first_item_one_level_in() -> None:
+    # a new file, saved empty and opened again: its first node is indented as new_document's
+    empty = render(new_document('python')).text
+    doc = read_python(empty)
+    assert doc.indent == ' ' * 8, repr(doc.indent)
+    assert doc.style['trailing_separator']  # every item followed by a comma, as in a new file

@@ -265,12 +265,15 @@ def read_python(text: str) -> Document:
     trailing = tail.lstrip().startswith(',')
     doc = Document('python', text[:start + 1], items, _drop_comma(tail) if trailing else tail,
                    text[end - 1:])
-    doc.style.update(doc_style, trailing_separator=trailing)
+    # an empty list has no separator to follow: the items written into it end with a comma,
+    # as in a new file
+    doc.style.update(doc_style, trailing_separator=trailing or not items)
     first = next(iter(items), None)
     if first is not None:
         doc.indent = first.indent if not isinstance(first, Kept) else ' ' * first.column
-    else:
-        doc.indent = ' ' * (reader.column(listed) + 4)
+    else:  # one level deeper than the line the list opens on (not than the bracket's column)
+        line = text[text.rfind('\n', 0, start) + 1:start]
+        doc.indent = ' ' * (len(line) - len(line.lstrip()) + 4)
     doc.style['next_id'] = reader.count
     return doc
 

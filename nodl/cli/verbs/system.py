@@ -232,7 +232,7 @@ class SystemVerb(Verb):
                 reporter: ReporterExtension, change: Change, done: str) -> int:
         """Save what the operation changed (unless refused or --dry-run) and report it."""
         diagnostics = list(change.diagnostics)
-        status = EXIT_OK
+        status, written = EXIT_OK, False
         if not change.ok:
             summary = f'{prog}: nothing changed'
             # a node or endpoint that is not there is a usage error, as a missing file
@@ -241,17 +241,18 @@ class SystemVerb(Verb):
         elif args.dry_run:
             sys.stdout.write(composition.render())
             summary = f'{done}; not written (--dry-run)'
+        elif not composition.dirty and args.operation != 'new':
+            summary = f'{done}; {args.file} unchanged'  # (already so: nothing to write)
         else:
-            problems = composition.save(force=args.force) if composition.dirty or \
-                args.operation == 'new' else []
+            problems = composition.save(force=args.force)
             diagnostics += problems
             if problems:
                 summary = f'{prog}: not saved'
                 status = EXIT_USAGE
             else:
-                summary = f'{done}; {args.file} saved'
+                summary, written = f'{done}; {args.file} saved', True
         payload = {'operation': args.operation, 'file': args.file, **change.to_dict(),
-                   'saved': status == EXIT_OK and not args.dry_run}
+                   'saved': written}
         payload['diagnostics'] = [d.to_dict() for d in diagnostics]
         report = Report(prog, diagnostics, summary=summary, payload=payload)
         if args.dry_run and change.ok and reporter.FOR_PEOPLE:
