@@ -109,9 +109,10 @@
     // besideItsNamespace); the others each namespace's as a block of columns about as wide
     // as tall, the blocks in rows (as many per row as rows), right of the placed nodes.
     var out = {}, groups = {}, order = [], x0 = 0, cellW = 2 * PORT_W + 90, gap = 150;
-    var placed = Object.assign({}, known);
+    var placed = Object.assign({}, known), drawn = {};
+    nodes.forEach(function (n) { if (placed[n.id]) { drawn[n.namespace || '/'] = true; } });
     nodes.forEach(function (n) {
-      if (placed[n.id]) { return; }
+      if (placed[n.id] || !drawn[n.namespace || '/']) { return; }  // (a first drawing: none)
       var p = besideItsNamespace(n, nodes, placed, cellW);
       if (p) { out[n.id] = placed[n.id] = p; }
     });
