@@ -189,3 +189,11 @@ def test_set_limits_analyses_anew(tmp_path: Path) -> None:
     after = demo.analyse()
     assert after is not before
     assert not {f.code for f in after.findings} & {'NODL525', 'NODL526'}
+
+
+def test_a_yaml_edit_changes_only_what_it_edits(tmp_path: Path) -> None:
+    path = copy_launch(tmp_path) / 'demo.launch.yaml'
+    before = path.read_text(encoding='utf-8')
+    c = Composition.open(str(path), definitions=definitions())
+    assert c.set_parameter('talker', 'rate', '7.5').ok
+    assert c.render() == before.replace('{name: rate, value: 5.0}', '{name: rate, value: 7.5}')

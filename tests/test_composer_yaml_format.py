@@ -47,10 +47,10 @@ def test_edited_node_keeps_its_kept_keys_reindented() -> None:
         '      pkg: demo_pkg\n'
         '      exec: talker\n'
         '      name: talker\n'
+        '      output: screen\n'  # in the file's order: an edit moves nothing else
         '      param:\n'
         '        - {name: rate, value: 2.5}\n'
-        "        - {name: prefix, value: 'true', type: str}\n"
-        '      output: screen')
+        "        - {name: prefix, value: 'true', type: str}")
 
 
 def test_not_a_launch_file() -> None:

@@ -149,6 +149,7 @@ class _Reader:
             reasons.append('its package, name or namespace is a substitution')
         if not fields.get('pkg') or not (fields.get('exec') or fields.get('plugin')):
             reasons.append('it gives no package or executable')
+        node.style['keys'] = [_scalar(k) for k, _ in value.value]  # written back in this order
         for k, v in value.value:
             key = _scalar(k)
             if key in names and _scalar(v) is not None:
@@ -271,7 +272,8 @@ def param_yaml(param: Param) -> str:
 
 def node_yaml(node: ComposedNode, indent: str) -> str:
     """A node entry (``- node:``, ``- node_container:``, or a composable node's mapping),
-    written anew from the model; its kept pieces as read."""
+    written anew from the model; its kept pieces as read, and its keys in the order the file
+    gave them (an edit moves nothing else)."""
     if node.kind == 'composable':
         lines = [('plugin', node.plugin), ('pkg', node.package)]
         inner = indent + '  '
@@ -281,43 +283,65 @@ def node_yaml(node: ComposedNode, indent: str) -> str:
         inner = indent + '    '
         head = '- node:' if node.kind == 'node' else '- node_container:'
     lines += [('name', node.name), ('namespace', node.namespace)]
-    body = [f'{key}: {_flow_scalar(value)}' for key, value in lines if value is not None]
-    out: list[str] = []
-    for index, line in enumerate(body):
-        out.append(line if index == 0 and node.kind == 'composable' else f'\n{inner}{line}')
     entries = inner + '  '
+    # key -> its lines (each without the line break and indentation that come before it)
+    chunks: dict[str, list[str]] = {}
+    for key, value in lines:
+        if value is not None:
+            chunks[key] = [f'{key}: {_flow_scalar(value)}']
     if node.params:
-        out.append(f'\n{inner}param:')
-        for param in node.params:
-            if isinstance(param, Kept):
-                out.append(f'\n{entries}' + reindent(param.text, param.column, entries))
-            else:
-                out.append(f'\n{entries}' + (param.original if param.original is not None
-                                             else param_yaml(param)))
+        chunks['param'] = ['param:'] + [
+            f'\n{entries}' + (reindent(param.text, param.column, entries) if isinstance(param, Kept)
+                              else param.original if param.original is not None
+                              else param_yaml(param)) for param in node.params]
     if node.remaps:
-        out.append(f'\n{inner}remap:')
-        for remap in node.remaps:
-            if isinstance(remap, Kept):
-                out.append(f'\n{entries}' + reindent(remap.text, remap.column, entries))
-            else:
-                out.append(f'\n{entries}' + (remap.original or
-                                             f'- {{from: {_flow_scalar(remap.source)}, '
-                                             f'to: {_flow_scalar(remap.target)}}}'))
-    for kept in node.extra:
-        out.append(f'\n{inner}' + reindent(kept.text, kept.column, inner))
-    if node.children:
-        out.append(f'\n{inner}composable_node:')
-        lines_before = ''.join(out).count('\n')
-        for child in node.children:
-            if child.dirty or child.original is None:
-                child_text = '- ' + node_yaml(child, entries)
-            else:
-                child_text = reindent(child.original, len(child.indent), entries)
-            child.style['written_at'] = lines_before + 1
-            child.style['written_lines'] = child_text.count('\n')
-            out.append(f'\n{entries}{child_text}')
-            lines_before += 1 + child_text.count('\n')
+        chunks['remap'] = ['remap:'] + [
+            f'\n{entries}' + (reindent(remap.text, remap.column, entries) if isinstance(remap, Kept)
+                              else remap.original or f'- {{from: {_flow_scalar(remap.source)}, '
+                                                     f'to: {_flow_scalar(remap.target)}}}')
+            for remap in node.remaps]
+    extras: list[tuple[str, str]] = [(kept.what, reindent(kept.text, kept.column, inner))
+                                     for kept in node.extra]
+    order = [k for k in node.style.get('keys', []) if k in chunks or k == 'composable_node'
+             or any(what == k for what, _ in extras)]
+    order += [k for k in ('plugin', 'pkg', 'exec', 'name', 'namespace', 'param', 'remap')
+              if k in chunks and k not in order]
+    order += [what for what, _ in extras if what not in order]
+    if node.children and 'composable_node' not in order:
+        order.append('composable_node')
+    out: list[str] = []
+
+    def put(text: str) -> None:
+        first = not out and node.kind == 'composable'
+        out.append(text if first else f'\n{inner}{text}')
+
+    for key in order:
+        if key == 'composable_node':
+            if node.children:
+                put('composable_node:')
+                _children_yaml(node, entries, out)
+            continue
+        if key in chunks:
+            put(''.join(chunks.pop(key)))
+        for index, (what, text) in enumerate(extras):
+            if what == key:
+                put(text)
+                extras[index] = ('', '')
     return head + ''.join(out)
+
+
+def _children_yaml(node: ComposedNode, entries: str, out: list[str]) -> None:
+    """A container's composable nodes, appended to ``out`` (the entry's text so far)."""
+    lines_before = ''.join(out).count('\n')
+    for child in node.children:
+        if child.dirty or child.original is None:
+            child_text = '- ' + node_yaml(child, entries)
+        else:
+            child_text = reindent(child.original, len(child.indent), entries)
+        child.style['written_at'] = lines_before + 1
+        child.style['written_lines'] = child_text.count('\n')
+        out.append(f'\n{entries}{child_text}')
+        lines_before += 1 + child_text.count('\n')
 
 
 def group_yaml(group: Group, indent: str) -> tuple[str, str]:
