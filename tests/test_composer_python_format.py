@@ -76,3 +76,26 @@ def test_an_empty_list_read_back_indents_its_first_item_one_level_in() -> None:
     doc = read_python(empty)
     assert doc.indent == ' ' * 8, repr(doc.indent)
     assert doc.style['trailing_separator']  # every item followed by a comma, as in a new file
+
+
+def test_an_edited_call_keeps_its_keywords_order_and_code_in_its_list() -> None:
+    text = ('from launch import LaunchDescription\n'
+            'from launch_ros.actions import ComposableNodeContainer\n'
+            'from launch_ros.descriptions import ComposableNode\n\n\n'
+            'def generate_launch_description():\n'
+            "    extra = ComposableNode(package='p', plugin='p::A', name='a2')\n"
+            '    return LaunchDescription([\n'
+            "        ComposableNodeContainer(name='box', namespace='', package='rclcpp_components',\n"
+            "            executable='component_container', composable_node_descriptions=[\n"
+            "                ComposableNode(package='p', plugin='p::A', name='a1'), extra],\n"
+            "            output='screen'),\n"
+            '    ])\n')
+    doc = read_python(text)
+    box = doc.items[0]
+    assert isinstance(box, ComposedNode)
+    box.name = 'box2'
+    written = node_python(box, '        ')
+    ast.parse(written)  # the code-built composable node stays inside the list
+    assert written.index("name='box2'") < written.index('package=') < \
+        written.index('composable_node_descriptions=[') < written.index('extra,') < \
+        written.index("output='screen'")

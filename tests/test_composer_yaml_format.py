@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import pytest
+import yaml
 
 from composer_helpers import EXAMPLE, LAUNCH
 from nodl.composer.formats import read_document, render
@@ -58,3 +59,16 @@ def test_not_a_launch_file() -> None:
         read_yaml('robot: {}\n')
     with pytest.raises(ReadError, match='not YAML'):
         read_yaml('launch: [\n')
+
+
+def test_an_edited_container_keeps_its_flow_composable_nodes_in_its_list() -> None:
+    doc = read_yaml('launch:\n  - node_container:\n      pkg: rclcpp_components\n'
+                    '      exec: component_container\n      name: box\n      composable_node:\n'
+                    '        - {plugin: p::B, pkg: p, name: b}\n      output: screen\n')
+    box = doc.items[0]
+    assert isinstance(box, ComposedNode)
+    box.name = 'box2'
+    written = node_yaml(box, '  ')
+    assert written.endswith('      composable_node:\n        - {plugin: p::B, pkg: p, name: b}\n'
+                            '      output: screen')
+    assert yaml.safe_load('launch:\n  ' + written)['launch'][0]['node_container']['name'] == 'box2'

@@ -141,6 +141,8 @@ class _Reader:
         node.original = self.text(call)
         node.style['call'] = self.text(call.func)
         reasons: list[str] = []
+        # written back in this order
+        node.style['keys'] = [keyword.arg or '**' for keyword in call.keywords]
         for argument in call.args:
             node.extra.append(Kept(self.text(argument), 'a positional argument',
                                    argument.lineno, column=self.column(argument)))
@@ -319,7 +321,8 @@ def _literal_text(value: Any) -> str:
 
 def node_python(node: ComposedNode, indent: str) -> str:
     """A ``Node(...)``, ``ComposableNodeContainer(...)`` or ``ComposableNode(...)`` call, written
-    anew from the model; its kept keywords as read."""
+    anew from the model; its kept arguments as read, and its keywords in the order the file gave
+    them (an edit moves nothing else)."""
     inner = indent + '    '
     call = node.style.get('call') or {'node': 'Node', 'container': 'ComposableNodeContainer',
                                       'composable': 'ComposableNode'}[node.kind]
@@ -329,7 +332,8 @@ def node_python(node: ComposedNode, indent: str) -> str:
     # (launch_ros's container takes its namespace as a required keyword)
     namespace = '' if node.namespace is None and node.kind == 'container' else node.namespace
     fields += [('name', node.name), ('namespace', namespace)]
-    lines = [f'{key}={_literal_text(value)}' for key, value in fields if value is not None]
+    # keyword -> its text (without the line break, indentation and comma around it)
+    chunks = {key: f'{key}={_literal_text(value)}' for key, value in fields if value is not None}
     if node.params or node.style.get('params_written'):
         parts: list[str] = []
         pending: list[Param] = []
@@ -346,33 +350,57 @@ def node_python(node: ComposedNode, indent: str) -> str:
             else:
                 pending.append(param)
         flush()
-        lines.append('parameters=[' + ', '.join(parts) + ']')
+        chunks['parameters'] = 'parameters=[' + ', '.join(parts) + ']'
     if node.remaps:
-        lines.append('remappings=[' + ', '.join(
+        chunks['remappings'] = 'remappings=[' + ', '.join(
             reindent(r.text, r.column, inner) if isinstance(r, Kept)
             else f'({_literal_text(r.source)}, {_literal_text(r.target)})'
-            for r in node.remaps) + ']')
-    for kept in node.extra:
-        lines.append(reindent(kept.text, kept.column, inner))
+            for r in node.remaps) + ']'
+    positional = [reindent(k.text, k.column, inner) for k in node.extra
+                  if k.what == 'a positional argument']
+    in_list = [k for k in node.extra if k.what == 'a composable node']
+    keywords = [(k.what[:-1], reindent(k.text, k.column, inner)) for k in node.extra
+                if k.what not in ('a positional argument', 'a composable node')]
+    listed = bool(node.children or in_list)
+    order = [k for k in node.style.get('keys', [])
+             if k in chunks or any(key == k for key, _ in keywords)
+             or (k == 'composable_node_descriptions' and listed)]
+    order += [k for k in ('package', 'plugin', 'executable', 'name', 'namespace', 'parameters',
+                          'remappings') if k in chunks and k not in order]
+    order += [key for key, _ in keywords if key not in order]
+    if listed and 'composable_node_descriptions' not in order:
+        order.append('composable_node_descriptions')
     out = [f'{call}(']
-    for line in lines:
-        out.append(f'\n{inner}{line},')
-    if node.children:
-        out.append(f'\n{inner}composable_node_descriptions=[')
-        lines_before = ''.join(out).count('\n')
-        child_indent = inner + '    '
-        for child in node.children:
-            if child.dirty or child.original is None:
-                child_text = node_python(child, child_indent)
-            else:
-                child_text = reindent(child.original, len(child.indent), child_indent)
-            child.style['written_at'] = lines_before + 1
-            child.style['written_lines'] = child_text.count('\n')
-            out.append(f'\n{child_indent}{child_text},')
-            lines_before += 1 + child_text.count('\n')
-        out.append(f'\n{inner}],')
+    for text in positional:
+        out.append(f'\n{inner}{text},')
+    for key in dict.fromkeys(order):
+        if key == 'composable_node_descriptions':
+            _children_python(node, inner, in_list, out)
+            continue
+        if key in chunks:
+            out.append(f'\n{inner}{chunks[key]},')
+        out.extend(f'\n{inner}{text},' for what, text in keywords if what == key)
     out.append(f'\n{indent})')
     return ''.join(out)
+
+
+def _children_python(node: ComposedNode, inner: str, kept: list[Kept], out: list[str]) -> None:
+    """A container's ``composable_node_descriptions=[...]`` appended to ``out`` (the call's
+    text so far): its composable nodes, then those written by code, as read."""
+    out.append(f'\n{inner}composable_node_descriptions=[')
+    lines_before = ''.join(out).count('\n')
+    child_indent = inner + '    '
+    for child in node.children:
+        if child.dirty or child.original is None:
+            child_text = node_python(child, child_indent)
+        else:
+            child_text = reindent(child.original, len(child.indent), child_indent)
+        child.style['written_at'] = lines_before + 1
+        child.style['written_lines'] = child_text.count('\n')
+        out.append(f'\n{child_indent}{child_text},')
+        lines_before += 1 + child_text.count('\n')
+    out.extend(f'\n{child_indent}{reindent(k.text, k.column, child_indent)},' for k in kept)
+    out.append(f'\n{inner}],')
 
 
 def group_python(group: Group, indent: str) -> tuple[str, str]:

@@ -301,13 +301,15 @@ def node_yaml(node: ComposedNode, indent: str) -> str:
                                                      f'to: {_flow_scalar(remap.target)}}}')
             for remap in node.remaps]
     extras: list[tuple[str, str]] = [(kept.what, reindent(kept.text, kept.column, inner))
-                                     for kept in node.extra]
-    order = [k for k in node.style.get('keys', []) if k in chunks or k == 'composable_node'
-             or any(what == k for what, _ in extras)]
+                                     for kept in node.extra if kept.what != 'a composable node']
+    in_list = [kept for kept in node.extra if kept.what == 'a composable node']
+    listed = bool(node.children or in_list)
+    order = [k for k in node.style.get('keys', []) if k in chunks
+             or (k == 'composable_node' and listed) or any(what == k for what, _ in extras)]
     order += [k for k in ('plugin', 'pkg', 'exec', 'name', 'namespace', 'param', 'remap')
               if k in chunks and k not in order]
     order += [what for what, _ in extras if what not in order]
-    if node.children and 'composable_node' not in order:
+    if listed and 'composable_node' not in order:
         order.append('composable_node')
     out: list[str] = []
 
@@ -317,9 +319,8 @@ def node_yaml(node: ComposedNode, indent: str) -> str:
 
     for key in order:
         if key == 'composable_node':
-            if node.children:
-                put('composable_node:')
-                _children_yaml(node, entries, out)
+            put('composable_node:')
+            _children_yaml(node, entries, in_list, out)
             continue
         if key in chunks:
             put(''.join(chunks.pop(key)))
@@ -330,8 +331,9 @@ def node_yaml(node: ComposedNode, indent: str) -> str:
     return head + ''.join(out)
 
 
-def _children_yaml(node: ComposedNode, entries: str, out: list[str]) -> None:
-    """A container's composable nodes, appended to ``out`` (the entry's text so far)."""
+def _children_yaml(node: ComposedNode, entries: str, kept: list[Kept], out: list[str]) -> None:
+    """A container's composable nodes, then those kept as written, appended to ``out`` (the
+    entry's text so far)."""
     lines_before = ''.join(out).count('\n')
     for child in node.children:
         if child.dirty or child.original is None:
@@ -342,6 +344,7 @@ def _children_yaml(node: ComposedNode, entries: str, out: list[str]) -> None:
         child.style['written_lines'] = child_text.count('\n')
         out.append(f'\n{entries}{child_text}')
         lines_before += 1 + child_text.count('\n')
+    out.extend(f'\n{entries}' + reindent(k.text, k.column, entries) for k in kept)
 
 
 def group_yaml(group: Group, indent: str) -> tuple[str, str]:
