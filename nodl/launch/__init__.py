@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from nodl.launch.evaluate import load_launch
 from nodl.launch.model import LaunchArgument, LaunchedNode, LaunchResult, ParameterSource, SourceLocation
-from nodl.launch.overrides import (
+from nodl.launch.parameter_values import (
                                       ParameterOverride,
                                       match_composable_parameter_keys,
                                       match_parameter_file_nodes,

@@ -77,7 +77,7 @@ class ParameterSource:
     parameter names, nested names joined with ``.``, to values typed as launch types them;
     ``node_key`` is the key rcl files them under: the node's full name, ``/**``, or the node
     prefix of ``-p NODE:NAME:=VALUE``).  Which of them apply and which value wins is
-    :func:`nodl.launch.overrides.parameter_overrides` (rcl's merged table for a node
+    :func:`nodl.launch.parameter_values.parameter_overrides` (rcl's merged table for a node
     started as a process, launch_ros's rules for a composable node).
     """
 
@@ -166,9 +166,9 @@ class LaunchedNode:
 
     def parameter_overrides(self, fqn: str | None = None) -> dict[str, Any]:
         """The parameters the node receives by name (see
-        :func:`nodl.launch.overrides.parameter_overrides`; ``fqn`` is needed when the
+        :func:`nodl.launch.parameter_values.parameter_overrides`; ``fqn`` is needed when the
         launch entry gives no name)."""
-        from nodl.launch.overrides import parameter_overrides
+        from nodl.launch.parameter_values import parameter_overrides
 
         return parameter_overrides(self, fqn)
 

@@ -4,7 +4,7 @@ namespaces, ``set_remap`` and ``set_parameter``.
 A :class:`Node` adds a :class:`~nodl.launch.model.LaunchedNode` to the result
 instead of starting a process: its final namespace (pushed namespaces combined as
 launch_ros combines them), its remapping rules in the order rcl applies them, and its
-parameter sources in command-line order (see :mod:`nodl.launch.overrides` for
+parameter sources in command-line order (see :mod:`nodl.launch.parameter_values` for
 how they resolve to values).
 
 A part of a node only the running launch knows does not drop the node: a parameter source
@@ -198,7 +198,7 @@ def _ros_arguments(context: LaunchContext, node: Any, location: SourceLocation,
                 if ':=' not in value:
                     raise LaunchProblem('NODL518', f"invalid parameter rule '{value}'; expected NAME:=VALUE")
                 name, text = value.split(':=', 1)
-                from nodl.launch.overrides import rcl_yaml_value
+                from nodl.launch.parameter_values import rcl_yaml_value
 
                 # rcl: "-p NODE:NAME:=VALUE" files the value under the node key NODE (a node
                 # name, matched as "/NODE"), "-p NAME:=VALUE" under "/**"; VALUE typed by rcl.

@@ -19,7 +19,7 @@ from typing import Any
 
 from nodl.composition.instance import NodeInstance
 from nodl.launch.model import LaunchedNode, remap_source
-from nodl.launch.overrides import parameter_overrides
+from nodl.launch.parameter_values import parameter_overrides
 from nodl.launch.params import RuntimeValue
 from nodl.location import Location
 from nodl.naming import (
@@ -200,7 +200,7 @@ def _label(entry: LaunchedNode) -> str:
 def _settings(entry: LaunchedNode, fqn: str) -> list[ParameterSetting]:
     """The values a launched node receives, given its final name: which parameter-file keys
     apply and which value wins as rcl (processes) or launch_ros (composable nodes) decide it
-    (:func:`nodl.launch.overrides.parameter_overrides`), at the place each is written."""
+    (:func:`nodl.launch.parameter_values.parameter_overrides`), at the place each is written."""
     return [ParameterSetting(o.name, o.value, Location(o.file, o.line, o.column),
                              'file' if o.kind == 'file' else _ORIGINS.get(o.origin, 'inline'))
             for o in parameter_overrides(entry, fqn).values()]

@@ -1,4 +1,4 @@
-"""Parameter precedence and typing (nodl.launch.overrides) against REAL rclpy nodes.
+"""Parameter precedence and typing (nodl.launch.parameter_values) against REAL rclpy nodes.
 
 Every case of tests/fixtures/launch/parameter_precedence.yaml is resolved twice: by a real
 rclpy node (in this process, one context per case) given the command line launch_ros
@@ -20,7 +20,7 @@ import yaml
 from conftest import FIXTURES
 from nodl.launch import load_launch
 from nodl.launch.model import ParameterSource, SourceLocation
-from nodl.launch.overrides import (
+from nodl.launch.parameter_values import (
     composable_overrides,
     match_composable_parameter_keys,
     match_parameter_file_nodes,
@@ -255,7 +255,7 @@ def test_a_long_text_is_typed_as_its_yaml_dump_is_read_without_dumping_it() -> N
     import random
     import time
 
-    from nodl.launch.overrides import as_rcl_reads_dump, rcl_yaml_value
+    from nodl.launch.parameter_values import as_rcl_reads_dump, rcl_yaml_value
 
     rng = random.Random(15)
     alphabet = 'ab01 .:-#\'"\n\té\\[]{}xXeE+_'

@@ -23,7 +23,7 @@ parameter file only the ``/**`` key and then the node's exact ``namespace/name``
 gets only ``/**``; the container's own command line does not apply (launch_ros loads nodes
 with ``use_global_arguments`` off).
 
-These rules were checked against real rclpy nodes (``tests/test_launch_overrides.py``) and
+These rules were checked against real rclpy nodes (``tests/test_launch_parameter_values.py``) and
 read from the sources of rcl, rclcpp, rclpy and launch_ros.
 """
 
