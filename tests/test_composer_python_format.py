@@ -59,7 +59,7 @@ def test_a_kept_parameter_source_stays_in_its_place() -> None:
     planner = next(n for n in doc.nodes() if n.executable == 'planner')
     assert [type(p).__name__ for p in planner.params] == ['Kept']
     planner.params.append(Param('tolerance', 0.5))
-    assert 'parameters=[params, {\'tolerance\': 0.5}],' in node_python(planner, '')
+    assert "parameters=[params, {'tolerance': 0.5}])" in node_python(planner, '')  # as compact as read
     assert isinstance(planner.params[0], Kept)
 
 
@@ -99,3 +99,13 @@ def test_an_edited_call_keeps_its_keywords_order_and_code_in_its_list() -> None:
     assert written.index("name='box2'") < written.index('package=') < \
         written.index('composable_node_descriptions=[') < written.index('extra,') < \
         written.index("output='screen'")
+
+
+def test_a_call_written_compactly_is_edited_in_place() -> None:
+    text = (LAUNCH / 'demo.launch.py').read_text(encoding='utf-8')
+    doc = read_python(text)
+    talker = doc.items[1]
+    assert isinstance(talker, ComposedNode)
+    talker.params = [Param('rate', 7.5)]
+    talker.dirty = True
+    assert render(doc).text == text.replace("parameters=[{'rate': 5.0}]", "parameters=[{'rate': 7.5}]")

@@ -370,6 +370,13 @@ def node_python(node: ComposedNode, indent: str) -> str:
     order += [key for key, _ in keywords if key not in order]
     if listed and 'composable_node_descriptions' not in order:
         order.append('composable_node_descriptions')
+    if not listed:
+        compact = _compact(node, indent, call, positional + [
+            text for key in dict.fromkeys(order)
+            for text in ([chunks[key]] if key in chunks else []) +
+            [t for what, t in keywords if what == key]])
+        if compact is not None:
+            return compact
     out = [f'{call}(']
     for text in positional:
         out.append(f'\n{inner}{text},')
@@ -382,6 +389,33 @@ def node_python(node: ComposedNode, indent: str) -> str:
         out.extend(f'\n{inner}{text},' for what, text in keywords if what == key)
     out.append(f'\n{indent})')
     return ''.join(out)
+
+
+#: The longest line a call written as the file wrote it (arguments on its first line) may have,
+#: unless the file's own call has longer ones.
+_WIDTH = 99
+
+
+def _compact(node: ComposedNode, indent: str, call: str, arguments: list[str]) -> str | None:
+    """The call as the file wrote it when its arguments began on its first line (``Node(package=
+    ..., name=...,`` wrapped under the parenthesis): the arguments filled in that way; None when
+    the file wrote it one argument a line, or never (a new node), or an argument spans lines."""
+    original = node.original
+    if original is None or original.startswith(f'{call}(\n') or \
+            any('\n' in text for text in arguments):
+        return None
+    first, *rest = original.splitlines()
+    width = max(_WIDTH, len(indent) + len(first), *(len(line) for line in rest))
+    hanging = indent + ' ' * (len(call) + 1)
+    lines, line = [], f'{indent}{call}('
+    for index, text in enumerate(arguments):
+        piece = text + (', ' if index < len(arguments) - 1 else ')')
+        if line.strip() and not line.endswith('(') and len(line + piece.rstrip()) > width:
+            lines.append(line.rstrip())
+            line = hanging
+        line += piece
+    lines.append(line if arguments else line + ')')
+    return '\n'.join(lines)[len(indent):]
 
 
 def _children_python(node: ComposedNode, inner: str, kept: list[Kept], out: list[str]) -> None:
