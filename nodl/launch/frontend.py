@@ -2,7 +2,7 @@
 
 :data:`TAGS` lists, for every launch tag the toolkit reads, its attributes (``*`` marks a
 required one) and its nested entity lists; anything else is an error with "did you mean".
-Both markup frontends build :class:`Entity` objects and call :func:`build_description`.
+Both markup frontends build :class:`FrontendEntity` objects and call :func:`build_description`.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from nodl.launch.substitutions import TextSubstitution
 if TYPE_CHECKING:  # pragma: no cover - for type checkers only
     from nodl.frontends.xml_reader import XmlElement
 
-__all__ = ['Entity', 'TAGS', 'build_description']
+__all__ = ['FrontendEntity', 'TAGS', 'build_description']
 
 _PROCESS = ('cwd', 'shell', 'emulate_tty', 'additional_env', 'launch-prefix', 'output', 'respawn',
             'respawn_delay', 'respawn_max_retries', 'on_exit', 'sigterm_timeout', 'sigkill_timeout',
@@ -72,7 +72,7 @@ NESTED: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
 XML_ONLY = frozenset({'value-sep'})
 
 
-class Entity:
+class FrontendEntity:
     """A frontend entity: its tag, attributes, nested entity lists and child actions."""
 
     __slots__ = ('tag', 'yaml', 'location', 'values', 'positions', 'element', 'nested', 'children', 'stray')
@@ -90,8 +90,8 @@ class Entity:
         #: The XML element an XML entity is read from: it places an attribute when asked (see
         #: :meth:`position`), which is only when something is wrong or a place is recorded.
         self.element: XmlElement | None = None
-        self.nested: dict[str, list[Entity]] = {}
-        self.children: list[Entity] = []
+        self.nested: dict[str, list[FrontendEntity]] = {}
+        self.children: list[FrontendEntity] = []
         #: Where unexpected content is (a YAML child list for a tag without children...).
         self.stray: list[tuple[str, int, int]] = []
 
@@ -167,7 +167,7 @@ _NESTED_SPECS = {tag: _Spec(attributes, lists, False) for tag, (attributes, list
 _ROOT_SPEC = _Spec(('deprecated', 'version'), (), True)
 
 
-def _check(entity: Entity, spec: _Spec, problems: list[Diagnostic]) -> bool:
+def _check(entity: FrontendEntity, spec: _Spec, problems: list[Diagnostic]) -> bool:
     allowed = spec.allowed_yaml if entity.yaml else spec.allowed
     present = entity.values
     if (spec.children or not entity.children) and not ('if' in present and 'unless' in present) and \
@@ -177,7 +177,7 @@ def _check(entity: Entity, spec: _Spec, problems: list[Diagnostic]) -> bool:
     return _check_slow(entity, set(allowed), spec.required, spec.lists, spec.children, problems)
 
 
-def _check_slow(entity: Entity, allowed: set[str], required: tuple[str, ...], lists: tuple[str, ...],
+def _check_slow(entity: FrontendEntity, allowed: set[str], required: tuple[str, ...], lists: tuple[str, ...],
                 children: bool, problems: list[Diagnostic]) -> bool:
     from nodl.wording import did_you_mean
 
@@ -220,7 +220,7 @@ def _check_slow(entity: Entity, allowed: set[str], required: tuple[str, ...], li
     return ok
 
 
-def _nested_ok(entity: Entity, problems: list[Diagnostic]) -> bool:
+def _nested_ok(entity: FrontendEntity, problems: list[Diagnostic]) -> bool:
     ok = True
     for name, items in entity.nested.items():
         spec = _NESTED_SPECS.get(name)
@@ -233,7 +233,7 @@ def _nested_ok(entity: Entity, problems: list[Diagnostic]) -> bool:
     return ok
 
 
-def _condition(entity: Entity) -> C.Condition | None:
+def _condition(entity: FrontendEntity) -> C.Condition | None:
     if_ = entity.subs('if')
     if if_ is not None:
         return C.IfCondition(if_)
@@ -241,7 +241,7 @@ def _condition(entity: Entity) -> C.Condition | None:
     return C.UnlessCondition(unless) if unless is not None else None
 
 
-def _parameters(entity: Entity) -> list[Any]:
+def _parameters(entity: FrontendEntity) -> list[Any]:
     out: list[Any] = []
     for param in entity.nested.get('param', []):
         source = param.subs('from')
@@ -259,7 +259,7 @@ def _parameters(entity: Entity) -> list[Any]:
     return out
 
 
-def _named(param: Entity, prefix: list[Any]) -> list[tuple[Any, Any]]:
+def _named(param: FrontendEntity, prefix: list[Any]) -> list[tuple[Any, Any]]:
     name = [*prefix, *([TextSubstitution('.')] if prefix else []), *param.subs('name')]
     nested = param.nested.get('param', [])
     has_value = 'value' in param.values
@@ -322,14 +322,14 @@ def _yaml_value_problem(raw: Any, data_type: Any, identifier: str | None) -> str
             'against the type, it does not convert it (quote it to have it converted)')
 
 
-def _remaps(entity: Entity) -> list[tuple[Any, Any]]:
+def _remaps(entity: FrontendEntity) -> list[tuple[Any, Any]]:
     return [(r.subs('from'), r.subs('to')) for r in entity.nested.get('remap', [])]
 
 
 _Placed = TypeVar('_Placed', 'R.Node', 'R.ComposableNode')
 
 
-def _placed(node: _Placed, entity: Entity) -> _Placed:
+def _placed(node: _Placed, entity: FrontendEntity) -> _Placed:
     """``node`` (a node action or composable node) told where its ``remap`` entries and its
     ``args``/``ros_args`` are written: findings about a rule point there."""
     node.remap_sources = [r.location for r in entity.nested.get('remap', [])]
@@ -340,7 +340,7 @@ def _placed(node: _Placed, entity: Entity) -> _Placed:
     return node
 
 
-def _composable(entity: Entity) -> R.ComposableNode:
+def _composable(entity: FrontendEntity) -> R.ComposableNode:
     node = R.ComposableNode(package=entity.subs('pkg'), plugin=entity.subs('plugin'), name=entity.subs('name'),
                             namespace=entity.subs('namespace'), parameters=_parameters(entity),
                             remappings=_remaps(entity), condition=_condition(entity),
@@ -350,7 +350,7 @@ def _composable(entity: Entity) -> R.ComposableNode:
     return _placed(node, entity)
 
 
-def _cmdline(entity: Entity, name: str) -> list[Any] | None:
+def _cmdline(entity: FrontendEntity, name: str) -> list[Any] | None:
     """``args``/``ros_args`` split into words as launch_ros splits them (None when absent)."""
     parts = entity.subs(name)
     if parts is None:
@@ -381,14 +381,14 @@ def _cmdline(entity: Entity, name: str) -> list[Any] | None:
     return words
 
 
-def _node_kwargs(entity: Entity) -> dict[str, Any]:
+def _node_kwargs(entity: FrontendEntity) -> dict[str, Any]:
     return dict(executable=entity.subs('exec'), package=entity.subs('pkg'), name=entity.subs('name'),
                 namespace=entity.subs('namespace'), parameters=_parameters(entity),
                 remappings=_remaps(entity), arguments=_cmdline(entity, 'args'),
                 ros_arguments=_cmdline(entity, 'ros_args'))
 
 
-def build_action(entity: Entity, problems: list[Diagnostic]) -> A.Action | None:
+def build_action(entity: FrontendEntity, problems: list[Diagnostic]) -> A.Action | None:
     """One entity to its action (None, reported, when it is not valid)."""
     spec = _SPECS.get(entity.tag)
     if spec is None:
@@ -410,7 +410,7 @@ def build_action(entity: Entity, problems: list[Diagnostic]) -> A.Action | None:
     return action
 
 
-def _children(entity: Entity, problems: list[Diagnostic]) -> list[A.Action]:
+def _children(entity: FrontendEntity, problems: list[Diagnostic]) -> list[A.Action]:
     out = []
     for child in entity.children:
         action = build_action(child, problems)
@@ -419,7 +419,7 @@ def _children(entity: Entity, problems: list[Diagnostic]) -> list[A.Action]:
     return out
 
 
-def _make(entity: Entity, tag: str, problems: list[Diagnostic]) -> A.Action:
+def _make(entity: FrontendEntity, tag: str, problems: list[Diagnostic]) -> A.Action:
     s = entity.subs
     if tag == 'node':  # the usual entity first
         return _placed(R.Node(**_node_kwargs(entity)), entity)
@@ -469,7 +469,7 @@ def _make(entity: Entity, tag: str, problems: list[Diagnostic]) -> A.Action:
     return A.Ignored()
 
 
-def build_description(root: Entity, problems: list[Diagnostic]) -> A.LaunchDescription | None:
+def build_description(root: FrontendEntity, problems: list[Diagnostic]) -> A.LaunchDescription | None:
     """The root ``launch`` entity to a :class:`LaunchDescription`."""
     if root.tag != 'launch':
         problems.append(Diagnostic(Severity.ERROR, f"the root is <{root.tag}>; a launch file's root is "

@@ -2,7 +2,7 @@
 
 :func:`~nodl.frontends.xml_reader.load_xml` (expat, positions for every element and
 attribute, no DTDs and no entities, the 10 MB size limit and UTF-8) gives the tree; this module
-turns elements into :class:`~nodl.launch.frontend.Entity` objects: the child elements a
+turns elements into :class:`~nodl.launch.frontend.FrontendEntity` objects: the child elements a
 tag lists as nested (``param``, ``remap``, ``arg``...) go to ``nested``, the others are actions.
 """
 
@@ -14,7 +14,7 @@ from nodl.diagnostics import Diagnostic, Severity
 from nodl.frontends.xml_reader import XmlElement, load_xml
 from nodl.launch.actions import LaunchDescription
 from nodl.launch.errors import MAX_XML_DEPTH
-from nodl.launch.frontend import NESTED, TAGS, Entity, build_description
+from nodl.launch.frontend import NESTED, TAGS, FrontendEntity, build_description
 
 __all__ = ['read_xml_launch']
 
@@ -48,14 +48,14 @@ def read_xml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnosti
     return build_description(root, problems), problems
 
 
-def _convert(element: XmlElement, depth: int, path: str, too_deep: list[XmlElement]) -> Entity | None:
+def _convert(element: XmlElement, depth: int, path: str, too_deep: list[XmlElement]) -> FrontendEntity | None:
     """The entity of ``element`` and its children (the elements too deep to enter are noted in
     ``too_deep``).  Recursive, but never deeper than MAX_XML_DEPTH + 1 (expat itself reads any
     depth): an element below that is noted, not entered."""
     if depth > MAX_XML_DEPTH:
         too_deep.append(element)
         return None
-    entity = Entity(element.tag, path, element.line, element.column)
+    entity = FrontendEntity(element.tag, path, element.line, element.column)
     # The values by name; the element places an attribute only when the entity asks where
     # it is (a problem, a recorded place), so a launch file without problems places none.
     pairs = iter(element.pairs)

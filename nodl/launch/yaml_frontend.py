@@ -13,7 +13,7 @@ from typing import Any
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch.actions import LaunchDescription
-from nodl.launch.frontend import Entity, build_description
+from nodl.launch.frontend import FrontendEntity, build_description
 
 __all__ = ['read_yaml_launch']
 
@@ -45,9 +45,9 @@ def read_yaml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnost
     def at(node: Any) -> tuple[int, int]:
         return node.start_mark.line + 1, node.start_mark.column + 1
 
-    def entity(tag: str, key_node: Any, value_node: Any, data: Any) -> Entity:
+    def entity(tag: str, key_node: Any, value_node: Any, data: Any) -> FrontendEntity:
         line, column = at(key_node)
-        result = Entity(tag, path, line, column, yaml=True)
+        result = FrontendEntity(tag, path, line, column, yaml=True)
         if isinstance(value_node, SequenceNode):  # the entity's value is its child list
             result.children = entities(value_node, data)
             return result
@@ -69,7 +69,7 @@ def read_yaml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnost
                 result.positions[name] = at(k)
         return result
 
-    def entities(sequence: Any, data: Any) -> list[Entity]:
+    def entities(sequence: Any, data: Any) -> list[FrontendEntity]:
         out = []
         for item, item_data in zip(sequence.value, data if isinstance(data, list) else [], strict=False):
             if not isinstance(item, MappingNode) or len(item.value) != 1:
@@ -81,7 +81,7 @@ def read_yaml_launch(path: str) -> tuple[LaunchDescription | None, list[Diagnost
         return out
 
     (key, value), = root.value
-    top = Entity(str(key.value), path, *at(key), yaml=True)
+    top = FrontendEntity(str(key.value), path, *at(key), yaml=True)
     if isinstance(value, SequenceNode):
         top.children = entities(value, doc.data.get(key.value) if isinstance(doc.data, dict) else None)
     elif not (isinstance(value, ScalarNode) and value.value in ('', '~', 'null')):
