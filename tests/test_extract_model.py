@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from nodl.diagnostics import Severity
-from nodl.extract.model import ENTITY_SECTIONS, Entity, ExtractedNode, Extraction, Gap, Location
+from nodl.extract.model import ENTITY_SECTIONS, ExtractedEntity, ExtractedNode, Extraction, Gap
+from nodl.location import Location
 
 
 def test_location_and_gap_diagnostic() -> None:
@@ -17,9 +18,9 @@ def test_location_and_gap_diagnostic() -> None:
 def test_node_diagnostics_in_source_order_and_output_name() -> None:
     node = ExtractedNode('Talker', Location('t.py', 5, 1), 'python')
     node.entities += [
-        Entity('publishers', None, 'std_msgs/msg/String', Location('t.py', 9, 1),
+        ExtractedEntity('publishers', None, 'std_msgs/msg/String', Location('t.py', 9, 1),
                gaps=[Gap('name', 'late', Location('t.py', 9, 30), 'NODL901')]),
-        Entity('parameters', 'rate', 'int', Location('t.py', 7, 1), default_value=1, has_default=True,
+        ExtractedEntity('parameters', 'rate', 'int', Location('t.py', 7, 1), default_value=1, has_default=True,
                gaps=[Gap('default_value', 'early', Location('t.py', 7, 20), 'NODL905')]),
     ]
     assert [d.line for d in node.diagnostics] == [7, 9]

@@ -49,8 +49,9 @@ def test_unreadable_paths_and_no_node(tmp_path: Path) -> None:
 
 
 def test_registrations_record_components_and_node_names() -> None:
-    from nodl.extract.model import ExtractedNode, Extraction, Location
+    from nodl.extract.model import ExtractedNode, Extraction
     from nodl.extract.targets import nodes_file_text, registrations
+    from nodl.location import Location
 
     ours = ExtractedNode('pkg::Talker', Location('t.cpp', 3, 1), 'cpp', package='pkg', plugin='pkg::Talker',
                          node_name='talker')

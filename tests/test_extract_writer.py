@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
-from nodl.extract.model import Entity, ExtractedNode, Gap, Location
+from nodl.extract.model import ExtractedEntity, ExtractedNode, Gap
 from nodl.extract.writer import check_entities, draft_data, draft_text
 from nodl.loading import load_node
+from nodl.location import Location
 from nodl.model.qos import QoSProfile
 
 QOS = QoSProfile('KEEP_LAST', 'RELIABLE', 10, 'VOLATILE')
@@ -14,14 +15,14 @@ def _node() -> ExtractedNode:
     node = ExtractedNode('Talker', Location('/src/pkg/talker.py', 5, 1), 'python', base='lifecycle_node',
                          package='pkg', executable='talker', sources=['/src/pkg/talker.py'])
     node.entities += [
-        Entity('publishers', 'chatter', 'std_msgs/msg/String', Location('/src/pkg/talker.py', 9, 9), qos=QOS),
-        Entity('publishers', 'chatter', 'std_msgs/msg/String', Location('/src/pkg/talker.py', 10, 9), qos=QOS),
-        Entity('publishers', None, 'std_msgs/msg/String', Location('/src/pkg/talker.py', 11, 9), qos=QOS,
+        ExtractedEntity('publishers', 'chatter', 'std_msgs/msg/String', Location('/src/pkg/talker.py', 9, 9), qos=QOS),
+        ExtractedEntity('publishers', 'chatter', 'std_msgs/msg/String', Location('/src/pkg/talker.py', 10, 9), qos=QOS),
+        ExtractedEntity('publishers', None, 'std_msgs/msg/String', Location('/src/pkg/talker.py', 11, 9), qos=QOS,
                gaps=[Gap('name', 'topic name is computed at run time', Location('/src/pkg/talker.py', 11, 40),
                          'NODL901')]),
-        Entity('parameters', 'rate', 'double', Location('/src/pkg/talker.py', 12, 9), default_value=1.0,
+        ExtractedEntity('parameters', 'rate', 'double', Location('/src/pkg/talker.py', 12, 9), default_value=1.0,
                has_default=True, read_only=True, validation={'bounds<>': [0.0, 10.0]}),
-        Entity('parameters', 'bad name', 'double', Location('/src/pkg/talker.py', 13, 9), default_value=1.0,
+        ExtractedEntity('parameters', 'bad name', 'double', Location('/src/pkg/talker.py', 13, 9), default_value=1.0,
                has_default=True),
     ]
     return node
@@ -47,7 +48,7 @@ def test_draft_locations_gaps_and_validity() -> None:
 
 def test_a_node_with_only_gaps_is_still_a_valid_definition() -> None:
     node = ExtractedNode('n', Location('n.py', 1, 1), 'python')
-    node.entities.append(Entity('service_clients', None, None, Location('n.py', 3, 1), gaps=[
+    node.entities.append(ExtractedEntity('service_clients', None, None, Location('n.py', 3, 1), gaps=[
         Gap('entity', 'arguments not written out', Location('n.py', 3, 1), 'NODL910')]))
     text = draft_text(node)
     assert '  # service_clients:' in text.splitlines()
@@ -56,7 +57,7 @@ def test_a_node_with_only_gaps_is_still_a_valid_definition() -> None:
 
 def test_comment_text_cannot_break_out_of_its_line() -> None:
     node = ExtractedNode('n', Location('n.py', 1, 1), 'python')
-    node.entities.append(Entity('publishers', None, None, Location('n.py\nmain: evil', 3, 1), gaps=[
+    node.entities.append(ExtractedEntity('publishers', None, None, Location('n.py\nmain: evil', 3, 1), gaps=[
         Gap('name', 'why\nnodl_version: 3', Location('n.py', 3, 1), 'NODL901')]))
     text = draft_text(node)
     assert load_node(text).nodl_version == 2

@@ -32,7 +32,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.extract.model import PARAMETERS, Entity, ExtractedNode, Extraction, Gap, Location
+from nodl.extract.model import PARAMETERS, ExtractedEntity, ExtractedNode, Extraction, Gap
+from nodl.location import Location
 from nodl.vocabulary import ROS_PARAMETER_TYPE_NAMES
 
 if TYPE_CHECKING:
@@ -1290,7 +1291,7 @@ class _Scan:
             else:
                 qos, gap = self.qos_of(qos_arg)
                 gaps += [gap] if gap else []
-        owner.entities.append(Entity(section, name, kind, self.r.loc(node), qos=qos, gaps=gaps))
+        owner.entities.append(ExtractedEntity(section, name, kind, self.r.loc(node), qos=qos, gaps=gaps))
         self._source(owner)
 
     def _source(self, owner: ExtractedNode) -> None:
@@ -1317,7 +1318,7 @@ class _Scan:
         gaps += [gap] if gap else []
         kind, gap = self.type_of(template, node)
         gaps += [gap] if gap else []
-        owner.entities.append(Entity(section, name, kind, self.r.loc(node), gaps=gaps))
+        owner.entities.append(ExtractedEntity(section, name, kind, self.r.loc(node), gaps=gaps))
         self._source(owner)
 
     def _descriptor(self, arg: Any) -> tuple[_Descriptor | None, Gap | None]:
@@ -1371,8 +1372,8 @@ class _Scan:
         elif template is None:
             gaps.append(Gap('type', f'parameter {name!r} at {self.r.shown(self.r.loc(node))} is declared without '
                             'a type or a default', self.r.loc(node), _TYPE))
-        entity = Entity(PARAMETERS, name, kind, self.r.loc(node), default_value=default, has_default=has_default,
-                        gaps=gaps)
+        entity = ExtractedEntity(PARAMETERS, name, kind, self.r.loc(node), default_value=default,
+                                 has_default=has_default, gaps=gaps)
         if descriptor_arg is not None:
             descriptor, gap = self._descriptor(descriptor_arg)
             if gap is not None:
@@ -1386,7 +1387,7 @@ class _Scan:
             return _ParamValue(name, default, self.r.loc(node))
         return None
 
-    def _apply_descriptor(self, entity: Entity, descriptor: _Descriptor, where: Any) -> None:
+    def _apply_descriptor(self, entity: ExtractedEntity, descriptor: _Descriptor, where: Any) -> None:
         fields = descriptor.fields
         if isinstance(fields.get('description'), (_Unknown, _ParamValue)):
             fields = {k: v for k, v in fields.items() if k != 'description'}  # a comment only
@@ -1418,7 +1419,7 @@ class _Scan:
         if gap is not None or not isinstance(values, dict):
             gaps = [gap] if gap is not None else [Gap('name', f'the parameters declared at {self.r.shown(location)} '
                                                       f'come from a map {_RUNTIME}', location, _NAME)]
-            owner.entities.append(Entity(PARAMETERS, None, None, location, gaps=gaps))
+            owner.entities.append(ExtractedEntity(PARAMETERS, None, None, location, gaps=gaps))
             self._source(owner)
             return
         declared = _param_type(_squash(_text(template.named_children[0]))) if template is not None and \
@@ -1428,7 +1429,7 @@ class _Scan:
                 value = value[0]
             kind = declared or _value_type(value)
             full = f'{prefix}.{key}' if prefix else key
-            owner.entities.append(Entity(PARAMETERS, full, kind, location, default_value=_fit(value, kind),
+            owner.entities.append(ExtractedEntity(PARAMETERS, full, kind, location, default_value=_fit(value, kind),
                                          has_default=True))
         self._source(owner)
 
@@ -1440,10 +1441,11 @@ class _Scan:
                                              'advertiseCamera') else 'subscriptions'
         name, _ = self.name_of(topic, 'image topic', node)
         location = self.r.loc(node)
-        owner.entities.append(Entity(section, name, 'sensor_msgs/msg/Image', location, helper='image_transport',
-                                     gaps=[Gap('entity', f'image_transport at {self.r.shown(location)}: the topics '
-                                               'depend on the transport plug-ins installed where it runs', location,
-                                               _PLUGIN)]))
+        owner.entities.append(ExtractedEntity(section, name, 'sensor_msgs/msg/Image', location,
+                                              helper='image_transport',
+                                              gaps=[Gap('entity', f'image_transport at {self.r.shown(location)}: '
+                                                        'the topics depend on the transport plug-ins installed '
+                                                        'where it runs', location, _PLUGIN)]))
         self._source(owner)
 
     def helper(self, type_text: str, args: Any, where: Any) -> bool:
@@ -1478,7 +1480,7 @@ class _Scan:
             self._filter(owner, where, kind_text, items[1], items[2] if len(items) > 2 else None)
             return True
         for section, name, kind, qos in _HELPERS[short]:
-            owner.entities.append(Entity(section, name, kind, location, qos=qos() if qos else None,
+            owner.entities.append(ExtractedEntity(section, name, kind, location, qos=qos() if qos else None,
                                          has_default=section == PARAMETERS,
                                          default_value=1.0 if section == PARAMETERS else None,
                                          helper=plain))
@@ -1496,7 +1498,7 @@ class _Scan:
         else:
             qos, gap = self.qos_of(qos_arg)
             gaps += [gap] if gap else []
-        owner.entities.append(Entity('subscriptions', name, kind, self.r.loc(where), qos=qos, gaps=gaps,
+        owner.entities.append(ExtractedEntity('subscriptions', name, kind, self.r.loc(where), qos=qos, gaps=gaps,
                                      helper='message_filters::Subscriber'))
         self._source(owner)
 

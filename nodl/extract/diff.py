@@ -12,7 +12,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.extract.model import PARAMETERS, Entity, ExtractedNode
+from nodl.extract.model import PARAMETERS, ExtractedEntity, ExtractedNode
 
 if TYPE_CHECKING:
     from typing import Any
@@ -55,7 +55,7 @@ class _Differ:
         self.file = file
         self.out: list[Diagnostic] = []
 
-    def at_source(self, entity: Entity, code: str, message: str, severity: Severity = Severity.ERROR) -> None:
+    def at_source(self, entity: ExtractedEntity, code: str, message: str, severity: Severity = Severity.ERROR) -> None:
         where = entity.location
         self.out.append(Diagnostic(severity, message, file=where.file, line=where.line, column=where.column,
                                    code=code, related=[(self.file, 0, 0, 'the definition compared')]))
@@ -136,7 +136,7 @@ def diff_node(node: ExtractedNode, definition: str) -> list[Diagnostic]:
     return differ.out
 
 
-def differ_values(differ: _Differ, entity: Entity, other: Any, word: str) -> None:
+def differ_values(differ: _Differ, entity: ExtractedEntity, other: Any, word: str) -> None:
     """Report the type, QoS and parameter differences of one entity found on both sides."""
     if entity.type != other.type:
         differ.at_source(entity, 'NODL922', f"{word} '{entity.name}' is a {entity.type} in the source, a "

@@ -14,13 +14,14 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.location import Location
 
 if TYPE_CHECKING:
     from typing import Any
 
     from nodl.model.qos import QoSProfile
 
-__all__ = ['Location', 'Gap', 'Entity', 'ExtractedNode', 'Extraction', 'PARAMETERS',
+__all__ = ['Gap', 'ExtractedEntity', 'ExtractedNode', 'Extraction', 'PARAMETERS',
            'ENTITY_SECTIONS']
 
 #: The section of a parameter entity (endpoints use the endpoint section keys of
@@ -36,19 +37,6 @@ def _sections() -> tuple[str, ...]:
 
 #: Every section an entity can belong to, in file order.
 ENTITY_SECTIONS: tuple[str, ...] = _sections()
-
-
-@dataclass(frozen=True, slots=True)
-class Location:
-    """A place in a source file; ``line`` and ``column`` are 1-based (0: unknown)."""
-
-    file: str
-    line: int = 0
-    column: int = 0
-
-    def __str__(self) -> str:
-        """``file:line:column`` (``file`` alone when the position is unknown)."""
-        return f'{self.file}:{self.line}:{self.column}' if self.line else self.file
 
 
 @dataclass(frozen=True, slots=True)
@@ -75,7 +63,7 @@ class Gap:
 
 
 @dataclass(slots=True)
-class Entity:
+class ExtractedEntity:
     """One parameter or endpoint found in the source.
 
     * ``section``: ``parameters`` or an endpoint section key (``publishers``...);
@@ -136,7 +124,7 @@ class ExtractedNode:
     package: str | None = None
     executable: str | None = None
     node_name: str | None = None
-    entities: list[Entity] = field(default_factory=list)
+    entities: list[ExtractedEntity] = field(default_factory=list)
     #: Diagnostics about the node as a whole (the executable is unknown, a base is not resolved).
     notes: list[Diagnostic] = field(default_factory=list)
     #: Every source file read for this node (its module, its helpers' modules).
@@ -149,7 +137,7 @@ class ExtractedNode:
     #: For a component (an rclcpp class registered as a plugin): its class, ``pkg::Class``.
     plugin: str | None = None
 
-    def section(self, key: str) -> list[Entity]:
+    def section(self, key: str) -> list[ExtractedEntity]:
         """The entities of one section, in source order."""
         return [e for e in self.entities if e.section == key]
 

@@ -30,8 +30,9 @@ from operator import attrgetter
 from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.extract.model import PARAMETERS, Entity, ExtractedNode, Extraction, Gap, Location
+from nodl.extract.model import PARAMETERS, ExtractedEntity, ExtractedNode, Extraction, Gap
 from nodl.extract.writer import check_entities
+from nodl.location import Location
 from nodl.vocabulary import PARAMETER_TYPE_BY_NUMBER, ROS_PARAMETER_TYPE_NAMES
 
 if TYPE_CHECKING:
@@ -1083,7 +1084,7 @@ class _NodeBuilder:
         self.node = node
         self.visited: set[tuple[int, int]] = set()
 
-    def add(self, entity: Entity) -> None:
+    def add(self, entity: ExtractedEntity) -> None:
         self.node.entities.append(entity)
 
 
@@ -1476,7 +1477,7 @@ class PythonExtractor:
         bound = _arguments(call, names)
         word = _WORDS[section]
         if bound is None or names[0] not in bound or names[1] not in bound:
-            builder.add(Entity(section, None, None, location, helper=helper, gaps=[Gap(
+            builder.add(ExtractedEntity(section, None, None, location, helper=helper, gaps=[Gap(
                 'entity', f'the arguments of {method}() are not written out (*args, **kwargs)',
                 location, 'NODL910')]))
             return
@@ -1495,11 +1496,11 @@ class PythonExtractor:
         builder.add(entity)
 
     def _named(self, scope: _Scope, section: str, name_expr: ast.expr, type_expr: ast.expr, kind: str,
-               location: Location, helper: str | None) -> Entity:
+               location: Location, helper: str | None) -> ExtractedEntity:
         word = _WORDS[section]
         name = self.resolver.value(name_expr, scope)
         type_value = self.resolver.value(type_expr, scope)
-        entity = Entity(section, name if isinstance(name, str) else None, None, location, helper=helper)
+        entity = ExtractedEntity(section, name if isinstance(name, str) else None, None, location, helper=helper)
         if not isinstance(name, str):
             entity.gaps.append(self._name_gap(name, name_expr, f'{word} name', scope, 'NODL901'))
         interface = _interface_type(type_value, kind)
@@ -1517,7 +1518,7 @@ class PythonExtractor:
         location = scope.module.location(call)
         bound = _arguments(call, ('node', 'action_type', 'action_name'))
         if bound is None or 'action_type' not in bound or 'action_name' not in bound:
-            builder.add(Entity(section, None, None, location, gaps=[Gap(
+            builder.add(ExtractedEntity(section, None, None, location, gaps=[Gap(
                 'entity', 'the arguments of the action server or client are not written out', location,
                 'NODL910')]))
             return
@@ -1529,7 +1530,7 @@ class PythonExtractor:
         location = scope.module.location(call)
         bound = _arguments(call, ('name', 'value', 'descriptor', 'ignore_override'))
         if bound is None or 'name' not in bound:
-            builder.add(Entity(PARAMETERS, None, None, location, helper=helper, gaps=[Gap(
+            builder.add(ExtractedEntity(PARAMETERS, None, None, location, helper=helper, gaps=[Gap(
                 'entity', 'the arguments of declare_parameter() are not written out', location, 'NODL910')]))
             return
         self._declared(builder, scope, location, bound['name'], bound.get('value'), bound.get('descriptor'),
@@ -1539,7 +1540,7 @@ class PythonExtractor:
                   value_expr: ast.expr | None, descriptor_expr: ast.expr | None, helper: str | None,
                   prefix: str) -> None:
         name = self.resolver.value(name_expr, scope) if isinstance(name_expr, ast.expr) else name_expr
-        entity = Entity(PARAMETERS, None, None, location, helper=helper)
+        entity = ExtractedEntity(PARAMETERS, None, None, location, helper=helper)
         if isinstance(name, str):
             entity.name = f'{prefix}.{name}' if prefix else name
         else:
@@ -1635,7 +1636,7 @@ class PythonExtractor:
         namespace = self.resolver.value(bound['namespace'], scope) if bound and 'namespace' in bound else None
         listed = bound.get('parameters') if bound else None
         if not isinstance(namespace, str) or not isinstance(listed, (ast.List, ast.Tuple)):
-            builder.add(Entity(PARAMETERS, None, None, location, gaps=[Gap(
+            builder.add(ExtractedEntity(PARAMETERS, None, None, location, gaps=[Gap(
                 'entity', 'declare_parameters() is given a namespace or a list computed at run time',
                 location, 'NODL904')]))
             return
@@ -1645,7 +1646,7 @@ class PythonExtractor:
                 elts = list(item.elts) + [None] * (3 - len(item.elts))
                 self._declared(builder, scope, here, elts[0], elts[1], elts[2], None, namespace)
             else:
-                builder.add(Entity(PARAMETERS, None, None, here, gaps=[Gap(
+                builder.add(ExtractedEntity(PARAMETERS, None, None, here, gaps=[Gap(
                     'entity', 'a declare_parameters() entry is computed at run time', here, 'NODL904')]))
 
     # -- helpers of other packages ---------------------------------------------------------
@@ -1683,7 +1684,7 @@ class PythonExtractor:
                                                                  'reliability': 'RELIABLE',
                                                                  'durability': 'TRANSIENT_LOCAL'}))
             for section, option, topic, qos in topics:
-                entity = Entity(section, topic, 'tf2_msgs/msg/TFMessage', location, helper=helper)
+                entity = ExtractedEntity(section, topic, 'tf2_msgs/msg/TFMessage', location, helper=helper)
                 if option and option in bound_kw:
                     name = self.resolver.value(bound_kw[option], scope)
                     if isinstance(name, str):
@@ -1706,20 +1707,20 @@ class PythonExtractor:
             return True
         if top == 'diagnostic_updater' and cls == 'Updater':
             helper = 'diagnostic_updater.Updater'
-            builder.add(Entity('publishers', '/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray', location,
+            builder.add(ExtractedEntity('publishers', '/diagnostics', 'diagnostic_msgs/msg/DiagnosticArray', location,
                                qos=_qos_profile({'history': 'KEEP_LAST', 'depth': 1, 'reliability': 'RELIABLE',
                                                  'durability': 'VOLATILE'}), helper=helper))
             period: ast.expr | float = bound_kw.get('period') or (call.args[1] if len(call.args) > 1 else 1.0)
             if isinstance(period, ast.expr):
                 self._declared(builder, scope, location, 'diagnostic_updater.period', period, None, helper, '')
             else:
-                builder.add(Entity(PARAMETERS, 'diagnostic_updater.period', 'double', location,
+                builder.add(ExtractedEntity(PARAMETERS, 'diagnostic_updater.period', 'double', location,
                                    default_value=period, has_default=True, helper=helper))
             return True
         if top == 'message_filters' and cls == 'Subscriber':
             bound = _arguments(call, ('node', 'msg_type', 'topic', 'qos_profile'))
             if bound is None or 'msg_type' not in bound or 'topic' not in bound:
-                builder.add(Entity('subscriptions', None, None, location, helper='message_filters.Subscriber',
+                builder.add(ExtractedEntity('subscriptions', None, None, location, helper='message_filters.Subscriber',
                                    gaps=[Gap('entity', 'the arguments of message_filters.Subscriber are not '
                                              'written out', location, 'NODL910')]))
                 return True
@@ -1736,7 +1737,7 @@ class PythonExtractor:
             builder.add(entity)
             return True
         if top == 'image_transport' or 'image_transport' in short:
-            builder.add(Entity('publishers' if 'Publisher' in cls or 'advertise' in cls else 'subscriptions',
+            builder.add(ExtractedEntity('publishers' if 'Publisher' in cls or 'advertise' in cls else 'subscriptions',
                                None, None, location, helper=dotted, gaps=[Gap(
                                    'entity', f'{dotted} makes topics whose names depend on the image_transport '
                                    'plug-ins installed where it runs', location, 'NODL909')]))
@@ -1751,19 +1752,19 @@ class PythonExtractor:
         module = dotted.rsplit('.', 2)[0]
         yaml_path = self.genparam.get(module)
         if yaml_path is None:
-            builder.add(Entity(PARAMETERS, None, None, location, helper=dotted, gaps=[Gap(
+            builder.add(ExtractedEntity(PARAMETERS, None, None, location, helper=dotted, gaps=[Gap(
                 'entity', f"the generate_parameter_library module '{module}' is not generated by this "
                 "package's setup.py (generate_parameter_module), so its parameters are unknown",
                 location, 'NODL915')]))
             return True
         interface, why = _read_genparam(yaml_path)
         if interface is None:
-            builder.add(Entity(PARAMETERS, None, None, location, helper=dotted, gaps=[Gap(
+            builder.add(ExtractedEntity(PARAMETERS, None, None, location, helper=dotted, gaps=[Gap(
                 'entity', f'the generate_parameter_library file {yaml_path} cannot be read: {why}',
                 location, 'NODL915')]))
             return True
         for name, param in (interface.parameters or {}).items():
-            builder.add(Entity(PARAMETERS, name, param.type, location,
+            builder.add(ExtractedEntity(PARAMETERS, name, param.type, location,
                                default_value=param.default_value, has_default=param.default_value is not None,
                                read_only=param.read_only, validation=param.validation,
                                description=param.description or None, helper=f'{dotted} ({yaml_path})'))

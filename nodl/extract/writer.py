@@ -13,7 +13,8 @@ import os
 from typing import TYPE_CHECKING
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.extract.model import PARAMETERS, Entity, ExtractedNode, Gap, Location
+from nodl.extract.model import PARAMETERS, ExtractedEntity, ExtractedNode, Gap
+from nodl.location import Location
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -38,7 +39,7 @@ def show_path(path: str, relative_to: str | None) -> str:
     return path if rel.startswith('..') else rel
 
 
-def entity_data(entity: Entity) -> Any:
+def entity_data(entity: ExtractedEntity) -> Any:
     """The NoDL mapping of one entity as far as it is known (a parameter's mapping without its
     name; an endpoint's with it).  Unknown fields are left out."""
     if entity.is_parameter:
@@ -64,10 +65,10 @@ def entity_data(entity: Entity) -> Any:
     return out
 
 
-def _sections(node: ExtractedNode) -> dict[str, list[Entity]]:
+def _sections(node: ExtractedNode) -> dict[str, list[ExtractedEntity]]:
     """Complete entities by section, the first of each name only (rclpy refuses a parameter
     declared twice; a section lists a name once)."""
-    out: dict[str, list[Entity]] = {}
+    out: dict[str, list[ExtractedEntity]] = {}
     seen: set[tuple[str, str | None]] = set()
     for entity in node.entities:
         if not entity.complete or entity.key() in seen:
@@ -92,7 +93,7 @@ def draft_data(node: ExtractedNode) -> dict[str, Any]:
     return data
 
 
-def _order(sections: dict[str, list[Entity]]) -> list[tuple[str, list[Entity]]]:
+def _order(sections: dict[str, list[ExtractedEntity]]) -> list[tuple[str, list[ExtractedEntity]]]:
     from nodl.extract.model import ENTITY_SECTIONS
 
     return [(key, sections[key]) for key in ENTITY_SECTIONS if key in sections]
@@ -119,7 +120,7 @@ def check_entities(node: ExtractedNode) -> None:
                                    entity.location, _INVALID))
 
 
-def _word(entity: Entity) -> str:
+def _word(entity: ExtractedEntity) -> str:
     if entity.is_parameter:
         return 'parameter'
     from nodl.vocabulary import SECTION_BY_KEY
@@ -144,7 +145,7 @@ def _yaml_block(data: Any, indent: str) -> list[str]:
     return [f'{indent}{line}' for line in dump_yaml(data).rstrip('\n').split('\n')]
 
 
-def _entity_lines(entity: Entity, relative_to: str | None, duplicates: list[Entity]) -> list[str]:
+def _entity_lines(entity: ExtractedEntity, relative_to: str | None, duplicates: list[ExtractedEntity]) -> list[str]:
     where = _where(entity.location, relative_to)
     lines: list[str] = []
     if entity.is_parameter:
@@ -189,8 +190,8 @@ def draft_text(node: ExtractedNode, *, relative_to: str | None = None,
     if node.base != 'node':
         lines.append(f'base: {node.base}')
     lines += ['main:', '  nodl_version: 2']
-    first: dict[tuple[str, str | None], Entity] = {}
-    duplicates: dict[int, list[Entity]] = {}
+    first: dict[tuple[str, str | None], ExtractedEntity] = {}
+    duplicates: dict[int, list[ExtractedEntity]] = {}
     for entity in node.entities:
         if entity.complete and entity.key() in first:
             duplicates.setdefault(id(first[entity.key()]), []).append(entity)
