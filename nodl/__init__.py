@@ -17,6 +17,7 @@ only the verb that runs.
 from __future__ import annotations
 
 import importlib
+import warnings
 from typing import TYPE_CHECKING, Any
 
 from nodl.version import __version__ as __version__
@@ -33,7 +34,7 @@ _EXPORTS = {
     'dump_nodl': 'nodl.loading',
     'check_source': 'nodl.loading',
     'model_from_data': 'nodl.loading',
-    'Report': 'nodl.loading',
+    'CheckedSource': 'nodl.loading',
     'Document': 'nodl.loading',
     'Interface': 'nodl.model',
     'Node': 'nodl.model',
@@ -76,7 +77,7 @@ _EXPORTS = {
 #: The public names, written out for type checkers and readers; a test keeps it equal
 #: to the keys of _EXPORTS and to the imports for type checkers below.
 __all__ = ['ActionEndpoint', 'Base', 'ComposedNode', 'Diagnostic', 'Document', 'Interface',
-    'Kind', 'Node', 'ParameterDefinition', 'QoSProfile', 'Report', 'ServiceEndpoint',
+    'Kind', 'Node', 'ParameterDefinition', 'QoSProfile', 'CheckedSource', 'ServiceEndpoint',
     'Severity', 'TopicEndpoint', 'ValidationError', 'bundled_schema', 'check_source',
     'compose', 'detect_kind', 'dump_nodl', 'load_interface', 'load_node', 'load_nodl',
     'load_parameter', 'load_schema', 'model_from_data', 'validate_interface', 'validate_node',
@@ -90,8 +91,8 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from nodl.composition.compose import ComposedNode, compose
     from nodl.diagnostics import Diagnostic, Severity, ValidationError
     from nodl.loading import (
+        CheckedSource,
         Document,
-        Report,
         check_source,
         dump_nodl,
         load_interface,
@@ -140,7 +141,14 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and IDEs only
     from nodl.validation.kinds import Kind, detect_kind
 
 
+#: Former public names -> their names now (each warns when used, for one release).
+_RENAMED = {'Report': 'CheckedSource'}
+
+
 def __getattr__(name: str) -> Any:
+    if name in _RENAMED:
+        warnings.warn(f'nodl.{name} is now nodl.{_RENAMED[name]}', DeprecationWarning, stacklevel=2)
+        return __getattr__(_RENAMED[name])
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f'module {__name__!r} has no attribute {name!r}')

@@ -9,7 +9,7 @@ from collections.abc import Iterable, Iterator
 from nodl.diagnostics import Diagnostic, has_errors
 from nodl.files import STDIN, describe_os_error, iter_nodl_files
 from nodl.frontends.source import MAX_BYTES, read_limited
-from nodl.loading import Report, check_source
+from nodl.loading import CheckedSource, check_source
 from nodl.validation.kinds import Kind
 
 __all__ = ['FileResult', 'check_paths', 'iter_check_paths', 'failed']
@@ -18,7 +18,7 @@ __all__ = ['FileResult', 'check_paths', 'iter_check_paths', 'failed']
 class FileResult:
     """The outcome for one path: a report, or why it could not be read."""
 
-    def __init__(self, path: str, report: Report | None = None, problem: str | None = None,
+    def __init__(self, path: str, report: CheckedSource | None = None, problem: str | None = None,
                  diagnostics: list[Diagnostic] | None = None, note: str | None = None) -> None:
         self.path = path
         self.report = report
@@ -114,7 +114,7 @@ def iter_check_paths(paths: Iterable[str], kind: Kind | None = None,
         yield FileResult(report.file, report, diagnostics=diagnostics)
 
 
-def _with_types(report: Report, diagnostics: list[Diagnostic], index: object,
+def _with_types(report: CheckedSource, diagnostics: list[Diagnostic], index: object,
                 package_dir: str | None, build: bool) -> list[Diagnostic]:
     """``diagnostics`` and those of the type check; a short name the check resolved
     (NODL253, which names the full form) replaces the generic NODL205."""

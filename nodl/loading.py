@@ -23,7 +23,7 @@ from nodl.wording import article, kind_of
 
 __all__ = [
     'Document',
-    'Report',
+    'CheckedSource',
     'check_source',
     'dump_nodl',
     'load_interface',
@@ -55,7 +55,7 @@ def _model_class(kind: Kind) -> Any:
 
 
 
-class Report:
+class CheckedSource:
     """The outcome of checking one document: its kind, data and diagnostics."""
 
     def __init__(self, file: str, kind: Kind | None, data: Any,
@@ -107,7 +107,7 @@ class Report:
 
 
 def check_source(source: Source, *, kind: Kind | str | None = None,
-                 file: str | None = None, installed: bool = False) -> Report:
+                 file: str | None = None, installed: bool = False) -> CheckedSource:
     """Read, parse and validate one document; never raises for bad content.
 
     ``kind`` enforces a kind of document (default: detect it).  ``file``
@@ -122,14 +122,14 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
     text, problem = read_source(source, file)
     if text is None:
         assert problem is not None
-        return Report(problem.file, None, None, [problem])
+        return CheckedSource(problem.file, None, None, [problem])
     # The frontends (nodl.frontends) read the text: YAML or JSON, a dialect read as NoDL v2
     # (its diagnostics land on the original text), or something that is not NoDL (XML, a
     # generate_parameter_library file), said to be what it is.
     reading = read_document(text, installed=installed)
     parsed, early = reading.document, reading.diagnostics
     if reading.data is None:
-        report = Report(text.file, None, reading.raw, early, parsed)
+        report = CheckedSource(text.file, None, reading.raw, early, parsed)
         report.dialect = reading.dialect
         return report
     detected = detect_kind(reading.data)
@@ -138,7 +138,7 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
             Severity.ERROR, f'expected {article(wanted)} definition, but this is '
             f'{article(detected)} definition ({KIND_REASONS[detected]})', (), text.file, 1, 1,
             code='NODL108')
-        return Report(text.file, wanted, reading.data, early + [mismatch], parsed)
+        return CheckedSource(text.file, wanted, reading.data, early + [mismatch], parsed)
     diagnostics = early + validate_data(reading.data, detected)
     if diagnostics and text.text.startswith('#'):
         # A leading '# nodl: ignore=CODE' comment silences warnings of those codes for this
@@ -146,7 +146,7 @@ def check_source(source: Source, *, kind: Kind | str | None = None,
         from nodl.overrides import apply_directives
 
         diagnostics = apply_directives(text.text, diagnostics)
-    report = Report(text.file, detected, reading.data, diagnostics, parsed)
+    report = CheckedSource(text.file, detected, reading.data, diagnostics, parsed)
     report.dialect = reading.dialect
     return report
 

@@ -155,7 +155,7 @@ def test_a_whole_node_with_hostile_descriptions_parses(tmp_path: Path) -> None:
     running node's descriptors would give them): the generated header, source and user stub
     hold none of them raw, and libclang parses them with no diagnostic."""
     from nodl.composition.resolved import resolve_report
-    from nodl.loading import Report, check_source
+    from nodl.loading import CheckedSource, check_source
     from nodl.text_safety import UNSAFE
     from nodl.validation.kinds import Kind
 
@@ -165,7 +165,7 @@ def test_a_whole_node_with_hostile_descriptions_parses(tmp_path: Path) -> None:
         '"Required \\u202D label"', '"Required \\u202D label ??/ ??= */ /* \\\\"'), encoding='utf-8')
     report = check_source(path, kind=Kind.NODE, file=str(path))
     assert {d.code for d in report.diagnostics} == {'NODL219', 'NODL220'}
-    node, _ = resolve_report(Report(str(path), Kind.NODE, report.data, []), client_library='rclcpp')
+    node, _ = resolve_report(CheckedSource(str(path), Kind.NODE, report.data, []), client_library='rclcpp')
     assert node is not None
     options = GenerateOptions('Hostile', 'hostile')
     out = tmp_path / 'out'

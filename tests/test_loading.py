@@ -20,7 +20,7 @@ import nodl
 from nodl import ValidationError
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.loading import (
-    Report,
+    CheckedSource,
     check_source,
     dump_nodl,
     load_interface,
@@ -269,7 +269,7 @@ main:
 """
 
 
-def _where(report: Report) -> list[tuple[int, int, str, str]]:
+def _where(report: CheckedSource) -> list[tuple[int, int, str, str]]:
     return [(d.line, d.column, d.severity.value, d.path_text) for d in report.diagnostics]
 
 
@@ -385,7 +385,7 @@ def test_load_raises_with_every_diagnostic_placed() -> None:
 
 # -- accepted inputs ----------------------------------------------------------------------
 
-def _names(report: Report) -> set[str]:
+def _names(report: CheckedSource) -> set[str]:
     return {d.file for d in report.diagnostics}
 
 
@@ -596,3 +596,10 @@ def test_line_separators_and_unsafe_characters_survive_a_dump_and_load(text: str
         dumped = dump_nodl({'type': 'string', 'description': text}, format, validate=False)
         assert first_unsafe(dumped) == -1 and '\u2028' not in dumped and '\u2029' not in dumped
         assert check_source(dumped, file=f'x.{format}').data['description'] == text
+
+
+def test_the_former_name_report_still_works_with_a_deprecation_warning() -> None:
+    import nodl
+
+    with pytest.warns(DeprecationWarning, match='nodl.Report is now nodl.CheckedSource'):
+        assert nodl.Report is CheckedSource

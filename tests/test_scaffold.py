@@ -430,14 +430,14 @@ def _hostile_nodes(build_type: str) -> list:  # type: ignore[type-arg]
     """tests/fixtures/scaffold/hostile_text.nodl.yaml resolved with its validation bypassed (its
     NODL219/NODL220 errors dropped), as a running node's descriptors give such text."""
     from nodl.composition.resolved import resolve_report
-    from nodl.loading import Report, check_source
+    from nodl.loading import CheckedSource, check_source
     from nodl.scaffold import BUILD_TYPES, NodeSource
     from nodl.validation.kinds import Kind
 
     path = str(FIXTURES / 'scaffold' / 'hostile_text.nodl.yaml')
     report = check_source(Path(path), kind=Kind.NODE, file=path)
     assert {d.code for d in report.diagnostics} == {'NODL219', 'NODL220'}
-    node, _ = resolve_report(Report(path, Kind.NODE, report.data, []),
+    node, _ = resolve_report(CheckedSource(path, Kind.NODE, report.data, []),
                              client_library=BUILD_TYPES[build_type])
     assert node is not None
     return [NodeSource('hostile', path, node, [])]

@@ -33,7 +33,7 @@ from nodl.composition.resolvers import (
 from nodl.diagnostics import Diagnostic, DocPath, Severity, ValidationError
 from nodl.frontends.builtin import INCLUDE
 from nodl.frontends.source import Source
-from nodl.loading import Report, check_source
+from nodl.loading import CheckedSource, check_source
 from nodl.model import Interface, Node
 from nodl.model.node import Base
 from nodl.validation.kinds import KIND_REASONS, Kind
@@ -188,7 +188,7 @@ def _related_entry(place: Callable[[Diagnostic], Diagnostic], path: DocPath,
     return ((entry.file, entry.line, entry.column, f"included through '{reference}' here"),)
 
 
-def _included_layers(sub: Report, label: str, file: str, tree: _IncludeTree, chain: tuple[str, ...],
+def _included_layers(sub: CheckedSource, label: str, file: str, tree: _IncludeTree, chain: tuple[str, ...],
                      keys: tuple[str, ...], related: tuple[tuple[str, int, int, str], ...]
                      ) -> list[Layer] | None:
     """The layers of an included include-dialect document: what it includes, then itself."""
@@ -211,7 +211,7 @@ def _included_layers(sub: Report, label: str, file: str, tree: _IncludeTree, cha
     return layers
 
 
-def compose_report(report: Report, resolvers: dict[str, Resolver] | None = None, *,
+def compose_report(report: CheckedSource, resolvers: dict[str, Resolver] | None = None, *,
                    client_library: str = DEFAULT_CLIENT_LIBRARY,
                    prefixes: Sequence[str] | None = None
                    ) -> tuple[ComposedNode | None, list[Diagnostic]]:

@@ -31,7 +31,7 @@ from nodl.composition.merge import PARAMETERS, Declaration, seeded_copies
 from nodl.composition.resolvers import Resolver
 from nodl.diagnostics import Diagnostic, Severity, ValidationError
 from nodl.frontends.source import Source
-from nodl.loading import Report, check_source
+from nodl.loading import CheckedSource, check_source
 from nodl.model import ENDPOINT_SECTIONS, Base, Interface, Node
 from nodl.validation.kinds import Kind
 
@@ -243,11 +243,11 @@ class ResolvedNode:
                 f'client_library={self.client_library!r}, {len(self.entities)} entities)')
 
 
-def resolve_report(report: Report, *, client_library: str | ClientLibraryChoice | None = None,
+def resolve_report(report: CheckedSource, *, client_library: str | ClientLibraryChoice | None = None,
                    resolvers: dict[str, Resolver] | None = None,
                    prefixes: list[str] | None = None
                    ) -> tuple[ResolvedNode | None, list[Diagnostic]]:
-    """Resolve a checked node definition (a :class:`~nodl.loading.Report`).
+    """Resolve a checked node definition (a :class:`~nodl.loading.CheckedSource`).
 
     Returns the resolved node (None on errors) and every diagnostic.
     ``prefixes``: where ``nodl://`` mixins are looked up (default ``AMENT_PREFIX_PATH``).

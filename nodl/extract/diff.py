@@ -17,7 +17,7 @@ from nodl.extract.model import PARAMETERS, ExtractedEntity, ExtractedNode
 if TYPE_CHECKING:
     from typing import Any
 
-    from nodl.loading import Report
+    from nodl.loading import CheckedSource
     from nodl.model import Interface
 
 __all__ = ['diff_node', 'definition_entities']
@@ -49,7 +49,7 @@ def _word(section: str) -> str:
 
 
 class _Differ:
-    def __init__(self, node: ExtractedNode, report: Report, file: str) -> None:
+    def __init__(self, node: ExtractedNode, report: CheckedSource, file: str) -> None:
         self.node = node
         self.report = report
         self.file = file

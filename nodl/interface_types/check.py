@@ -34,7 +34,7 @@ if TYPE_CHECKING:
 
     from nodl.interface_types.manifest import Manifest
     from nodl.interface_types.resolve import InterfaceIndex
-    from nodl.loading import Report
+    from nodl.loading import CheckedSource
 
 from nodl.diagnostics import Diagnostic, DocPath, Severity, format_path
 from nodl.vocabulary import SECTIONS
@@ -45,7 +45,7 @@ _USERS = {'msg': 'topics carry messages', 'srv': 'services need a service type',
           'action': 'actions need an action type'}
 
 
-def type_entries(report: Report) -> Iterator[tuple[DocPath, str, str]]:
+def type_entries(report: CheckedSource) -> Iterator[tuple[DocPath, str, str]]:
     """``(path of the type: value, type text, wanted namespace)`` of every endpoint in a
     node or interface document (a node's ``main``)."""
     data = report.data
@@ -81,7 +81,7 @@ def manifest_for(file: str, package_dir: str | None = None) -> Manifest | None:
         folder = parent
 
 
-def check_types(report: Report, index: InterfaceIndex, manifest: Manifest | None = None, *,
+def check_types(report: CheckedSource, index: InterfaceIndex, manifest: Manifest | None = None, *,
                 build: bool = False) -> list[Diagnostic]:
     """Check every endpoint type of ``report`` against ``index``; placed diagnostics.
 

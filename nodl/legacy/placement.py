@@ -21,7 +21,7 @@ from nodl.frontends.yaml_json import ParsedDocument
 if TYPE_CHECKING:
     from nodl.diagnostics import DocPath
     from nodl.legacy.converted import Converted
-    from nodl.loading import Report
+    from nodl.loading import CheckedSource
 
 __all__ = ['ConvertedDocument', 'converted_report']
 
@@ -45,17 +45,17 @@ class ConvertedDocument(ParsedDocument):
         return self._converted.position(path)
 
 
-def converted_report(converted: Converted) -> Report:
+def converted_report(converted: Converted) -> CheckedSource:
     """The converted node checked as a v2 node definition, placed in the legacy file.
 
     What :func:`~nodl.loading.check_source` gives for the v2 text of
     the conversion, except that ``file`` is the legacy file and every
     diagnostic (and every entity of the composed node) points into it.
     """
-    from nodl.loading import Report
+    from nodl.loading import CheckedSource
     from nodl.validation import Kind, validate_data
 
     # The converter writes a node definition (base and main) by construction: no kind to detect.
     data = converted.data
-    return Report(converted.source, Kind.NODE, data, validate_data(data, Kind.NODE),
+    return CheckedSource(converted.source, Kind.NODE, data, validate_data(data, Kind.NODE),
                   ConvertedDocument(converted))
