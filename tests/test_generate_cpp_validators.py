@@ -12,7 +12,7 @@ import subprocess
 from pathlib import Path
 from typing import Any
 
-from nodl.generate.cpp.parameters import CPP_PREDICATES, helper_lines
+from nodl.generate.cpp.parameter_code import CPP_PREDICATES, helper_lines
 from nodl.generate.cpp.text import cpp_type, cpp_value
 from nodl.validation.validators import BUILTIN_NAMES, VALIDATORS
 

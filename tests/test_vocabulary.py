@@ -158,7 +158,7 @@ def test_every_table_keyed_by_parameter_type_covers_the_vocabulary() -> None:
     from nodl.plan.parameter_plan import ROS_TYPES
 
     assert set(ROS_TYPES) == set(_PY_TYPES) == set(v.PARAMETER_TYPES)
-    # a C++ field of type none is an rclcpp::ParameterValue (generate/cpp/parameters.py)
+    # a C++ field of type none is an rclcpp::ParameterValue (generate/cpp/parameter_code.py)
     assert set(CPP_TYPES) == set(v.PARAMETER_TYPES) - {'none'}
     # the numbers the live observation reads are rcl_interfaces' constants of those names
     assert {getattr(ParameterType, ROS_TYPES[word]): word for word in ROS_TYPES} == _PARAMETER_TYPES

@@ -10,7 +10,7 @@ every value.
 from __future__ import annotations
 
 from nodl.composition.entities import EntityKind
-from nodl.generate.cpp import parameters as cparams
+from nodl.generate.cpp import parameter_code as cparams
 from nodl.generate.cpp.node import CppNode
 from nodl.generate.cpp.text import comment_lines
 
