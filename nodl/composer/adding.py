@@ -8,7 +8,7 @@ from nodl.composer.change import Change
 from nodl.composer.formats import new_group
 from nodl.composer.model import ComposedNode, Document, Group, Item, Kept
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.naming import join_name, namespace_error, node_name_error
+from nodl.naming import join_name, namespace_error, node_name_error, normalize_namespace
 from nodl.registry import node_info, overlay
 
 if TYPE_CHECKING:
@@ -70,12 +70,11 @@ def add_node(composition: Composition, package: str, executable: str, name: str,
     if why is not None:
         return Change([_problem(composition, f"'{name}' is not a node name: {why}")])
     if namespace is not None:
-        why = namespace_error(namespace if namespace.startswith('/') else '/' + namespace)
+        why = namespace_error(normalize_namespace(namespace))
         if why is not None:
             return Change([_problem(composition, f"'{namespace}' is not a namespace: {why}")])
 
-    wanted = join_name(namespace or '/', name) if namespace is None or namespace.startswith('/') \
-        else join_name('/' + namespace, name)
+    wanted = join_name(namespace or '/', name)
     if any(composition.fqn(n) == wanted for n in composition.nodes):
         return Change([_problem(composition, f'a node called {wanted} is in the composition '
                                 'already; give another --name')])

@@ -154,7 +154,7 @@ class Composition:
 
     def _find(self, ref: str, nodes: list[ComposedNode]
               ) -> tuple[ComposedNode | None, Diagnostic | None]:
-        finals = [n for n in nodes if self.fqn(n) == ref or self.fqn(n) == '/' + ref.lstrip('/')]
+        finals = [n for n in nodes if self.fqn(n) == ref or self.fqn(n) == join_name('/', ref.lstrip('/'))]
         if len(finals) == 1:
             return finals[0], None
         named = [n for n in nodes if self.fqn(n).rsplit('/', 1)[-1] == ref]

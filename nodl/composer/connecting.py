@@ -20,7 +20,7 @@ from nodl.composer.model import ComposedNode, Kept, Remap
 from nodl.composer.ports import Port, find_port, ports_of, verdict
 from nodl.composition.instance import NodeInstance
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.naming import parse_remap_rule
+from nodl.naming import parse_remap_rule, relative_to_namespace
 
 if TYPE_CHECKING:
     from nodl.composer.composition import Composition
@@ -95,9 +95,7 @@ def _target(composition: Composition, node: ComposedNode, using: Port, final: st
     """``final`` written relative to the node's namespace when that resolves the same."""
     launched = composition.analyse().node(node.id)
     namespace = launched.names.namespace if launched is not None and launched.names else '/'
-    if namespace != '/' and final.startswith(namespace.rstrip('/') + '/'):
-        return final[len(namespace.rstrip('/')) + 1:]
-    return final
+    return relative_to_namespace(final, namespace)
 
 
 def _rule_for(composition: Composition, node: ComposedNode, port: Port, final: str

@@ -27,6 +27,7 @@ from nodl.naming import (
     join_name,
     namespace_error,
     node_name_error,
+    normalize_namespace,
     parse_remap_rule,
 )
 
@@ -64,7 +65,7 @@ def rename(composition: Composition, ref: ComposedNode | str, name: str | None,
             problems.append(_error(composition, node, f"'{name}' is not a node name: {why}",
                                    'NODL982'))
     if namespace is not None:
-        why = namespace_error(namespace if namespace.startswith('/') else '/' + namespace)
+        why = namespace_error(normalize_namespace(namespace))
         if why is not None:
             problems.append(_error(composition, node, f"'{namespace}' is not a namespace: {why}",
                                    'NODL982'))
@@ -100,7 +101,7 @@ def _final_name(composition: Composition, node: ComposedNode, final_before: str,
         return written
     groups, _, name_before = final_before.rpartition('/')
     if old_namespace:  # the entry's own relative namespace came after the groups'
-        suffix = '/' + old_namespace.strip('/')
+        suffix = join_name('/', old_namespace.strip('/'))
         if not groups.endswith(suffix):
             return written
         groups = groups[:-len(suffix)]

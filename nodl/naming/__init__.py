@@ -53,6 +53,7 @@ from nodl.naming.resolution import (
     node_fqn,
     node_name_after_remaps,
     node_namespace_after_remaps,
+    relative_to_namespace,
     relativize,
     resolve_name,
     split_name,
@@ -71,5 +72,5 @@ __all__ = [
     'declared_name_error', 'declared_names', 'expand', 'expand_name', 'full_name_error',
     'fully_qualified', 'join_name', 'namespace_error', 'node_fqn', 'node_name_after_remaps',
     'node_name_error', 'node_namespace_after_remaps', 'normalize_namespace', 'parse_remap_rule',
-    'parse_remap_rules', 'relativize', 'resolve_name', 'split_name', 'topic_name_error',
+    'parse_remap_rules', 'relative_to_namespace', 'relativize', 'resolve_name', 'split_name', 'topic_name_error',
 ]

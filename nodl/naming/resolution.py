@@ -454,6 +454,12 @@ def relativize(name: str, node_name: str, namespace: str) -> str:
         return '~'
     if name.startswith(own + '/'):
         return '~' + name[len(own):]
+    return relative_to_namespace(name, namespace)
+
+
+def relative_to_namespace(name: str, namespace: str) -> str:
+    """An absolute ``name`` written relative to ``namespace`` when it lies under it (not at the
+    root): ``/ns/x`` in ``/ns`` is ``x``; otherwise the absolute name."""
     ns = '/' + namespace.strip('/') if namespace.strip('/') else ''
     if ns and name.startswith(ns + '/'):
         return name[len(ns) + 1:]

@@ -30,6 +30,7 @@ from nodl.composer.values import xml_value
 from nodl.composition.entities import Provider
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch.sandbox import LaunchLimits
+from nodl.naming import join_name
 from nodl.registry.overlay import using
 from nodl.studio.guard import FolderGuard
 from nodl.studio.layout import layout_file, read_layout, write_layout
@@ -323,7 +324,7 @@ class Session:
         container = _text(data, 'container', required=False) or None
         taken = {n['fqn'] for n in self.composition.instances}
         base, number = name, 1
-        while _join(namespace, name) in taken:
+        while join_name(namespace, name) in taken:
             number += 1
             name = f'{base}_{number}'
         with using(self.definitions):
@@ -525,11 +526,6 @@ class Session:
         self.code_ran = True
         self.composition.set_limits(LaunchLimits(execute=True))
         return {'ok': True, 'state': self.snapshot()}
-
-
-def _join(namespace: str, name: str) -> str:
-    namespace = '/' + namespace.strip('/') if namespace.strip('/') else ''
-    return f'{namespace}/{name}'
 
 
 def _run_nodl(arguments: list[str]) -> subprocess.CompletedProcess[str]:
