@@ -153,7 +153,7 @@ def test_the_table_covers_every_check_kind() -> None:
     assert len(kinds) == len(set(kinds))
     # (assumed-duplicate-node is planted in tests/fixtures/analysis/launch/assumed_names.launch.xml;
     # type-definition-mismatch needs two installed definitions of one type, which
-    # tests/test_analysis_checks_types.py plants in an overlay; draft-gaps needs an extracted
+    # tests/test_system_checks_types.py plants in an overlay; draft-gaps needs an extracted
     # draft, which tests/test_cli_analyse.py plants from tests/fixtures/overlays/gaps)
     assert set(kinds) == set(KINDS) - {'unnamed-node', 'not-analysable', 'broken-check',
                                        'assumed-duplicate-node', 'type-definition-mismatch',
@@ -252,7 +252,7 @@ def test_the_graph_page_of_the_example_system_fits_1280x800(analysis, browser, t
     """The page `nodl analyse --graph rover.html` writes, in headless Chromium at 1280x800: the
     18 nodes fit the window on load (no scrolling), the /rover namespace folds to one box,
     and the screenshot a person looks at is kept in tmp_path (fleet of 100 nodes:
-    tests/test_analysis_graph.py)."""
+    tests/test_graph.py)."""
     from selenium.webdriver.common.by import By
 
     from nodl.graph import render_graph

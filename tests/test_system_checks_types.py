@@ -1,4 +1,4 @@
-"""nodl analyse, type-definition-mismatch (analysis.checks.types): a topic's endpoints share a
+"""nodl analyse, type-definition-mismatch (nodl.system.checks.types): a topic's endpoints share a
 type name, but the overlay its publisher is installed in has another std_msgs/msg/String."""
 
 from __future__ import annotations

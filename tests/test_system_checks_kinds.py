@@ -1,4 +1,5 @@
-"""nodl analyse: every check kind fails on a planted problem, and stays quiet without it."""
+"""Every check kind of nodl.system.checks, run by nodl analyse: each fails on a planted
+problem, and stays quiet without it."""
 
 from __future__ import annotations
 
