@@ -47,6 +47,15 @@ def test_launch_arguments() -> None:
     assert bad.returncode == 2 and "'robot=other' is not NAME:=VALUE" in bad.stderr
 
 
+
+@pytest.mark.parametrize('target', [LAUNCH / 'system.launch.xml', REPO / 'examples' / 'laser_driver.nodl.yaml'])
+def test_the_graph_file_name_picks_its_format(tmp_path: Path, target: Path) -> None:
+    done = run('analyse', str(target), '--graph', str(tmp_path / 'system.png'))
+    assert done.returncode == 2 and done.stdout == ''
+    assert done.stderr == (f"nodl analyse: error: --graph {tmp_path / 'system.png'}: the name must end in "
+                           '.dot, .svg or .html (it picks the format)\n')
+    assert not (tmp_path / 'system.png').exists()
+
 @pytest.mark.parametrize('fmt', ['json', 'sarif', 'junit'])
 def test_formats_to_a_file(tmp_path: Path, fmt: str) -> None:
     out = tmp_path / f'report.{fmt}'

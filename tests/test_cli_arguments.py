@@ -10,7 +10,7 @@ import time
 import pytest
 
 from conftest import FIXTURES, REPO
-from nodl.cli.arguments import definition_problem, node_name, seconds
+from nodl.cli.arguments import definition_problem, launch_arguments, node_name, seconds, usage_error
 
 SCAN = FIXTURES / 'scan'
 
@@ -82,3 +82,24 @@ def test_bad_launch_limits_exit_2_in_one_line(verb: list[str], option: list[str]
     result = nodl(*verb, *option)
     assert result.returncode == 2 and result.stderr.rstrip().splitlines()[-1].endswith(message), result.stderr
     assert 'Traceback' not in result.stderr
+
+
+def test_launch_arguments_are_a_mapping_once_the_file_is_read(tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    launch = tmp_path / 'a.launch.xml'
+    launch.write_text('<launch/>\n')
+    assert launch_arguments(str(launch), ['robot:=r1', 'x:=a:=b', 'empty:='], 'nodl x') == {
+        'robot': 'r1', 'x': 'a:=b', 'empty': ''}
+    assert launch_arguments(str(launch), ['robot=r1'], 'nodl x') == 2
+    assert capsys.readouterr().err == "nodl x: error: launch argument 'robot=r1' is not NAME:=VALUE\n"
+    assert launch_arguments(str(tmp_path), [':=v'], 'nodl x') == 2  # the argument is said first
+    assert 'is not NAME:=VALUE' in capsys.readouterr().err
+    assert launch_arguments(str(tmp_path), [], 'nodl x') == 2
+    assert capsys.readouterr().err == f'{tmp_path}: error: cannot read the launch file: is a directory [NODL020]\n'
+
+
+def test_usage_error_says_what_was_refused_in_words(tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    assert usage_error('nodl x', ValueError('give a definition FILE')) == 2
+    assert capsys.readouterr().err == 'nodl x: error: give a definition FILE\n'
+    missing = FileNotFoundError(2, 'No such file or directory', str(tmp_path / 'missing.yaml'))
+    assert usage_error('nodl x', missing) == 2
+    assert capsys.readouterr().err == 'nodl x: error: No such file or directory\n'  # no [Errno 2]

@@ -14,7 +14,7 @@ from nodl.diagnostics import Severity
 from nodl.vocabulary import CLIENT_LIBRARIES
 
 if TYPE_CHECKING:
-    from collections.abc import Callable
+    from collections.abc import Callable, Sequence
 
     from nodl.launch.sandbox import LaunchLimits
     from nodl.registry.overlay import Definitions
@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 __all__ = ['seconds', 'node_name', 'definition_problem', 'add_client_library_argument',
            'positive_seconds', 'mebibytes', 'add_launch_code_arguments', 'launch_limits',
            'LAUNCH_CODE_HELP', 'add_definitions_argument', 'load_definitions',
-           'definitions_failed', 'run_with_definitions']
+           'definitions_failed', 'run_with_definitions', 'launch_arguments', 'usage_error']
 
 
 def seconds(text: str) -> float:
@@ -128,6 +128,33 @@ def launch_limits(args: argparse.Namespace) -> LaunchLimits:
 
     return LaunchLimits(execute=not args.no_exec, timeout=args.launch_timeout,
                         memory_mib=args.launch_memory)
+
+
+def launch_arguments(launch_file: str, items: Sequence[str], prog: str) -> dict[str, str] | int:
+    """The launch arguments ``NAME:=VALUE`` given with ``launch_file``, as a mapping; EXIT_USAGE
+    after saying why when one is not ``NAME:=VALUE`` or the launch file cannot be read (NODL020)."""
+    arguments: dict[str, str] = {}
+    for item in items:
+        name, sep, value = item.partition(':=')
+        if not sep or not name:
+            print(f"{prog}: error: launch argument '{item}' is not NAME:=VALUE", file=sys.stderr)
+            return EXIT_USAGE
+        arguments[name] = value
+    if not os.path.isfile(launch_file):
+        why = 'is a directory' if os.path.isdir(launch_file) else 'no such file'
+        print(f'{launch_file}: error: cannot read the launch file: {why} [NODL020]', file=sys.stderr)
+        return EXIT_USAGE
+    return arguments
+
+
+def usage_error(prog: str, exc: ValueError | OSError) -> int:
+    """Say what a library call refused (a ValueError's words; an OSError in words, without
+    ``[Errno N]``) as ``PROG: error: ...``: EXIT_USAGE."""
+    from nodl.files import describe_os_error
+
+    why = describe_os_error(exc) if isinstance(exc, OSError) else str(exc)
+    print(f'{prog}: error: {why}', file=sys.stderr)
+    return EXIT_USAGE
 
 
 def add_definitions_argument(parser: argparse.ArgumentParser) -> None:

@@ -64,32 +64,25 @@ class AnalyseVerb(Verb):
         from nodl.config import ConfigError
 
         prog = 'nodl analyse'
-        definitions_mode = self._definitions_mode(args.launch_file)
-        if definitions_mode:
-            return self._definitions(args, prog)
-        if args.name or args.remap:
-            print(f'{prog}: error: --name and --remap place definitions; a launch file names its '
-                  'nodes', file=sys.stderr)
-            return EXIT_USAGE
-        arguments: dict[str, str] = {}
-        for item in args.launch_arguments:
-            name, sep, value = item.partition(':=')
-            if not sep or not name:
-                print(f"{prog}: error: launch argument '{item}' is not NAME:=VALUE", file=sys.stderr)
-                return EXIT_USAGE
-            arguments[name] = value
-        graph_format = None
+        graph_format = None  # the name of --graph FILE picks the format
         if args.graph:
             graph_format = os.path.splitext(args.graph)[1].lower().lstrip('.')
             if graph_format not in ('dot', 'svg', 'html'):
                 print(f"{prog}: error: --graph {args.graph}: the name must end in .dot, .svg or "
                       '.html (it picks the format)', file=sys.stderr)
                 return EXIT_USAGE
-        if not os.path.isfile(args.launch_file):
-            why = 'is a directory' if os.path.isdir(args.launch_file) else 'no such file'
-            print(f'{args.launch_file}: error: cannot read the launch file: {why} [NODL020]',
-                  file=sys.stderr)
+        definitions_mode = self._definitions_mode(args.launch_file)
+        if definitions_mode:
+            return self._definitions(args, prog, graph_format)
+        if args.name or args.remap:
+            print(f'{prog}: error: --name and --remap place definitions; a launch file names its '
+                  'nodes', file=sys.stderr)
             return EXIT_USAGE
+        from nodl.cli.arguments import launch_arguments
+
+        arguments = launch_arguments(args.launch_file, args.launch_arguments, prog)
+        if isinstance(arguments, int):
+            return arguments
         from nodl.launch.file_kind import not_a_launch_file
 
         other = not_a_launch_file(args.launch_file)
@@ -147,7 +140,7 @@ class AnalyseVerb(Verb):
 
         return not_a_launch_file(first) == 'a NoDL node definition'
 
-    def _definitions(self, args: argparse.Namespace, prog: str) -> int:
+    def _definitions(self, args: argparse.Namespace, prog: str, graph_format: str | None) -> int:
         """``nodl analyse DEFINITION...``: the definitions placed and analysed as one system."""
         import os
 
@@ -178,13 +171,6 @@ class AnalyseVerb(Verb):
                       'reads a launch file, or node definitions (FILE or PACKAGE EXECUTABLE) '
                       '[NODL531]', file=sys.stderr)
                 return EXIT_USAGE
-        graph_format = None
-        if args.graph:
-            graph_format = os.path.splitext(args.graph)[1].lower().lstrip('.')
-            if graph_format not in ('dot', 'svg', 'html'):
-                print(f"{prog}: error: --graph {args.graph}: the name must end in .dot, .svg or "
-                      '.html (it picks the format)', file=sys.stderr)
-                return EXIT_USAGE
         from nodl.writing import output_is_input
 
         for option, output in (('-o', args.output), ('--log', args.log), ('--graph', args.graph)):
@@ -212,14 +198,10 @@ class AnalyseVerb(Verb):
             analysis = analyse_definitions(targets, args.name, remaps=args.remap,
                                            client_library=args.client_library, settings=settings,
                                            definitions=definitions)
-        except ValueError as exc:
-            print(f'{prog}: error: {exc}', file=sys.stderr)
-            return EXIT_USAGE
-        except OSError as exc:
-            from nodl.files import describe_os_error
+        except (ValueError, OSError) as exc:
+            from nodl.cli.arguments import usage_error
 
-            print(f'{prog}: error: {describe_os_error(exc)}', file=sys.stderr)
-            return EXIT_USAGE
+            return usage_error(prog, exc)
         return self._report(args, prog, analysis, policy, graph_format,
                             [*files, *_config_files(os.path.join(start, 'definitions'))])
 

@@ -155,24 +155,15 @@ class DescribeVerb(Verb):
         """``--all --launch LAUNCH [NAME:=VALUE...] -o DIR``."""
         import os
 
-        from nodl.cli.arguments import launch_limits
+        from nodl.cli.arguments import launch_arguments, launch_limits
         from nodl.cli.output import OutputError
         from nodl.live.session import LiveError
 
         prog = 'nodl describe'
         launch_file, *items = args.launch
-        arguments: dict[str, str] = {}
-        for item in items:
-            name, sep, value = item.partition(':=')
-            if not sep or not name:
-                print(f"{prog}: error: launch argument '{item}' is not NAME:=VALUE", file=sys.stderr)
-                return EXIT_USAGE
-            arguments[name] = value
-        if not os.path.isfile(launch_file):
-            why = 'is a directory' if os.path.isdir(launch_file) else 'no such file'
-            print(f'{launch_file}: error: cannot read the launch file: {why} [NODL020]',
-                  file=sys.stderr)
-            return EXIT_USAGE
+        arguments = launch_arguments(launch_file, items, prog)
+        if isinstance(arguments, int):
+            return arguments
         from nodl.cli.arguments import definitions_failed, load_definitions
 
         # as nodl analyse reads the launch file: --definitions, NODL_PATH, the nodl.toml that

@@ -92,7 +92,7 @@ class MonitorVerb(Verb):
         """The expected system, or an exit status after printing why."""
         import os
 
-        from nodl.cli.arguments import launch_limits, load_definitions
+        from nodl.cli.arguments import launch_arguments, launch_limits, load_definitions, usage_error
         from nodl.cli.verbs.analyse import AnalyseVerb
         from nodl.monitor.expected import expected_from_definitions, expected_from_launch
         from nodl.reporting import format_text
@@ -124,32 +124,16 @@ class MonitorVerb(Verb):
                 expected = expected_from_definitions(targets, args.name, remaps=args.remap,
                                                      client_library=args.client_library,
                                                      definitions=definitions)
-            except ValueError as exc:
-                print(f'{prog}: error: {exc}', file=sys.stderr)
-                return EXIT_USAGE
-            except OSError as exc:
-                from nodl.files import describe_os_error
-
-                print(f'{prog}: error: {describe_os_error(exc)}', file=sys.stderr)
-                return EXIT_USAGE
+            except (ValueError, OSError) as exc:
+                return usage_error(prog, exc)
         else:
             if args.name or args.remap:
                 print(f'{prog}: error: --name and --remap place definitions; a launch file names '
                       'its nodes', file=sys.stderr)
                 return EXIT_USAGE
-            arguments: dict[str, str] = {}
-            for item in args.launch_arguments:
-                name, sep, value = item.partition(':=')
-                if not sep or not name:
-                    print(f"{prog}: error: launch argument '{item}' is not NAME:=VALUE",
-                          file=sys.stderr)
-                    return EXIT_USAGE
-                arguments[name] = value
-            if not os.path.isfile(args.launch_file):
-                why = 'is a directory' if os.path.isdir(args.launch_file) else 'no such file'
-                print(f'{args.launch_file}: error: cannot read the launch file: {why} [NODL020]',
-                      file=sys.stderr)
-                return EXIT_USAGE
+            arguments = launch_arguments(args.launch_file, args.launch_arguments, prog)
+            if isinstance(arguments, int):
+                return arguments
             definitions = load_definitions(
                 args, prog, os.path.dirname(os.path.abspath(args.launch_file)))
             if isinstance(definitions, int):
