@@ -364,7 +364,7 @@ _NOT_ROS_NAMES = {
     ('nodl/composition/entities.py', "return f'{self.package}/{self.namespace}/{self.name}'"),
     ('nodl/generate/cpp/text.py', "return f'{package}/{namespace}/{rosidl_file_stem(name)}.hpp'"),
     # a parameter file's node key as rcl_yaml_param_parser normalizes it (a pattern, not a name)
-    ('nodl/launch/parameter_values.py', "name = key if key.startswith('/') else '/' + key"),
+    ('nodl/launch/rcl_yaml.py', "name = key if key.startswith('/') else '/' + key"),
     # launch_ros's prefix_namespace: a pushed namespace may stay relative until the node is made
     ('nodl/launch/ros_actions.py', "combined = ('' if base == '/' else base) + '/' + namespace"),
     # SROS 2's own resolution of the names written in a policy profile (its XSL templates)

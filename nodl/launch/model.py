@@ -164,14 +164,6 @@ class LaunchedNode:
         """True when the launch entry names the node; False when the program picks the name."""
         return self.name is not None
 
-    def parameter_overrides(self, fqn: str | None = None) -> dict[str, Any]:
-        """The parameters the node receives by name (see
-        :func:`nodl.launch.parameter_values.parameter_overrides`; ``fqn`` is needed when the
-        launch entry gives no name)."""
-        from nodl.launch.parameter_values import parameter_overrides
-
-        return parameter_overrides(self, fqn)
-
     @property
     def fqn(self) -> str | None:
         """``namespace/name`` when the name is known, else None."""

@@ -5,7 +5,8 @@
   ``1`` is an int, ``1.0`` a float, ``true`` a bool, ``'1'`` a string, lists must be uniform.
 * Files: :func:`load_parameter_file` keeps the data and the line of every node key and
   parameter, so that a later check can point into the file.
-* Matching and precedence (which keys apply to a node, which value wins) are in
+* Matching (which keys apply to a node) and rcl's typing of values are in
+  :mod:`nodl.launch.rcl_yaml`; precedence (which value wins) is in
   :mod:`nodl.launch.parameter_values`.
 """
 
@@ -18,7 +19,11 @@ from typing import Any, NamedTuple
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch.errors import LaunchProblem
-from nodl.launch.parameter_values import match_composable_parameter_keys, match_parameter_file_nodes
+from nodl.launch.rcl_yaml import (
+    match_composable_parameter_keys,
+    match_parameter_file_nodes,
+    rcl_node_value,
+)
 
 __all__ = ['ParameterValue', 'RuntimeValue', 'coerce_to_type', 'get_typed_value', 'evaluate_value',
            'ParameterFileNode', 'ParameterFile', 'load_parameter_file', 'parse_parameter_text',
@@ -446,7 +451,6 @@ def _parse_parameter_text(name: str, text: str) -> ParameterFile:
 
     from nodl.frontends.source import SourceText
     from nodl.frontends.yaml_json import parse_document
-    from nodl.launch.parameter_values import rcl_node_value
 
     doc = parse_document(SourceText(text, name))
     if doc.diagnostics:

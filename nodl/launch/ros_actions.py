@@ -198,7 +198,7 @@ def _ros_arguments(context: LaunchContext, node: Any, location: SourceLocation,
                 if ':=' not in value:
                     raise LaunchProblem('NODL518', f"invalid parameter rule '{value}'; expected NAME:=VALUE")
                 name, text = value.split(':=', 1)
-                from nodl.launch.parameter_values import rcl_yaml_value
+                from nodl.launch.rcl_yaml import rcl_yaml_value
 
                 # rcl: "-p NODE:NAME:=VALUE" files the value under the node key NODE (a node
                 # name, matched as "/NODE"), "-p NAME:=VALUE" under "/**"; VALUE typed by rcl.

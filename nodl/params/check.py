@@ -21,8 +21,8 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 from nodl.diagnostics import Diagnostic, Severity
-from nodl.launch.parameter_values import match_parameter_file_nodes
 from nodl.launch.params import load_parameter_file
+from nodl.launch.rcl_yaml import match_parameter_file_nodes
 from nodl.model.parameter_types import TypeSpec
 from nodl.plan.parameter_plan import (
     ParametersPlan,
