@@ -104,6 +104,10 @@ def _unescape(text: str) -> str:
 #: Runs of characters that are text whatever follows, outside quotes and inside each quote
 #: (what is not a backslash, a ``$`` or the closing quote).
 _ORDINARY = {None: re.compile(r'[^\\$]+'), "'": re.compile(r"[^\\$']+"), '"': re.compile(r'[^\\$"]+')}
+#: What ends a substitution's argument (by the quote the substitution stands in): a space, a
+#: parenthesis or a quote; and the runs of characters with no meaning there.
+_ARGUMENT_STOP = {None: ' ()\'"', "'": " ()'", '"': ' ()"'}
+_ARGUMENT_ORDINARY = {quote: re.compile('[^\\\\$' + re.escape(stop) + ']+') for quote, stop in _ARGUMENT_STOP.items()}
 
 
 class _Parser:
@@ -119,10 +123,16 @@ class _Parser:
 
     def template(self, i: int, quote: str | None) -> tuple[list[Substitution], int]:
         """Text and substitutions up to the end (or the closing ``quote``)."""
+        return self.pieces(i, quote, _ORDINARY[quote], quote or '')
+
+    def pieces(self, i: int, quote: str | None, ordinary: re.Pattern[str],
+               stop: str) -> tuple[list[Substitution], int]:
+        """Text (escapes kept until a piece ends) and substitutions from ``i`` up to the end
+        or the first character of ``stop``; ``ordinary`` matches a run of characters with no
+        meaning here."""
         out: list[Substitution] = []
         buffer: list[str] = []
         text = self.text
-        ordinary = _ORDINARY[quote]
         while i < len(text):
             run = ordinary.match(text, i)  # (a run of characters with no meaning here, at once)
             if run is not None:
@@ -130,7 +140,7 @@ class _Parser:
                 i = run.end()
                 continue
             char = text[i]
-            if quote is not None and char == quote:
+            if char in stop:
                 break
             if char == '\\' and i + 1 < len(text):
                 buffer.append(text[i:i + 2])
@@ -181,28 +191,7 @@ class _Parser:
             if j >= len(text) or text[j] != q:
                 raise self.fail(f'unterminated {q}-quoted argument', i)
             return parts, j + 1
-        out: list[Substitution] = []
-        buffer: list[str] = []
-        stop = ' ()' + ('\'"' if quote is None else quote)
-        while i < len(text):
-            char = text[i]
-            if char == '\\' and i + 1 < len(text):
-                buffer.append(text[i:i + 2])
-                i += 2
-                continue
-            if char == '$' and text.startswith('$(', i):
-                if buffer:
-                    out.append(TextSubstitution(_unescape(''.join(buffer))))
-                    buffer = []
-                sub, i = self.substitution(i, quote)
-                out.append(sub)
-                continue
-            if char in stop:
-                break
-            buffer.append(char)
-            i += 1
-        if buffer:
-            out.append(TextSubstitution(_unescape(''.join(buffer))))
+        out, i = self.pieces(i, quote, _ARGUMENT_ORDINARY[quote], _ARGUMENT_STOP[quote])
         if not out:
             raise self.fail('expected an argument', i)
         return out, i
