@@ -78,29 +78,26 @@ def bundled_schema(kind: str) -> dict[str, Any]:
     return result
 
 
-def _external_files(node: Any) -> set[str]:
-    found: set[str] = set()
+def _external_refs(node: Any) -> list[dict[str, Any]]:
+    """The objects under ``node`` whose ``$ref`` points into another file."""
+    found: list[dict[str, Any]] = []
     stack = [node]
     while stack:
         item = stack.pop()
         if isinstance(item, dict):
             ref = item.get('$ref')
             if isinstance(ref, str) and not ref.startswith('#'):
-                found.add(ref.partition('#')[0])
+                found.append(item)
             stack.extend(item.values())
         elif isinstance(item, list):
             stack.extend(item)
     return found
 
 
+def _external_files(node: Any) -> set[str]:
+    return {item['$ref'].partition('#')[0] for item in _external_refs(node)}
+
+
 def _localize(node: Any) -> None:
-    stack = [node]
-    while stack:
-        item = stack.pop()
-        if isinstance(item, dict):
-            ref = item.get('$ref')
-            if isinstance(ref, str) and not ref.startswith('#'):
-                item['$ref'] = '#' + ref.partition('#')[2]
-            stack.extend(item.values())
-        elif isinstance(item, list):
-            stack.extend(item)
+    for item in _external_refs(node):
+        item['$ref'] = '#' + item['$ref'].partition('#')[2]
