@@ -16,7 +16,7 @@ import pytest
 
 from conftest import FIXTURES
 from nodl.live.check import load_definition
-from nodl.live.conformance import DRIFT_KINDS, Difference, compare, conforms, parse_remaps
+from nodl.live.conformance import DRIFT_KINDS, LiveDiagnostic, compare, conforms, parse_remaps
 from nodl.live.observe import ObservedEndpoint, ObservedNode, ObservedParameter
 
 LIVE = FIXTURES / 'live'
@@ -91,11 +91,11 @@ def _endpoint(observed: ObservedNode, section: str, name: str) -> ObservedEndpoi
     return next(e for e in getattr(observed, section) if e.name == name)
 
 
-def _drift(differences: list[Difference]) -> list[Difference]:
+def _drift(differences: list[LiveDiagnostic]) -> list[LiveDiagnostic]:
     return [d for d in differences if d.kind in DRIFT_KINDS]
 
 
-def _only(differences: list[Difference], kind: str) -> Difference:
+def _only(differences: list[LiveDiagnostic], kind: str) -> LiveDiagnostic:
     found = [d for d in differences if d.kind == kind]
     assert len(found) == 1, differences
     return found[0]
@@ -490,20 +490,21 @@ def test_remapped_node_conforms_only_with_its_remaps(composed) -> None:
     assert d.name == '/base/odometry' and d.layer == 'main'
 
 
-# -- Difference and conforms -----------------------------------------------------------------
+# -- LiveDiagnostic and conforms -----------------------------------------------------------------
 
 
 def test_a_difference_is_a_coded_diagnostic_with_its_values() -> None:
     import pickle
 
     from nodl.diagnostics import Diagnostic, Severity
-    from nodl.live.conformance import LiveDiagnostic
+    from nodl.live import conformance
     from nodl.location import Location
 
     d = LiveDiagnostic('qos', 'publishers', '/base/status', "publisher '/base/status' durability: "
                        'declared TRANSIENT_LOCAL, observed VOLATILE', declared='TRANSIENT_LOCAL',
                        observed='VOLATILE', layer='main', location=Location('robot.nodl.yaml', 7, 5))
-    assert isinstance(d, Diagnostic) and Difference is LiveDiagnostic  # the former name, kept
+    assert isinstance(d, Diagnostic)
+    assert not hasattr(conformance, 'Difference')  # the former name is gone (issue 16)
     assert (d.severity, d.code, d.path, d.file, d.line, d.column) == (
         Severity.ERROR, 'NODL404', ('publishers', '/base/status'), 'robot.nodl.yaml', 7, 5)
     assert d.brief() == ("error: qos: publisher '/base/status' durability: declared TRANSIENT_LOCAL, "
@@ -535,11 +536,11 @@ def test_a_difference_is_a_coded_diagnostic_with_its_values() -> None:
     *[([kind], False) for kind in DRIFT_KINDS],
 ])
 def test_conforms(kinds: list[str], expected: bool) -> None:
-    assert conforms(Difference(k, 'publishers', '/x', 'm') for k in kinds) is expected
+    assert conforms(LiveDiagnostic(k, 'publishers', '/x', 'm') for k in kinds) is expected
 
 
 def test_severities() -> None:
-    assert {k: Difference(k, 's', 'n', 'm').severity for k in (*DRIFT_KINDS, 'value', 'unverifiable')} \
+    assert {k: LiveDiagnostic(k, 's', 'n', 'm').severity for k in (*DRIFT_KINDS, 'value', 'unverifiable')} \
         == {**{k: 'error' for k in DRIFT_KINDS}, 'value': 'warning', 'unverifiable': 'info'}
 
 

@@ -6,7 +6,7 @@ import time
 
 import pytest
 
-from nodl.monitor.graph import Snapshot, TopicEndpoint, observed_node
+from nodl.monitor.graph import LiveTopicEndpoint, Snapshot, observed_node
 
 
 def test_observed_node_from_a_snapshot() -> None:
@@ -16,8 +16,8 @@ def test_observed_node_from_a_snapshot() -> None:
         'subscriptions': [],
         'service_servers': [('/f/_action/send_goal', ['test_msgs/action/Fibonacci_SendGoal'])],
         'service_clients': []}},
-        {'/n/out': [TopicEndpoint('/n/out', '/n', 'publisher', 'std_msgs/msg/String',
-                                  (('reliability', 'RELIABLE'),), ('history',), '', '00')]})
+        {'/n/out': [LiveTopicEndpoint('/n/out', '/n', 'publisher', 'std_msgs/msg/String',
+                                      (('reliability', 'RELIABLE'),), ('history',), '', '00')]})
     observed = observed_node('/n', snapshot)
     assert observed is not None
     assert [(e.name, e.qos, e.unobserved) for e in observed.publishers] == [
@@ -116,8 +116,8 @@ def test_discovered_waits_for_every_announced_endpoint_s_qos() -> None:
     raw = {'publishers': [('/n/out', ['std_msgs/msg/String'])],
            'subscriptions': [('/n/in', ['std_msgs/msg/String'])],
            'service_servers': [], 'service_clients': []}
-    out = TopicEndpoint('/n/out', '/n', 'publisher', 'std_msgs/msg/String', (), (), '', '01')
-    into = TopicEndpoint('/n/in', '/n', 'subscription', 'std_msgs/msg/String', (), (), '', '02')
+    out = LiveTopicEndpoint('/n/out', '/n', 'publisher', 'std_msgs/msg/String', (), (), '', '01')
+    into = LiveTopicEndpoint('/n/in', '/n', 'subscription', 'std_msgs/msg/String', (), (), '', '02')
     assert not discovered(Snapshot(0.0, {'/n': 1}, {'/n': raw}, {'/n/out': [out]}))
     assert discovered(Snapshot(0.0, {'/n': 1}, {'/n': raw}, {'/n/out': [out], '/n/in': [into]}))
 

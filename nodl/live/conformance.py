@@ -35,7 +35,7 @@ from nodl.model import ENDPOINT_SECTIONS, QOS_POLICIES, Interface
 from nodl.naming import InvalidNameError, NodeNames, expand
 from nodl.vocabulary import SECTION_WORDS, SERVICE_SECTIONS, TOPIC_SECTIONS
 
-__all__ = ['LiveDiagnostic', 'Difference', 'DRIFT_KINDS', 'KIND_CODES', 'compare', 'place',
+__all__ = ['LiveDiagnostic', 'DRIFT_KINDS', 'KIND_CODES', 'UNPLACED', 'compare', 'place',
            'parse_remaps', 'conforms', 'Remaps', 'final_name']
 
 #: Kinds that make a node non-conforming.
@@ -176,11 +176,6 @@ def _rebuild(cls: type[LiveDiagnostic], fields: dict[str, Any]) -> LiveDiagnosti
     for field, value in fields.items():
         object.__setattr__(new, field, value)
     return new
-
-
-#: The name the live comparison's results had before they were diagnostics (kept for
-#: the callers that build them: nodl.live.type_skew, nodl.monitor).
-Difference = LiveDiagnostic
 
 
 #: How a node's names are remapped: its :class:`~nodl.naming.NodeNames` (exact: what

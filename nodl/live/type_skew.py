@@ -30,7 +30,7 @@ from nodl.interface_types.hashes import (
     type_hash,
 )
 from nodl.interface_types.tree import InterfaceFileError
-from nodl.live.conformance import Difference, Remaps, final_name
+from nodl.live.conformance import LiveDiagnostic, Remaps, final_name
 from nodl.live.observe import ACTION_INFIX, ObservedEndpoint, ObservedNode
 from nodl.vocabulary import (
     ACTION_SECTIONS,
@@ -209,22 +209,22 @@ def _advice(type_name: str) -> str:
 
 
 def _topic(index: InterfaceIndex, asker: TypeDescriptions, session: Any, observed: ObservedNode,
-           section: str, endpoint: ObservedEndpoint, where: Location | None) -> Difference | None:
+           section: str, endpoint: ObservedEndpoint, where: Location | None) -> LiveDiagnostic | None:
     reported = _reported_hash(session, endpoint.name, observed, section == 'publishers')
     try:
         installed = _installed(index, endpoint.type)
     except _Unreadable as exc:
-        return Difference('skew_unverifiable', section, endpoint.name,
-                          f"{endpoint.name}: the installed definition of '{endpoint.type}' cannot "
-                          f'be read ({exc}), so its hash is not compared', location=where)
+        return LiveDiagnostic('skew_unverifiable', section, endpoint.name,
+                              f"{endpoint.name}: the installed definition of '{endpoint.type}' cannot "
+                              f'be read ({exc}), so its hash is not compared', location=where)
     if installed is None:
         return None
     if reported is None:
-        return Difference('skew_unverifiable', section, endpoint.name,
-                          f'{endpoint.name}: the middleware reports no type hash', location=where)
+        return LiveDiagnostic('skew_unverifiable', section, endpoint.name,
+                              f'{endpoint.name}: the middleware reports no type hash', location=where)
     if reported == installed:
         return None
-    return Difference(
+    return LiveDiagnostic(
         'version_skew', section, endpoint.name,
         f"{endpoint.name}: the node uses another definition of '{endpoint.type}' than the "
         f'installed one ({_fields(index, asker, endpoint.type, reported)}); '
@@ -261,28 +261,28 @@ def _service_parts(index: InterfaceIndex, asker: TypeDescriptions, session: Any,
 
 def _service(index: InterfaceIndex, asker: TypeDescriptions, session: Any, observed: ObservedNode,
              section: str, endpoint: ObservedEndpoint, where: Location | None,
-             unchecked: list[str]) -> Difference | None:
+             unchecked: list[str]) -> LiveDiagnostic | None:
     try:
         parts = _service_parts(index, asker, session, observed, endpoint.name, endpoint.type,
                                section == 'service_servers')
     except _Unreadable as exc:
-        return Difference('skew_unverifiable', section, endpoint.name,
-                          f"{endpoint.name}: the installed definition of '{endpoint.type}' cannot "
-                          f'be read ({exc}), so its hash is not compared', location=where)
+        return LiveDiagnostic('skew_unverifiable', section, endpoint.name,
+                              f"{endpoint.name}: the installed definition of '{endpoint.type}' cannot "
+                              f'be read ({exc}), so its hash is not compared', location=where)
     if parts is None:
         unchecked.append(endpoint.name)
         return None
     if not parts:
         return None
-    return Difference('version_skew', section, endpoint.name,
-                      f"{endpoint.name}: the node uses another definition of '{endpoint.type}' "
-                      f"than the installed one ({'; '.join(parts)}); {_advice(endpoint.type)}",
-                      location=where)
+    return LiveDiagnostic('version_skew', section, endpoint.name,
+                          f"{endpoint.name}: the node uses another definition of '{endpoint.type}' "
+                          f"than the installed one ({'; '.join(parts)}); {_advice(endpoint.type)}",
+                          location=where)
 
 
 def _action(index: InterfaceIndex, asker: TypeDescriptions, session: Any, observed: ObservedNode,
             section: str, endpoint: ObservedEndpoint, where: Location | None,
-            unchecked: list[str]) -> Difference | None:
+            unchecked: list[str]) -> LiveDiagnostic | None:
     """The action's feedback and status topics (hashes in the graph), its goal and result
     services (as services are checked); one difference naming every part that differs."""
     server = section == 'action_servers'
@@ -310,22 +310,22 @@ def _action(index: InterfaceIndex, asker: TypeDescriptions, session: Any, observ
             compared = True
             found += parts
     except _Unreadable as exc:
-        return Difference('skew_unverifiable', section, name,
-                          f"{name}: the installed definition of '{action}' cannot be read "
-                          f'({exc}), so its hash is not compared', location=where)
+        return LiveDiagnostic('skew_unverifiable', section, name,
+                              f"{name}: the installed definition of '{action}' cannot be read "
+                              f'({exc}), so its hash is not compared', location=where)
     if not compared and _installed(index, action) is not None:
-        return Difference('skew_unverifiable', section, name,
-                          f'{name}: the middleware reports no type hash for any part of the action',
-                          location=where)
+        return LiveDiagnostic('skew_unverifiable', section, name,
+                              f'{name}: the middleware reports no type hash for any part of the action',
+                              location=where)
     if not found:
         return None
-    return Difference('version_skew', section, name,
-                      f"{name}: the node uses another definition of '{action}' than the installed "
-                      f"one ({'; '.join(found)}); {_advice(action)}", location=where)
+    return LiveDiagnostic('version_skew', section, name,
+                          f"{name}: the node uses another definition of '{action}' than the installed "
+                          f"one ({'; '.join(found)}); {_advice(action)}", location=where)
 
 
 def type_skew(session: Any, observed: ObservedNode, index: InterfaceIndex,
-              locations: dict[tuple[str, str], Location] | None = None) -> list[Difference]:
+              locations: dict[tuple[str, str], Location] | None = None) -> list[LiveDiagnostic]:
     """A ``version_skew`` difference (NODL420) for each endpoint of ``observed`` whose type
     is not the installed definition: topics by their reported hash, naming the differing
     fields; actions by their feedback and status topics and goal and result services;
@@ -337,7 +337,7 @@ def type_skew(session: Any, observed: ObservedNode, index: InterfaceIndex,
     way to compare.  A type that is not installed here is not compared.
     """
     asker = TypeDescriptions(session, observed)
-    out: list[Difference] = []
+    out: list[LiveDiagnostic] = []
     unchecked: list[str] = []
     try:
         for section in TOPIC_SECTIONS + ACTION_SECTIONS + SERVICE_SECTIONS:
@@ -360,7 +360,7 @@ def type_skew(session: Any, observed: ObservedNode, index: InterfaceIndex,
         unchecked.sort(key=lambda n: n.startswith(own))
         shown = ', '.join(unchecked[:12]) + (f' and {len(unchecked) - 12} more'
                                               if len(unchecked) > 12 else '')
-        out.append(Difference(
+        out.append(LiveDiagnostic(
             'services_unverifiable', 'service_servers', observed.fully_qualified_name,
             f'{observed.fully_qualified_name}: the service types of this node cannot be compared '
             'with the installed definitions (the middleware reports no hash for services, and '

@@ -22,7 +22,7 @@ from nodl.live.qos import qos_from_rclpy
 from nodl.live.session import is_toolkit_node, split_node_name
 from nodl.naming import join_name
 
-__all__ = ['TopicEndpoint', 'Snapshot', 'GraphView', 'observed_node', 'discovered']
+__all__ = ['LiveTopicEndpoint', 'Snapshot', 'GraphView', 'observed_node', 'discovered']
 
 _SECTIONS = ('publishers', 'subscriptions', 'service_servers', 'service_clients')
 #: How many topics a scan reads between two calls of its ``meanwhile``.
@@ -30,7 +30,7 @@ SCAN_CHUNK = 100
 
 
 @dataclass(frozen=True)
-class TopicEndpoint:
+class LiveTopicEndpoint:
     """One publisher or subscription of a topic, as the graph reports it."""
 
     topic: str
@@ -66,16 +66,16 @@ class Snapshot:
     #: The raw endpoints of the nodes asked for (by name: ``(name, [types])`` per section).
     endpoints: dict[str, dict[str, list[tuple[str, list[str]]]]] = field(default_factory=dict)
     #: Every topic's publishers and subscriptions, by topic.
-    topics: dict[str, list[TopicEndpoint]] = field(default_factory=dict)
+    topics: dict[str, list[LiveTopicEndpoint]] = field(default_factory=dict)
     #: Seconds the scan took.
     cost: float = 0.0
-    _by_node: dict[str, tuple[TopicEndpoint, ...]] | None = field(default=None, repr=False,
+    _by_node: dict[str, tuple[LiveTopicEndpoint, ...]] | None = field(default=None, repr=False,
                                                                    compare=False)
 
-    def of_node(self, fqn: str) -> tuple[TopicEndpoint, ...]:
+    def of_node(self, fqn: str) -> tuple[LiveTopicEndpoint, ...]:
         """The topic endpoints of node ``fqn`` (indexed on first use)."""
         if self._by_node is None:
-            index: dict[str, list[TopicEndpoint]] = {}
+            index: dict[str, list[LiveTopicEndpoint]] = {}
             for infos in self.topics.values():
                 for info in infos:
                     index.setdefault(info.node, []).append(info)
@@ -108,7 +108,7 @@ class GraphView:
     def __init__(self, node: Any) -> None:
         self.node = node
         #: The endpoints converted by the last scan, by (topic, kind, GID, namespace, name).
-        self._known: dict[tuple[str, str, bytes, str, str], TopicEndpoint | None] = {}
+        self._known: dict[tuple[str, str, bytes, str, str], LiveTopicEndpoint | None] = {}
 
     def scan(self, counts: Mapping[str, int], wanted: Iterable[str],
              everyone: bool = False, meanwhile: Callable[[], None] | None = None) -> Snapshot:
@@ -135,14 +135,14 @@ class GraphView:
             except Exception:  # noqa: BLE001 - it vanished between two calls: next scan
                 continue
         known = self._known
-        seen: dict[tuple[str, str, bytes, str, str], TopicEndpoint | None] = {}
+        seen: dict[tuple[str, str, bytes, str, str], LiveTopicEndpoint | None] = {}
         publishers, subscriptions = self._info_functions()
         for index, (topic, _) in enumerate(node.get_topic_names_and_types()):
             if meanwhile is not None and index % SCAN_CHUNK == SCAN_CHUNK - 1:
                 paused = time.process_time()
                 meanwhile()
                 process += time.process_time() - paused
-            found: list[TopicEndpoint] = []
+            found: list[LiveTopicEndpoint] = []
             for kind, infos in (('publisher', publishers(topic)),
                                 ('subscription', subscriptions(topic))):
                 for info in infos:
@@ -190,8 +190,8 @@ class GraphView:
 
         return publishers, subscriptions
 
-    def _endpoint(self, topic: str, kind: str, raw: dict[str, Any]) -> TopicEndpoint | None:
-        """One endpoint info as a :class:`TopicEndpoint` (None for the toolkit's own)."""
+    def _endpoint(self, topic: str, kind: str, raw: dict[str, Any]) -> LiveTopicEndpoint | None:
+        """One endpoint info as a :class:`LiveTopicEndpoint` (None for the toolkit's own)."""
         from rclpy.topic_endpoint_info import TopicEndpointInfo
 
         owner = join_name(raw['node_namespace'], raw['node_name'])
@@ -199,9 +199,9 @@ class GraphView:
             return None
         info = TopicEndpointInfo(**raw)
         qos, unobserved = qos_from_rclpy(info.qos_profile)
-        return TopicEndpoint(topic, owner, kind, info.topic_type, tuple(sorted(qos.items())),
-                             tuple(unobserved), _hash_text(getattr(info, 'topic_type_hash', None)),
-                             bytes(info.endpoint_gid).hex())
+        return LiveTopicEndpoint(topic, owner, kind, info.topic_type, tuple(sorted(qos.items())),
+                                 tuple(unobserved), _hash_text(getattr(info, 'topic_type_hash', None)),
+                                 bytes(info.endpoint_gid).hex())
 
 
 def discovered(snapshot: Snapshot) -> bool:
@@ -234,7 +234,7 @@ def observed_node(fqn: str, snapshot: Snapshot) -> ObservedNode | None:
         return None
     namespace, name = split_node_name(fqn)
     observed = ObservedNode(name, namespace)
-    qos: dict[tuple[str, str], TopicEndpoint] = {}
+    qos: dict[tuple[str, str], LiveTopicEndpoint] = {}
     for info in snapshot.of_node(fqn):
         qos.setdefault((info.kind, info.topic), info)
     for section in _SECTIONS:

@@ -39,7 +39,13 @@ from typing import Any
 from nodl.live.graph_events import GraphFollower
 from nodl.live.observe import ObservedNode, ObservedParameter, ParameterRead
 from nodl.live.session import MONITOR_NODE_NAME, LiveError, close_session, is_hidden_node, open_session, require_rclpy
-from nodl.monitor.checks import Finding, connection_findings, endpoint_findings, parameter_event_findings, rate_finding
+from nodl.monitor.checks import (
+    StatusFinding,
+    connection_findings,
+    endpoint_findings,
+    parameter_event_findings,
+    rate_finding,
+)
 from nodl.monitor.expected import DeadlineTopic, ExpectedNode, ExpectedSystem
 from nodl.monitor.graph import GraphView, Snapshot, discovered, observed_node
 from nodl.monitor.status import SYSTEM, Status, status_name, to_message
@@ -129,8 +135,8 @@ class _NodeState:
     parameters: dict[str, ObservedParameter] | None = None
     params_state: str = 'unread'  # unread, reading, read, none
     params_buffer: list[tuple[str, str, Any, bool]] = field(default_factory=list)
-    event_findings: dict[str, list[Finding]] = field(default_factory=dict)
-    endpoint_findings: list[Finding] = field(default_factory=list)
+    event_findings: dict[str, list[StatusFinding]] = field(default_factory=dict)
+    endpoint_findings: list[StatusFinding] = field(default_factory=list)
     #: The parameter read under way (its clients on the monitor's node), None when none.
     reading: ParameterRead | None = None
     #: The liveness client (``~/get_parameters``, on the probe node: polled, not waited on).
@@ -183,7 +189,7 @@ class Monitor:
         self.graph: GraphFollower | None = None
         self.view: GraphView | None = None
         self.snapshot: Snapshot | None = None
-        self.connections: dict[str, list[Finding]] = {}
+        self.connections: dict[str, list[StatusFinding]] = {}
         self.arrivals: dict[str, deque[float]] = {}
         self.subscribed_at: dict[str, float] = {}
         self.started = 0.0
@@ -208,7 +214,7 @@ class Monitor:
         self._event_refreshed: dict[str, float] = {}
         #: The last sequence number of each /parameter_events publisher (by GID).
         self._event_sequences: dict[bytes, int] = {}
-        self._unverifiable_rates: list[Finding] = []
+        self._unverifiable_rates: list[StatusFinding] = []
         self._rate_subscriptions: list[tuple[Any, deque[float]]] = []
         self.publisher: Any = None
         #: A second node, never waited on: the rate subscriptions and liveness clients,
@@ -302,7 +308,7 @@ class Monitor:
             try:
                 kind = getattr(importlib.import_module(f'{package}.msg'), name)
             except (ImportError, AttributeError, ValueError):
-                self._unverifiable_rates.append(Finding(
+                self._unverifiable_rates.append(StatusFinding(
                     'NODL408', 'info', f'rate {topic}', f"the rate of '{topic}' cannot be "
                     f'measured: its type {deadline.type} is not installed', deadline.location))
                 continue
@@ -735,17 +741,17 @@ class Monitor:
         if expected.definition_file:
             status.facts.append(('definition', expected.definition_file))
         else:
-            status.findings.append(Finding('NODL433', 'info', 'definition',
-                                           f'{expected.no_definition}', expected.location))
+            status.findings.append(StatusFinding('NODL433', 'info', 'definition',
+                                                 f'{expected.no_definition}', expected.location))
         settings = self.settings
         if not state.count:
             if state.ever_seen:
-                status.findings.append(Finding(
+                status.findings.append(StatusFinding(
                     'NODL430', 'error', 'node', f'{expected.fqn} is not running: gone from the '
                     f'graph {now - (state.gone_at or now):.1f} s ago', expected.location))
                 status.facts.append(('state', 'gone'))
             elif now - self.started >= settings.grace_period:
-                status.findings.append(Finding(
+                status.findings.append(StatusFinding(
                     'NODL430', 'error', 'node', f'{expected.fqn} is not running: not seen within '
                     f'the grace period of {settings.grace_period:g} s', expected.location))
                 status.facts.append(('state', 'missing'))
@@ -760,18 +766,18 @@ class Monitor:
         if state.count > 1:
             since = state.second_at if state.second_at is not None else self.started
             if state.namesake_at_start or now - since >= settings.restart_window:
-                status.findings.append(Finding(
+                status.findings.append(StatusFinding(
                     'NODL550', 'error', 'node', f'duplicate-node: {state.count} nodes in the graph '
                     f'are named {expected.fqn} (namesakes): their endpoints cannot be told apart; '
                     'give each a unique name', expected.location))
             else:
-                status.findings.append(Finding(
+                status.findings.append(StatusFinding(
                     'NODL432', 'warning', 'node', f'{expected.fqn} is restarting: a new node of '
                     f'this name appeared {now - since:.1f} s ago while the old one is still in the '
                     f'graph (until its participant lease ends; namesakes after '
                     f'{settings.restart_window:g} s)', expected.location))
         if state.not_answering_since is not None:
-            status.findings.append(Finding(
+            status.findings.append(StatusFinding(
                 'NODL434', 'error', 'node', f'{expected.fqn} stopped answering its parameter '
                 f'services {now - state.not_answering_since:.1f} s ago (killed or hung?)',
                 expected.location))
@@ -827,21 +833,21 @@ class Monitor:
             if any(fnmatch.fnmatchcase(fqn, p) or fnmatch.fnmatchcase(base, p) for p in patterns):
                 continue
             unexpected.append(fqn)
-            status.findings.append(Finding('NODL431', 'warning', f'node {fqn}',
-                                           f'{fqn} is running but the expected system does not '
-                                           'have it'))
+            status.findings.append(StatusFinding('NODL431', 'warning', f'node {fqn}',
+                                                 f'{fqn} is running but the expected system does not '
+                                                 'have it'))
             if count > 1:
-                status.findings.append(Finding(
+                status.findings.append(StatusFinding(
                     'NODL550', 'error', f'node {fqn}', f'duplicate-node: {count} nodes in the '
                     f'graph are named {fqn} (namesakes)'))
         for diagnostic in self.expected.diagnostics:
             if diagnostic.code == 'NODL440':
-                status.findings.append(Finding('NODL440', 'warning', f'entry {diagnostic.line}',
-                                               diagnostic.message,
-                                               _location(diagnostic)))
+                status.findings.append(StatusFinding('NODL440', 'warning', f'entry {diagnostic.line}',
+                                                     diagnostic.message,
+                                                     _location(diagnostic)))
         for why in self._shedding:
-            status.findings.append(Finding('NODL439', 'warning', 'shedding ' + why.split()[0],
-                                           f'shedding: {why}'))
+            status.findings.append(StatusFinding('NODL439', 'warning', 'shedding ' + why.split()[0],
+                                                 f'shedding: {why}'))
         churn = self._churn(now)
         if churn is not None:
             status.findings.append(churn)
@@ -849,13 +855,13 @@ class Monitor:
         for fqn, state in sorted(self.states.items()):
             lost += state.events_lost
             if state.storm_at is not None:
-                status.findings.append(Finding(
+                status.findings.append(StatusFinding(
                     'NODL441', 'warning', f'parameter events {fqn}',
                     f'shedding: a parameter event storm from {fqn} (up to {state.storm_peak} '
                     f'events a second): every event is checked, its status refreshed and '
                     f'published at most every {EVENT_GAP * 1000:g} ms'))
             if state.lost_at is not None:
-                status.findings.append(Finding(
+                status.findings.append(StatusFinding(
                     'NODL442', 'warning', f'parameter events lost {fqn}',
                     f'{state.events_lost} parameter events of {fqn} never reached the monitor '
                     f'(it fell behind, or the network dropped them): its parameters are read '
@@ -871,7 +877,7 @@ class Monitor:
             status.facts.append(('parameter events lost', str(lost)))
         return status
 
-    def _churn(self, now: float) -> Finding | None:
+    def _churn(self, now: float) -> StatusFinding | None:
         """NODL443 when the graph changed CHURN_CHANGES times in CHURN_WINDOW seconds,
         naming the expected nodes whose endpoints kept changing."""
         for times in [self._changes] + [s.churn for s in self.states.values()]:
@@ -884,10 +890,10 @@ class Monitor:
         named = ', '.join(f'{fqn} ({n} times)' for n, fqn in busy[:5])
         more = f' and {len(busy) - 5} more' if len(busy) > 5 else ''
         where = f'; endpoints keep changing on {named}{more}' if busy else ''
-        return Finding('NODL443', 'warning', 'graph',
-                       f'the graph does not settle: it changed {len(self._changes)} times in the '
-                       f'last {CHURN_WINDOW:g} s (nodes, topics or endpoints keep coming and '
-                       f'going){where}; endpoint findings follow the last scan')
+        return StatusFinding('NODL443', 'warning', 'graph',
+                             f'the graph does not settle: it changed {len(self._changes)} times in the '
+                             f'last {CHURN_WINDOW:g} s (nodes, topics or endpoints keep coming and '
+                             f'going){where}; endpoint findings follow the last scan')
 
     def _refresh(self, now: float, *, only: str | None = None, publish_changes: bool = True) -> None:
         """Recompute the statuses (one node's with ``only``); publish at once if one changed."""

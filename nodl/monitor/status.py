@@ -17,14 +17,13 @@ from typing import TYPE_CHECKING, Any
 
 from nodl.composition.entities import Location
 from nodl.diagnostics import Diagnostic
-from nodl.monitor.checks import Finding
+from nodl.monitor.checks import StatusFinding
 
 if TYPE_CHECKING:
     from nodl.reporting.reporters import Report
 
 __all__ = ['Status', 'SYSTEM', 'PREFIX', 'LEVEL_NAMES', 'status_name', 'to_message',
-           'format_text', 'format_json', 'format_junit', 'format_sarif', 'jsonl_line',
-           'diagnostics_of', 'monitor_report']
+           'format_text', 'jsonl_line', 'diagnostics_of', 'monitor_report']
 
 #: What every status name starts with.
 PREFIX = 'nodl: '
@@ -44,7 +43,7 @@ class Status:
 
     name: str
     hardware_id: str
-    findings: list[Finding] = field(default_factory=list)
+    findings: list[StatusFinding] = field(default_factory=list)
     #: Facts shown as key-values after the findings (``state``, ``definition``...).
     facts: list[tuple[str, str]] = field(default_factory=list)
     #: The message when there is no finding (``running``, ``waiting``...).
@@ -67,7 +66,7 @@ class Status:
         """The codes of its findings, in order, each once."""
         return list(dict.fromkeys(f.code for f in self.ordered()))
 
-    def ordered(self) -> list[Finding]:
+    def ordered(self) -> list[StatusFinding]:
         """Its findings, the worst first."""
         return sorted(self.findings, key=lambda f: (-f.level, f.code, f.subject))
 
@@ -158,31 +157,11 @@ def format_text(statuses: list[Status], verbose: bool = False, note: str = '') -
     return '\n'.join(lines) + '\n'
 
 
-def format_json(statuses: list[Status], note: str = '') -> str:
-    """The ``--once`` report as JSON: ``{"statuses": [...], "note": ...}``."""
-    from nodl.reporting.reporters import JsonReporter
-
-    return JsonReporter().report(monitor_report(statuses, note=note))
-
-
-def format_junit(statuses: list[Status]) -> str:
-    """The ``--once`` report as JUnit XML: one test case per status, failed when ERROR."""
-    from nodl.reporting.reporters import JUnitReporter
-
-    return JUnitReporter().report(monitor_report(statuses))
-
-
-def format_sarif(statuses: list[Status]) -> str:
-    """The ``--once`` report as SARIF 2.1.0 (every finding a result)."""
-    from nodl.reporting.reporters import SarifReporter
-
-    return SarifReporter().report(monitor_report(statuses))
-
-
 def monitor_report(statuses: list[Status], verbose: bool = False, note: str = '') -> Report:
-    """The ``--once`` report as every reporter reads it: every finding as a diagnostic, the
-    statuses as the JSON payload, a test case per status (failed when ERROR), the text
-    report."""
+    """The ``--once`` report as every reporter (``nodl.reporters``) renders it: every finding
+    as a diagnostic (SARIF), the statuses and ``note`` as the JSON payload
+    (``{"statuses": [...], "note": ...}``), a test case per status, failed when ERROR
+    (JUnit), and :func:`format_text` for people."""
     from nodl.reporting.junit import JUnitCase
     from nodl.reporting.reporters import Report
 
