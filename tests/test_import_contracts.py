@@ -23,10 +23,6 @@ LINT_IMPORTS = Path(sys.executable).with_name('lint-imports')
 #: Packages whose own modules still import each other in a circle, and why that is not a
 #: cycle between packages.  Each entry goes when its cycle does (a test says so).
 KNOWN_MODULE_CYCLES = {
-    # The launch interpreter: its actions, frontends and substitutions call each other
-    # (an include evaluates a file of any frontend; a substitution may read a launch
-    # configuration an action set).  One package, one concern: launch files.
-    'nodl.launch': 'the launch interpreter\'s modules',
     # New this stop (nodl system): the composition and its operations.
     'nodl.composer': 'the composer\'s model and its operations',
 }

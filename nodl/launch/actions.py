@@ -170,7 +170,10 @@ class GroupAction(Action):
 
 
 class IncludeLaunchDescription(Action):
-    """``include``: another launch file, its arguments set in the *current* scope (not scoped)."""
+    """``include``: another launch file, its arguments set in the *current* scope (not scoped).
+
+    The walk (:func:`nodl.launch.evaluate.include`) reads the file when it visits the
+    entity: reading it takes every frontend, and the frontends build these actions."""
 
     def __init__(self, launch_description_source: Any, *, launch_arguments: Any = None, **_: Any) -> None:
         location = getattr(launch_description_source, 'location', launch_description_source)
@@ -178,11 +181,6 @@ class IncludeLaunchDescription(Action):
         self.launch_arguments = [(normalize(k), normalize(v)) for k, v in
                                  (launch_arguments.items() if isinstance(launch_arguments, dict)
                                   else launch_arguments or [])]
-
-    def execute(self, context: LaunchContext) -> list[Action] | None:
-        from nodl.launch.evaluate import include
-
-        return include(context, self)
 
 
 class SetEnvironmentVariable(Action):

@@ -252,7 +252,10 @@ def _visit(context: LaunchContext, root: Action) -> None:
         try:
             if entity.condition is not None and not entity.condition.evaluate(context):
                 continue
-            children = entity.execute(context)
+            if isinstance(entity, IncludeLaunchDescription) and type(entity).execute is Action.execute:
+                children = include(context, entity)  # (not overridden by a launch file's subclass)
+            else:
+                children = entity.execute(context)
         except Unevaluable as problem:
             problem.message += _what_is_missing(entity)
             context.problem(problem, entity.location)

@@ -33,6 +33,7 @@ from nodl.launch import ros_actions as R
 from nodl.launch import substitutions as S
 from nodl.launch.errors import LaunchProblem, Unevaluable
 from nodl.launch.model import SourceLocation
+from nodl.launch.python_arguments import action_arguments
 from nodl.launch.python_places import frame_location
 
 if TYPE_CHECKING:
@@ -52,7 +53,7 @@ def _located(cls: type, name: str | None = None) -> type:
     """A subclass whose instances remember the launch-file line that created them."""
     def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
         if M.stubs_active():  # values from a module not installed here: run-time values
-            args, kwargs = M.action_arguments(cls, args, kwargs)
+            args, kwargs = action_arguments(cls, args, kwargs)
         condition = kwargs.pop('condition', None)
         init: Any = getattr(cls, '__init__')  # noqa: B009  (mypy refuses __init__ read from a type)
         init(self, *args, **kwargs)

@@ -46,7 +46,7 @@ from nodl.launch.python_places import frame_location
 if TYPE_CHECKING:
     from nodl.launch.context import LaunchContext
 
-__all__ = ['MissingModules', 'Placeholder', 'RunTimeText', 'run_time', 'action_arguments', 'entities',
+__all__ = ['MissingModules', 'Placeholder', 'RunTimeText', 'run_time', 'entities', 'make_placeholder',
            'package_folder', 'stubs_active', 'unpacked']
 
 #: Attribute look-ups from the toolkit's own code (``hasattr(item, 'nodl_parameter')``...)
@@ -78,7 +78,9 @@ def _short(what: str) -> str:
     return what if len(what) <= _LONGEST else f'{what[:40]}...{what[3 - _LONGEST + 40:]}'
 
 
-def _make(what: str, module: str, missing: str = '') -> Placeholder:
+def make_placeholder(what: str, module: str, missing: str = '') -> Placeholder:
+    """A placeholder for ``what`` of the missing ``module``, made where the launch file is
+    (``missing``: what the analysis lacks because of it, said with the warning)."""
     value = object.__new__(Placeholder)
     value.__dict__.update(_nodl_what=_short(what), _nodl_module=module, _nodl_missing=missing,
                           location=_where())
@@ -86,7 +88,7 @@ def _make(what: str, module: str, missing: str = '') -> Placeholder:
 
 
 def _derive(parent: Placeholder, what: str) -> Placeholder:
-    return _make(what, parent._nodl_module)
+    return make_placeholder(what, parent._nodl_module)
 
 
 class Placeholder(A.Action, S.Substitution):
@@ -319,7 +321,7 @@ def _text_value(text: str, placeholder: Placeholder | None) -> Any:
         return text
     if text == f'<{placeholder._nodl_what}{_MARK}':
         return placeholder
-    made = _make(f'a text with {placeholder._nodl_what}', placeholder._nodl_module)
+    made = make_placeholder(f'a text with {placeholder._nodl_what}', placeholder._nodl_module)
     made.location = placeholder.location
     return made
 
@@ -364,74 +366,7 @@ def package_folder(package: Placeholder | RunTimeText) -> str:
     """``get_package_share_directory(package)`` (or the prefix) of a package named by a
     placeholder: a run-time text."""
     source = package if isinstance(package, Placeholder) else package.placeholder
-    return str(_make(f'the folder of the package {source._nodl_what}', source._nodl_module))
-
-
-def _plain(value: Any) -> Any:
-    """A text for the launch model (an argument's name, description): a placeholder's marker."""
-    if isinstance(value, (Placeholder, RunTimeText)):
-        return str.__str__(str(value))
-    return value
-
-
-def _composable(description: Any) -> Any:
-    if not isinstance(description, Placeholder):
-        return description
-    from nodl.launch.ros_actions import ComposableNode
-
-    unknown = _make(description._nodl_what, description._nodl_module,
-                    missing='; the composable node it describes is missing from the analysis')
-    made = ComposableNode(package=unknown, plugin=unknown)
-    made.location = description.location
-    return made
-
-
-def action_arguments(cls: type, args: tuple[Any, ...], kwargs: dict[str, Any]) -> tuple[tuple[Any, ...],
-                                                                                        dict[str, Any]]:
-    """The arguments of a stand-in action, with what came from a missing module made into
-    what the action reads as a run-time value (call only when :func:`stubs_active`)."""
-    from nodl.launch.ros_actions import (
-        RUN_TIME_KEYWORD,
-        ComposableNode,
-        ComposableNodeContainer,
-        LoadComposableNodes,
-        Node,
-    )
-
-    if issubclass(cls, A.DeclareLaunchArgument):
-        args = tuple(_plain(a) for a in args)
-        kwargs = {k: _plain(v) if k in ('name', 'description') else v for k, v in kwargs.items()}
-        choices = kwargs.get('choices')
-        if choices is not None:
-            kwargs['choices'] = None if isinstance(choices, Placeholder) else [_plain(c) for c in choices]
-        if 'default_value' in kwargs:
-            kwargs['default_value'] = run_time(kwargs['default_value'])
-        return args, kwargs
-    args, kwargs = run_time(args), run_time(kwargs)
-    if isinstance(kwargs.get('condition'), Placeholder):
-        kwargs['condition'] = C.IfCondition(kwargs['condition'])  # evaluated: a run-time value
-    if args and issubclass(cls, (A.GroupAction,)):
-        args = (entities(args[0]), *args[1:])
-    if args and issubclass(cls, A.IncludeLaunchDescription) and isinstance(args[0], Placeholder):
-        args = (types.SimpleNamespace(location=args[0]), *args[1:])
-    source = kwargs.get('launch_description_source')
-    if isinstance(source, Placeholder):
-        kwargs['launch_description_source'] = types.SimpleNamespace(location=source)
-    for key in ('actions', 'parameters'):
-        if key in kwargs:
-            kwargs[key] = entities(kwargs[key])
-    # A list given whole as a placeholder would iterate as nothing: the node says instead
-    # that it is known only at run time (ros_actions.RUN_TIME_KEYWORD).
-    if issubclass(cls, (Node, ComposableNode)):
-        whole = {key: kwargs.pop(key) for key in ('remappings', 'arguments', 'ros_arguments')
-                 if isinstance(kwargs.get(key), Placeholder)}
-        if whole:
-            kwargs[RUN_TIME_KEYWORD] = whole
-    if issubclass(cls, (ComposableNodeContainer, LoadComposableNodes)) and \
-            kwargs.get('composable_node_descriptions') is not None:
-        kwargs['composable_node_descriptions'] = [
-            _composable(d) for d in entities(kwargs['composable_node_descriptions'])]
-    return args, kwargs
+    return str(make_placeholder(f'the folder of the package {source._nodl_what}', source._nodl_module))
 
 
 class MissingModules:
@@ -529,4 +464,4 @@ class _StubModule(types.ModuleType):
     def __getattr__(self, name: str) -> Any:
         if name.startswith('__'):
             raise AttributeError(name)
-        return _make(f'{self.__name__}.{name}', self._nodl_top)
+        return make_placeholder(f'{self.__name__}.{name}', self._nodl_top)

@@ -26,6 +26,7 @@ from nodl.launch.conditions import Condition
 from nodl.launch.errors import LaunchProblem, Unevaluable
 from nodl.launch.model import LaunchedNode, LaunchRemap, ParameterSource, RunTimeSource, SourceLocation
 from nodl.launch.params import ParameterValue, RuntimeValue, evaluate_value, normalize_python_dict
+from nodl.launch.python_missing import unpacked
 from nodl.launch.substitutions import normalize, perform
 from nodl.launch.text_checks import check_node_text, refuse_unsafe
 from nodl.naming import join_name, namespace_error, node_name_error, normalize_namespace
@@ -391,14 +392,12 @@ def _placed(problem: LaunchProblem, where: SourceLocation) -> LaunchProblem:
 
 
 def _unpacked(name: Any) -> bool:
-    from nodl.launch.python_missing import unpacked
-
     return unpacked(name) is not None
 
 
 #: The keyword a frontend gives a node the lists it got whole as a value only the running
 #: launch knows (``{'remappings': value, 'arguments': value}``: see
-#: :func:`nodl.launch.python_missing.action_arguments`); they are left out.
+#: :func:`nodl.launch.python_arguments.action_arguments`); they are left out.
 RUN_TIME_KEYWORD = 'nodl_run_time'
 
 #: What a node lacks when one of its lists is known only at run time, by keyword.
