@@ -287,6 +287,17 @@ class Composition:
         self.document.style['next_id'] = count
         return f'{prefix}{count}'
 
+    def _node_to_edit(self, ref: ComposedNode | str) -> ComposedNode | Change:
+        """The node ``ref`` names, when it can be edited; else the refusal (NODL970: no such
+        node, or several; NODL983: read-only)."""
+        node = self._node(ref)
+        if node is None:
+            return Change([self.find(str(ref))[1]])  # type: ignore[list-item]
+        problem = self._editable(node)
+        if problem is not None:
+            return Change([problem], node.id)
+        return node
+
     def _editable(self, node: ComposedNode) -> Diagnostic | None:
         if self.document.style.get('opaque'):
             return Diagnostic(Severity.ERROR, 'the Python launch file does not return '
@@ -312,12 +323,9 @@ class Composition:
 
     def remove(self, node: ComposedNode | str) -> Change:
         """Remove a node (a container with its composable nodes)."""
-        found = self._node(node)
-        if found is None:
-            return Change([self.find(str(node))[1]])  # type: ignore[list-item]
-        problem = self._editable(found)
-        if problem is not None:
-            return Change([problem], found.id)
+        found = self._node_to_edit(node)
+        if isinstance(found, Change):
+            return found
         remove_node(self.document, found, self.container_of(found))
         self._changed()
         return Change([], found.id)

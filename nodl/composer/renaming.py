@@ -50,12 +50,9 @@ def _error(composition: Composition, node: ComposedNode, message: str, code: str
 def rename(composition: Composition, ref: ComposedNode | str, name: str | None,
            namespace: str | None) -> Change:
     """:meth:`Composition.rename`."""
-    node = ref if isinstance(ref, ComposedNode) else composition.node(ref)
-    if node is None:
-        return Change([composition.find(str(ref))[1]])  # type: ignore[list-item]
-    problem = composition._editable(node)
-    if problem is not None:
-        return Change([problem], node.id)
+    node = composition._node_to_edit(ref)
+    if isinstance(node, Change):
+        return node
     name = name.strip() if name else None
     namespace = namespace.strip() if namespace else None
     problems = []
@@ -136,12 +133,9 @@ def rule_pairs(rules: Sequence[RuleText]) -> tuple[list[tuple[str, str]], list[s
 def set_remaps(composition: Composition, ref: ComposedNode | str,
                rules: Sequence[RuleText]) -> Change:
     """:meth:`Composition.set_remaps`."""
-    node = ref if isinstance(ref, ComposedNode) else composition.node(ref)
-    if node is None:
-        return Change([composition.find(str(ref))[1]])  # type: ignore[list-item]
-    problem = composition._editable(node)
-    if problem is not None:
-        return Change([problem], node.id)
+    node = composition._node_to_edit(ref)
+    if isinstance(node, Change):
+        return node
     if node.style.get('remaps_computed'):
         return Change([_error(composition, node, f'{composition.fqn(node)} ({node.label}): its '
                               'remapping rules are computed by code, kept as written; edit the '

@@ -36,12 +36,9 @@ def check_value(plan: Any, value: Any) -> list[str]:
 def set_parameter(composition: Composition, ref: ComposedNode | str, name: str,
                   text: str) -> Change:
     """:meth:`Composition.set_parameter`."""
-    node = ref if isinstance(ref, ComposedNode) else composition.node(ref)
-    if node is None:
-        return Change([composition.find(str(ref))[1]])  # type: ignore[list-item]
-    problem = composition._editable(node)
-    if problem is not None:
-        return Change([problem], node.id)
+    node = composition._node_to_edit(ref)
+    if isinstance(node, Change):
+        return node
     path, line = composition.path, node.line
     column = len(node.indent) + 1 if line else 0
     try:
