@@ -65,7 +65,7 @@ def build_workspace() -> dict[str, str]:
     colcon = Path(sys.executable).parent / 'colcon'
     result = subprocess.run([str(colcon), 'build', '--event-handlers', 'console_cohesion-'],
                             cwd=ws, text=True, capture_output=True, timeout=600)
-    print('\n'.join(l for l in result.stdout.splitlines() if l.startswith(('Finished', 'Summary'))))
+    print('\n'.join(line for line in result.stdout.splitlines() if line.startswith(('Finished', 'Summary'))))
     if result.returncode != 0:
         print(result.stdout + result.stderr)
         sys.exit('demo: colcon build failed')
@@ -142,7 +142,8 @@ def live(env: dict[str, str]) -> None:
         source = REPO / 'examples' / 'workspace' / 'src' / 'laser_driver' / 'nodl' / 'laser_driver_node.nodl.yaml'
         text = source.read_text().replace('sensor_msgs/msg/LaserScan', 'sensor_msgs/msg/PointCloud2')
         text = text.replace('reliability: BEST_EFFORT', 'reliability: RELIABLE')
-        text = text.replace('  - nodl://laser_driver/motor_control          # this package\'s own registered interface\n', '')
+        text = text.replace('  - nodl://laser_driver/motor_control          '
+                            "# this package's own registered interface\n", '')
         edited.write_text(text)
         step('Check against a deliberately edited copy: drift, with its kind and layer',
              ['check', '/robot/laser_driver_node', str(edited), '--client-library', 'rclpy',
