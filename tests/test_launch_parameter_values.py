@@ -20,14 +20,7 @@ import yaml
 from conftest import FIXTURES
 from nodl.launch import load_launch
 from nodl.launch.model import ParameterSource, SourceLocation
-from nodl.launch.parameter_values import (
-    composable_overrides,
-    match_composable_parameter_keys,
-    match_parameter_file_nodes,
-    parameter_overrides,
-    rcl_scalar,
-    rcl_yaml_value,
-)
+from nodl.launch.parameter_values import composable_overrides, parameter_overrides
 
 TABLE = yaml.safe_load((FIXTURES / 'launch' / 'parameter_precedence.yaml').read_text(encoding='utf-8'))
 CASES: list[dict[str, Any]] = TABLE['cases']
@@ -177,26 +170,12 @@ def test_an_unnamed_node_needs_its_full_name(tmp_path: Path) -> None:
     assert parameter_overrides(node, '/e') == {}
 
 
-def test_process_key_matching() -> None:
-    keys = ['/**', '/*', '/ns/n', 'ns/n', '/**/n', '/ns/*', '/other', 'n', '/ns/**', '/*/*']
-    assert match_parameter_file_nodes(keys, '/ns/n') == ['/**', '/ns/n', 'ns/n', '/**/n', '/ns/*',
-                                                         '/ns/**', '/*/*']
-    assert match_parameter_file_nodes(keys, '/n') == ['/**', '/*', '/**/n', 'n']
-
-
 def _file_source(path: Path, origin: str = 'node') -> ParameterSource:
     return ParameterSource('file', origin, SourceLocation('l.launch.xml', 1, 1), path=str(path))
 
 
 def _values_source(values: dict[str, Any], origin: str = 'node') -> ParameterSource:
     return ParameterSource('values', origin, SourceLocation('l.launch.xml', 2, 1), values=values)
-
-
-def test_composable_key_matching() -> None:
-    keys = ['/ns/n', '/**', '/*', 'ns/n', '/ns/*', '**']
-    assert match_composable_parameter_keys(keys, 'n', '/ns') == ['/**', '**', '/ns/n', 'ns/n']
-    assert match_composable_parameter_keys(keys, None, '/ns') == ['/**', '**']
-    assert match_composable_parameter_keys(['/n', 'n'], 'n', '/') == ['/n', 'n']
 
 
 def test_composable_overrides_follow_launch_ros(tmp_path: Path) -> None:
@@ -227,35 +206,14 @@ def test_a_composable_record_uses_launch_ros_rules(tmp_path: Path) -> None:
     assert parameter_overrides(container) == {}
 
 
-@pytest.mark.parametrize('text, quoted, value', [
-    ('true', False, True), ('Y', False, True), ('off', False, False), ('yes', True, 'yes'),
-    ('12', False, 12), ('-0x1f', False, -31), ('010', False, 8), ('0', False, 0),
-    ('1e5', False, 100000.0), ('.5', False, 0.5), ('-.inf', False, -math.inf), ('1_000', False, '1_000'),
-    ('1e999', False, '1e999'), ('9223372036854775808', False, 9.223372036854776e18),
-    ('12', True, '12'), ('abc', False, 'abc'), ('', False, ''),
-    # past int64 in any base: strtoll fails; 5,000 digits also passed Python's int() limit
-    ('1' * 5000, False, '1' * 5000), ('0' * 50 + '10', False, 8), ('0x' + '0' * 40 + '1f', False, 31),
-    ('-' + '7' * 30, False, -7.777777777777778e29), ('0x' + 'f' * 300, False, '0x' + 'f' * 300),
-])
-def test_rcl_scalar_typing(text: str, quoted: bool, value: Any) -> None:
-    got = rcl_scalar(text, quoted=quoted)
-    assert type(got) is type(value) and got == value
-
-
-def test_rcl_yaml_value() -> None:
-    assert rcl_yaml_value('[1, 2]') == [1, 2]
-    assert rcl_yaml_value("['a', y]") == ['a', True]
-    assert rcl_yaml_value('!!str 5') == '5'
-    assert rcl_yaml_value('{a: 1}') == '{a: 1}'
-
-
 def test_a_long_text_is_typed_as_its_yaml_dump_is_read_without_dumping_it() -> None:
     """A text past 1,024 characters that rcl reads as a string skips yaml.dump and the
     re-read (pure Python: 20 s for 16 MiB); the result is what that round trip gives."""
     import random
     import time
 
-    from nodl.launch.parameter_values import as_rcl_reads_dump, rcl_yaml_value
+    from nodl.launch.parameter_values import as_rcl_reads_dump
+    from nodl.launch.rcl_yaml import rcl_yaml_value
 
     rng = random.Random(15)
     alphabet = 'ab01 .:-#\'"\n\té\\[]{}xXeE+_'
@@ -267,10 +225,3 @@ def test_a_long_text_is_typed_as_its_yaml_dump_is_read_without_dumping_it() -> N
     start = time.perf_counter()
     assert as_rcl_reads_dump(description) is description
     assert time.perf_counter() - start < 1.0  # was ~6 s
-
-
-def test_parameter_file_matching() -> None:
-    keys = ['/**', '/*', '/ns/n', 'ns/n', '/**/n', '/ns/*', '/other', 'n']
-    assert match_parameter_file_nodes(keys, '/ns/n') == ['/**', '/ns/n', 'ns/n', '/**/n', '/ns/*']
-    assert match_parameter_file_nodes(keys, '/n') == ['/**', '/*', '/**/n', 'n']
-    assert match_composable_parameter_keys(['/ns/n', '/**', '/*', 'ns/n'], 'n', '/ns') == ['/**', '/ns/n', 'ns/n']
