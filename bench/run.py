@@ -20,13 +20,14 @@ import bench_extract_python  # noqa: E402
 import bench_generate  # noqa: E402
 import bench_hostile  # noqa: E402
 import bench_load  # noqa: E402
+import bench_monitor  # noqa: E402
 import bench_nav2_bringup  # noqa: E402
 import bench_policy  # noqa: E402
 import bench_studio  # noqa: E402
 import bench_system  # noqa: E402
 import bench_validate_types  # noqa: E402
 
-BENCHMARKS = [bench_load, bench_cli_start, bench_describe, bench_describe_launch, bench_analyse,
+BENCHMARKS = [bench_load, bench_cli_start, bench_describe, bench_describe_launch, bench_monitor, bench_analyse,
               bench_generate, bench_policy, bench_hostile, bench_extract_python, bench_extract_cpp,
               bench_validate_types, bench_doc, bench_nav2_bringup, bench_system, bench_studio]
 
