@@ -6,8 +6,7 @@ would load the four dataclass modules and ``dataclasses`` itself (with ``inspect
 every validation.  Measured for issue 16 (``nodl validate FILE``, 60 interleaved cold starts
 on a loaded machine): 67.6 ms lazy against 78.4 ms plain at best, 82 against 102 ms median,
 where ``python -I -c "import yaml"`` takes 39 ms: the cold-start budget (1.5x) has no room
-for that.  Import the classes from their modules (:mod:`nodl.model.node`...) inside the
-toolkit; this package's names are for users.
+for that.  A module that needs the classes loads them when it is imported, as before.
 """
 
 from __future__ import annotations
