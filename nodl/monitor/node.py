@@ -49,6 +49,7 @@ from nodl.monitor.checks import (
 from nodl.monitor.expected import DeadlineTopic, ExpectedNode, ExpectedSystem
 from nodl.monitor.graph import GraphView, Snapshot, discovered, observed_node
 from nodl.monitor.status import SYSTEM, Status, status_name, to_message
+from nodl.vocabulary import PARAMETER_TYPE_BY_NUMBER
 
 __all__ = ['MonitorSettings', 'Monitor', 'DEFAULT_IGNORED', 'POLL_PERIOD']
 
@@ -83,8 +84,6 @@ STORM_HOLD = 2.0
 #: last CHURN_WINDOW seconds.
 CHURN_WINDOW = 10.0
 CHURN_CHANGES = 10
-_PARAMETER_TYPES = {0: 'none', 1: 'bool', 2: 'int', 3: 'double', 4: 'string', 5: 'byte_array',
-                    6: 'bool_array', 7: 'int_array', 8: 'double_array', 9: 'string_array'}
 
 
 @dataclass
@@ -661,7 +660,7 @@ class Monitor:
         touched = False
         for items, changed in ((event.new_parameters, False), (event.changed_parameters, True)):
             for parameter in items:
-                type_name = _PARAMETER_TYPES.get(parameter.value.type, 'none')
+                type_name = PARAMETER_TYPE_BY_NUMBER.get(parameter.value.type, 'none')
                 value = _value(parameter.value)
                 if state.params_state != 'read':
                     state.params_buffer.append((parameter.name, type_name, value, changed))

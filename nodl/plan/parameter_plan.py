@@ -46,14 +46,10 @@ __all__ = ['ROS_TYPES', 'INT64_MIN', 'INT64_MAX', 'DOUBLE_MAX', 'ValidatorPlan',
 #: name): the vocabulary's table.
 ROS_TYPES: dict[str, str] = ROS_PARAMETER_TYPE_NAMES
 
-#: The ROS parameter type in words, as messages use it.
+#: The ROS parameter type in words, as messages use it: its rcl name in words
+#: (``PARAMETER_INTEGER_ARRAY``: ``integer array``; ``PARAMETER_NOT_SET``: ``not set``).
 _ROS_TYPE_WORDS: dict[str, str] = {
-    'PARAMETER_NOT_SET': 'not set', 'PARAMETER_BOOL': 'bool', 'PARAMETER_INTEGER': 'integer',
-    'PARAMETER_DOUBLE': 'double', 'PARAMETER_STRING': 'string',
-    'PARAMETER_BYTE_ARRAY': 'byte array', 'PARAMETER_BOOL_ARRAY': 'bool array',
-    'PARAMETER_INTEGER_ARRAY': 'integer array', 'PARAMETER_DOUBLE_ARRAY': 'double array',
-    'PARAMETER_STRING_ARRAY': 'string array',
-}
+    name: name.removeprefix('PARAMETER_').lower().replace('_', ' ') for name in ROS_PARAMETER_TYPE_NAMES.values()}
 
 INT64_MIN = -2 ** 63
 INT64_MAX = 2 ** 63 - 1
