@@ -15,10 +15,11 @@ from typing import Any, NamedTuple
 
 from nodl.composition.instance import NodeInstance
 from nodl.diagnostics import Diagnostic, Severity
+from nodl.launch.file_kind import not_a_launch_file
 from nodl.registry.overlay import Definitions
 from nodl.targets.resolve import Provenance, resolve_target
 
-__all__ = ['Definition', 'Placed', 'LAUNCH_SUFFIXES', 'is_launch_file', 'split_targets',
+__all__ = ['Definition', 'Placed', 'LAUNCH_SUFFIXES', 'is_launch_file', 'names_definitions', 'split_targets',
            'default_node_name', 'split_node_name', 'place_definitions', 'instances_from_definitions']
 
 #: File name endings of launch files (XML, YAML, Python frontends).
@@ -43,6 +44,19 @@ def is_launch_file(path: str) -> bool:
 
 def _is_path(token: str) -> bool:
     return any(c in token for c in './\\') or os.path.exists(token)
+
+
+def names_definitions(first: str) -> bool:
+    """True when the first target of a command line names node definitions (a file holding
+    one, or ``PACKAGE EXECUTABLE``) rather than a launch file; a file that cannot be read is
+    taken for a launch file, whose reader says why."""
+    if is_launch_file(first):
+        return False
+    if not _is_path(first):
+        return True  # PACKAGE EXECUTABLE
+    if not os.path.isfile(first):
+        return False
+    return not_a_launch_file(first) == 'a NoDL node definition'
 
 
 def split_targets(tokens: Sequence[str]) -> tuple[list[Definition], list[str]]:

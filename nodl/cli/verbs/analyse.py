@@ -71,8 +71,9 @@ class AnalyseVerb(Verb):
                 print(f"{prog}: error: --graph {args.graph}: the name must end in .dot, .svg or "
                       '.html (it picks the format)', file=sys.stderr)
                 return EXIT_USAGE
-        definitions_mode = self._definitions_mode(args.launch_file)
-        if definitions_mode:
+        from nodl.targets.placement import names_definitions
+
+        if names_definitions(args.launch_file):
             return self._definitions(args, prog, graph_format)
         if args.name or args.remap:
             print(f'{prog}: error: --name and --remap place definitions; a launch file names its '
@@ -122,23 +123,6 @@ class AnalyseVerb(Verb):
                                   definitions=definitions)
         return self._report(args, prog, analysis, policy, graph_format,
                             [args.launch_file, *_config_files(args.launch_file)])
-
-    @staticmethod
-    def _definitions_mode(first: str) -> bool:
-        """True when the first target is a node definition or a package (not a launch file)."""
-        import os
-
-        from nodl.targets.placement import is_launch_file
-
-        if is_launch_file(first):
-            return False
-        if not any(c in first for c in './\\') and not os.path.exists(first):
-            return True  # PACKAGE EXECUTABLE
-        if not os.path.isfile(first):
-            return False  # the launch file's reader says why
-        from nodl.launch.file_kind import not_a_launch_file
-
-        return not_a_launch_file(first) == 'a NoDL node definition'
 
     def _definitions(self, args: argparse.Namespace, prog: str, graph_format: str | None) -> int:
         """``nodl analyse DEFINITION...``: the definitions placed and analysed as one system."""

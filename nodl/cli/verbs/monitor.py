@@ -93,13 +93,11 @@ class MonitorVerb(Verb):
         import os
 
         from nodl.cli.arguments import launch_arguments, launch_limits, load_definitions, usage_error
-        from nodl.cli.verbs.analyse import AnalyseVerb
         from nodl.monitor.expected import expected_from_definitions, expected_from_launch
         from nodl.reporting import format_text
+        from nodl.targets.placement import names_definitions, split_targets
 
-        if AnalyseVerb._definitions_mode(args.launch_file):
-            from nodl.targets.placement import split_targets
-
+        if names_definitions(args.launch_file):
             try:
                 targets, launches = split_targets([args.launch_file, *args.launch_arguments])
             except ValueError as exc:
