@@ -15,7 +15,7 @@ from conftest import FIXTURES, REPO
 from nodl.generate import GenerateOptions, GenerationError, default_class_name, default_node_name, load_generators
 from nodl.generate.cpp import CppGenerator, cpp_dependencies, generate_cpp, plan_cpp
 from nodl.generate.cpp.parameter_code import CPP_PREDICATES
-from nodl.generate.cpp.qos import CPP_POLICY_VALUES, qos_expression
+from nodl.generate.cpp.qos_code import CPP_POLICY_VALUES, qos_expression
 from nodl.generate.cpp.text import comment_lines, cpp_value, rosidl_file_stem, string_literal
 from nodl.generate.cpp.user import render_user_source
 from nodl.model import QoSProfile

@@ -40,7 +40,7 @@ from nodl.generate import GeneratedFile, GenerateOptions, GenerationError, Gener
 from nodl.plan.identifiers import CPP_KEYWORDS, is_identifier, snake_case
 
 if TYPE_CHECKING:
-    from nodl.generate.cpp.node import CppNode
+    from nodl.generate.cpp.node_code import CppNode
     from nodl.system import ResolvedNode
 
 __all__ = ['CppGenerator', 'plan_cpp', 'generate_cpp', 'cpp_dependencies', 'cpp_file_names']
@@ -61,7 +61,7 @@ def _namespace(options: GenerateOptions) -> str:
 
 def plan_cpp(node: ResolvedNode, options: GenerateOptions) -> CppNode:
     """The C++ names of everything ``node``'s implementation provides."""
-    from nodl.generate.cpp.node import plan_node
+    from nodl.generate.cpp.node_code import plan_node
     from nodl.model import Base
 
     if not is_identifier(options.class_name) or options.class_name in CPP_KEYWORDS:
@@ -80,7 +80,7 @@ def cpp_file_names(options: GenerateOptions) -> tuple[str, str]:
 
 def generate_cpp(node: ResolvedNode, options: GenerateOptions) -> list[GeneratedFile]:
     """The header and source of ``node``'s rclcpp base class."""
-    from nodl.generate.cpp.node import render_header, render_source
+    from nodl.generate.cpp.node_code import render_header, render_source
 
     plan = plan_cpp(node, options)
     return [GeneratedFile(plan.stem + '.hpp', render_header(plan)),
@@ -89,7 +89,7 @@ def generate_cpp(node: ResolvedNode, options: GenerateOptions) -> list[Generated
 
 def cpp_dependencies(node: ResolvedNode, options: GenerateOptions) -> list[str]:
     """The ROS packages the generated code needs (for package.xml and CMake)."""
-    from nodl.generate.cpp.node import dependencies
+    from nodl.generate.cpp.node_code import dependencies
 
     return dependencies(plan_cpp(node, options))
 

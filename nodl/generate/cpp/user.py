@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from nodl.composition.entities import EntityKind
 from nodl.generate.cpp import parameter_code as cparams
-from nodl.generate.cpp.node import CppNode
+from nodl.generate.cpp.node_code import CppNode
 from nodl.generate.cpp.text import comment_lines
 
 __all__ = ['render_user_source']

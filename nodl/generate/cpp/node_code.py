@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 from nodl.composition.entities import Entity, EntityKind, InterfaceType
 from nodl.generate.cpp import parameter_code as cparams
-from nodl.generate.cpp.qos import qos_expression
+from nodl.generate.cpp.qos_code import qos_expression
 from nodl.generate.cpp.text import comment_lines, interface_cpp, interface_header, string_literal
 from nodl.plan.identifiers import CPP_KEYWORDS, IdentifierScope, snake_case
 from nodl.plan.parameter_plan import ParametersPlan
