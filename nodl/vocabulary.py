@@ -44,6 +44,8 @@ __all__ = [
     'QOS_KEYS', 'QOS_REQUIRED', 'QOS_ENUMS', 'QOS_DURATIONS', 'QOS_DEFAULT_VALUE',
     # client libraries
     'CLIENT_LIBRARIES', 'BUILD_TYPE_LIBRARIES',
+    # launch-file code
+    'LAUNCH_CODE_TIMEOUT', 'LAUNCH_CODE_MEMORY_MIB',
     # ROS names
     'NAME_SUBSTITUTIONS',
 ]
@@ -250,3 +252,12 @@ BUILD_TYPE_LIBRARIES: dict[str, str] = {'ament_python': 'rclpy', 'ament_cmake': 
 #: The substitutions rcl expands in a topic or service name (``{node}``, ``{ns}``,
 #: ``{namespace}``), without their braces; :mod:`nodl.naming` expands them.
 NAME_SUBSTITUTIONS: tuple[str, ...] = ('node', 'ns', 'namespace')
+
+
+# --------------------------------------------------------------------------
+# Launch-file code (nodl.launch.sandbox runs it under these limits)
+
+#: Seconds the Python code of one launch may run in all (``--launch-timeout``).
+LAUNCH_CODE_TIMEOUT = 30.0
+#: MiB of memory the Python code of a launch may take (``--launch-memory``).
+LAUNCH_CODE_MEMORY_MIB = 2048.0

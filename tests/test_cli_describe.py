@@ -185,3 +185,42 @@ def test_describe_warns_of_version_skew(tmp_path: Path) -> None:
     text = unmark(out.read_text(encoding='utf-8'))
     assert "  # Version skew: /cli_skew/chatter: the node uses another definition" in text
     assert text.index('# Version skew') < text.index('- name: chatter')
+
+
+# -- start-up: the arguments of describe are checked without the launch reader or the validator --
+
+
+@pytest.mark.parametrize('name, problem', [
+    ('/robot/driver', None), ('talker', None), ('/a/b_2/c', None),
+    ('/robot/1driver', "token '1driver' starts with a digit"),
+    ('/a b', "contains ' '"), ('/ns/x-y', "contains '-'"), ('a//b', "contains a repeated '/'"),
+    ('/a/', "ends with '/'"), ('~/x', "holds no '~' or '{}'"), ('{ns}/x', "holds no '~' or '{}'"),
+    ('/', 'is a namespace'), ('', 'must not be empty'), ('/' + 'a' * 300, 'is too long (301 characters)'),
+])
+def test_node_names_follow_rcl_s_rules_from_nodl_naming(name: str, problem: str | None) -> None:
+    from nodl.cli.arguments import node_name_problem
+
+    found = node_name_problem(name)
+    assert (found is None) if problem is None else (found is not None and problem in found), found
+
+
+def test_describe_s_parser_imports_neither_the_launch_reader_nor_the_validator() -> None:
+    code = ('import sys, argparse\n'
+            'from nodl.cli.verbs.describe import DescribeVerb\n'
+            'parser = argparse.ArgumentParser()\n'
+            'DescribeVerb().add_arguments(parser)\n'
+            "args = parser.parse_args(['/robot/driver'])\n"
+            "assert args.launch_timeout == 30 and args.launch_memory == 2048, args\n"
+            "print(sorted(m for m in sys.modules if m.startswith(('nodl.launch', 'nodl.validation'))))\n")
+    result = subprocess.run([sys.executable, '-c', code], cwd=REPO, text=True, capture_output=True,
+                            timeout=30)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == '[]'
+
+
+def test_launch_code_defaults_are_the_sandbox_s() -> None:
+    from nodl.launch.sandbox import DEFAULT_MEMORY_MIB, DEFAULT_TIMEOUT, LaunchLimits
+    from nodl.vocabulary import LAUNCH_CODE_MEMORY_MIB, LAUNCH_CODE_TIMEOUT
+
+    assert (DEFAULT_TIMEOUT, DEFAULT_MEMORY_MIB) == (LAUNCH_CODE_TIMEOUT, LAUNCH_CODE_MEMORY_MIB)
+    assert LaunchLimits() == LaunchLimits(True, LAUNCH_CODE_TIMEOUT, LAUNCH_CODE_MEMORY_MIB)

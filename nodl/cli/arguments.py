@@ -11,7 +11,8 @@ from nodl.cli.report_options import show_diagnostics
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from nodl.config import ConfigError
 from nodl.diagnostics import Severity
-from nodl.vocabulary import CLIENT_LIBRARIES
+from nodl.naming import full_name_error, namespace_error, node_name_error, split_name
+from nodl.vocabulary import CLIENT_LIBRARIES, LAUNCH_CODE_MEMORY_MIB, LAUNCH_CODE_TIMEOUT
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
@@ -19,7 +20,7 @@ if TYPE_CHECKING:
     from nodl.launch.sandbox import LaunchLimits
     from nodl.registry.overlay import Definitions
 
-__all__ = ['seconds', 'node_name', 'definition_problem', 'add_client_library_argument',
+__all__ = ['seconds', 'node_name', 'node_name_problem', 'definition_problem', 'add_client_library_argument',
            'positive_seconds', 'mebibytes', 'add_launch_code_arguments', 'launch_limits',
            'LAUNCH_CODE_HELP', 'add_definitions_argument', 'load_definitions',
            'definitions_failed', 'run_with_definitions', 'launch_arguments', 'usage_error']
@@ -38,12 +39,43 @@ def seconds(text: str) -> float:
 
 def node_name(text: str) -> str:
     """An ``argparse`` type: a node name (``/namespace/name``, or ``name`` in ``/``)."""
-    from nodl.live.session import node_name_problem
-
     problem = node_name_problem(text)
     if problem is not None:
         raise argparse.ArgumentTypeError(f"'{text}' is not a node name: {problem}")
     return text
+
+
+def node_name_problem(name: str) -> str | None:
+    """Why ``name`` is not the name of a running node (``/namespace/name`` or ``name``), or None.
+
+    rcl's rules, as :mod:`nodl.naming` implements them (the fully qualified name, its
+    namespace and its base name), without the ``~`` and ``{}`` substitutions, which a
+    running node's name never holds; worded for the person who typed it.
+    """
+    if not name.strip():
+        return 'a node name must not be empty'
+    if name == '/':
+        return "'/' is a namespace, not a node name"
+    if any(c in name for c in '~{}'):
+        return "a running node's name holds no '~' or '{}' substitutions; write /namespace/name"
+    fqn = name if name.startswith('/') else '/' + name
+    reason = full_name_error(fqn)
+    if reason is None:
+        namespace, base = split_name(fqn)
+        reason = namespace_error(namespace) or node_name_error(base)
+    if reason is None:
+        return None
+    if 'number' in reason:
+        token = next(t for t in fqn.split('/') if t[:1].isdigit())
+        return f"token '{token}' starts with a digit; name tokens must start with a letter or '_'"
+    if 'characters other than' in reason:
+        char = next(c for c in fqn if not (c.isascii() and (c.isalnum() or c in '_/')))
+        return f"contains {char!r}; a node name holds letters, digits, '_' and '/' between its tokens"
+    if "end with a '/'" in reason:
+        return "ends with '/'; write /namespace/name"
+    if 'repeated' in reason:
+        return "contains a repeated '/'"
+    return f'is too long ({len(fqn)} characters): {reason}'
 
 
 def _looks_like_a_path(text: str) -> bool:
@@ -106,19 +138,17 @@ LAUNCH_CODE_HELP = (
 def add_launch_code_arguments(parser: argparse.ArgumentParser) -> None:
     """``--no-exec``, ``--launch-timeout`` and ``--launch-memory``: whether and how the Python
     code of a launch file (Python launch files, ``$(eval)``) runs (see :func:`launch_limits`)."""
-    from nodl.launch.sandbox import DEFAULT_MEMORY_MIB, DEFAULT_TIMEOUT
-
     group = parser.add_argument_group('launch-file code', LAUNCH_CODE_HELP)
     group.add_argument('--no-exec', action='store_true',
                        help='run no code of the launch files: a Python launch file is not read '
                             '(an error where it is included), $(eval ...) is a value unknown here')
-    group.add_argument('--launch-timeout', type=positive_seconds, default=DEFAULT_TIMEOUT,
+    group.add_argument('--launch-timeout', type=positive_seconds, default=LAUNCH_CODE_TIMEOUT,
                        metavar='SECONDS',
                        help="wall-clock seconds the launch's Python code may take in all, in its "
-                            f'child process (default: {DEFAULT_TIMEOUT:g})')
-    group.add_argument('--launch-memory', type=mebibytes, default=DEFAULT_MEMORY_MIB, metavar='MIB',
+                            f'child process (default: {LAUNCH_CODE_TIMEOUT:g})')
+    group.add_argument('--launch-memory', type=mebibytes, default=LAUNCH_CODE_MEMORY_MIB, metavar='MIB',
                        help="MiB of memory the launch's Python code may allocate in its child "
-                            f'process (default: {DEFAULT_MEMORY_MIB:g})')
+                            f'process (default: {LAUNCH_CODE_MEMORY_MIB:g})')
 
 
 def launch_limits(args: argparse.Namespace) -> LaunchLimits:

@@ -46,6 +46,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 from nodl.diagnostics import Severity
 from nodl.launch.model import SourceLocation
+from nodl.vocabulary import LAUNCH_CODE_MEMORY_MIB, LAUNCH_CODE_TIMEOUT
 
 if TYPE_CHECKING:
     from nodl.launch.model import LaunchResult
@@ -54,10 +55,11 @@ __all__ = ['LaunchLimits', 'Refusal', 'NeedsSandbox', 'DEFAULT_TIMEOUT', 'DEFAUL
            'MAX_RESULT_BYTES', 'MAX_ATTEMPTS', 'contained', 'admit', 'running', 'python_expression',
            'memory_problem']
 
-#: Seconds the Python code of one launch may run in all (``--launch-timeout``).
-DEFAULT_TIMEOUT = 30.0
+#: Seconds the Python code of one launch may run in all (``--launch-timeout``; a fact of
+#: :mod:`nodl.vocabulary`, which the command line reads without importing the launch reader).
+DEFAULT_TIMEOUT = LAUNCH_CODE_TIMEOUT
 #: MiB of memory the Python code of a launch may take (``--launch-memory``).
-DEFAULT_MEMORY_MIB = 2048.0
+DEFAULT_MEMORY_MIB = LAUNCH_CODE_MEMORY_MIB
 #: The largest result a child may send back.
 MAX_RESULT_BYTES = 256 * 1024 * 1024
 #: At most this many children per launch (each failure starts one more without the culprit).

@@ -5,7 +5,13 @@ from __future__ import annotations
 import argparse
 import sys
 
-from nodl.cli.arguments import node_name, seconds
+from nodl.cli.arguments import (
+    add_client_library_argument,
+    add_definitions_argument,
+    add_launch_code_arguments,
+    node_name,
+    seconds,
+)
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE, Verb
 
 
@@ -30,8 +36,6 @@ class DescribeVerb(Verb):
                             help='with --launch: describe only the launched nodes no definition '
                                  'covers (registered, or in a definitions folder); the others are '
                                  'left out, not waited for')
-        from nodl.cli.arguments import add_definitions_argument
-
         add_definitions_argument(parser)
         parser.add_argument('--timeout', type=seconds, default=5.0, metavar='S',
                             help='seconds to wait for the node to appear and settle (default: 5)')
@@ -46,12 +50,8 @@ class DescribeVerb(Verb):
         parser.add_argument('--force', action='store_true',
                             help='-o: replace files nodl did not write or that were edited since '
                                  '(a JSON file, which has no room for a marker, always needs it)')
-        from nodl.cli.arguments import add_client_library_argument
-
         add_client_library_argument(parser, 'deduced from the node: rclcpp if it subscribes to '
                                             '/parameter_events, else rclpy')
-        from nodl.cli.arguments import add_launch_code_arguments
-
         add_launch_code_arguments(parser)
 
     def main(self, args: argparse.Namespace) -> int:
