@@ -12,7 +12,7 @@ Reading is done by :mod:`nodl.frontends.legacy_xml`; converting, by
     written, diagnostics = convert_file('pkg.nodl.xml', 'out/')
 
 Each :class:`Converted` carries ``origins``, where every path of its v2 data
-came from in the XML file; :mod:`nodl.legacy.placement` checks the
+came from in the XML file; :mod:`nodl.legacy.converted_document` checks the
 converted node with it, so a registered legacy node's diagnostics and entity
 locations point into the XML file.
 """

@@ -5,7 +5,7 @@ per ``<node>``: the v2 node definition (a plain dict), the conversion's
 diagnostics, and a source map, ``origins``, from paths of the v2 document
 (``('main', 'publishers', 0)``, ``('main', 'parameters', 'rate', 'type')``)
 to the line and column, in the legacy XML file, of the element or attribute
-each entry came from.  :func:`nodl.legacy.placement.converted_report`
+each entry came from.  :func:`nodl.legacy.converted_document.converted_report`
 checks the v2 document with that map, so what is said about the node (and
 where its entities are) points into the XML file the user wrote.
 """

@@ -22,7 +22,7 @@ from nodl.composition import compose_report
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.frontends.legacy_xml import interface_files_from_package_xml, parse_legacy_xml
 from nodl.legacy import convert_legacy
-from nodl.legacy.placement import converted_report
+from nodl.legacy.converted_document import converted_report
 from nodl.registry import Registration
 from nodl.vocabulary import LEGACY_RESOURCE
 
@@ -92,7 +92,7 @@ def compose_legacy(registration: Registration,  # type: ignore[no-untyped-def]
 
     Every diagnostic, and every entity's location in the composed node, is
     placed in the legacy XML file (``registration.file``), at the element or
-    attribute the entry came from (see :mod:`nodl.legacy.placement`).
+    attribute the entry came from (see :mod:`nodl.legacy.converted_document`).
     """
     converted, diagnostics = _converted(registration)
     if converted is None or not converted.ok:

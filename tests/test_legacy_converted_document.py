@@ -1,4 +1,4 @@
-"""A converted legacy node checked as v2, placed in its XML file (nodl.legacy.placement)."""
+"""A converted legacy node checked as v2, placed in its XML file (nodl.legacy.converted_document)."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ from conftest import FIXTURES
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.frontends.legacy_xml import parse_legacy_xml
 from nodl.legacy import Converted, convert_legacy
-from nodl.legacy.placement import ConvertedDocument, converted_report
+from nodl.legacy.converted_document import ConvertedDocument, converted_report
 from nodl.loading import check_source, dump_nodl
 from nodl.validation.kinds import Kind
 
