@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 from nodl.diagnostics import Diagnostic, Severity
 
-__all__ = ['CMakeTargets', 'Command', 'parse_cmake', 'read_cmake', 'read_cmake_text']
+__all__ = ['CMakeTargets', 'CMakeCommand', 'parse_cmake', 'read_cmake', 'read_cmake_text']
 
 _SYNTAX = 'NODL945'
 _UNKNOWN = 'NODL946'
@@ -39,7 +39,7 @@ _ALTERNATIVES = 16
 
 
 @dataclass(frozen=True, slots=True)
-class Command:
+class CMakeCommand:
     """One command invocation: its name (lower case), its arguments and where it is."""
 
     name: str
@@ -101,9 +101,9 @@ _TOKEN = re.compile(r'''
 _IDENT = re.compile(r'[A-Za-z_][A-Za-z0-9_]*')
 
 
-def parse_cmake(text: str, file: str) -> tuple[list[Command], list[Diagnostic]]:
+def parse_cmake(text: str, file: str) -> tuple[list[CMakeCommand], list[Diagnostic]]:
     """The commands of a CMake file, and a diagnostic for what cannot be read."""
-    commands: list[Command] = []
+    commands: list[CMakeCommand] = []
     problems: list[Diagnostic] = []
     pos, line, line_start = 0, 1, 0
     length = len(text)
@@ -172,7 +172,7 @@ def parse_cmake(text: str, file: str) -> tuple[list[Command], list[Diagnostic]]:
                                        'the rest of CMakeLists.txt is not read', file=file, line=ln,
                                        column=col, code=_SYNTAX))
             break
-        commands.append(Command(name.lower(), tuple(args), ln, col))
+        commands.append(CMakeCommand(name.lower(), tuple(args), ln, col))
     del line, line_start
     return commands, problems
 
@@ -180,7 +180,7 @@ def parse_cmake(text: str, file: str) -> tuple[list[Command], list[Diagnostic]]:
 @dataclass(slots=True)
 class _Function:
     params: list[str]
-    body: list[Command]
+    body: list[CMakeCommand]
     macro: bool
 
 
@@ -193,7 +193,7 @@ class _Evaluator:
         self.count = 0
         self.reported: set[tuple[int, int]] = set()
 
-    def problem(self, command: Command, message: str) -> None:
+    def problem(self, command: CMakeCommand, message: str) -> None:
         if (command.line, command.column) in self.reported:
             return
         self.reported.add((command.line, command.column))
@@ -223,7 +223,7 @@ class _Evaluator:
                 break
         return results
 
-    def arguments(self, command: Command, scope: dict[str, list[str]]) -> list[list[str]]:
+    def arguments(self, command: CMakeCommand, scope: dict[str, list[str]]) -> list[list[str]]:
         """Each argument's values after expansion; unquoted ones split on ';'.  Returns a list of
         alternatives per argument position (most commands have one alternative)."""
         out: list[list[str]] = []
@@ -241,7 +241,7 @@ class _Evaluator:
                     out.append(sorted({s[index] for s in split if index < len(s)}))
         return out
 
-    def run(self, commands: list[Command], scope: dict[str, list[str]], depth: int = 0,
+    def run(self, commands: list[CMakeCommand], scope: dict[str, list[str]], depth: int = 0,
             conditional: int = 0) -> None:
         index = 0
         while index < len(commands):
@@ -280,7 +280,7 @@ class _Evaluator:
             self.command(command, scope, depth, conditional)
             index += 1
 
-    def block_end(self, commands: list[Command], start: int, opener: str, closer: str) -> int:
+    def block_end(self, commands: list[CMakeCommand], start: int, opener: str, closer: str) -> int:
         depth = 0
         for index in range(start, len(commands)):
             if commands[index].name == opener:
@@ -291,7 +291,7 @@ class _Evaluator:
                     return index
         return len(commands)
 
-    def foreach(self, command: Command, body: list[Command], scope: dict[str, list[str]], depth: int,
+    def foreach(self, command: CMakeCommand, body: list[CMakeCommand], scope: dict[str, list[str]], depth: int,
                 conditional: int) -> None:
         args = [v[0] for v in self.arguments(command, scope)]
         if not args:
@@ -325,7 +325,7 @@ class _Evaluator:
         else:
             scope[name] = [value]
 
-    def command(self, command: Command, scope: dict[str, list[str]], depth: int, conditional: int) -> None:
+    def command(self, command: CMakeCommand, scope: dict[str, list[str]], depth: int, conditional: int) -> None:
         name = command.name
         if name in self.functions:
             self.call(self.functions[name], command, scope, depth)
@@ -390,7 +390,7 @@ class _Evaluator:
                     break
                 self.targets.plugins.setdefault(cls.lstrip(':'), (first[0], None))
 
-    def install_programs(self, command: Command, args: list[str], scope: dict[str, list[str]]) -> None:
+    def install_programs(self, command: CMakeCommand, args: list[str], scope: dict[str, list[str]]) -> None:
         """``install(PROGRAMS file... DESTINATION lib/<package> [RENAME name])``: executables
         ``ros2 run`` finds (other destinations are not executables of the package)."""
         keywords = ('DESTINATION', 'PERMISSIONS', 'CONFIGURATIONS', 'COMPONENT', 'RENAME', 'OPTIONAL',
@@ -422,7 +422,7 @@ class _Evaluator:
             name = options['RENAME'] if 'RENAME' in options and len(files) == 1 else os.path.basename(path)
             self.targets.programs[name] = path
 
-    def register_node(self, command: Command, first: list[str]) -> None:
+    def register_node(self, command: CMakeCommand, first: list[str]) -> None:
         library = first[0]
         keys: dict[str, str | None] = {'PLUGIN': None, 'EXECUTABLE': None, 'EXECUTOR': None,
                                        'RESOURCE_INDEX': None}
@@ -476,7 +476,7 @@ class _Evaluator:
                 (['FALSE'] if key in option_set else [''])
         scope[f'{prefix}_UNPARSED_ARGUMENTS'] = [';'.join(unparsed)]
 
-    def call(self, function: _Function, command: Command, scope: dict[str, list[str]], depth: int) -> None:
+    def call(self, function: _Function, command: CMakeCommand, scope: dict[str, list[str]], depth: int) -> None:
         values = [a[0] for a in self.arguments(command, scope)]
         inner = dict(scope)
         for index, param in enumerate(function.params):
@@ -492,7 +492,7 @@ class _Evaluator:
                 if not key.startswith('ARG'):
                     scope[key] = value
 
-    def target(self, command: Command, args: list[list[str]], table: dict[str, list[str]]) -> None:
+    def target(self, command: CMakeCommand, args: list[list[str]], table: dict[str, list[str]]) -> None:
         if not args:
             return
         names = args[0]
@@ -507,7 +507,7 @@ class _Evaluator:
         table.setdefault(names[0], [])
         table[names[0]] += self.sources(command, rest)
 
-    def sources(self, command: Command, args: list[list[str]]) -> list[str]:
+    def sources(self, command: CMakeCommand, args: list[list[str]]) -> list[str]:
         out: list[str] = []
         for alternatives in args:
             for value in alternatives:
