@@ -93,8 +93,8 @@ class MonitorVerb(Verb):
         import os
 
         from nodl.cli.arguments import launch_arguments, launch_limits, load_definitions, usage_error
+        from nodl.cli.report_options import show_diagnostics
         from nodl.monitor.expected import expected_from_definitions, expected_from_launch
-        from nodl.reporting import format_text
         from nodl.targets.placement import names_definitions, split_targets
 
         if names_definitions(args.launch_file):
@@ -140,10 +140,10 @@ class MonitorVerb(Verb):
                                             client_library=args.client_library,
                                             limits=launch_limits(args), definitions=definitions)
         if expected.unreadable:
-            sys.stderr.write(format_text(expected.diagnostics))
+            show_diagnostics(expected.diagnostics)
             return EXIT_USAGE
         if not expected.nodes:
-            sys.stderr.write(format_text(expected.diagnostics))
+            show_diagnostics(expected.diagnostics)
             print(f'{prog}: error: the expected system has no node to monitor', file=sys.stderr)
             return EXIT_USAGE
         return expected
@@ -189,7 +189,9 @@ class MonitorVerb(Verb):
             return EXIT_OK
         note = 'interrupted: the report covers what was observed until then' if stopped else ''
         if reporter is not None:
-            sys.stdout.write(reporter.report(report.monitor_report(statuses, args.verbose, note)))
+            from nodl.cli.report_options import write_report
+
+            write_report(reporter, report.monitor_report(statuses, args.verbose, note))
         sys.stdout.flush()
         if stopped and stopped[0] == signal.SIGINT:
             return EXIT_INTERRUPTED
