@@ -241,7 +241,7 @@ class _Class:
     methods: list[tuple[Any, str]] = field(default_factory=list)   # (function_definition, file)
 
 
-class _Reader:
+class _PackageReader:
     """Reads the parsed files of one package and fills an :class:`Extraction`."""
 
     def __init__(self, relative_to: str | None) -> None:
@@ -756,10 +756,10 @@ def _fit(value: Any, kind: str | None) -> Any:
     return value
 
 
-class _Scan:
+class _BodyScan:
     """Reads function bodies in source order, keeping the values of local variables."""
 
-    def __init__(self, reader: _Reader, klass: _Class | None) -> None:
+    def __init__(self, reader: _PackageReader, klass: _Class | None) -> None:
         self.r = reader
         self.klass = klass
         self.scope: dict[str, Any] = {}
@@ -870,7 +870,7 @@ class _Scan:
             saved = self.r.file
             self.r.file = file
             try:
-                return _Scan(self.r, None).value(value)
+                return _BodyScan(self.r, None).value(value)
             finally:
                 self.r.file = saved
         return _Unknown(_RUNTIME, self.r.loc(where))
@@ -1586,7 +1586,7 @@ def _split_call(function: Any) -> tuple[str | None, str | None, Any]:
     return receiver, _text(target) if target is not None else None, template
 
 
-def _member_value(reader: _Reader, klass: _Class, name: str, where: Any) -> Any:
+def _member_value(reader: _PackageReader, klass: _Class, name: str, where: Any) -> Any:
     """A member's compile-time value: initialised from a literal (declaration or constructor
     initialiser list) and never assigned in the class's methods; a parameter's value when it is
     assigned once from declare_parameter; otherwise unknown."""
@@ -1601,7 +1601,7 @@ def _member_value(reader: _Reader, klass: _Class, name: str, where: Any) -> Any:
                 items = [a for a in args.named_children if a.type != 'comment'] if args is not None else []
                 if len(items) == 1:
                     initial = (items[0], file)
-    scan = _Scan(reader, None)
+    scan = _BodyScan(reader, None)
     if len(assigned) == 1 and initial is None and value_node is None:
         node, file, owner_scan = assigned[0]
         right = node.child_by_field_name('right')
@@ -1627,7 +1627,7 @@ def _member_value(reader: _Reader, klass: _Class, name: str, where: Any) -> Any:
     return value
 
 
-def _class_methods(reader: _Reader, klass: _Class) -> list[tuple[Any, str]]:
+def _class_methods(reader: _PackageReader, klass: _Class) -> list[tuple[Any, str]]:
     cache = reader.methods
     if not cache and reader.functions:
         for d, f, owner in reader.functions:
@@ -1638,7 +1638,7 @@ def _class_methods(reader: _Reader, klass: _Class) -> list[tuple[Any, str]]:
     return cache.get(klass.name, [])
 
 
-def _member_assignments(reader: _Reader, klass: _Class, name: str) -> list[tuple[Any, str, Any]]:
+def _member_assignments(reader: _PackageReader, klass: _Class, name: str) -> list[tuple[Any, str, Any]]:
     found = []
     for definition, file in _class_methods(reader, klass):
         for node in reader.walk(definition, 'assignment_expression'):
@@ -1651,10 +1651,10 @@ def _member_assignments(reader: _Reader, klass: _Class, name: str) -> list[tuple
     return found
 
 
-class _NodeScan(_Scan):
+class _NodeScan(_BodyScan):
     """The methods of one node class."""
 
-    def __init__(self, reader: _Reader, klass: _Class, node: ExtractedNode) -> None:
+    def __init__(self, reader: _PackageReader, klass: _Class, node: ExtractedNode) -> None:
         super().__init__(reader, klass)
         self.node = node
         self.filters = {}
@@ -1759,7 +1759,7 @@ class _NodeScan(_Scan):
                 if len(items) > index:
                     saved = self.r.file
                     self.r.file = file
-                    out.append(_Scan(self.r, None).value(items[index]))
+                    out.append(_BodyScan(self.r, None).value(items[index]))
                     self.r.file = saved
         return out
 
@@ -1776,11 +1776,11 @@ def _parameter_index(definition: Any, name: str) -> int | None:
     return None
 
 
-class _FreeScan(_Scan):
+class _FreeScan(_BodyScan):
     """A function that is not a node's method: a node it makes itself (``auto node =
     rclcpp::Node::make_shared("talker")``) is a node of its own."""
 
-    def __init__(self, reader: _Reader, definition: Any, out: list[ExtractedNode], package: str | None) -> None:
+    def __init__(self, reader: _PackageReader, definition: Any, out: list[ExtractedNode], package: str | None) -> None:
         super().__init__(reader, None)
         self.definition = definition
         self.out = out
@@ -1827,7 +1827,7 @@ class _FreeScan(_Scan):
 # ----------------------------------------------------------------------------- entry points
 
 
-def _sources(paths: Iterable[str], reader: _Reader) -> list[str]:
+def _sources(paths: Iterable[str], reader: _PackageReader) -> list[str]:
     out: list[str] = []
     for path in paths:
         if os.path.isdir(path):
@@ -1850,7 +1850,7 @@ def extract_cpp(paths: Iterable[str], *, package: str | None = None, targets: CM
     executables; ``relative_to`` shortens the paths shown in messages.  Never raises for bad
     input: each problem is a located diagnostic of the returned :class:`Extraction`.
     """
-    reader = _Reader(relative_to)
+    reader = _PackageReader(relative_to)
     files = _sources(paths, reader)
     try:
         parser = cpp_parser()

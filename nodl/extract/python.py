@@ -14,7 +14,7 @@ body returns an expression of their arguments.  Anything else is a :class:`Gap`,
 node class's base defined in another module of the package (:class:`PackageSources`) gives the
 class its entities, at their own place.
 
-Speed: a module's text is searched before its tree is walked (:class:`_Lines`): only the
+Speed: a module's text is searched before its tree is walked (:class:`_WordIndex`): only the
 statements that call an entity method or pass a node as an argument are walked for entities,
 only functions that name ``Node``/``create_node`` are looked into for nodes made by calls, and
 each module is walked in one pass per question, its constants resolved once.
@@ -105,7 +105,7 @@ _INIT_WORD = '__init__'
 _IMPORT_WORD = 'import'
 
 
-class _Lines:
+class _WordIndex:
     """Where words occur in a module's text, by line: a test, at the speed of a text search, of
     whether a function or a class can hold a call worth reading before its tree is walked."""
 
@@ -260,7 +260,7 @@ def _absolute(module: str | None, level: int, package: str | None) -> str:
     return base
 
 
-class _Module:
+class _ParsedModule:
     """One parsed module: its imports, constants, functions and classes."""
 
     def __init__(self, path: str, tree: ast.Module, package: str | None, text: str | None = None) -> None:
@@ -268,7 +268,7 @@ class _Module:
         self.tree = tree
         #: Where words occur in the module's text (None: the text is not known, every function
         #: and class is read).
-        self.lines = _Lines(text) if text is not None else None
+        self.lines = _WordIndex(text) if text is not None else None
         self.imports: dict[str, str] = {}
         self.functions: dict[str, ast.FunctionDef | ast.AsyncFunctionDef] = {}
         self.classes: dict[str, ast.ClassDef] = {}
@@ -484,19 +484,19 @@ class PackageSources:
                 parts.pop()
             if parts and all(part.isidentifier() for part in parts):
                 self._paths.setdefault('.'.join(parts), path)
-        self._modules: dict[str, _Module | None] = {}
+        self._modules: dict[str, _ParsedModule | None] = {}
         self._parsed: dict[str, tuple[str, ast.Module]] = {}
 
     def path(self, dotted: str) -> str | None:
         """The file of module ``dotted`` among the package's sources."""
         return self._paths.get(dotted)
 
-    def module(self, dotted: str) -> _Module | None:
+    def module(self, dotted: str) -> _ParsedModule | None:
         """Module ``dotted`` read and indexed, or None when it is not one of the package's
         sources (or cannot be read, or says it is generated: its own extraction says why)."""
         if dotted in self._modules:
             return self._modules[dotted]
-        found: _Module | None = None
+        found: _ParsedModule | None = None
         path = self._paths.get(dotted)
         if path is not None:
             text, _problem = read_source(path)
@@ -508,7 +508,7 @@ class PackageSources:
                     tree = None
             if text is not None and tree is not None:
                 package = dotted if os.path.basename(path) == '__init__.py' else dotted.rpartition('.')[0]
-                found = _Module(path, tree, package or None, text)
+                found = _ParsedModule(path, tree, package or None, text)
                 self._parsed[path] = (text, tree)
         self._modules[dotted] = found
         return found
@@ -523,10 +523,10 @@ class _Scope:
 
     __slots__ = ('module', 'cls', 'function', 'arguments', 'depth', 'owner', '_local', '_params')
 
-    def __init__(self, module: _Module, cls: ast.ClassDef | None = None,
+    def __init__(self, module: _ParsedModule, cls: ast.ClassDef | None = None,
                  function: ast.FunctionDef | ast.AsyncFunctionDef | None = None,
                  arguments: dict[str, Any] | None = None, depth: int = 0,
-                 owner: tuple[_Module, ast.ClassDef] | None = None) -> None:
+                 owner: tuple[_ParsedModule, ast.ClassDef] | None = None) -> None:
         self.module = module
         self.cls = cls
         #: The class of ``self`` and its module when they are not ``cls`` and ``module``: a
@@ -591,7 +591,7 @@ class _Resolver:
         #: The package's other modules, where a class's base can be found (None: not known).
         self.sources = sources
 
-    def package_class(self, dotted: str, depth: int = 0) -> tuple[_Module, ast.ClassDef] | None:
+    def package_class(self, dotted: str, depth: int = 0) -> tuple[_ParsedModule, ast.ClassDef] | None:
         """The class ``dotted`` (``my_pkg.base.Base``) names when the package's sources define
         it (through the module's re-exports), with its module; None when it is not found."""
         sources = self.sources
@@ -612,7 +612,7 @@ class _Resolver:
             name = f'{head}.{name}'
         return None
 
-    def base_class(self, base: ast.expr, module: _Module) -> tuple[_Module, ast.ClassDef] | None:
+    def base_class(self, base: ast.expr, module: _ParsedModule) -> tuple[_ParsedModule, ast.ClassDef] | None:
         """The class of the package's other modules that a class's base names, with its module."""
         if self.sources is None:
             return None
@@ -748,7 +748,7 @@ class _Resolver:
         return Unknown(hint or f"'{_shown(expr)}' is computed at run time", expr)
 
     def _member(self, cls: ast.ClassDef, attr: str, scope: _Scope, seen: frozenset[int],
-                use: ast.expr, instance: bool = True, module: _Module | None = None, hops: int = 0) -> Any:
+                use: ast.expr, instance: bool = True, module: _ParsedModule | None = None, hops: int = 0) -> Any:
         """A class attribute, or an instance attribute set once (from a constant) in the class
         (of ``module``, the scope's by default), else in its bases (of the same module, then of
         the package's other modules)."""
@@ -1104,7 +1104,7 @@ class PythonExtractor:
         """The nodes of one parsed module.  With the module's ``text`` (what ``tree`` was parsed
         from), functions whose text names nothing that makes a node or an entity are not walked:
         the result is the same, sooner."""
-        module = _Module(path, tree, package, text)
+        module = _ParsedModule(path, tree, package, text)
         nodes: list[ExtractedNode] = []
         kinds = self._node_classes(module)
         for name, base in kinds.items():
@@ -1156,7 +1156,7 @@ class PythonExtractor:
                 nodes.append(node)
         return nodes
 
-    def _opaque_classes(self, module: _Module, kinds: dict[str, str]) -> list[ExtractedNode]:
+    def _opaque_classes(self, module: _ParsedModule, kinds: dict[str, str]) -> list[ExtractedNode]:
         """Classes (of the module, or made in its functions) whose base is not a class the
         extractor can read: the toolkit's run-time node (its interface is a definition read at run
         time), or a base computed at run time or imported from elsewhere (a class generated by
@@ -1223,7 +1223,7 @@ class PythonExtractor:
         return f'read from {sources.path(module_name)}, but derived from a base that is not read'
 
     @staticmethod
-    def _acts_as_node(module: _Module, cls: ast.ClassDef, base: ast.expr) -> bool:
+    def _acts_as_node(module: _ParsedModule, cls: ast.ClassDef, base: ast.expr) -> bool:
         """Whether a class of an unknown base looks like a node: its base is named like one
         (``...Node``, ``...Base`` as nodl generate names them), it calls Node methods on ``self``
         or defines lifecycle transitions."""
@@ -1237,7 +1237,7 @@ class PythonExtractor:
             isinstance(n, ast.Attribute) and n.attr in _NODE_METHODS and isinstance(n.value, ast.Name)
             and n.value.id == 'self' for n in _walk(cls))
 
-    def _node_classes(self, module: _Module, depth: int = 0) -> dict[str, str]:
+    def _node_classes(self, module: _ParsedModule, depth: int = 0) -> dict[str, str]:
         """Classes of the module that are nodes -> their base (``node``, ``lifecycle_node``): derived
         from rclpy's, or from a node class of the module or of another module of the package."""
         out: dict[str, str] = {}
@@ -1272,13 +1272,13 @@ class PythonExtractor:
 
     # -- classes ---------------------------------------------------------------------------
 
-    def _class_entities(self, builder: _NodeBuilder, module: _Module, cls: ast.ClassDef) -> None:
-        chain: list[tuple[_Module, ast.ClassDef]] = [(module, cls)]
+    def _class_entities(self, builder: _NodeBuilder, module: _ParsedModule, cls: ast.ClassDef) -> None:
+        chain: list[tuple[_ParsedModule, ast.ClassDef]] = [(module, cls)]
         while len(chain) <= _HELPER_DEPTH * 4:  # the entities of node base classes come first
             here, current = chain[-1]
             parents = [b for b in current.bases if isinstance(b, ast.Name) and b.id in here.classes]
             if parents:  # of the same module
-                parent: tuple[_Module, ast.ClassDef] | None = (here, here.classes[parents[0].id])
+                parent: tuple[_ParsedModule, ast.ClassDef] | None = (here, here.classes[parents[0].id])
             else:  # of another module of the package
                 parent = next((found for found in (self.resolver.base_class(b, here) for b in current.bases)
                                if found is not None), None)
@@ -1881,7 +1881,7 @@ _COMPOUND = (ast.If, ast.For, ast.AsyncFor, ast.While, ast.With, ast.AsyncWith, 
 
 def _reached_calls(reached: list[int], stmt: ast.stmt) -> list[ast.Call]:
     """The calls of :func:`_calls`, those of the inner statements of a block on none of the lines
-    ``reached`` (:meth:`_Module.reach_lines`) left out."""
+    ``reached`` (:meth:`_ParsedModule.reach_lines`) left out."""
     if not isinstance(stmt, _COMPOUND):
         return _calls(stmt)
     found: list[ast.Call] = []

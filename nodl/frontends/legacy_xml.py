@@ -225,7 +225,7 @@ def _positions(element: XmlElement) -> dict[str, tuple[int, int]]:
     return {a.name: (a.line, a.column) for a in element.attributes}
 
 
-class _Reader:
+class _LegacyReader:
     """Turns an :class:`XmlTree` into a :class:`LegacyDocument`, collecting diagnostics."""
 
     def __init__(self, tree: XmlTree) -> None:
@@ -500,7 +500,7 @@ class _Reader:
 
 def legacy_document_from_tree(tree: XmlTree) -> LegacyDocument:
     """Interpret a parsed XML tree as a legacy NoDL interface file."""
-    return _Reader(tree).document()
+    return _LegacyReader(tree).document()
 
 
 def parse_legacy_xml(source: Source, file: str | None = None) -> LegacyDocument:

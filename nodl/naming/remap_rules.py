@@ -176,7 +176,7 @@ def _lex(rule: str) -> list[tuple[str, str, int]]:
     return out
 
 
-class _Parser:
+class _RemapRuleParser:
     def __init__(self, rule: str) -> None:
         self.rule = rule
         self.lexemes = _lex(rule)
@@ -250,7 +250,7 @@ class _Parser:
 
 def parse_remap_rule(rule: str) -> RemapRule:
     """Parse one rule as rcl does; raises :class:`InvalidRemapRuleError`."""
-    return _Parser(rule).parse()
+    return _RemapRuleParser(rule).parse()
 
 
 #: What the functions taking remapping rules accept: :class:`RemapRule` objects,
