@@ -8,11 +8,16 @@ import pytest
 
 from conftest import FIXTURES
 from nodl.config import ConfigError
+from nodl.launch.model import LaunchedNode
+from nodl.location import Location
+from nodl.registry.registrations import one_run
+from nodl.system.matching import DefinitionMatcher
 from nodl.targets.resolve import (
     Provenance,
     coverage_line,
     gather_definitions,
     made_by,
+    no_header,
     resolve_reference,
     resolve_target,
     target_name,
@@ -92,6 +97,37 @@ def test_provenance_header(tmp_path) -> None:  # type: ignore[no-untyped-def]
     assert made_by(str(marked)) == 'described'
     marked.write_text('# Described by hand, not by nodl describe\nnodl_version: 2\n')
     assert made_by(str(marked)) is None
+
+
+def test_no_header_answers_without_reading_again_only_what_cannot_be_a_header() -> None:
+    assert no_header('nodl_version: 2\n# Extracted from talker.py by nodl extract\n')
+    assert no_header(b'\n \t{"nodl_version": 2}')
+    # a comment, nothing, or a first character that is not ASCII: the file is read (made_by)
+    assert not no_header('\n  # nodl: generated\n') and not no_header(b'#x')
+    assert not no_header('') and not no_header(b' \n') and not no_header('\u3000# x')
+
+
+def test_an_analysis_reads_a_registered_draft_header_from_the_file(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    index = tmp_path / 'share' / 'ament_index' / 'resource_index'
+    for kind in ('packages', 'nodl_nodes'):
+        (index / kind).mkdir(parents=True)
+    definitions = {'drafted': '# nodl: generated; sha256=00\n# Extracted from a.py by nodl extract\n',
+                   'plain': '', 'late': 'nodl_version: 2\n# Extracted from a.py by nodl extract\n'}
+    for name, header in definitions.items():
+        (index / 'packages' / name).write_text('')
+        (index / 'nodl_nodes' / f'{name}__{name}').write_text(f'nodl/{name}.nodl.yaml')
+        (tmp_path / 'share' / name / 'nodl').mkdir(parents=True)
+        (tmp_path / 'share' / name / 'nodl' / f'{name}.nodl.yaml').write_text(
+            header + ('' if header.startswith('nodl_version') else 'nodl_version: 2\n')
+            + 'base: node\nmain: {nodl_version: 2}\n')
+    matcher = DefinitionMatcher(prefixes=[str(tmp_path)])
+    with one_run():
+        made = {name: matcher.match(LaunchedNode('node', name, name, None, '/', Location('x', 1, 1)))
+                for name in definitions}
+    assert {name: m.provenance() for name, m in made.items()} == {
+        'drafted': Provenance('index', None, 'extracted'), 'plain': Provenance('index'),
+        'late': Provenance('index')}
+    assert [m.problems for m in made.values() if m.resolved is None] == []
 
 
 def test_coverage_line() -> None:

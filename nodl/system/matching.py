@@ -17,10 +17,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from nodl.composition.resolved import ResolvedNode
+from nodl.composition.resolvers import ResolutionError
 from nodl.diagnostics import Diagnostic
 from nodl.launch.model import LaunchedNode
-from nodl.registry import node_info, registrations
-from nodl.targets.resolve import Provenance, resolve_registered
+from nodl.registry import Registration, node_info, registrations
+from nodl.targets.resolve import Provenance, no_header, resolve_registered
 
 # Imported here, not in the functions: an import statement costs a few microseconds each
 # time it runs, for every launched node.  The index functions are called through their
@@ -97,5 +98,20 @@ class DefinitionMatcher:
         resolved, diagnostics, source = resolve_registered(
             package, key, client_library=self.client_library, prefixes=self.prefixes)
         problems = [d for d in diagnostics if d.severity.value == 'error']
-        return Match(package, key, source or registration.file, resolved, node_name, how, problems,
-                     registration.origin)
+        file = source or registration.file
+        return Match(package, key, file, resolved, node_name, how, problems, registration.origin,
+                     self._provenance(registration, file))
+
+    def _provenance(self, registration: Registration, file: str) -> Provenance | None:
+        """The provenance of an index registration whose document (read once, and kept by
+        the run's snapshot of the index) cannot start with a ``nodl extract`` or ``nodl
+        describe`` header; None (read from the file on first use) otherwise."""
+        if registration.origin != 'index' or registration.kind != 'node':
+            return None
+        try:
+            document = registrations.read_registration(registration, self.prefixes)
+        except ResolutionError:
+            return None
+        if document.file != file or not no_header(document.text):
+            return None
+        return Provenance(registration.origin, None, None)

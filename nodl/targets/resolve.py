@@ -32,7 +32,8 @@ from nodl.registry.registrations import compose_registered, find_node
 from nodl.reporting import plural
 from nodl.validation.kinds import Kind
 
-__all__ = ['Provenance', 'ResolvedTarget', 'gather_definitions', 'provenance_of', 'made_by', 'resolve_registered',
+__all__ = ['Provenance', 'ResolvedTarget', 'gather_definitions', 'provenance_of', 'made_by', 'no_header',
+           'resolve_registered',
            'target_name',
            'resolve_target', 'resolve_reference', 'coverage_line', 'NODL_PATH']
 
@@ -70,6 +71,21 @@ class Provenance(NamedTuple):
         if origin.startswith('overlay '):
             return cls('overlay', origin[len('overlay '):], made_by(file))
         return cls(origin, None, made_by(file))
+
+
+def no_header(content: str | bytes) -> bool:
+    """True when a definition's ``content`` (its text or bytes, already read) cannot hold the
+    header :func:`made_by` looks for: its first character that is not (ASCII) white space is
+    another ASCII character than ``#``.  :func:`made_by` of such a file is None without
+    reading it again (an analysis asks this of every definition it resolved)."""
+    if isinstance(content, str):
+        first = content.lstrip(_ASCII_SPACE)[:1]
+        return bool(first) and first != '#' and first < '\x80'
+    start = content.lstrip()[:1]  # (bytes.lstrip strips ASCII white space alone)
+    return bool(start) and start != b'#' and start < b'\x80'
+
+
+_ASCII_SPACE = ' \t\n\r\x0b\x0c'
 
 
 def made_by(file: str) -> str | None:
