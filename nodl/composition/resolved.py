@@ -82,8 +82,10 @@ def _new_entity(kind: EntityKind, name: str, merged: Any,
                   location, labels, merged)
 
 
-#: The endpoint sections in file order, with their entity kinds.
-_SECTION_KINDS = tuple((section, EntityKind.of_section(section)) for section in ENDPOINT_SECTIONS)
+#: The endpoint sections in file order, with their entity kinds and whether their names
+#: resolve as a service's.
+_SECTION_KINDS = tuple((section, kind, kind.communication == 'service')
+                       for section, kind in ((s, EntityKind.of_section(s)) for s in ENDPOINT_SECTIONS))
 
 
 class ResolvedNode:
@@ -103,6 +105,11 @@ class ResolvedNode:
         seeded = seeded_copies(layers[0]) if shared is not None else frozenset()
         known: dict[int, Entity] = shared.setdefault('entities by merged copy', {}) \
             if shared is not None else {}
+        # What each instance of the node needs to name its entities, worked out with them (a
+        # launched system may run a node many times): per entity, its declared name and None
+        # for a parameter (which keeps its name), else whether it resolves as a service.
+        plan: list[tuple[str, bool | None]] = []
+        endpoints: list[int] = []
         for name, param in (iface.parameters or {}).items():
             found = known.get(id(param))
             if found is None:
@@ -111,7 +118,8 @@ class ResolvedNode:
                 if id(param) in seeded:
                     known[id(param)] = found
             entities.append(found)
-        for section, kind in _SECTION_KINDS:
+            plan.append((found.name, None))
+        for section, kind, service in _SECTION_KINDS:
             for endpoint in iface.endpoints(section):
                 found = known.get(id(endpoint))
                 if found is None:
@@ -119,18 +127,15 @@ class ResolvedNode:
                                     declarations.get((section, endpoint.name), ()), layers)
                     if id(endpoint) in seeded:
                         known[id(endpoint)] = found
+                endpoints.append(len(entities))
                 entities.append(found)
+                plan.append((found.name, service))
         #: Every entity: parameters first, then the endpoint sections in file order.
         self.entities: tuple[Entity, ...] = tuple(entities)
-        #: What each instance of the node needs to name its entities, worked out once (a
-        #: launched system may run a node many times): per entity, its declared name and
-        #: None for a parameter (which keeps its name), else whether it resolves as a service.
-        self.naming_plan: tuple[tuple[str, bool | None], ...] = tuple(
-            (e.name, None if e.is_parameter else e.kind.communication == 'service')
-            for e in self.entities)
+        #: What each instance of the node needs to name its entities (see above).
+        self.naming_plan: tuple[tuple[str, bool | None], ...] = tuple(plan)
         #: The positions of the endpoints (not parameters) in :attr:`entities`.
-        self.endpoint_indices: tuple[int, ...] = tuple(
-            i for i, e in enumerate(self.entities) if not e.is_parameter)
+        self.endpoint_indices: tuple[int, ...] = tuple(endpoints)
         self._by_key: dict[tuple[EntityKind, str], Entity] | None = None  # made when first asked
 
     # -- what the node is -------------------------------------------------------------------
