@@ -2,7 +2,7 @@
 
 :func:`~nodl.frontends.xml_reader.load_xml` (expat, positions for every element and
 attribute, no DTDs and no entities, the 10 MB size limit and UTF-8) gives the tree; this module
-turns elements into :class:`~nodl.launch.frontend.FrontendEntity` objects: the child elements a
+turns elements into :class:`~nodl.launch.markup_actions.FrontendEntity` objects: the child elements a
 tag lists as nested (``param``, ``remap``, ``arg``...) go to ``nested``, the others are actions.
 """
 
@@ -14,7 +14,7 @@ from nodl.diagnostics import Diagnostic, Severity
 from nodl.frontends.xml_reader import XmlElement, load_xml
 from nodl.launch.actions import LaunchDescription
 from nodl.launch.errors import MAX_XML_DEPTH
-from nodl.launch.frontend import NESTED, TAGS, FrontendEntity, build_description
+from nodl.launch.markup_actions import NESTED, TAGS, FrontendEntity, build_description
 
 __all__ = ['read_xml_launch']
 

@@ -13,7 +13,7 @@ from typing import Any
 
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.launch.actions import LaunchDescription
-from nodl.launch.frontend import FrontendEntity, build_description
+from nodl.launch.markup_actions import FrontendEntity, build_description
 
 __all__ = ['read_yaml_launch']
 

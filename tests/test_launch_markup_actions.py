@@ -1,4 +1,4 @@
-"""The XML and YAML launch frontends (nodl.launch.frontend, xml_frontend,
+"""The XML and YAML launch frontends (nodl.launch.markup_actions, xml_frontend,
 yaml_frontend): strictness with "did you mean" at FILE:LINE:COL, and parameters typed as
 launch types them (YAML rules, value-sep, type)."""
 
