@@ -11,7 +11,7 @@ from typing import Any
 
 __all__ = ['LiveError', 'NodeNotFound', 'DuplicateNode', 'require_rclpy', 'ros_session',
            'open_session', 'close_session', 'count_node_names',
-           'split_node_name', 'node_name_problem', 'OBSERVER_PREFIX',
+           'split_node_name', 'OBSERVER_PREFIX',
            'HIDDEN_NODE_PREFIX', 'is_hidden_node', 'is_toolkit_node', 'without_toolkit_nodes',
            'MONITOR_NODE_NAME']
 
@@ -73,23 +73,6 @@ class NodeNotFound(LiveError):
 
 class DuplicateNode(LiveError):
     """Several nodes in the graph share the name; which one is meant cannot be told."""
-
-
-def node_name_problem(name: str) -> str | None:
-    """Why ``name`` is not a node name (``/namespace/name`` or ``name``), or None.
-
-    The ROS name rules apply (:func:`~nodl.validation.names.ros_name_problem`),
-    without the ``~`` and ``{}`` substitutions, which a running node's name never holds.
-    """
-    from nodl.validation.names import ros_name_problem
-
-    if not name.strip():
-        return 'a node name must not be empty'
-    if name == '/':
-        return "'/' is a namespace, not a node name"
-    if any(c in name for c in '~{}'):
-        return "a running node's name holds no '~' or '{}' substitutions; write /namespace/name"
-    return ros_name_problem(name)
 
 
 def require_rclpy() -> Any:
