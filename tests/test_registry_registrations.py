@@ -309,3 +309,29 @@ def test_one_run_reads_each_registered_document_once() -> None:
         assert ament_index.in_snapshot()
         assert read_registered(resource, 'alpha') is read_registered(resource, 'alpha')
     assert not ament_index.in_snapshot()
+
+
+def test_checked_registration_is_read_once_within_a_run_and_composed_from() -> None:
+    from unittest import mock
+
+    from nodl import loading
+    from nodl.registry import registrations
+    from nodl.registry.registrations import checked_registration, compose_registered, one_run
+
+    talker = find_node('alpha', 'talker', BOTH)
+    assert talker is not None
+    report = checked_registration(talker, BOTH)
+    assert report.file == talker.file and not report.has_errors()
+    assert report.data == loading.check_source(Path(talker.file), kind='node', file=talker.file).data
+    assert checked_registration(talker, BOTH) is not report  # outside a run: read each time
+    with one_run():
+        first = checked_registration(talker, BOTH)
+        assert checked_registration(talker, BOTH) is first
+        with mock.patch.object(registrations.loading, 'check_source',
+                               side_effect=AssertionError('read again')):
+            composed, diagnostics, source = compose_registered('alpha', 'talker', BOTH)
+    assert composed is not None and source == talker.file
+    dangling = find_node('delta', 'dangling', BOTH)
+    assert dangling is not None
+    with pytest.raises(ResolutionError):
+        checked_registration(dangling, BOTH)

@@ -44,7 +44,7 @@ from nodl.vocabulary import (
 
 __all__ = ['Registration', 'search_path', 'one_run', 'list_registrations', 'find_node',
            'read_registration', 'read_registered', 'interface_entry', 'find_interface',
-           'compose_registered', 'describe_missing']
+           'compose_registered', 'checked_registration', 'describe_missing']
 
 _KINDS = {NODE_RESOURCE: 'node', INTERFACE_RESOURCE: 'interface', REFERENCE_RESOURCE: 'node'}
 #: Where a node definition may be registered, in the order they are looked up.
@@ -303,10 +303,30 @@ def compose_registered(package: str, executable: str, prefixes: list[str] | None
         composed, diagnostics = compose_legacy(registration, client_library)
         return composed, diagnostics, registration.file
     try:
-        resolved, installed = _read_registration(registration, prefixes)
+        report = checked_registration(registration, prefixes)
     except ResolutionError as exc:  # an entry whose file is gone (a partly removed install)
         return None, [Diagnostic(Severity.ERROR, exc.message, (), where, code='NODL015')], where
-    composed, diagnostics = composition.compose_report(
-        loading.check_source(resolved.text, kind=Kind.NODE, file=resolved.file, installed=installed),
-        client_library=client_library, prefixes=prefixes)
-    return composed, diagnostics, resolved.file
+    composed, diagnostics = composition.compose_report(report, client_library=client_library,
+                                                       prefixes=prefixes)
+    return composed, diagnostics, report.file
+
+
+def checked_registration(registration: Registration, prefixes: list[str] | None = None
+                         ) -> loading.CheckedSource:
+    """The document of an index-registered v2 node definition read, parsed and validated
+    (:func:`nodl.loading.check_source`); once per registration within :func:`one_run`.
+
+    An analysis asks this for all its definitions before it composes any: reading a
+    thousand documents one after another, rather than each between the composing and
+    instantiating of others, was measured about 20 ms faster (issue 16).
+    :class:`ResolutionError` for an entry whose file is gone.
+    """
+    key = ('checked', registration, tuple(prefixes) if prefixes is not None else None)
+    return ament_index.remembered(key, lambda: _check_registration(registration, prefixes))
+
+
+def _check_registration(registration: Registration, prefixes: list[str] | None
+                        ) -> loading.CheckedSource:
+    resolved, installed = _read_registration(registration, prefixes)
+    return loading.check_source(resolved.text, kind=Kind.NODE, file=resolved.file,
+                                installed=installed)

@@ -14,6 +14,7 @@ are looked in before the index; :attr:`Match.origin` says which served.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from nodl.composition.resolved import ResolvedNode
@@ -72,6 +73,28 @@ class DefinitionMatcher:
         self.client_library = client_library
         self.prefixes = prefixes if prefixes is not None else registrations.search_path()
         self._cache: dict[tuple[str, str, str], Match] = {}
+
+    def read_ahead(self, entries: Iterable[LaunchedNode]) -> None:
+        """Read and check the index-registered definitions the executables of ``entries`` run,
+        before any is composed (:func:`nodl.registry.registrations.checked_registration`;
+        within :func:`~nodl.registry.registrations.one_run`, :meth:`match` then composes
+        what was read here: each document is still read once).  What cannot be read is left
+        for :meth:`match` to say."""
+        seen: set[tuple[str, str]] = set()
+        for entry in entries:
+            if entry.plugin is not None:
+                continue
+            wanted = (entry.package or '', entry.executable or '')
+            if wanted in seen:
+                continue
+            seen.add(wanted)
+            registration = registrations.find_node(wanted[0], wanted[1], self.prefixes)
+            if registration is None or registration.origin != 'index' or registration.kind != 'node':
+                continue
+            try:
+                registrations.checked_registration(registration, self.prefixes)
+            except ResolutionError:
+                continue
 
     def match(self, entry: LaunchedNode) -> Match:
         """The match of one launched node (cached per package and key)."""

@@ -166,6 +166,8 @@ def _analyse(entries: Iterable[LaunchedNode], matches: list[Match] | None, *,
     # does not rescan, every 700 allocations, what the analysis keeps until its end.
     with one_run(), batch_collection(), overlay.using(definitions):
         matcher = DefinitionMatcher(client_library, prefixes)
+        if matches is None:
+            matcher.read_ahead(entries)  # (every definition read before any is composed)
         nodes = [build_node(entry, matches[index] if matches is not None else matcher.match(entry),
                             findings) for index, entry in enumerate(entries)]
         context = AnalysisContext(nodes, settings or AnalysisSettings(), matcher.prefixes)
