@@ -11,7 +11,13 @@ import pytest
 from conftest import FIXTURES, REPO
 from nodl import ValidationError
 from nodl.composition import (
-    ComposedNode, ResolutionError, ResolveContext, Resolved, compose, compose_report)
+    ComposedNode,
+    ResolutionError,
+    ResolveContext,
+    Resolved,
+    compose,
+    compose_report,
+)
 from nodl.composition.path_resolver import PathResolver
 from nodl.diagnostics import Diagnostic, Severity
 from nodl.loading import check_source
@@ -47,9 +53,9 @@ def where(d: Diagnostic) -> str:
 
 def test_layers_are_base_then_mixins_in_order_then_main() -> None:
     composed = layered()
-    assert [l.label for l in composed.layers] == [
+    assert [layer.label for layer in composed.layers] == [
         'base:node', 'first.nodl.yaml', 'mixins[1]', 'file://second.nodl.yaml', 'main']
-    assert [l.role for l in composed.layers] == ['base', 'mixin', 'mixin', 'mixin', 'main']
+    assert [layer.role for layer in composed.layers] == ['base', 'mixin', 'mixin', 'mixin', 'main']
     assert composed.layer('mixins[1]').interface.description == 'An in-place mixin.'
     with pytest.raises(KeyError):
         composed.layer('no such layer')
@@ -81,7 +87,7 @@ def test_later_layer_wins_and_origin_is_the_winning_layer() -> None:
 def test_every_entity_has_exactly_one_entry_and_an_origin() -> None:
     composed = layered()
     iface = composed.interface
-    labels = {l.label for l in composed.layers}
+    labels = {layer.label for layer in composed.layers}
     for param in iface.parameters.values():
         assert param.origin in labels
     for section in ('publishers', 'subscriptions', 'service_servers', 'service_clients',
@@ -137,7 +143,7 @@ def test_declarations_trace_every_layer_that_declares_an_entity() -> None:
 
 def test_a_mixin_file_called_main_is_still_a_mixin() -> None:
     composed = compose(LAYERS / 'mixin_called_main.nodl.yaml')
-    assert [(l.label, l.role) for l in composed.layers] == [
+    assert [(layer.label, layer.role) for layer in composed.layers] == [
         ('base:node', 'base'), ('main', 'mixin'), ('main', 'main')]
     assert composed.interface.parameters['from_file_called_main'].origin == 'main'
     roles = {name: composed.declarations[('parameters', name)][0].layer.role
@@ -149,7 +155,7 @@ def test_a_mixin_file_called_main_is_still_a_mixin() -> None:
 
 def test_lifecycle_base_layer() -> None:
     composed = compose('nodl_version: 2\nbase: lifecycle_node\nmain: {nodl_version: 2}\n')
-    assert [l.label for l in composed.layers] == ['base:lifecycle_node', 'main']
+    assert [layer.label for layer in composed.layers] == ['base:lifecycle_node', 'main']
     names = {s.name for s in composed.interface.service_servers}
     assert '~/change_state' in names
     assert all(s.origin == 'base:lifecycle_node' for s in composed.interface.service_servers)
@@ -159,7 +165,7 @@ def test_node_without_base_has_only_mixins_and_main() -> None:
     composed = compose('nodl_version: 2\nmixins:\n  - nodl_version: 2\n'
                        '    parameters: {a: {type: int, default_value: 1, description: A.}}\n'
                        'main: {nodl_version: 2}\n')
-    assert [l.label for l in composed.layers] == ['mixins[0]', 'main']
+    assert [layer.label for layer in composed.layers] == ['mixins[0]', 'main']
     assert composed.interface.parameters['a'].origin == 'mixins[0]'
     assert composed.declarations[('parameters', 'a')][0].layer.role == 'mixin'
 
@@ -274,7 +280,7 @@ def test_nodl_references_resolve_relative_inline_and_one_line_entries(
         fixture_prefix: Path) -> None:
     composed = compose(COMPOSITION / 'uses_index.nodl.yaml')
     iface = composed.interface
-    assert [l.label for l in composed.layers] == [
+    assert [layer.label for layer in composed.layers] == [
         'base:node', 'nodl://fixture_pkg/relative', 'nodl://fixture_pkg/inline',
         'nodl://fixture_pkg/inline_json', 'main']
     assert [(a.name, a.origin) for a in iface.action_servers] == [
@@ -290,7 +296,7 @@ def test_nodl_references_resolve_in_the_prefixes_given_not_ament_prefix_path(
         monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv('AMENT_PREFIX_PATH', str(FIXTURES / 'analysis' / 'prefix'))  # no fixture_pkg
     composed = compose(COMPOSITION / 'uses_index.nodl.yaml', prefixes=[str(PREFIX)])
-    assert [l.label for l in composed.layers][1:-1] == [
+    assert [layer.label for layer in composed.layers][1:-1] == [
         'nodl://fixture_pkg/relative', 'nodl://fixture_pkg/inline', 'nodl://fixture_pkg/inline_json']
     # the default stays AMENT_PREFIX_PATH, which does not hold the package
     with pytest.raises(ValidationError) as exc:

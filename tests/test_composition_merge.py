@@ -124,7 +124,8 @@ publishers:
     description: Base out.
     qos: {history: KEEP_LAST, depth: 1, reliability: RELIABLE}
 service_servers:
-  - {name: ~/srv, type: std_srvs/srv/Empty, description: Base srv., qos: {history: KEEP_LAST, depth: 5, reliability: RELIABLE}}
+  - {name: ~/srv, type: std_srvs/srv/Empty, description: Base srv.,
+     qos: {history: KEEP_LAST, depth: 5, reliability: RELIABLE}}
 """
 
 
@@ -261,7 +262,7 @@ def test_merged_entities_are_stamped_copies_of_every_field() -> None:
     merged, _ = merge_layers([Layer('a', a)])
     originals = list((a.parameters or {}).values()) + a.endpoints('publishers')
     copies = list((merged.parameters or {}).values()) + merged.endpoints('publishers')
-    for original, copy in zip(originals, copies):
+    for original, copy in zip(originals, copies, strict=True):
         assert copy is not original and copy.origin == 'a' and original.origin is None
         assert [getattr(copy, f.name) for f in dataclasses.fields(copy) if f.name != 'origin'] == \
             [getattr(original, f.name) for f in dataclasses.fields(original) if f.name != 'origin']
@@ -281,8 +282,8 @@ main:
 def test_a_run_shares_the_base_and_copies_a_trace_only_when_a_later_layer_adds_to_it() -> None:
     # Within a snapshot (an analysis) every node shares the base layer's merge; a node that
     # refines a base parameter must not change what the others see.
-    from nodl.composition import compose
     from nodl import ament_index
+    from nodl.composition import compose
 
     refined = NODE.format(extra='    use_sim_time: {type: bool, default_value: true, '
                                 'description: Refined.}\n')

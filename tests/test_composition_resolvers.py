@@ -11,9 +11,9 @@ import pytest
 from conftest import FIXTURES, REPO
 from nodl import plugins
 from nodl.composition import ResolutionError, ResolveContext, compose, load_resolvers
-from nodl.registry.nodl_resolver import AmentIndexResolver
 from nodl.composition.path_resolver import PathResolver
 from nodl.composition.resolvers import RESOLVER_GROUP, package_root, scheme_of
+from nodl.registry.nodl_resolver import AmentIndexResolver
 
 SITE = FIXTURES / 'composition' / 'site'
 
