@@ -207,7 +207,6 @@ def test_files_are_everything_the_analysis_read(tmp_path: Path) -> None:
     import shutil
 
     from conftest import REPO
-
     from nodl.targets.resolve import gather_definitions
 
     system = REPO / 'examples' / 'system'

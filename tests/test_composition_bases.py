@@ -11,7 +11,12 @@ import pytest
 
 from nodl import load_interface
 from nodl.composition.bases import (
-    BASES_DIR, CLIENT_LIBRARIES, base_file, base_files, base_layer)
+    BASES_DIR,
+    CLIENT_LIBRARIES,
+    base_file,
+    base_files,
+    base_layer,
+)
 from nodl.model import Base, Interface
 
 SECTIONS = ('publishers', 'subscriptions', 'service_servers', 'service_clients',

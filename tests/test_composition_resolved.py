@@ -37,7 +37,7 @@ def test_what_the_node_is(talker: ResolvedNode) -> None:
     assert talker.base is not None and talker.base.value == 'node'
     assert (talker.client_library, talker.client_library_reason) == (
         'rclpy', 'the default; choose with --client-library')
-    assert [l.label for l in talker.layers] == ['base:node', 'diagnostics.nodl.yaml', 'main']
+    assert [layer.label for layer in talker.layers] == ['base:node', 'diagnostics.nodl.yaml', 'main']
     assert talker.interface.description == 'Talks on ~/chatter and serves a reset.'
     assert len(talker) == len(talker.entities) == len(list(talker))
 

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import pytest
-from conftest import FIXTURES
 
+from conftest import FIXTURES
 from nodl.system import EntityKind, NodeInstance, Provider, System, resolve_node
 from nodl.system.connections import Connection
 

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from nodl.composition.entities import Location as EntityLocation
 from nodl.launch import load_launch
 from nodl.launch.model import LaunchedNode, LaunchRemap
 from nodl.location import Location
-from nodl.composition.entities import Location as EntityLocation
 from nodl.system.findings import Finding
 from nodl.system.launched import ParameterSetting, SystemNode, build_node
 from nodl.system.matching import DefinitionMatcher, Match
