@@ -30,6 +30,17 @@ def test_readme_names_the_two_commands() -> None:
     assert 'make demo' in readme and 'make test' in readme
 
 
+def test_readme_lists_every_verb() -> None:
+    """Every verb registered in pyproject.toml has its row in the README's table of verbs."""
+    import tomllib
+
+    readme = (REPO / 'README.md').read_text(encoding='utf-8')
+    project = tomllib.loads((REPO / 'pyproject.toml').read_text(encoding='utf-8'))
+    verbs = project['project']['entry-points']['nodl.verbs']
+    missing = [name for name in verbs if f'`nodl {name}`' not in readme and f'`nodl {name}' not in readme]
+    assert not missing, f'README.md has no row for: {", ".join(missing)}'
+
+
 def test_quoted_policy_example_is_what_the_tool_writes(tmp_path) -> None:  # type: ignore[no-untyped-def]
     block = re.search(r'`(nodl policy talker\.nodl\.yaml use_sim_time:=true\s+--name /robot/talker)` '
                       r'writes:\n\n```xml\n(.*?)```', README, re.S)
