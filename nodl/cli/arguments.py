@@ -11,7 +11,7 @@ from nodl.cli.report_options import show_diagnostics
 from nodl.cli.verb import EXIT_FAILURE, EXIT_OK, EXIT_USAGE
 from nodl.config import ConfigError
 from nodl.diagnostics import Severity
-from nodl.naming import full_name_error, namespace_error, node_name_error, split_name
+from nodl.naming import full_name_error, join_name, namespace_error, node_name_error, split_name
 from nodl.vocabulary import CLIENT_LIBRARIES, LAUNCH_CODE_MEMORY_MIB, LAUNCH_CODE_TIMEOUT
 
 if TYPE_CHECKING:
@@ -58,7 +58,7 @@ def node_name_problem(name: str) -> str | None:
         return "'/' is a namespace, not a node name"
     if any(c in name for c in '~{}'):
         return "a running node's name holds no '~' or '{}' substitutions; write /namespace/name"
-    fqn = name if name.startswith('/') else '/' + name
+    fqn = name if name.startswith('/') else join_name('/', name)
     reason = full_name_error(fqn)
     if reason is None:
         namespace, base = split_name(fqn)
