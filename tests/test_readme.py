@@ -31,7 +31,7 @@ def test_readme_names_the_two_commands() -> None:
 
 
 def test_readme_lists_every_verb() -> None:
-    """Every verb registered in pyproject.toml has its row in the README's table of verbs."""
+    """Every verb registered in pyproject.toml has a row in README.md's table of verbs."""
     import tomllib
 
     readme = (REPO / 'README.md').read_text(encoding='utf-8')
